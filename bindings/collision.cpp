@@ -1,0 +1,81 @@
+#include <fstream>
+#include <memory>
+
+#include "common.hpp"
+#include "octoreach/collision.hpp"
+
+namespace octoreach::py_bindings {
+
+namespace {
+std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw FileError("cannot read octree file '" + path + "'");
+  if (path.size() >= 3 && path.substr(path.size() - 3) == ".ot") {
+    std::unique_ptr<octomap::AbstractOcTree> t(octomap::AbstractOcTree::read(f));
+    auto* tree = dynamic_cast<octomap::OcTree*>(t.get());
+    if (!tree) throw FileError("'" + path + "' is not an OcTree .ot file");
+    t.release();
+    return std::shared_ptr<octomap::OcTree>(tree);
+  }
+  auto tree = std::make_shared<octomap::OcTree>(0.1);
+  if (!tree->readBinary(f)) throw FileError("'" + path + "' is not a valid OctoMap .bt file");
+  return tree;
+}
+}  // namespace
+
+void wrap_collision(py::module_& m) {
+  py::class_<Obstacles, std::shared_ptr<Obstacles>>(m, "Obstacles",
+      "Environment objects in the world frame (boxes, spheres, cylinders, meshes, OctoMaps).")
+      .def(py::init<>())
+      .def("add_box", [](Obstacles& o, const Eigen::Vector3d& size, const py::object& pose, const std::string& name) {
+             o.add_box(size, pose.is_none() ? Pose::Identity() : pose_from(pose), name);
+           }, py::arg("size"), py::arg("pose") = py::none(), py::arg("name") = "",
+           "Adds a box of extents `size` (x, y, z) centred at `pose` (4x4, world frame).")
+      .def("add_sphere", [](Obstacles& o, double r, const py::object& pose, const std::string& name) {
+             o.add_sphere(r, pose.is_none() ? Pose::Identity() : pose_from(pose), name);
+           }, py::arg("radius"), py::arg("pose") = py::none(), py::arg("name") = "")
+      .def("add_cylinder", [](Obstacles& o, double r, double l, const py::object& pose, const std::string& name) {
+             o.add_cylinder(r, l, pose.is_none() ? Pose::Identity() : pose_from(pose), name);
+           }, py::arg("radius"), py::arg("length"), py::arg("pose") = py::none(), py::arg("name") = "",
+           "Adds a cylinder along the local z axis of `pose`.")
+      .def("add_mesh", [](Obstacles& o, const std::string& path, const py::object& pose, const Eigen::Vector3d& scale,
+                          const std::string& name) {
+             o.add_mesh_file(path, pose.is_none() ? Pose::Identity() : pose_from(pose), scale, name);
+           }, py::arg("path"), py::arg("pose") = py::none(), py::arg("scale") = Eigen::Vector3d::Ones(),
+           py::arg("name") = "", "Adds a mesh file (STL, DAE, OBJ ... read by assimp).")
+      .def("add_triangles", [](Obstacles& o, const py::object& vertices, const py::object& triangles,
+                               const py::object& pose, const std::string& name) {
+             Points v = matrix_from(vertices, 3, "vertices");
+             auto t = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(triangles);
+             if (!t || t.ndim() != 2 || t.shape(1) != 3) throw std::invalid_argument("triangles must have shape (M, 3)");
+             Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> tri =
+                 Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(t.data(), t.shape(0), 3);
+             o.add_geometry(make_mesh(v, tri), pose.is_none() ? Pose::Identity() : pose_from(pose), name);
+           }, py::arg("vertices"), py::arg("triangles"), py::arg("pose") = py::none(), py::arg("name") = "",
+           "Adds a triangle mesh from arrays: vertices (N, 3) and triangles (M, 3) of vertex indices.")
+      .def("add_octree_file", [](Obstacles& o, const std::string& path, const py::object& pose, const std::string& name) {
+             o.add_octree(read_octree(path), pose.is_none() ? Pose::Identity() : pose_from(pose), name.empty() ? path : name);
+           }, py::arg("path"), py::arg("pose") = py::none(), py::arg("name") = "",
+           "Adds the occupied cells of an OctoMap file (.bt or .ot).")
+      .def("add_points", [](Obstacles& o, const py::object& points, double resolution, const std::string& name) {
+             Points p = matrix_from(points, 3, "points");
+             if (!(resolution > 0)) throw std::invalid_argument("resolution must be positive");
+             auto tree = std::make_shared<octomap::OcTree>(resolution);
+             for (Eigen::Index i = 0; i < p.rows(); ++i) {
+               if (!p.row(i).allFinite()) throw std::invalid_argument("point " + std::to_string(i) + " is not finite");
+               tree->updateNode(octomap::point3d(p(i, 0), p(i, 1), p(i, 2)), true);
+             }
+             tree->updateInnerOccupancy();
+             o.add_octree(tree, Pose::Identity(), name);
+           }, py::arg("points"), py::arg("resolution"), py::arg("name") = "",
+           "Adds occupied cells at the given points (N, 3) as an OctoMap of the given resolution.")
+      .def("__len__", &Obstacles::size)
+      .def_property_readonly("names", &Obstacles::names)
+      .def("collides_box", [](const Obstacles& o, const Eigen::Vector3d& size, const py::object& pose) {
+             fcl::Boxd box(size);
+             box.computeLocalAABB();
+             return o.collides(box, pose_from(pose));
+           }, py::arg("size"), py::arg("pose"), "True when a box of extents `size` at `pose` touches an obstacle.");
+}
+
+}  // namespace octoreach::py_bindings

@@ -1,0 +1,97 @@
+#pragma once
+// Shared helpers of the binding files: numpy <-> Eigen poses, shape checks, progress.
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <vector>
+
+#include "octoreach/types.hpp"
+
+namespace octoreach::py_bindings {
+namespace py = pybind11;
+
+using RowMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// Raises ValueError unless `m` is a finite rigid transform.
+inline Pose checked_pose(const Eigen::Matrix4d& m, const char* what = "pose") {
+  if (!m.allFinite()) throw std::invalid_argument(std::string(what) + " must be finite");
+  Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+  if (!(R.transpose() * R).isIdentity(1e-6) || R.determinant() < 0 ||
+      !m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-9))
+    throw std::invalid_argument(std::string(what) + " must be a 4x4 rigid transform (orthonormal rotation, last row 0 0 0 1)");
+  Pose T;
+  T.matrix() = m;
+  return T;
+}
+
+inline Pose pose_from(const py::handle& obj, const char* what = "pose") {
+  Array a = Array::ensure(obj);
+  if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+    throw std::invalid_argument(std::string(what) + " must be a 4x4 array");
+  Eigen::Matrix4d m;
+  auto r = a.unchecked<2>();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) m(i, j) = r(i, j);
+  return checked_pose(m, what);
+}
+
+inline std::vector<Pose> poses_from(const py::handle& obj, const char* what = "poses") {
+  Array a = Array::ensure(obj);
+  if (!a || a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+    throw std::invalid_argument(std::string(what) + " must have shape (N, 4, 4)");
+  auto r = a.unchecked<3>();
+  std::vector<Pose> out(a.shape(0));
+  for (py::ssize_t n = 0; n < a.shape(0); ++n) {
+    Eigen::Matrix4d m;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) m(i, j) = r(n, i, j);
+    out[n] = checked_pose(m, what);
+  }
+  return out;
+}
+
+inline py::array_t<double> pose_to_array(const Pose& T) {
+  py::array_t<double> out({4, 4});
+  auto w = out.mutable_unchecked<2>();
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) w(i, j) = T.matrix()(i, j);
+  return out;
+}
+
+inline py::array_t<double> poses_to_array(const std::vector<Pose>& Ts) {
+  py::array_t<double> out({static_cast<py::ssize_t>(Ts.size()), py::ssize_t(4), py::ssize_t(4)});
+  auto w = out.mutable_unchecked<3>();
+  for (std::size_t n = 0; n < Ts.size(); ++n)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) w(n, i, j) = Ts[n].matrix()(i, j);
+  return out;
+}
+
+/// (N, cols) float64 array as a row-major Eigen matrix; ValueError naming the shape otherwise.
+inline RowMatrixXd matrix_from(const py::handle& obj, py::ssize_t cols, const char* what) {
+  Array a = Array::ensure(obj);
+  if (!a || a.ndim() != 2 || (cols >= 0 && a.shape(1) != cols))
+    throw std::invalid_argument(std::string(what) + " must have shape (N, " + (cols >= 0 ? std::to_string(cols) : "M") + ")");
+  return Eigen::Map<const RowMatrixXd>(a.data(), a.shape(0), a.shape(1));
+}
+
+/// Wraps a Python callable (done, total) -> bool|None as a C++ progress callback that takes the GIL.
+inline ProgressCallback progress_from(const py::object& cb) {
+  if (cb.is_none()) return nullptr;
+  return [cb](std::size_t done, std::size_t total) {
+    py::gil_scoped_acquire gil;
+    py::object r = cb(done, total);
+    return r.is_none() ? true : r.cast<bool>();
+  };
+}
+
+void wrap_collision(py::module_& m);
+void wrap_robot(py::module_& m);
+
+}  // namespace octoreach::py_bindings

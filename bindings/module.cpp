@@ -1,0 +1,18 @@
+#include "common.hpp"
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "octoreach compiled core: robot model, IK, collision, reachability maps, exploration";
+  m.attr("__version__") = octoreach::version();
+  py::register_exception<octoreach::Cancelled>(m, "Cancelled", PyExc_KeyboardInterrupt);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const octoreach::FileError& e) {
+      PyErr_SetString(PyExc_OSError, e.what());
+    }
+  });
+  octoreach::py_bindings::wrap_collision(m);
+  octoreach::py_bindings::wrap_robot(m);
+}

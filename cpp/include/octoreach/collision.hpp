@@ -1,0 +1,74 @@
+#pragma once
+/// \file collision.hpp
+/// \brief Collision geometry, environment obstacles and per-thread collision workspaces.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fcl/fcl.h>
+#include <octomap/OcTree.h>
+
+#include "octoreach/types.hpp"
+
+namespace octoreach {
+
+/// \brief One collision shape of a link, with its pose in the link frame.
+struct Shape {
+  enum class Type { Box, Cylinder, Sphere, Mesh };
+  Type type = Type::Box;
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box extents (x, y, z)
+  double radius = 0.0;                             ///< cylinder or sphere radius
+  double length = 0.0;                             ///< cylinder length
+  std::string mesh_path;                           ///< resolved mesh file
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones(); ///< mesh scale
+  Pose origin = Pose::Identity();                  ///< pose in the link frame
+  std::shared_ptr<fcl::CollisionGeometryd> geometry;
+};
+
+/// \brief Loads a triangle mesh (STL, DAE, OBJ ... through assimp) as an FCL BVH model.
+/// \param path mesh file \param scale per-axis scale
+/// \throws std::runtime_error when the file cannot be read or holds no triangles
+std::shared_ptr<fcl::CollisionGeometryd> load_mesh(const std::string& path,
+                                                    const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
+
+/// \brief Builds an FCL BVH model from vertices (N x 3) and triangles (M x 3 indices).
+std::shared_ptr<fcl::CollisionGeometryd> make_mesh(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& vertices,
+                                                    const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>& triangles);
+
+/// \brief A set of environment objects in the world frame: boxes, meshes and OctoMap octrees.
+///
+/// Immutable once built; shared between threads (each check copies the objects it moves).
+class Obstacles {
+ public:
+  /// \brief Adds an axis-aligned (in its own frame) box of extents `size` at `pose`.
+  void add_box(const Eigen::Vector3d& size, const Pose& pose, const std::string& name = "");
+  /// \brief Adds a sphere.
+  void add_sphere(double radius, const Pose& pose, const std::string& name = "");
+  /// \brief Adds a cylinder along its local z axis.
+  void add_cylinder(double radius, double length, const Pose& pose, const std::string& name = "");
+  /// \brief Adds a mesh file (STL, DAE ...).
+  void add_mesh_file(const std::string& path, const Pose& pose, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),
+                     const std::string& name = "");
+  /// \brief Adds an already built geometry.
+  void add_geometry(std::shared_ptr<fcl::CollisionGeometryd> geometry, const Pose& pose, const std::string& name = "");
+  /// \brief Adds an OctoMap: its occupied cells are obstacles.
+  void add_octree(std::shared_ptr<const octomap::OcTree> tree, const Pose& pose = Pose::Identity(),
+                  const std::string& name = "");
+
+  std::size_t size() const { return objects_.size(); }
+  bool empty() const { return objects_.empty(); }
+  const std::vector<std::string>& names() const { return names_; }
+  /// \brief The FCL objects (world frame, AABBs computed).
+  const std::vector<std::shared_ptr<fcl::CollisionObjectd>>& objects() const { return objects_; }
+  /// \brief True when `geometry` at `pose` (world frame) touches any obstacle.
+  bool collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
+  /// \brief Signed-free check with an AABB given first (fast reject).
+  bool collides(const fcl::CollisionObjectd& object) const;
+
+ private:
+  std::vector<std::shared_ptr<fcl::CollisionObjectd>> objects_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace octoreach

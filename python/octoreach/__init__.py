@@ -1,0 +1,18 @@
+"""octoreach: where a robot should stand and where it should look.
+
+The compiled core lives in ``octoreach._core``; this package re-exports it with a
+thin Python layer (robots, progress bars, plots, command line).
+
+Poses are 4x4 numpy arrays (homogeneous transforms) unless a docstring says
+(x, y, z, theta) rows. Units: metres and radians; frames are right-handed, z up.
+"""
+from ._core import (  # noqa: F401
+    Cancelled,
+    Chain,
+    Obstacles,
+    Robot,
+    __version__,
+)
+from . import robots  # noqa: F401
+
+__all__ = ["Cancelled", "Chain", "Obstacles", "Robot", "robots", "__version__"]
