@@ -93,5 +93,7 @@ inline ProgressCallback progress_from(const py::object& cb) {
 
 void wrap_collision(py::module_& m);
 void wrap_robot(py::module_& m);
+void wrap_kdl_reference(py::module_& m);
+void wrap_maps(py::module_& m);
 
 }  // namespace octoreach::py_bindings
