@@ -1,6 +1,170 @@
-// Capability maps, inverse point maps and surface maps (filled in by the map work).
+// Capability maps, inverse point maps and surface maps.
 #include "common.hpp"
+#include "octoreach/capability_map.hpp"
+#include "../cpp/src/parallel.hpp"
 
 namespace octoreach::py_bindings {
-void wrap_maps(py::module_&) {}
+
+namespace {
+
+ProgressCallback progress_arg(const py::object& progress, const char* label) {
+  py::object cb = py::module_::import("octoreach.progress").attr("make_progress")(progress, label);
+  return progress_from(cb);
+}
+
+// Runs f(i) for i in [0, n) without the GIL, on every core for large n.
+template <class F>
+void batch(std::size_t n, F&& f) {
+  py::gil_scoped_release release;
+  detail::parallel_for(n, n > 20000 ? 0 : 1, [&](std::size_t i, int) { f(i); }, 4096);
+}
+
+Array points_arg(const py::object& obj, const char* what) {
+  Array a = Array::ensure(obj);
+  if (!a || a.ndim() != 2 || a.shape(1) != 3) throw std::invalid_argument(std::string(what) + " must have shape (N, 3)");
+  return a;
+}
+
+Array poses_arg(const py::object& obj, const char* what) {
+  Array a = Array::ensure(obj);
+  if (!a || a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+    throw std::invalid_argument(std::string(what) + " must have shape (N, 4, 4)");
+  return a;
+}
+
+py::dict stats_dict(const BuildStats& s) {
+  py::dict d;
+  d["seconds"] = s.seconds;
+  d["fk_samples"] = s.fk_samples;
+  d["ik_calls"] = s.ik_calls;
+  d["cells"] = s.cells;
+  d["reachable_cells"] = s.reachable_cells;
+  d["voxels"] = s.voxels;
+  return d;
+}
+
+}  // namespace
+
+void wrap_maps(py::module_& m) {
+  py::class_<OrientationSet>(m, "OrientationSet",
+      "Evenly spread approach directions on the sphere, times rolls about each (index = direction * rolls + roll).")
+      .def_static("sphere", &OrientationSet::sphere, py::arg("count") = 200, py::arg("rolls") = 1, py::arg("symmetry") = 4)
+      .def_property_readonly("directions", [](const OrientationSet& s) {
+        Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> d(s.directions(), 3);
+        for (int i = 0; i < s.directions(); ++i) d.row(i) = s.direction(i).transpose();
+        return d;
+      }, "(K, 3) unit approach directions.")
+      .def_property_readonly("rolls", &OrientationSet::rolls)
+      .def_property_readonly("symmetry", &OrientationSet::symmetry)
+      .def("__len__", &OrientationSet::size)
+      .def("subset", &OrientationSet::subset, py::arg("name"),
+           "Direction indices of 'all', 'upper_hemisphere' (d_z <= 0: gripper above the object), 'top', 'side', "
+           "'lower_hemisphere'.")
+      .def("nearest_direction", &OrientationSet::nearest_direction, py::arg("d"))
+      .def("rotation", &OrientationSet::rotation, py::arg("index"), py::arg("approach_axis") = Eigen::Vector3d::UnitZ(),
+           "Tool rotation (3x3) of orientation `index` for a tool whose approach axis is `approach_axis`.");
+
+  py::class_<CapabilityMap>(m, "CapabilityMap",
+      "Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.")
+      .def_static("build", [](const Chain& chain, double resolution, int directions, int rolls, int symmetry,
+                              const Eigen::Vector3d& approach_axis, bool self_collision, const py::object& reference,
+                              std::uint64_t seed, std::size_t fk_samples, bool exhaustive, int exhaustive_attempts,
+                              double position_tolerance, double orientation_tolerance, bool keep_solutions,
+                              int threads, const py::object& progress) {
+             CapabilityMapOptions o;
+             o.resolution = resolution;
+             o.directions = directions;
+             o.rolls = rolls;
+             o.symmetry = symmetry;
+             o.approach_axis = approach_axis;
+             o.self_collision = self_collision;
+             if (!reference.is_none()) o.reference = reference.cast<Eigen::VectorXd>();
+             o.seed = seed;
+             o.fk_samples = fk_samples;
+             o.exhaustive = exhaustive;
+             o.exhaustive_attempts = exhaustive_attempts;
+             o.position_tolerance = position_tolerance;
+             o.orientation_tolerance = orientation_tolerance;
+             o.keep_solutions = keep_solutions;
+             o.threads = threads;
+             ProgressCallback cb = progress_arg(progress, "capability map");
+             py::gil_scoped_release release;
+             return CapabilityMap::build(chain, o, cb);
+           }, py::arg("chain"), py::arg("resolution") = 0.05, py::arg("directions") = 200, py::arg("rolls") = 1,
+           py::arg("symmetry") = 4, py::arg("approach_axis") = Eigen::Vector3d::UnitZ(),
+           py::arg("self_collision") = true, py::arg("reference") = py::none(), py::arg("seed") = 0,
+           py::arg("fk_samples") = 0, py::arg("exhaustive") = false, py::arg("exhaustive_attempts") = 10,
+           py::arg("position_tolerance") = 1e-3, py::arg("orientation_tolerance") = 1e-2,
+           py::arg("keep_solutions") = true, py::arg("threads") = 0, py::arg("progress") = true,
+           "Builds the map of `chain` (positions in its base link frame). A cell (voxel, orientation) is reachable\n"
+           "when IK finds a solution inside the limits, free of self-collision (joints off the chain at `reference`,\n"
+           "default robot.home()), for the voxel centre. Forward-kinematics sampling proposes cells and IK seeds;\n"
+           "a flood fill over neighbouring cells settles the rest; exhaustive=True also tries every other cell.\n"
+           "progress: True draws a bar, False is silent, or a callable (done, total).")
+      .def_static("load", &CapabilityMap::load, py::arg("path"))
+      .def("save", &CapabilityMap::save, py::arg("path"), py::arg("with_solutions") = false,
+           "Writes the map atomically; with_solutions also stores one joint solution per reachable cell.")
+      .def("export_octovis", &CapabilityMap::export_octovis, py::arg("path"),
+           "Writes a ColorOcTree (.ot) for octovis, red (low D) to blue (high D).")
+      .def("reachability", [](const CapabilityMap& cm, const py::object& points) {
+             Array a = points_arg(points, "points");
+             std::size_t n = a.shape(0);
+             py::array_t<double> out(n);
+             const double* p = a.data();
+             double* o = out.mutable_data();
+             batch(n, [&](std::size_t i) { o[i] = cm.reachability(Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2])); });
+             return out;
+           }, py::arg("points"), "Reachability index D (N,) of points (N, 3) in the base link frame; 0 outside.")
+      .def("reachable", [](const CapabilityMap& cm, const py::object& poses) {
+             Array a = poses_arg(poses, "poses");
+             std::size_t n = a.shape(0);
+             py::array_t<bool> out(n);
+             const double* p = a.data();
+             bool* o = out.mutable_data();
+             batch(n, [&](std::size_t i) {
+               const double* m = p + 16 * i;
+               Pose T;
+               T.matrix() << m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11], m[12], m[13],
+                   m[14], m[15];
+               o[i] = T.matrix().allFinite() && cm.reachable(T);
+             });
+             return out;
+           }, py::arg("poses"), "True (N,) where the cell of tool pose (N, 4, 4) (base link frame) is reachable.")
+      .def("reachable_cell", py::overload_cast<const Eigen::Vector3d&, int>(&CapabilityMap::reachable, py::const_),
+           py::arg("point"), py::arg("orientation"))
+      .def("solution", &CapabilityMap::solution, py::arg("point"), py::arg("orientation"),
+           "Stored joint solution of a reachable cell, or None.")
+      .def("voxels", [](const CapabilityMap& cm) {
+             std::vector<Eigen::Vector3d> c;
+             std::vector<double> v;
+             cm.voxels(c, v);
+             Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> C(c.size(), 3);
+             for (std::size_t i = 0; i < c.size(); ++i) C.row(i) = c[i].transpose();
+             return py::make_tuple(C, Eigen::Map<Eigen::VectorXd>(v.data(), v.size()).eval());
+           }, "(centres (M, 3), D (M,)) of the voxels with D > 0, base link frame.")
+      .def_property_readonly("bounds", [](const CapabilityMap& cm) {
+        auto b = cm.bounds();
+        return py::make_tuple(b.first, b.second);
+      }, "(min corner, max corner) of the reachable voxels.")
+      .def_property_readonly("resolution", &CapabilityMap::resolution)
+      .def_property_readonly("orientations", &CapabilityMap::orientations)
+      .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)
+      .def_property_readonly("robot_name", &CapabilityMap::robot_name)
+      .def_property_readonly("urdf_hash", &CapabilityMap::urdf_hash)
+      .def_property_readonly("base_link", &CapabilityMap::base_link)
+      .def_property_readonly("tip_link", &CapabilityMap::tip_link)
+      .def_property_readonly("has_solutions", &CapabilityMap::has_solutions)
+      .def_property_readonly("voxel_count", &CapabilityMap::voxel_count)
+      .def_property_readonly("stats", [](const CapabilityMap& cm) { return stats_dict(cm.stats()); })
+      .def_property_readonly("parameters", [](const CapabilityMap& cm) {
+        py::dict d;
+        for (auto& [k, v] : cm.parameters()) d[py::str(k)] = v;
+        return d;
+      })
+      .def("__repr__", [](const CapabilityMap& cm) {
+        return "<octoreach.CapabilityMap " + cm.robot_name() + " '" + cm.base_link() + "' -> '" + cm.tip_link() +
+               "', " + std::to_string(cm.voxel_count()) + " voxels at " + std::to_string(cm.resolution()) + " m>";
+      });
+}
+
 }  // namespace octoreach::py_bindings

@@ -6,7 +6,7 @@ PACKAGES=(
   build-essential cmake git pkg-config
   python3 python3-dev python3-venv python3-pip
   libeigen3-dev liboctomap-dev liborocos-kdl-dev liburdfdom-dev libtinyxml-dev
-  libfcl-dev libccd-dev libqhull-dev libassimp-dev libgtest-dev
+  libfcl-dev libccd-dev libqhull-dev libassimp-dev libgtest-dev zlib1g-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -161,12 +161,21 @@ bool Obstacles::collides(const fcl::CollisionObjectd& object) const {
 // ---------------------------------------------------------------- robot collisions
 
 bool Robot::in_self_collision_poses(const std::vector<Pose>& poses) const {
+  return in_self_collision_poses(poses, checked_);
+}
+
+bool Robot::in_self_collision_poses(const std::vector<Pose>& poses, const std::vector<std::pair<int, int>>& pairs) const {
   // AABBs of every shape first, so most pairs are rejected without FCL.
   thread_local std::vector<std::vector<fcl::AABBd>> boxes;
   thread_local std::vector<std::vector<Pose>> shape_poses;
   boxes.resize(links_.size());
   shape_poses.resize(links_.size());
+  // Only the links named by `pairs` need their boxes.
+  thread_local std::vector<char> needed;
+  needed.assign(links_.size(), 0);
+  for (const auto& [a, b] : pairs) needed[a] = needed[b] = 1;
   for (int li : collision_links_) {
+    if (!needed[li]) continue;
     const auto& shapes = links_[li].shapes;
     boxes[li].resize(shapes.size());
     shape_poses[li].resize(shapes.size());
@@ -175,7 +184,7 @@ bool Robot::in_self_collision_poses(const std::vector<Pose>& poses) const {
       boxes[li][s] = world_aabb(*shapes[s].geometry, shape_poses[li][s]);
     }
   }
-  for (const auto& [a, b] : checked_) {
+  for (const auto& [a, b] : pairs) {
     const auto& sa = links_[a].shapes;
     const auto& sb = links_[b].shapes;
     for (std::size_t i = 0; i < sa.size(); ++i)

@@ -111,6 +111,21 @@ Eigen::VectorXd Chain::to_robot_configuration(const Eigen::VectorXd& q, const Ei
   return full;
 }
 
+namespace {
+
+// Levenberg-Marquardt IK core. Matrices have a fixed upper size (no heap traffic in the loop);
+// MaxDof = Eigen::Dynamic serves longer chains.
+template <int MaxDof>
+struct LmSolver {
+  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaxDof, 1>;
+  using Jac = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, MaxDof>;
+  using Sq = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxDof, MaxDof>;
+  using Res = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+  using ResJac = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, MaxDof>;
+};
+
+}  // namespace
+
 std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) const {
   if (!target.matrix().allFinite()) throw std::invalid_argument("IK target pose must be finite");
   if (!(o.position_tolerance > 0) || !(o.orientation_tolerance > 0))
@@ -121,25 +136,36 @@ std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o,
   if (o.reference.size() != 0 && o.reference.size() != robot_->dof())
     throw std::invalid_argument("IK reference configuration has " + std::to_string(o.reference.size()) +
                                 " entries, the robot has " + std::to_string(robot_->dof()));
+  if (dof() == 0) return std::nullopt;
+  if (dof() <= 12) return ik_impl_<12>(target, o, seed);
+  return ik_impl_<Eigen::Dynamic>(target, o, seed);
+}
+
+template <int MaxDof>
+std::optional<Eigen::VectorXd> Chain::ik_impl_(const Pose& target, const IkOptions& o,
+                                               const Eigen::VectorXd* seed) const {
+  using S = LmSolver<MaxDof>;
   const int n = dof();
-  if (n == 0) return std::nullopt;
   const Eigen::Vector3d approach_tip = o.approach_axis.normalized();
   const Eigen::Vector3d approach_goal = target.linear() * approach_tip;
   // Orientation error is weighted so that one radian counts like this many metres.
   const double w_rot = 0.25;
   std::mt19937_64 rng(o.seed);
-  Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, n);
-  Eigen::VectorXd q, q_new, reference;
+  typename S::Jac J(6, n);  // Jacobian at the latest evaluated configuration
+  typename S::Vec q(n), q_new(n), dq(n), g(n);
+  typename S::Sq A(n, n);
+  typename S::Res e, e_new;
+  typename S::ResJac Jr;
+  Eigen::VectorXd reference;
   bool need_full = o.check_self_collision || o.obstacles;
   if (need_full) reference = o.reference.size() ? o.reference : robot_->home();
 
-  // Error vector (up to 6 rows) and the matching Jacobian rows, plus convergence test.
-  auto residual = [&](const Pose& T, const Eigen::Matrix<double, 6, Eigen::Dynamic>* Jin, Eigen::VectorXd& e,
-                      Eigen::MatrixXd* Jout, bool& converged) {
+  // Error vector (3 or 6 rows) and, when asked, the matching Jacobian rows; plus convergence test.
+  auto residual = [&](const Pose& T, bool with_jacobian, typename S::Res& err, bool& converged) {
     Eigen::Vector3d ep = target.translation() - T.translation();
     if (o.mode == IkMode::Position) {
-      e = ep;
-      if (Jout) *Jout = Jin->topRows<3>();
+      err = ep;
+      if (with_jacobian) Jr = J.template topRows<3>();
       converged = ep.norm() < o.position_tolerance;
       return;
     }
@@ -154,34 +180,41 @@ std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o,
       Eigen::Vector3d c = a.cross(approach_goal);
       double s = c.norm(), cs = a.dot(approach_goal);
       rot_err = std::atan2(s, cs);
-      er = s > 1e-12 ? Eigen::Vector3d(c / s * rot_err) : Eigen::Vector3d::Zero();
-      if (s <= 1e-12 && cs < 0) {  // opposite: any perpendicular axis
-        Eigen::Vector3d perp = a.unitOrthogonal();
-        er = perp * M_PI;
-      }
+      if (s > 1e-12) er = c / s * rot_err;
+      else if (cs < 0) er = a.unitOrthogonal() * M_PI;  // opposite: any perpendicular axis
+      else er.setZero();
       P -= a * a.transpose();  // roll about the approach axis does not matter
     }
-    e.resize(6);
-    e.head<3>() = ep;
-    e.tail<3>() = w_rot * er;
-    if (Jout) {
-      Jout->resize(6, n);
-      Jout->topRows<3>() = Jin->topRows<3>();
-      Jout->bottomRows<3>() = w_rot * (P * Jin->bottomRows<3>());
+    err.resize(6);
+    err.template head<3>() = ep;
+    err.template tail<3>() = w_rot * er;
+    if (with_jacobian) {
+      Jr.resize(6, n);
+      Jr.template topRows<3>() = J.template topRows<3>();
+      Jr.template bottomRows<3>() = w_rot * (P * J.template bottomRows<3>());
     }
     converged = ep.norm() < o.position_tolerance && rot_err < o.orientation_tolerance;
   };
 
+  std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
+  if (o.check_self_collision) split_collision_pairs(moving_pairs, fixed_pairs);
+  int fixed_state = o.check_fixed_pairs ? -1 : 0;  // -1 unknown, 0 free, 1 colliding
+  std::vector<Pose> poses;
   auto accept = [&](const Eigen::VectorXd& sol) -> bool {
     if (!within_limits(sol, 1e-9)) return false;
     if (!need_full) return true;
     Eigen::VectorXd full = to_robot_configuration(sol, reference);
-    if (o.obstacles && robot_->in_collision(full, *o.obstacles, o.base_pose, false)) return false;
-    if (o.check_self_collision && robot_->in_self_collision(full)) return false;
+    robot_->link_poses(full, poses);
+    if (o.obstacles && robot_->links_in_collision(poses, *o.obstacles, o.base_pose)) return false;
+    if (o.check_self_collision) {
+      if (fixed_state < 0) fixed_state = robot_->in_self_collision_poses(poses, fixed_pairs) ? 1 : 0;
+      if (fixed_state == 1) return false;
+      if (robot_->in_self_collision_poses(poses, moving_pairs)) return false;
+    }
     return true;
   };
 
-  auto clamp = [&](Eigen::VectorXd& v) {
+  auto clamp = [&](auto& v) {
     for (int i = 0; i < n; ++i) {
       if (continuous_[i]) continue;
       if (segments_[i].type == JointType::Revolute) {
@@ -192,8 +225,9 @@ std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o,
     }
   };
 
-  Eigen::VectorXd e, e_new;
-  Eigen::MatrixXd Jr;
+  // Errors this small are left to finish; above it, slow progress means a local minimum.
+  const double tol2 = o.position_tolerance * o.position_tolerance;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> Jfull;
   for (int attempt = 0; attempt < o.attempts; ++attempt) {
     if (attempt == 0 && seed) {
       q = *seed;
@@ -202,31 +236,36 @@ std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o,
       q = random_configuration(rng);
     }
     bool converged = false;
-    Pose T = fk_jacobian(q, J);
-    residual(T, &J, e, &Jr, converged);
+    Pose T = fk_jacobian(q, Jfull);
+    J = Jfull;
+    residual(T, true, e, converged);
     double err = e.squaredNorm();
     double lambda = 1e-3;
+    int slow = 0;
     for (int it = 0; it < o.max_iterations && !converged; ++it) {
-      // Levenberg-Marquardt step: (J^T J + lambda diag) dq = J^T e
-      Eigen::MatrixXd A = Jr.transpose() * Jr;
-      Eigen::VectorXd g = Jr.transpose() * e;
+      // Levenberg-Marquardt step: (J^T J + lambda (I + diag J^T J)) dq = J^T e
+      A.noalias() = Jr.transpose() * Jr;
+      g.noalias() = Jr.transpose() * e;
       A.diagonal().array() += lambda * (1.0 + A.diagonal().array());
-      Eigen::VectorXd dq = A.ldlt().solve(g);
+      dq = A.llt().solve(g);  // A is symmetric positive definite
       q_new = q + dq;
       clamp(q_new);
       bool conv_new = false;
-      Pose T_new = fk_jacobian(q_new, J);
-      residual(T_new, &J, e_new, nullptr, conv_new);
+      Pose T_new = fk_jacobian(q_new, Jfull);
+      J = Jfull;
+      residual(T_new, false, e_new, conv_new);
       double err_new = e_new.squaredNorm();
       if (err_new < err) {
+        slow = (err - err_new < 0.01 * err && err_new > 100 * tol2) ? slow + 1 : 0;
         q = q_new;
-        e = e_new;
         err = err_new;
-        residual(T_new, &J, e, &Jr, converged);
+        residual(T_new, true, e, converged);
         lambda = std::max(lambda * 0.3, 1e-9);
+        if (slow >= 4) break;  // crawling far from the target: a local minimum or a limit
       } else {
         lambda *= 10.0;
-        if (lambda > 1e6) break;  // stuck in a local minimum or at a limit: restart
+        if (lambda > 1e6) break;  // stuck: restart
+        // Jr and e still describe q, so the next step needs no new kinematics.
       }
     }
     if (converged) {
@@ -256,6 +295,14 @@ void Chain::ik_batch(const std::vector<Pose>& targets, const IkOptions& options,
     }
   }, 4);
   ok.assign(flags.begin(), flags.end());
+}
+
+void Chain::split_collision_pairs(std::vector<std::pair<int, int>>& moving,
+                                  std::vector<std::pair<int, int>>& fixed) const {
+  moving.clear();
+  fixed.clear();
+  for (const auto& p : robot_->checked_pairs())
+    (link_masks_[p.first] != link_masks_[p.second] ? moving : fixed).push_back(p);
 }
 
 KDL::Chain Chain::to_kdl() const {

@@ -455,6 +455,19 @@ Chain Robot::chain(const std::string& base_link, const std::string& tip_link) co
     c.continuous_.push_back(j.type == JointType::Continuous);
   }
   c.tip_offset_ = pending;
+  if (c.segments_.size() > 64)
+    throw std::invalid_argument("chains of more than 64 moving joints are not supported");
+  // Which chain joints move each link: a link below chain joint i moves with it.
+  c.link_masks_.assign(links_.size(), 0);
+  for (std::size_t li = 0; li < links_.size(); ++li) {
+    int cur = static_cast<int>(li);
+    while (links_[cur].parent_joint >= 0) {
+      int pj = links_[cur].parent_joint;
+      for (std::size_t i = 0; i < c.segments_.size(); ++i)
+        if (c.segments_[i].robot_joint == pj) c.link_masks_[li] |= (1ULL << i);
+      cur = joints_[pj].parent_link;
+    }
+  }
   c.lower_ = Eigen::Map<Eigen::VectorXd>(lo.data(), lo.size());
   c.upper_ = Eigen::Map<Eigen::VectorXd>(hi.data(), hi.size());
   return c;

@@ -8,11 +8,13 @@ Poses are 4x4 numpy arrays (homogeneous transforms) unless a docstring says
 """
 from ._core import (  # noqa: F401
     Cancelled,
+    CapabilityMap,
     Chain,
     Obstacles,
+    OrientationSet,
     Robot,
     __version__,
 )
 from . import robots  # noqa: F401
 
-__all__ = ["Cancelled", "Chain", "Obstacles", "Robot", "robots", "__version__"]
+__all__ = ["Cancelled", "CapabilityMap", "Chain", "OrientationSet", "Obstacles", "Robot", "robots", "__version__"]

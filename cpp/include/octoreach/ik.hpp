@@ -29,6 +29,9 @@ struct IkOptions {
   std::uint64_t seed = 0;               ///< random restarts are deterministic for a seed
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tip-frame axis used in Approach mode
   bool check_self_collision = false;    ///< reject solutions in self-collision
+  /// With check_self_collision: also check the link pairs the chain never moves relative to each
+  /// other (a caller that checked the reference posture once may switch this off).
+  bool check_fixed_pairs = true;
   std::shared_ptr<const Obstacles> obstacles;  ///< reject solutions touching these (world frame)
   Pose base_pose = Pose::Identity();    ///< robot root pose in the world (for obstacles)
   /// Full robot configuration for joints outside the chain (empty: Robot::home()).

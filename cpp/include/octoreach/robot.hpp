@@ -105,8 +105,15 @@ class Chain {
   /// \brief The same chain as a KDL::Chain (built by octoreach, not by kdl_parser).
   KDL::Chain to_kdl() const;
 
+  /// \brief Splits the robot's checked self-collision pairs into those whose relative pose this
+  /// chain's joints change (`moving`) and those it never changes (`fixed`).
+  void split_collision_pairs(std::vector<std::pair<int, int>>& moving, std::vector<std::pair<int, int>>& fixed) const;
+
  private:
   friend class Robot;
+  template <int MaxDof>
+  std::optional<Eigen::VectorXd> ik_impl_(const Pose& target, const IkOptions& options,
+                                          const Eigen::VectorXd* seed) const;
   std::shared_ptr<const Robot> robot_;
   std::string base_link_, tip_link_;
   std::vector<Segment> segments_;
@@ -115,6 +122,7 @@ class Chain {
   std::vector<int> robot_indices_;
   Eigen::VectorXd lower_, upper_;
   std::vector<bool> continuous_;
+  std::vector<std::uint64_t> link_masks_;  // per robot link: bit i set if chain joint i moves it
 };
 
 /// \brief A chain group declared in an SRDF (for example the PR2's "right_arm").
@@ -179,6 +187,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
   bool links_in_collision(const std::vector<Pose>& link_poses, const Obstacles& obstacles,
                           const Pose& base_pose, const std::vector<int>* only_links = nullptr) const;
   bool in_self_collision_poses(const std::vector<Pose>& link_poses) const;
+  /// \brief Self-collision over the given link pairs only.
+  bool in_self_collision_poses(const std::vector<Pose>& link_poses, const std::vector<std::pair<int, int>>& pairs) const;
 
   /// \brief Pairs of links whose collisions are ignored (sorted link indices, i < j).
   const std::vector<std::pair<int, int>>& allowed_pairs() const { return allowed_; }

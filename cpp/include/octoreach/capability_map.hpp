@@ -1,0 +1,121 @@
+#pragma once
+/// \file capability_map.hpp
+/// \brief Capability map of an arm: which end-effector orientations are reachable in each voxel.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "octoreach/orientation_set.hpp"
+#include "octoreach/robot.hpp"
+#include "octoreach/types.hpp"
+#include "octoreach/voxel_octree.hpp"
+
+namespace octoreach {
+
+/// \brief Build parameters of a capability map.
+struct CapabilityMapOptions {
+  double resolution = 0.05;                                  ///< voxel edge (m)
+  int directions = 200;                                      ///< approach directions on the sphere
+  int rolls = 1;                                             ///< rolls per direction (1: any roll)
+  int symmetry = 4;                                          ///< z symmetry of the direction set
+  Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tool axis that approaches the object
+  bool self_collision = true;                                ///< solutions must be free of self-collision
+  Eigen::VectorXd reference;                                 ///< robot configuration off the chain (empty: home)
+  std::uint64_t seed = 0;
+  std::size_t fk_samples = 0;         ///< forward-kinematics samples (0: 40 per voxel of the bounding box)
+  bool exhaustive = false;            ///< also run random-restart IK on every cell the sampling did not reach
+  int exhaustive_attempts = 10;       ///< random restarts per cell in exhaustive mode
+  double position_tolerance = 1e-3;   ///< IK tolerance at the voxel centre (m)
+  double orientation_tolerance = 1e-2;  ///< IK tolerance (rad)
+  bool keep_solutions = true;         ///< keep one joint solution per reachable cell
+  int threads = 0;                    ///< 0: every core
+};
+
+/// \brief Figures of a build.
+struct BuildStats {
+  double seconds = 0;
+  std::size_t fk_samples = 0;
+  std::size_t ik_calls = 0;
+  std::size_t cells = 0;            ///< voxels x orientations in the bounding box
+  std::size_t reachable_cells = 0;
+  std::size_t voxels = 0;           ///< voxels with at least one reachable orientation
+};
+
+/// \brief Capability map (Zacharias et al.): for each voxel around the arm's base link, the set of
+/// reachable orientations and the reachability index D = reachable / total.
+///
+/// A cell (voxel, orientation) is reachable when IK finds a solution inside the joint limits (and
+/// free of self-collision) for the voxel centre and that orientation. Positions are in the chain's
+/// base link frame. Immutable after build or load; queries are thread-safe.
+class CapabilityMap {
+ public:
+  /// \brief Builds the map: forward-kinematics sampling finds candidate cells and IK seeds, IK at
+  /// the voxel centres settles them, and a flood fill over neighbouring cells finds the rest.
+  static CapabilityMap build(const Chain& chain, const CapabilityMapOptions& options = {},
+                             const ProgressCallback& progress = nullptr);
+  /// \brief Reads a map saved by save(); throws FileError on a damaged, truncated or foreign file.
+  static CapabilityMap load(const std::string& path);
+  /// \brief Writes the map atomically (temporary file, then rename).
+  void save(const std::string& path, bool with_solutions = false) const;
+  /// \brief Writes a colour octree (.ot) that octovis opens, coloured red (low D) to blue (high D).
+  void export_octovis(const std::string& path) const;
+
+  /// \brief Reachability index D of the voxel holding p (0 outside the map).
+  double reachability(const Eigen::Vector3d& p) const;
+  /// \brief True when the cell of the tool pose T (base link frame) is reachable.
+  bool reachable(const Pose& T) const;
+  /// \brief True when orientation o is reachable in the voxel holding p.
+  bool reachable(const Eigen::Vector3d& p, int orientation) const;
+  /// \brief The stored joint solution of cell (p, orientation), if the map kept solutions.
+  std::optional<Eigen::VectorXd> solution(const Eigen::Vector3d& p, int orientation) const;
+  bool has_solutions() const { return !solutions_.empty(); }
+
+  /// \brief Centres (base link frame) and D of every voxel with D > 0.
+  void voxels(std::vector<Eigen::Vector3d>& centres, std::vector<double>& values) const;
+  /// \brief Axis-aligned bounds of the voxels with D > 0: (min, max) corners.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> bounds() const;
+
+  double resolution() const { return resolution_; }
+  const OrientationSet& orientations() const { return orientations_; }
+  const Eigen::Vector3d& approach_axis() const { return approach_axis_; }
+  const std::string& robot_name() const { return robot_name_; }
+  std::uint64_t urdf_hash() const { return urdf_hash_; }
+  const std::string& base_link() const { return base_link_; }
+  const std::string& tip_link() const { return tip_link_; }
+  int dof() const { return dof_; }
+  const BuildStats& stats() const { return stats_; }
+  const VoxelOcTree& tree() const { return *tree_; }
+  std::size_t voxel_count() const { return sol_offset_.size(); }
+  /// \brief The build parameters as recorded in files (key -> text).
+  std::vector<std::pair<std::string, std::string>> parameters() const;
+
+ private:
+  CapabilityMap() = default;
+  const VoxelNode* leaf(const Eigen::Vector3d& p) const { return tree_->find(p.x(), p.y(), p.z()); }
+  bool bit(std::uint32_t record, int o) const {
+    return (bits_[static_cast<std::size_t>(record) * words_ + (o >> 6)] >> (o & 63)) & 1ULL;
+  }
+  void set_parameters_(const CapabilityMapOptions& o);
+
+  std::shared_ptr<VoxelOcTree> tree_;
+  double resolution_ = 0.05;
+  OrientationSet orientations_ = OrientationSet::sphere(200);
+  Eigen::Vector3d approach_axis_ = Eigen::Vector3d::UnitZ();
+  int words_ = 4;                        // uint64 words per voxel record
+  std::vector<std::uint64_t> bits_;      // records x words_
+  std::vector<std::uint64_t> sol_offset_;  // per record: first solution row
+  std::vector<float> solutions_;         // rows of dof_ floats, in record/bit order
+  std::string robot_name_, base_link_, tip_link_;
+  std::uint64_t urdf_hash_ = 0;
+  int dof_ = 0;
+  bool self_collision_ = true;
+  std::uint64_t seed_ = 0;
+  std::size_t fk_samples_ = 0;
+  bool exhaustive_ = false;
+  double position_tolerance_ = 1e-3, orientation_tolerance_ = 1e-2;
+  BuildStats stats_;
+};
+
+}  // namespace octoreach

@@ -1,0 +1,78 @@
+#pragma once
+/// \file voxel_octree.hpp
+/// \brief An OctoMap octree whose leaves carry an index into a map's payload (reachability data).
+
+#include <cstdint>
+#include <limits>
+
+#include <octomap/AbstractOcTree.h>
+#include <octomap/OcTreeBaseImpl.h>
+#include <octomap/OcTreeDataNode.h>
+
+namespace octoreach {
+
+/// \brief Octree node: `value` holds the largest reachability below it (the leaf's own value
+/// at the finest level); `payload` indexes the owning map's per-voxel record (leaves only).
+class VoxelNode : public octomap::OcTreeDataNode<float> {
+ public:
+  VoxelNode() : octomap::OcTreeDataNode<float>(0.0f) {}
+  std::uint32_t payload = std::numeric_limits<std::uint32_t>::max();
+  void copyData(const VoxelNode& from) {
+    value = from.value;
+    payload = from.payload;
+  }
+};
+
+/// \brief The reachability octree (an extension of octomap::OcTreeBaseImpl).
+///
+/// Lookups cost O(depth): a key computation and a descent of at most 16 levels.
+class VoxelOcTree : public octomap::OcTreeBaseImpl<VoxelNode, octomap::AbstractOcTree> {
+ public:
+  explicit VoxelOcTree(double resolution) : octomap::OcTreeBaseImpl<VoxelNode, octomap::AbstractOcTree>(resolution) {}
+  VoxelOcTree* create() const override { return new VoxelOcTree(resolution); }
+  std::string getTreeType() const override { return "OctoreachVoxelOcTree"; }
+
+  /// \brief The root node, created if the tree is empty.
+  VoxelNode* ensure_root() {
+    if (!root) {
+      root = new VoxelNode();
+      ++tree_size;
+    }
+    return root;
+  }
+
+  /// \brief Leaf at `key` at the finest depth, created with its parents if absent.
+  VoxelNode* touch(const octomap::OcTreeKey& key) {
+    VoxelNode* node = ensure_root();
+    for (int depth = static_cast<int>(tree_depth) - 1; depth >= 0; --depth) {
+      unsigned idx = octomap::computeChildIdx(key, depth);
+      node = nodeChildExists(node, idx) ? getNodeChild(node, idx) : createNodeChild(node, idx);
+    }
+    return node;
+  }
+
+  /// \brief Leaf containing (x, y, z), or nullptr when the point is outside the tree or no leaf is there.
+  const VoxelNode* find(double x, double y, double z) const {
+    octomap::OcTreeKey key;
+    if (!coordToKeyChecked(x, y, z, key)) return nullptr;
+    const VoxelNode* n = search(key);
+    return n && !nodeHasChildren(n) ? n : nullptr;
+  }
+
+  /// \brief Sets each inner node's value to the largest value of its children.
+  void update_inner_values() {
+    if (root) update_recurs(root);
+  }
+
+ private:
+  float update_recurs(VoxelNode* node) {
+    if (!nodeHasChildren(node)) return node->getValue();
+    float best = 0.0f;
+    for (unsigned i = 0; i < 8; ++i)
+      if (nodeChildExists(node, i)) best = std::max(best, update_recurs(getNodeChild(node, i)));
+    node->setValue(best);
+    return best;
+  }
+};
+
+}  // namespace octoreach

@@ -1,0 +1,145 @@
+#include "map_io.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+#include <zlib.h>
+
+namespace octoreach::detail {
+namespace {
+const char kMagic[] = "OCTOREACH-MAP\n";
+constexpr std::size_t kMagicLen = sizeof(kMagic) - 1;
+
+template <class T>
+void put(std::ostream& s, const T& v) {
+  s.write(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+template <class T>
+bool get(std::istream& s, T& v) {
+  return static_cast<bool>(s.read(reinterpret_cast<char*>(&v), sizeof(T)));
+}
+}  // namespace
+
+std::string format_double(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.17g", v);
+  return buf;
+}
+
+void write_map_file(const std::string& path, const std::string& kind, const Header& header,
+                    const std::vector<char>& payload) {
+  std::string text;
+  for (const auto& [k, v] : header) {
+    if (k.find_first_of("=\n") != std::string::npos || v.find('\n') != std::string::npos)
+      throw std::invalid_argument("map header entry '" + k + "' holds '=' or a newline");
+    text += k + "=" + v + "\n";
+  }
+  uLongf bound = compressBound(payload.size());
+  std::vector<Bytef> compressed(bound);
+  if (compress2(compressed.data(), &bound, reinterpret_cast<const Bytef*>(payload.data()), payload.size(), 6) != Z_OK)
+    throw FileError("cannot compress map data for '" + path + "'");
+  compressed.resize(bound);
+  std::uint32_t crc = crc32(0L, compressed.data(), compressed.size());
+
+  std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw FileError("cannot write map file '" + path + "' (cannot create '" + tmp + "')");
+    f.write(kMagic, kMagicLen);
+    put(f, kFormatVersion);
+    put(f, static_cast<std::uint32_t>(kind.size()));
+    f.write(kind.data(), kind.size());
+    put(f, static_cast<std::uint32_t>(text.size()));
+    f.write(text.data(), text.size());
+    put(f, static_cast<std::uint64_t>(payload.size()));
+    put(f, static_cast<std::uint64_t>(compressed.size()));
+    put(f, crc);
+    f.write(reinterpret_cast<const char*>(compressed.data()), compressed.size());
+    f.flush();
+    if (!f) {
+      std::remove(tmp.c_str());
+      throw FileError("cannot write map file '" + path + "' (disk full or not writable?)");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw FileError("cannot write map file '" + path + "' (rename failed)");
+  }
+}
+
+void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw FileError("cannot open map file '" + path + "'");
+  char magic[kMagicLen];
+  if (!f.read(magic, kMagicLen) || std::memcmp(magic, kMagic, kMagicLen) != 0)
+    throw FileError("'" + path + "' is not an octoreach map file (bad magic)");
+  std::uint32_t version = 0, klen = 0, hlen = 0;
+  if (!get(f, version)) throw FileError("'" + path + "' is truncated (no format version)");
+  if (version != kFormatVersion)
+    throw FileError("'" + path + "' has map format version " + std::to_string(version) + ", this octoreach reads " +
+                    std::to_string(kFormatVersion));
+  if (!get(f, klen) || klen > 64) throw FileError("'" + path + "' is damaged (bad kind field)");
+  std::string file_kind(klen, '\0');
+  if (!f.read(file_kind.data(), klen)) throw FileError("'" + path + "' is truncated (kind)");
+  if (file_kind != kind)
+    throw FileError("'" + path + "' holds a " + file_kind + " map, expected a " + kind + " map");
+  if (!get(f, hlen) || hlen > (1u << 24)) throw FileError("'" + path + "' is damaged (bad header length)");
+  std::string text(hlen, '\0');
+  if (!f.read(text.data(), hlen)) throw FileError("'" + path + "' is truncated (header)");
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    auto eq = line.find('=');
+    if (eq == std::string::npos) throw FileError("'" + path + "' is damaged (header line without '=')");
+    header[line.substr(0, eq)] = line.substr(eq + 1);
+  }
+  std::uint64_t raw = 0, size = 0;
+  std::uint32_t crc = 0;
+  if (!get(f, raw) || !get(f, size) || !get(f, crc)) throw FileError("'" + path + "' is truncated (payload sizes)");
+  if (size > (1ull << 34) || raw > (1ull << 36)) throw FileError("'" + path + "' is damaged (implausible sizes)");
+  std::vector<Bytef> compressed(size);
+  if (!f.read(reinterpret_cast<char*>(compressed.data()), size))
+    throw FileError("'" + path + "' is truncated (payload has fewer bytes than its header says)");
+  if (crc32(0L, compressed.data(), compressed.size()) != crc)
+    throw FileError("'" + path + "' is damaged (checksum mismatch)");
+  payload.resize(raw);
+  uLongf out = raw;
+  if (uncompress(reinterpret_cast<Bytef*>(payload.data()), &out, compressed.data(), size) != Z_OK || out != raw)
+    throw FileError("'" + path + "' is damaged (payload does not decompress)");
+}
+
+double header_double(const Header& h, const std::string& key, const std::string& path) {
+  auto it = h.find(key);
+  if (it == h.end()) throw FileError("'" + path + "' lacks header entry '" + key + "'");
+  try {
+    std::size_t pos = 0;
+    double v = std::stod(it->second, &pos);
+    if (pos != it->second.size()) throw std::invalid_argument("");
+    return v;
+  } catch (const std::exception&) {
+    throw FileError("'" + path + "' has a malformed header entry '" + key + "'");
+  }
+}
+
+long long header_int(const Header& h, const std::string& key, const std::string& path) {
+  auto it = h.find(key);
+  if (it == h.end()) throw FileError("'" + path + "' lacks header entry '" + key + "'");
+  try {
+    std::size_t pos = 0;
+    long long v = std::stoll(it->second, &pos);
+    if (pos != it->second.size()) throw std::invalid_argument("");
+    return v;
+  } catch (const std::exception&) {
+    throw FileError("'" + path + "' has a malformed header entry '" + key + "'");
+  }
+}
+
+std::string header_string(const Header& h, const std::string& key, const std::string& path) {
+  auto it = h.find(key);
+  if (it == h.end()) throw FileError("'" + path + "' lacks header entry '" + key + "'");
+  return it->second;
+}
+
+}  // namespace octoreach::detail

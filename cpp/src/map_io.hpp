@@ -1,0 +1,81 @@
+#pragma once
+// Private: the octoreach map file container and bounds-checked byte streams.
+//
+// File layout (little endian):
+//   "OCTOREACH-MAP\n"      14-byte magic
+//   uint32 format version  (kFormatVersion)
+//   uint32 kind length, kind text ("capability", "point", "surface")
+//   uint32 header length, header text: "key=value\n" lines (build parameters, robot)
+//   uint64 raw payload size, uint64 compressed size, uint32 CRC-32 of the compressed bytes
+//   compressed payload (zlib)
+// Saves write a temporary file beside the target and rename it over the target.
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "octoreach/types.hpp"
+
+namespace octoreach::detail {
+
+constexpr std::uint32_t kFormatVersion = 1;
+
+class ByteWriter {
+ public:
+  template <class T>
+  void put(const T& v) {
+    const char* p = reinterpret_cast<const char*>(&v);
+    bytes.insert(bytes.end(), p, p + sizeof(T));
+  }
+  void put_bytes(const void* data, std::size_t n) {
+    const char* p = static_cast<const char*>(data);
+    bytes.insert(bytes.end(), p, p + n);
+  }
+  std::vector<char> bytes;
+};
+
+class ByteReader {
+ public:
+  ByteReader(const std::vector<char>& data, std::string what) : data_(data), what_(std::move(what)) {}
+  template <class T>
+  T get() {
+    T v;
+    need(sizeof(T));
+    std::memcpy(&v, data_.data() + pos_, sizeof(T));
+    pos_ += sizeof(T);
+    return v;
+  }
+  void get_bytes(void* out, std::size_t n) {
+    need(n);
+    std::memcpy(out, data_.data() + pos_, n);
+    pos_ += n;
+  }
+  bool done() const { return pos_ == data_.size(); }
+  std::size_t remaining() const { return data_.size() - pos_; }
+  [[noreturn]] void fail(const std::string& why) const { throw FileError(what_ + ": " + why); }
+
+ private:
+  void need(std::size_t n) {
+    if (data_.size() - pos_ < n) fail("damaged map data (payload ends early)");
+  }
+  const std::vector<char>& data_;
+  std::string what_;
+  std::size_t pos_ = 0;
+};
+
+using Header = std::map<std::string, std::string>;
+
+/// Writes kind + header + payload atomically to `path`.
+void write_map_file(const std::string& path, const std::string& kind, const Header& header,
+                    const std::vector<char>& payload);
+/// Reads a map file of the expected kind; throws FileError naming the problem.
+void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload);
+
+/// Header helpers: a missing or malformed key raises FileError naming it.
+double header_double(const Header& h, const std::string& key, const std::string& path);
+long long header_int(const Header& h, const std::string& key, const std::string& path);
+std::string header_string(const Header& h, const std::string& key, const std::string& path);
+std::string format_double(double v);
+
+}  // namespace octoreach::detail

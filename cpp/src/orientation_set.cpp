@@ -1,0 +1,180 @@
+#include "octoreach/orientation_set.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <stdexcept>
+
+namespace octoreach {
+namespace {
+
+// Cube-map cell of a unit vector: face (0..5) and cell coordinates in [0, n).
+inline int cube_cell(const Eigen::Vector3d& d, int n) {
+  Eigen::Vector3d a = d.cwiseAbs();
+  int axis;
+  if (a.x() >= a.y() && a.x() >= a.z()) axis = 0;
+  else if (a.y() >= a.z()) axis = 1;
+  else axis = 2;
+  double m = a[axis];
+  int face = axis * 2 + (d[axis] < 0 ? 1 : 0);
+  double u = d[(axis + 1) % 3] / m, v = d[(axis + 2) % 3] / m;  // in [-1, 1]
+  int iu = std::min(n - 1, std::max(0, static_cast<int>((u + 1) * 0.5 * n)));
+  int iv = std::min(n - 1, std::max(0, static_cast<int>((v + 1) * 0.5 * n)));
+  return (face * n + iu) * n + iv;
+}
+
+Eigen::Matrix3d align(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  return Eigen::Quaterniond::FromTwoVectors(from, to).toRotationMatrix();
+}
+
+}  // namespace
+
+OrientationSet OrientationSet::sphere(int count, int rolls, int symmetry) {
+  if (count < 1) throw std::invalid_argument("direction count must be at least 1, got " + std::to_string(count));
+  if (rolls < 1) throw std::invalid_argument("rolls must be at least 1, got " + std::to_string(rolls));
+  if (symmetry < 1 || symmetry > 64) throw std::invalid_argument("symmetry must be in [1, 64]");
+  OrientationSet s;
+  s.rolls_ = rolls;
+  s.symmetry_ = symmetry;
+  int per_wedge = std::max(1, (count + symmetry / 2) / symmetry);
+  // Fibonacci spiral over the sphere, compressed into one azimuth wedge of 2 pi / symmetry:
+  // equal-area in z, golden-ratio spacing in azimuth within the wedge.
+  const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
+  const double wedge = 2.0 * M_PI / symmetry;
+  for (int i = 0; i < per_wedge; ++i) {
+    double z = 1.0 - (2.0 * i + 1.0) / per_wedge;
+    double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    double frac = std::fmod(i * golden, 1.0);
+    double phi = frac * wedge;
+    for (int k = 0; k < symmetry; ++k) {
+      double p = phi + k * wedge;
+      s.dirs_.emplace_back(r * std::cos(p), r * std::sin(p), z);
+    }
+  }
+  s.finalize_();
+  return s;
+}
+
+OrientationSet OrientationSet::from_directions(const std::vector<Eigen::Vector3d>& directions, int rolls) {
+  if (directions.empty()) throw std::invalid_argument("an orientation set needs at least one direction");
+  if (rolls < 1) throw std::invalid_argument("rolls must be at least 1");
+  OrientationSet s;
+  s.rolls_ = rolls;
+  for (const auto& d : directions) {
+    if (!d.allFinite() || d.norm() < 1e-12) throw std::invalid_argument("directions must be finite and non-zero");
+    s.dirs_.push_back(d.normalized());
+  }
+  s.finalize_();
+  return s;
+}
+
+void OrientationSet::finalize_() {
+  const int n = directions();
+  // Nearest neighbours (up to 6) by angle.
+  neighbours_.assign(n, {});
+  for (int i = 0; i < n; ++i) {
+    std::vector<std::pair<double, int>> d;
+    for (int j = 0; j < n; ++j)
+      if (j != i) d.emplace_back(-dirs_[i].dot(dirs_[j]), j);
+    std::sort(d.begin(), d.end());
+    for (int k = 0; k < std::min<int>(6, d.size()); ++k) neighbours_[i].push_back(d[k].second);
+  }
+  // Candidates per cube-map cell: directions nearest to some sample point of the cell,
+  // widened by the cell's angular size so that the exact nearest is always among them.
+  table_.assign(6 * kCells * kCells, {});
+  for (int face = 0; face < 6; ++face) {
+    int axis = face / 2;
+    double sign = face % 2 ? -1.0 : 1.0;
+    for (int iu = 0; iu < kCells; ++iu)
+      for (int iv = 0; iv < kCells; ++iv) {
+        auto point = [&](double fu, double fv) {
+          Eigen::Vector3d d;
+          d[axis] = sign;
+          d[(axis + 1) % 3] = -1.0 + 2.0 * (iu + fu) / kCells;
+          d[(axis + 2) % 3] = -1.0 + 2.0 * (iv + fv) / kCells;
+          return d.normalized();
+        };
+        Eigen::Vector3d c = point(0.5, 0.5);
+        double radius = 0;  // angular radius of the cell around its centre
+        for (double fu : {0.0, 1.0})
+          for (double fv : {0.0, 1.0}) radius = std::max(radius, std::acos(std::min(1.0, c.dot(point(fu, fv)))));
+        // Nearest to the centre at angle a0: any direction within a0 + 2 radius may be nearest somewhere.
+        double best = -2;
+        for (const auto& d : dirs_) best = std::max(best, c.dot(d));
+        double limit = std::acos(std::min(1.0, best)) + 2.0 * radius + 1e-9;
+        auto& cands = table_[cube_cell(c, kCells)];
+        for (int j = 0; j < n; ++j)
+          if (std::acos(std::max(-1.0, std::min(1.0, c.dot(dirs_[j])))) <= limit) cands.push_back(j);
+      }
+  }
+  // Rotation table for the z symmetry.
+  rotated_.assign(symmetry_, std::vector<int>(n));
+  for (int k = 0; k < symmetry_; ++k) {
+    Eigen::Matrix3d R = Eigen::AngleAxisd(2.0 * M_PI * k / symmetry_, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    for (int i = 0; i < n; ++i) rotated_[k][i] = nearest_direction(R * dirs_[i]);
+  }
+}
+
+int OrientationSet::nearest_direction(const Eigen::Vector3d& d) const {
+  const auto& cands = table_[cube_cell(d, kCells)];
+  int best = cands.empty() ? 0 : cands[0];
+  double best_dot = -2;
+  for (int j : cands) {
+    double v = dirs_[j].dot(d);
+    if (v > best_dot) {
+      best_dot = v;
+      best = j;
+    }
+  }
+  return best;
+}
+
+Eigen::Matrix3d OrientationSet::rotation(int o, const Eigen::Vector3d& approach_axis) const {
+  if (o < 0 || o >= size()) throw std::invalid_argument("orientation index " + std::to_string(o) + " out of range");
+  int di = o / rolls_, ri = o % rolls_;
+  Eigen::Vector3d a = approach_axis.normalized();
+  Eigen::Matrix3d R = align(a, dirs_[di]);
+  if (rolls_ > 1) R = Eigen::AngleAxisd(2.0 * M_PI * ri / rolls_, dirs_[di]).toRotationMatrix() * R;
+  return R;
+}
+
+int OrientationSet::nearest(const Eigen::Matrix3d& R, const Eigen::Vector3d& approach_axis) const {
+  Eigen::Vector3d a = approach_axis.normalized();
+  Eigen::Vector3d d = R * a;
+  int di = nearest_direction(d);
+  if (rolls_ == 1) return di;
+  Eigen::Vector3d u = a.unitOrthogonal();
+  Eigen::Vector3d canon = align(a, dirs_[di]) * u;
+  Eigen::Vector3d actual = R * u;
+  double angle = std::atan2(canon.cross(actual).dot(dirs_[di]), canon.dot(actual));
+  if (angle < 0) angle += 2.0 * M_PI;
+  int ri = static_cast<int>(std::lround(angle / (2.0 * M_PI / rolls_))) % rolls_;
+  return di * rolls_ + ri;
+}
+
+std::vector<int> OrientationSet::subset(const std::string& name) const {
+  std::vector<int> out;
+  const double s30 = 0.5, c30 = std::sqrt(3.0) / 2.0, eps = 1e-9;
+  for (int i = 0; i < directions(); ++i) {
+    double z = dirs_[i].z();
+    bool keep;
+    if (name == "all") keep = true;
+    else if (name == "upper_hemisphere") keep = z <= eps;
+    else if (name == "lower_hemisphere") keep = z >= -eps;
+    else if (name == "top") keep = z <= -c30 + eps;
+    else if (name == "side") keep = std::abs(z) <= s30 + eps;
+    else
+      throw std::invalid_argument("unknown orientation subset '" + name +
+                                  "': expected all, upper_hemisphere, lower_hemisphere, top or side");
+    if (keep) out.push_back(i);
+  }
+  return out;
+}
+
+int OrientationSet::rotated(int i, int k) const {
+  k = ((k % symmetry_) + symmetry_) % symmetry_;
+  return rotated_[k].at(i);
+}
+
+}  // namespace octoreach
