@@ -211,7 +211,7 @@ def main(argv=None) -> int:
                   "median_us_per_solve = median over targets of one call per target (median over repeats, "
                   "call overhead of an empty call subtracted)",
         "settings": {"targets_per_chain": n, "repeats": repeats, "attempts": args.attempts, "seed": args.seed,
-                     "octoreach_max_iterations": 60, "quick": args.quick},
+                     "octoreach_max_iterations": 100, "quick": args.quick},
         "machine": {"cpu_count": os.cpu_count(), "platform": platform.platform(),
                     "python": platform.python_version(), "numpy": np.__version__,
                     "octoreach": octoreach.__version__},

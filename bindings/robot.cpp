@@ -55,7 +55,7 @@ Eigen::VectorXd robot_q(const Robot& r, const py::handle& q) {
 
 #define IK_ARGS                                                                                                \
   py::arg("mode") = "full", py::arg("position_tolerance") = 1e-4, py::arg("orientation_tolerance") = 1e-3,    \
-  py::arg("attempts") = 20, py::arg("max_iterations") = 60, py::arg("rng_seed") = 0,                          \
+  py::arg("attempts") = 20, py::arg("max_iterations") = 100, py::arg("rng_seed") = 0,                          \
   py::arg("approach_axis") = Eigen::Vector3d::UnitZ(), py::arg("self_collision") = false,                     \
   py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none()
 

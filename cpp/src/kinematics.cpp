@@ -132,11 +132,23 @@ std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o,
     throw std::invalid_argument("IK tolerances must be positive");
   if (o.attempts < 1 || o.max_iterations < 1)
     throw std::invalid_argument("IK needs at least one attempt and one iteration");
-  if (seed) check_q(*this, *seed);
+  if (seed) {
+    check_q(*this, *seed);
+    if (!seed->allFinite()) throw std::invalid_argument("IK seed must be finite");
+  }
   if (o.reference.size() != 0 && o.reference.size() != robot_->dof())
     throw std::invalid_argument("IK reference configuration has " + std::to_string(o.reference.size()) +
                                 " entries, the robot has " + std::to_string(robot_->dof()));
-  if (dof() == 0) return std::nullopt;
+  if (dof() == 0) {  // a rigid chain reaches only its own pose
+    Pose T = fk(Eigen::VectorXd());
+    bool pos_ok = (T.translation() - target.translation()).norm() < o.position_tolerance;
+    double rot = o.mode == IkMode::Position ? 0.0
+                 : o.mode == IkMode::Full   ? Eigen::AngleAxisd(target.linear() * T.linear().transpose()).angle()
+                                            : std::acos(std::min(1.0, (T.linear() * o.approach_axis.normalized())
+                                                                          .dot(target.linear() * o.approach_axis.normalized())));
+    if (pos_ok && rot < o.orientation_tolerance) return Eigen::VectorXd();
+    return std::nullopt;
+  }
   if (dof() <= 12) return ik_impl_<12>(target, o, seed);
   return ik_impl_<Eigen::Dynamic>(target, o, seed);
 }

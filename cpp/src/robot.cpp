@@ -367,6 +367,10 @@ Eigen::VectorXd Robot::configuration(const std::map<std::string, double>& values
   for (const auto& [name, value] : values) {
     const Joint& j = joints_[joint_index(name)];
     if (j.index < 0) throw std::invalid_argument("joint '" + name + "' is fixed or a mimic joint");
+    if (!std::isfinite(value)) throw std::invalid_argument("joint '" + name + "' value must be finite");
+    if (value < j.lower - 1e-9 || value > j.upper + 1e-9)
+      throw std::invalid_argument("joint '" + name + "' value " + std::to_string(value) + " is outside its limits [" +
+                                  std::to_string(j.lower) + ", " + std::to_string(j.upper) + "]");
     q[j.index] = value;
   }
   return q;

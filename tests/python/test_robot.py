@@ -312,15 +312,11 @@ def test_bad_input_raises(arm, arm_chain, call, exception, match):
         call(arm, arm_chain)
 
 
-@pytest.mark.xfail(strict=True, reason="Chain::ik checks the seed's length but not that it is finite "
-                   "(cpp/src/kinematics.cpp, check_q): a NaN seed is silently replaced by random restarts")
 def test_non_finite_seed_raises(arm_chain):
     with pytest.raises(ValueError):
         arm_chain.ik(arm_chain.fk(np.zeros(6)), seed=np.full(6, np.nan))
 
 
-@pytest.mark.xfail(strict=True, reason="Chain::ik returns nothing for a chain without moving joints even when "
-                   "the target is its fixed pose (cpp/src/kinematics.cpp: `if (n == 0) return std::nullopt;`)")
 def test_ik_of_a_fixed_chain_at_its_own_pose(arm):
     chain = arm.chain("wrist_3_link", "tool0")  # a fixed joint only
     q = chain.ik(chain.fk(np.zeros(0)))

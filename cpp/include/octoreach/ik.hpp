@@ -24,7 +24,7 @@ struct IkOptions {
   IkMode mode = IkMode::Full;
   double position_tolerance = 1e-4;     ///< metres
   double orientation_tolerance = 1e-3;  ///< radians
-  int max_iterations = 60;              ///< per attempt
+  int max_iterations = 100;             ///< per attempt (stalled attempts stop early)
   int attempts = 20;                    ///< seed (or first random start) plus random restarts
   std::uint64_t seed = 0;               ///< random restarts are deterministic for a seed
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tip-frame axis used in Approach mode
