@@ -183,6 +183,8 @@ void wrap_robot(py::module_& m) {
         for (const auto& g : r.groups()) d[py::str(g.name)] = py::make_tuple(g.base_link, g.tip_link);
         return d;
       }, "SRDF chain groups: name -> (base_link, tip_link).")
+      .def_property_readonly("named_states", &Robot::named_states,
+                             "SRDF group states: name -> {joint: value} (for example 'tuck_left_arm').")
       .def("has_link", &Robot::has_link)
       .def("home", &Robot::home, "Zero configuration moved into the joint limits.")
       .def("configuration", &Robot::configuration, py::arg("values"),

@@ -273,6 +273,19 @@ std::shared_ptr<Robot> Robot::from_urdf(const std::string& urdf_in, const std::v
       if (!c || !g->Attribute("name") || !c->Attribute("base_link") || !c->Attribute("tip_link")) continue;
       r.groups_.push_back({g->Attribute("name"), c->Attribute("base_link"), c->Attribute("tip_link")});
     }
+    for (TiXmlElement* g = root->FirstChildElement("group_state"); g; g = g->NextSiblingElement("group_state")) {
+      const char* name = g->Attribute("name");
+      if (!name) throw std::invalid_argument("malformed SRDF: <group_state> needs a name");
+      auto& values = r.named_states_[name];
+      for (TiXmlElement* j = g->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+        const char* jn = j->Attribute("name");
+        double v = 0;
+        if (!jn || j->QueryDoubleAttribute("value", &v) != TIXML_SUCCESS)
+          throw std::invalid_argument(std::string("malformed SRDF: a joint of group_state '") + name +
+                                      "' needs name and value");
+        if (r.joint_by_name_.count(jn) && r.joints_[r.joint_by_name_[jn]].index >= 0) values[jn] = v;
+      }
+    }
     for (TiXmlElement* d = root->FirstChildElement("disable_collisions"); d;
          d = d->NextSiblingElement("disable_collisions")) {
       const char* a = d->Attribute("link1");

@@ -167,6 +167,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
   std::vector<std::string> mimic_joints() const;
   /// \brief Chain groups from the SRDF.
   const std::vector<ChainGroup>& groups() const { return groups_; }
+  /// \brief Named joint values from the SRDF's group states (for example the PR2's "tuck_left_arm").
+  const std::map<std::string, std::map<std::string, double>>& named_states() const { return named_states_; }
   /// \brief Configuration with values from a name -> value map, the rest from home().
   Eigen::VectorXd configuration(const std::map<std::string, double>& values) const;
 
@@ -217,6 +219,7 @@ class Robot : public std::enable_shared_from_this<Robot> {
   int root_link_ = 0;
   std::map<std::string, int> link_by_name_, joint_by_name_;
   std::vector<ChainGroup> groups_;
+  std::map<std::string, std::map<std::string, double>> named_states_;
   std::vector<std::pair<int, int>> allowed_, checked_;
   std::vector<int> collision_links_;
 };
