@@ -143,52 +143,98 @@ struct BatchUpdater {
   }
 };
 
-// Shared bitmap over a key box, set from several threads.
+// Bitmap over a box of keys (one per thread, OR-ed at the end). Each 64-bit word holds a
+// 4 x 4 x 4 brick of cells, so consecutive cells of a ray mostly hit the same cache line.
 class KeyBitmap {
  public:
   KeyBitmap(const int lo[3], const int hi[3]) {
     for (int i = 0; i < 3; ++i) {
       lo_[i] = lo[i];
-      n_[i] = std::size_t(hi[i] - lo[i] + 1);
+      nb_[i] = std::size_t((hi[i] - lo[i]) / 4 + 1);
     }
-    bits_ = n_[0] * n_[1] * n_[2];
-    words_ = std::vector<std::atomic<std::uint64_t>>((bits_ + 63) / 64);
-  }
-  std::size_t index(const octomap::OcTreeKey& k) const {
-    return (std::size_t(k[2] - lo_[2]) * n_[1] + std::size_t(k[1] - lo_[1])) * n_[0] + std::size_t(k[0] - lo_[0]);
+    words_.assign(nb_[0] * nb_[1] * nb_[2], 0);
   }
   void set(const octomap::OcTreeKey& k) {
-    std::size_t i = index(k);
-    std::uint64_t mask = std::uint64_t(1) << (i & 63);
-    auto& w = words_[i >> 6];
-    // Most cells near the sensor are crossed by many rays: read before writing.
-    if (!(w.load(std::memory_order_relaxed) & mask)) w.fetch_or(mask, std::memory_order_relaxed);
+    unsigned x = k[0] - lo_[0], y = k[1] - lo_[1], z = k[2] - lo_[2];
+    words_[word(x, y, z)] |= std::uint64_t(1) << bit(x, y, z);
   }
   void clear(const octomap::OcTreeKey& k) {
-    std::size_t i = index(k);
-    words_[i >> 6].fetch_and(~(std::uint64_t(1) << (i & 63)), std::memory_order_relaxed);
+    unsigned x = k[0] - lo_[0], y = k[1] - lo_[1], z = k[2] - lo_[2];
+    words_[word(x, y, z)] &= ~(std::uint64_t(1) << bit(x, y, z));
   }
+  std::vector<std::uint64_t>& words() { return words_; }
   // Appends (morton << 1) of every set bit.
   void extract(std::vector<std::uint64_t>& out) const {
-    std::size_t nxy = n_[0] * n_[1];
     for (std::size_t w = 0; w < words_.size(); ++w) {
-      std::uint64_t bits = words_[w].load(std::memory_order_relaxed);
+      std::uint64_t bits = words_[w];
+      if (!bits) continue;
+      std::size_t bz = w / (nb_[0] * nb_[1]), r = w % (nb_[0] * nb_[1]), by = r / nb_[0], bx = r % nb_[0];
       while (bits) {
-        int b = __builtin_ctzll(bits);
+        unsigned b = unsigned(__builtin_ctzll(bits));
         bits &= bits - 1;
-        std::size_t i = w * 64 + std::size_t(b);
-        std::size_t z = i / nxy, r = i % nxy, y = r / n_[0], x = r % n_[0];
-        out.push_back(morton(std::uint32_t(x + lo_[0]), std::uint32_t(y + lo_[1]), std::uint32_t(z + lo_[2])) << 1);
+        std::uint32_t x = std::uint32_t(bx * 4 + (b & 3) + lo_[0]), y = std::uint32_t(by * 4 + ((b >> 2) & 3) + lo_[1]),
+                      z = std::uint32_t(bz * 4 + (b >> 4) + lo_[2]);
+        out.push_back(morton(x, y, z) << 1);
       }
     }
   }
+  std::size_t word(unsigned x, unsigned y, unsigned z) const {
+    return (std::size_t(z >> 2) * nb_[1] + (y >> 2)) * nb_[0] + (x >> 2);
+  }
+  static unsigned bit(unsigned x, unsigned y, unsigned z) { return (x & 3) | ((y & 3) << 2) | ((z & 3) << 4); }
+  int lo(int i) const { return lo_[i]; }
 
  private:
   int lo_[3];
-  std::size_t n_[3];
-  std::size_t bits_;
-  std::vector<std::atomic<std::uint64_t>> words_;
+  std::size_t nb_[3];
+  std::vector<std::uint64_t> words_;
 };
+
+// The cells OcTreeBaseImpl::computeRayKeys(origin, end) returns (the same arithmetic, step for
+// step, so the same cells), written straight into a bitmap instead of a KeyRay. Both keys are
+// known to be inside the map.
+void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::OcTreeKey& key_origin,
+                const octomap::point3d& end, const octomap::OcTreeKey& key_end, KeyBitmap& bits) {
+  if (key_origin == key_end) return;
+  bits.set(key_origin);
+  octomap::point3d direction = (end - origin);
+  float length = (float)direction.norm();
+  direction /= length;
+  int step[3];
+  double t_max[3], t_delta[3];
+  octomap::OcTreeKey current = key_origin;
+  const double res = tree.getResolution();
+  for (unsigned i = 0; i < 3; ++i) {
+    if (direction(i) > 0.0)
+      step[i] = 1;
+    else if (direction(i) < 0.0)
+      step[i] = -1;
+    else
+      step[i] = 0;
+    if (step[i] != 0) {
+      double border = tree.keyToCoord(current[i]);
+      border += (float)(step[i] * res * 0.5);
+      t_max[i] = (border - origin(i)) / direction(i);
+      t_delta[i] = res / std::fabs(direction(i));
+    } else {
+      t_max[i] = std::numeric_limits<double>::max();
+      t_delta[i] = std::numeric_limits<double>::max();
+    }
+  }
+  for (;;) {
+    unsigned dim;
+    if (t_max[0] < t_max[1])
+      dim = t_max[0] < t_max[2] ? 0 : 2;
+    else
+      dim = t_max[1] < t_max[2] ? 1 : 2;
+    current[dim] = octomap::key_type(current[dim] + step[dim]);
+    t_max[dim] += t_delta[dim];
+    if (current == key_end) return;
+    double dist = std::min(std::min(t_max[0], t_max[1]), t_max[2]);
+    if (dist > length) return;
+    bits.set(current);
+  }
+}
 
 std::string fmt_vec(const Eigen::Vector3d& v) {
   std::ostringstream s;
@@ -456,20 +502,24 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     throw std::invalid_argument("the cloud spans " + std::to_string(cells) +
                                 " cells; pass a max_range or a coarser resolution");
 
-  // 2. Free cells of all rays in a shared bitmap, occupied end cells per thread (both cores).
-  KeyBitmap free_bits(lo, hi);
+  // 2. Free cells of all rays in one bitmap per thread, occupied end cells per thread.
+  std::vector<KeyBitmap> free_local;
+  free_local.reserve(threads);
+  for (int t = 0; t < threads; ++t) free_local.emplace_back(lo, hi);
   std::vector<std::vector<std::uint64_t>> occ_local(threads);
-  std::vector<octomap::KeyRay> rays(threads);
   detail::parallel_for(n, threads, [&](std::size_t i, int tid) {
     if (kind[i] == 0) return;
-    octomap::KeyRay& ray = rays[tid];
-    if (tree.computeRayKeys(o, ends[i], ray))
-      for (auto it = ray.begin(); it != ray.end(); ++it) free_bits.set(*it);
-    if (kind[i] == 1) {
-      octomap::OcTreeKey k = tree.coordToKey(ends[i]);
-      occ_local[tid].push_back((morton(k[0], k[1], k[2]) << 1) | 1);
-    }
+    octomap::OcTreeKey kend = tree.coordToKey(ends[i]);
+    trace_free(tree, o, okey, ends[i], kend, free_local[tid]);
+    if (kind[i] == 1) occ_local[tid].push_back((morton(kend[0], kend[1], kend[2]) << 1) | 1);
   }, 256);
+  KeyBitmap& free_bits = free_local[0];
+  {
+    auto& w0 = free_bits.words();
+    detail::parallel_for(w0.size(), threads, [&](std::size_t w, int) {
+      for (int t = 1; t < threads; ++t) w0[w] |= free_local[t].words()[w];
+    }, 4096);
+  }
   std::vector<std::uint64_t> updates;
   for (auto& v : occ_local) updates.insert(updates.end(), v.begin(), v.end());
   occ_local.clear();
