@@ -190,6 +190,8 @@ class ExplorationMap {
   void write_bt(const std::string& path) const;
 
   struct Impl;
+  /// \brief The map's internal cell cache (for octoreach's own algorithms; opaque to users).
+  const Impl& internals() const { return *impl_; }
 
  private:
   ExplorationOptions options_;
