@@ -162,8 +162,16 @@ void wrap_exploration(py::module_& m) {
                              "OctoMap occupancy map with incremental frontiers (free cells with an unknown 6-neighbour,\n"
                              "clustered by 26-connectivity) and voids (unknown cells inside the convex hull of the\n"
                              "occupied cells), clustered into ellipsoids. Map frame, metres.")
-      .def(py::init([](double resolution, double threshold, std::uint64_t seed, int threads, bool track_voids) {
+      .def(py::init([](double resolution, double threshold, std::uint64_t seed, int threads, bool track_voids,
+                       const py::object& search_space) {
              ExplorationOptions o;
+             if (!search_space.is_none()) {
+               RowMatrixXd b = matrix_from(search_space, 3, "search_space");
+               if (b.rows() != 2 || !b.allFinite() || (b.row(0).array() > b.row(1).array()).any())
+                 throw std::invalid_argument("search_space must be finite (2, 3) rows lo, hi with lo <= hi");
+               o.search_lo = b.row(0).transpose();
+               o.search_hi = b.row(1).transpose();
+             }
              o.resolution = resolution;
              o.void_fit_threshold = threshold;
              o.seed = seed;
@@ -172,7 +180,8 @@ void wrap_exploration(py::module_& m) {
              return std::make_unique<ExplorationMap>(o);
            }),
            py::arg("resolution") = 0.025, py::arg("void_fit_threshold") = 0.6, py::arg("seed") = 0,
-           py::arg("threads") = 0, py::arg("track_voids") = true)
+           py::arg("threads") = 0, py::arg("track_voids") = true, py::arg("search_space") = py::none(),
+           "search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.")
       .def_static("from_file", [](const std::string& path, double threshold, std::uint64_t seed) {
              ExplorationOptions o;
              o.void_fit_threshold = threshold;

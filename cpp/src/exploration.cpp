@@ -376,7 +376,8 @@ bool frontier_test(const detail::GridReader& g, CellKey k) {
 
 // Column intervals of the cells whose centres are inside the hull (planes: n.x + d <= 0).
 detail::HullColumns hull_columns(const octomap::OcTree& tree, const std::vector<Eigen::Vector4d>& planes,
-                                 const std::vector<Eigen::Vector3d>& vertices, int threads) {
+                                 const std::vector<Eigen::Vector3d>& vertices, int threads,
+                                 const Eigen::Vector3d& s_lo, const Eigen::Vector3d& s_hi) {
   detail::HullColumns c;
   if (planes.empty() || vertices.empty()) return c;
   Eigen::Vector3d lo = vertices[0], hi = vertices[0];
@@ -384,6 +385,12 @@ detail::HullColumns hull_columns(const octomap::OcTree& tree, const std::vector<
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
+  // only the search space: cells whose centre lies in [s_lo, s_hi]
+  const double res = tree.getResolution();
+  lo = lo.cwiseMax(s_lo);
+  hi = hi.cwiseMin(s_hi);
+  if ((lo.array() > hi.array()).any()) return c;
+  const double zcap_lo = std::ceil(s_lo.z() / res + 32767.5), zcap_hi = std::floor(s_hi.z() / res + 32767.5);
   octomap::OcTreeKey klo, khi;
   if (!tree.coordToKeyChecked(octomap::point3d(float(lo.x()), float(lo.y()), float(lo.z())), klo) ||
       !tree.coordToKeyChecked(octomap::point3d(float(hi.x()), float(hi.y()), float(hi.z())), khi))
@@ -394,13 +401,14 @@ detail::HullColumns hull_columns(const octomap::OcTree& tree, const std::vector<
   c.ny = khi[1] - klo[1] + 3;
   c.lo.assign(std::size_t(c.nx) * c.ny, 1);
   c.hi.assign(std::size_t(c.nx) * c.ny, 0);
-  const double res = tree.getResolution();
   const double eps = 1e-7 * res;
   const double half = 32768.0 - 0.5;  // key k has centre (k - half) * res (OctoMap: tree_max_val 32768)
   detail::parallel_for(std::size_t(c.ny), threads, [&](std::size_t yi, int) {
     double y = (double(c.y0 + int(yi)) - half) * res;
+    if (y < s_lo.y() || y > s_hi.y()) return;
     for (int xi = 0; xi < c.nx; ++xi) {
       double x = (double(c.x0 + xi) - half) * res;
+      if (x < s_lo.x() || x > s_hi.x()) continue;
       double zlo = -std::numeric_limits<double>::infinity(), zhi = std::numeric_limits<double>::infinity();
       bool empty = false;
       for (const auto& p : planes) {
@@ -423,8 +431,8 @@ detail::HullColumns hull_columns(const octomap::OcTree& tree, const std::vector<
       std::size_t i = yi * c.nx + xi;
       if (empty) continue;
       double klo_f = std::ceil(zlo / res + half), khi_f = std::floor(zhi / res + half);
-      klo_f = std::max(klo_f, 0.0);
-      khi_f = std::min(khi_f, 65535.0);
+      klo_f = std::max({klo_f, 0.0, zcap_lo});
+      khi_f = std::min({khi_f, 65535.0, zcap_hi});
       if (klo_f > khi_f) continue;
       c.lo[i] = std::int32_t(klo_f);
       c.hi[i] = std::int32_t(khi_f);
@@ -643,7 +651,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
         ++st.void_removed;
       }
     if (have_hull) {
-      detail::HullColumns nc = hull_columns(tree, planes, verts, threads);
+      detail::HullColumns nc = hull_columns(tree, planes, verts, threads, options_.search_lo, options_.search_hi);
       const detail::HullColumns& oc = I.columns;
       // visit the union of both column boxes
       int x0 = nc.x0, y0 = nc.y0, x1 = nc.x0 + nc.nx, y1 = nc.y0 + nc.ny;
@@ -913,7 +921,7 @@ ExplorationSnapshot ExplorationMap::recompute_from_scratch() const {
   std::sort(s.frontier_cells.begin(), s.frontier_cells.end());
   s.frontier_clusters = components26(s.frontier_cells);
   if (!I.hull_planes.empty()) {
-    detail::HullColumns c = hull_columns(tree, I.hull_planes, I.hull_vertices, options_.threads);
+    detail::HullColumns c = hull_columns(tree, I.hull_planes, I.hull_vertices, options_.threads, options_.search_lo, options_.search_hi);
     for (int y = 0; y < c.ny; ++y)
       for (int x = 0; x < c.nx; ++x) {
         int l, h;
@@ -989,7 +997,7 @@ std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& pat
     I.frontier_members.emplace(label, std::move(comp));
   }
   if (options.track_voids && convex_hull(occupied, I.hull_planes, I.hull_vertices)) {
-    I.columns = hull_columns(I.tree, I.hull_planes, I.hull_vertices, options.threads);
+    I.columns = hull_columns(I.tree, I.hull_planes, I.hull_vertices, options.threads, options.search_lo, options.search_hi);
     ExplorationSnapshot v = m->recompute_from_scratch();
     for (CellKey k : v.void_cells) {
       I.grid.at(k) |= kVoidFlag;

@@ -102,6 +102,9 @@ struct ExplorationOptions {
   std::uint64_t seed = 0;           ///< seeds the void clustering's random start cells
   int threads = 0;                  ///< 0: all cores
   bool track_voids = true;          ///< maintain the hull and void cells at every insert
+  /// The search space S of the paper (its boundary is known): void cells are only looked for
+  /// inside this box. Default: unbounded.
+  Eigen::Vector3d search_lo = Eigen::Vector3d::Constant(-1e9), search_hi = Eigen::Vector3d::Constant(1e9);
 };
 
 /// \brief Frontier clusters and void cells computed from the occupancy alone (tests compare these).
