@@ -21,10 +21,11 @@ from ._core import (  # noqa: F401
     Scene,
     VoidCluster,
     next_best_view,
+    view_utility,
 )
 from . import exploration  # noqa: F401
 from .exploration import explore  # noqa: F401
 
 __all__ = ["Cancelled", "Chain", "Obstacles", "Robot", "robots", "__version__"]
-__all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "Scene", "VoidCluster", "next_best_view",
+__all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore"]
