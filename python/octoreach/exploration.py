@@ -355,7 +355,8 @@ def plot_map(emap: ExplorationMap, path, poses=(), next_pose=None, title: str = 
 
 
 def run_demo(scene_id: int = 2, out="exploration_out", max_views: int = 10, resolution: float = 0.025,
-             width: int = 640, height: int = 480, seed: int = 0, plots: bool = True, quiet: bool = False):
+             width: int = 640, height: int = 480, seed: int = 0, plots: bool = True, quiet: bool = False,
+             export: bool = True):
     """One exploration of a paper scene with the explorer robot; writes table.txt, table.json,
     view_NN.png and map.bt into `out`. Returns the ExplorationResult."""
     out = Path(out)
@@ -383,7 +384,8 @@ def run_demo(scene_id: int = 2, out="exploration_out", max_views: int = 10, reso
     (out / "table.json").write_text(json.dumps({"scene": scene_id, "resolution": resolution,
                                                 "total_s": result.total_s, "rows": result.to_dicts()},
                                                indent=1))
-    result.map.write_bt(str(out / "map.bt"))
+    if export:
+        result.map.write_bt(str(out / "map.bt"))  # OctoMap prints a progress line to stdout
     if not quiet:
         print(result.table())
         print(f"whole exploration {result.total_s:.1f} s; wrote {out}/table.txt, table.json, "
