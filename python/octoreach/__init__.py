@@ -16,5 +16,18 @@ from ._core import (  # noqa: F401
     __version__,
 )
 from . import robots  # noqa: F401
+from ._core import (  # noqa: F401
+    CameraIntrinsics,
+    DepthCamera,
+    ExplorationMap,
+    Scene,
+    VoidCluster,
+    next_best_view,
+    view_utility,
+)
+from . import exploration  # noqa: F401
+from .exploration import explore  # noqa: F401
 
 __all__ = ["Cancelled", "CapabilityMap", "Chain", "OrientationSet", "Obstacles", "Robot", "robots", "__version__"]
+__all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "Scene", "VoidCluster", "next_best_view", "view_utility",
+            "exploration", "explore"]

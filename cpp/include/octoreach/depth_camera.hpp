@@ -1,0 +1,109 @@
+#pragma once
+/// \file depth_camera.hpp
+/// \brief Simulated scenes (boxes, crates, closed boxes with openings, boards, triangle meshes or an
+/// OctoMap .bt world) and a simulated depth camera that ray-casts them into point clouds.
+///
+/// Camera frame convention (as ROS optical frames): the camera looks along its +z axis,
+/// +x points right in the image and +y down. Poses are camera -> world transforms.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "octoreach/types.hpp"
+
+namespace octomap {
+class OcTree;
+}
+
+namespace octoreach {
+
+/// \brief Axis-aligned box (metres).
+struct Aabb {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  bool contains(const Eigen::Vector3d& p) const { return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all(); }
+  double volume() const { return (hi - lo).prod(); }
+};
+
+/// \brief A static world the depth camera can see.
+class Scene {
+ public:
+  Scene();
+  ~Scene();
+  Scene(const Scene&);
+  Scene& operator=(const Scene&);
+
+  /// \brief A solid axis-aligned box (also a board: a thin box). \throws std::invalid_argument if lo > hi.
+  void add_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+  /// \brief An open-topped crate: floor and four walls of the given thickness inside [lo, hi];
+  /// its inside is recorded as an interior.
+  void add_crate(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double thickness);
+  /// \brief A closed box with one rectangular opening of size (width, height) centred in face
+  /// `face` ("+x", "-x", "+y", "-y", "+z"); its inside is recorded as an interior.
+  void add_closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double thickness, const std::string& face,
+                      double opening_width, double opening_height);
+  /// \brief Triangles (vertex rows, index triples) in the world frame.
+  void add_mesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles);
+  /// \brief Uses the occupied cells of an OctoMap .bt file as (part of) the world.
+  /// \throws FileError if the file does not exist or is not an OctoMap binary file.
+  void load_octomap(const std::string& path);
+  /// \brief Records a region of interest (e.g. the inside of a box) for coverage figures.
+  void add_interior(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+
+  const std::vector<Aabb>& boxes() const { return boxes_; }
+  const std::vector<Aabb>& interiors() const { return interiors_; }
+  std::size_t triangle_count() const { return tris_.size(); }
+  bool has_octomap() const { return octree_ != nullptr; }
+  /// \brief Bounding box of everything in the scene.
+  Aabb bounds() const;
+  /// \brief True when p is inside a solid box (meshes and octomaps are surfaces: false).
+  bool solid(const Eigen::Vector3d& p) const;
+
+  /// \brief Distance along the unit direction d from o to the first surface within max_range.
+  bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const;
+
+ private:
+  struct Bvh;
+  void rebuild_bvh_();
+  std::vector<Aabb> boxes_, interiors_;
+  std::vector<Eigen::Vector3d> tris_;  // 3 rows per triangle
+  std::shared_ptr<const Bvh> bvh_;
+  std::shared_ptr<const octomap::OcTree> octree_;
+};
+
+/// \brief Pinhole intrinsics of a depth sensor: image size, horizontal field of view, range.
+struct CameraIntrinsics {
+  int width = 640, height = 480;
+  double fov = 1.0123;    ///< horizontal field of view, radians (58 degrees, a Kinect)
+  double max_range = 4.0;  ///< metres
+  /// \brief Unit ray through pixel (u, v) (pixel centres at +0.5) in the camera frame (+z forward).
+  Eigen::Vector3d ray(double u, double v) const;
+  /// \brief Focal length in pixels.
+  double focal() const;
+  /// \brief Throws std::invalid_argument naming the bad value.
+  void validate() const;
+};
+
+/// \brief A simulated depth camera: one ray per pixel, Gaussian depth noise growing with depth^2.
+class DepthCamera {
+ public:
+  /// \param noise standard deviation of the depth at 1 m (metres); at depth z it is noise * z^2
+  /// (as for structured-light sensors). 0 for exact depths.
+  DepthCamera(int width, int height, double fov, double max_range, double noise = 0.0, std::uint64_t seed = 0);
+  const CameraIntrinsics& intrinsics() const { return intr_; }
+  double noise() const { return noise_; }
+  /// \brief Points (world frame) the camera at `camera_pose` (camera -> world) sees in `scene`;
+  /// pixels without a surface within max_range give no point. Each call draws new noise
+  /// (deterministic for the seed and the call count).
+  std::vector<Eigen::Vector3d> capture(const Scene& scene, const Pose& camera_pose, int threads = 0);
+
+ private:
+  CameraIntrinsics intr_;
+  double noise_;
+  std::uint64_t seed_, calls_ = 0;
+};
+
+}  // namespace octoreach

@@ -1,0 +1,206 @@
+#pragma once
+/// \file exploration.hpp
+/// \brief Frontier-void exploration map (Dornhege & Kleiner, SSRR 2011, section IV A-B).
+///
+/// An OctoMap occupancy tree plus what the exploration needs on top of it:
+/// the cells each insertion changed, the frontier cells and their clusters
+/// (maintained incrementally), the convex hull of the accumulated point cloud
+/// and the void cells inside it, and ellipsoidal void clusters.
+///
+/// Definitions used throughout (all at the finest resolution of the tree):
+/// - a cell is *unknown* when the tree has no node covering it, else *occupied*
+///   or *free* by OcTree::isNodeOccupied;
+/// - a *frontier* cell is a free cell with at least one unknown cell among its
+///   6 face neighbours; frontier clusters are connected components of frontier
+///   cells under 26-connectivity (face, edge or corner neighbours);
+/// - a *void* cell is an unknown cell whose centre lies inside (or on) the convex
+///   hull of the occupied cells' centres inserted so far;
+/// - a void cluster is grown from a random seed cell over 26-neighbours while the
+///   fit score of eq. (2) stays at or above a threshold (see VoidCluster).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "octoreach/types.hpp"
+
+namespace octomap {
+class OcTree;
+}
+
+namespace octoreach {
+
+/// \brief Occupancy class of one cell.
+enum class CellState : std::uint8_t { Unknown = 0, Free = 1, Occupied = 2 };
+
+/// \brief A cell index: OctoMap's key (three 16-bit integers) packed as k0 | k1 << 16 | k2 << 32.
+using CellKey = std::uint64_t;
+
+/// \brief Packs three OctoMap key components.
+inline CellKey pack_key(std::uint32_t k0, std::uint32_t k1, std::uint32_t k2) {
+  return CellKey(k0) | (CellKey(k1) << 16) | (CellKey(k2) << 32);
+}
+inline std::uint32_t key_x(CellKey k) { return std::uint32_t(k & 0xffff); }
+inline std::uint32_t key_y(CellKey k) { return std::uint32_t((k >> 16) & 0xffff); }
+inline std::uint32_t key_z(CellKey k) { return std::uint32_t((k >> 32) & 0xffff); }
+
+/// \brief One cell whose class an insertion changed.
+struct CellChange {
+  CellKey key = 0;
+  CellState before = CellState::Unknown;
+  CellState after = CellState::Unknown;
+};
+
+/// \brief What one ExplorationMap::insert did and how long its parts took (seconds).
+struct InsertStats {
+  std::size_t points = 0;           ///< finite points used
+  std::size_t dropped = 0;          ///< non-finite rows dropped
+  std::size_t out_of_bounds = 0;    ///< finite points outside the map bounds (ignored, as OctoMap does)
+  std::size_t free_cells = 0;       ///< distinct cells updated as free
+  std::size_t occupied_cells = 0;   ///< distinct cells updated as occupied
+  std::size_t changed_cells = 0;    ///< cells whose class changed
+  std::size_t frontier_added = 0, frontier_removed = 0;
+  std::size_t void_added = 0, void_removed = 0;
+  double seconds_rays = 0, seconds_tree = 0, seconds_frontiers = 0, seconds_hull = 0, seconds_voids = 0,
+         seconds_total = 0;
+};
+
+/// \brief An ellipsoidal cluster of void cells.
+///
+/// The eigenvalues are those of the covariance (1) of the cluster's cell
+/// centres, each cell counted as a solid cube (so a covariance of a flat layer is
+/// not singular: R^2/12 is added on the diagonal). eq. (2) multiplies eigenvalues
+/// as if they were lengths; we use the semi-axes a_j = sqrt(5 lambda_j) of the
+/// solid ellipsoid with that covariance, so the score
+///   S = N R^3 / (4/3 pi a_1 a_2 a_3)
+/// is the share of the ellipsoid filled by the cluster (about 0.9 for convex blobs).
+struct VoidCluster {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();     ///< metres, map frame
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();     ///< columns e1, e2, e3 (unit, decreasing eigenvalue)
+  Eigen::Vector3d eigenvalues = Eigen::Vector3d::Zero();  ///< lambda_1 >= lambda_2 >= lambda_3 (m^2)
+  Eigen::Vector3d semi_axes = Eigen::Vector3d::Zero();    ///< sqrt(5 lambda_j), metres
+  double score = 0;                                       ///< eq. (2) as above
+  std::vector<CellKey> cells;                             ///< sorted
+  double volume(double resolution) const { return double(cells.size()) * resolution * resolution * resolution; }
+};
+
+/// \brief A void cluster with the frontier clusters next to it (26-neighbourhood).
+struct FrontierVoid {
+  int void_index = -1;                  ///< index into ExplorationMap::void_clusters()
+  std::vector<int> frontier_clusters;   ///< indices into ExplorationMap::frontier_clusters()
+  std::vector<CellKey> frontier_cells;  ///< the frontier cells of those clusters touching the void (sorted)
+  double utility = 0;                   ///< void volume, m^3
+};
+
+/// \brief Tuning of the exploration map.
+struct ExplorationOptions {
+  double resolution = 0.025;        ///< cell edge, metres (the paper's 2.5 cm)
+  double void_fit_threshold = 0.6;  ///< region growing accepts a cell while eq. (2) stays >= this
+  std::uint64_t seed = 0;           ///< seeds the void clustering's random start cells
+  int threads = 0;                  ///< 0: all cores
+  bool track_voids = true;          ///< maintain the hull and void cells at every insert
+  /// The search space S of the paper (its boundary is known): void cells are only looked for
+  /// inside this box. Default: unbounded.
+  Eigen::Vector3d search_lo = Eigen::Vector3d::Constant(-1e9), search_hi = Eigen::Vector3d::Constant(1e9);
+};
+
+/// \brief Frontier clusters and void cells computed from the occupancy alone (tests compare these).
+struct ExplorationSnapshot {
+  std::vector<CellKey> frontier_cells;                ///< sorted
+  std::vector<std::vector<CellKey>> frontier_clusters;  ///< each sorted; sorted by first cell
+  std::vector<CellKey> void_cells;                    ///< sorted
+};
+
+/// \brief OctoMap occupancy tree with incremental frontiers, voids and their clusters.
+///
+/// Not thread-safe for concurrent writes; const methods may run concurrently.
+class ExplorationMap {
+ public:
+  explicit ExplorationMap(const ExplorationOptions& options = ExplorationOptions());
+  ~ExplorationMap();
+  ExplorationMap(const ExplorationMap&) = delete;
+  ExplorationMap& operator=(const ExplorationMap&) = delete;
+
+  /// \brief Map whose occupancy comes from an OctoMap .bt file (frontiers and voids rebuilt;
+  /// the hull from the occupied cells). \throws FileError if it cannot be read.
+  static std::unique_ptr<ExplorationMap> from_file(const std::string& path,
+                                                   const ExplorationOptions& options = ExplorationOptions());
+
+  /// \brief Integrates a point cloud (map frame) seen from `sensor_origin`.
+  ///
+  /// Same occupancy result as octomap::OcTree::insertPointCloud(cloud, origin, max_range)
+  /// (rays to points beyond max_range clear free space up to max_range). Non-finite
+  /// rows are dropped; an empty cloud changes nothing. max_range <= 0 means unlimited.
+  /// \throws std::invalid_argument for a non-finite origin or max_range, or an origin
+  /// outside the map bounds.
+  InsertStats insert(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& sensor_origin,
+                     double max_range);
+
+  /// \brief Stock OctoMap insertPointCloud into this map's tree (reference for tests and
+  /// benchmarks; leaves frontiers and voids stale). Returns seconds spent.
+  double insert_stock(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& sensor_origin,
+                      double max_range);
+
+  double resolution() const { return resolution_; }
+  const ExplorationOptions& options() const { return options_; }
+  const octomap::OcTree& octree() const;
+
+  /// \brief Class of the cell holding point p (map frame); Unknown outside the map bounds.
+  CellState state(const Eigen::Vector3d& p) const;
+  CellState state(CellKey key) const;
+  /// \brief Key of the cell holding p; throws std::invalid_argument outside the map bounds.
+  CellKey key_of(const Eigen::Vector3d& p) const;
+  /// \brief Centre of a cell, metres.
+  Eigen::Vector3d center(CellKey key) const;
+  /// \brief Is the cell a frontier / void cell (as maintained incrementally)?
+  bool is_frontier(CellKey key) const;
+  bool is_void(CellKey key) const;
+
+  /// \brief Cells whose class the last insert changed (in Morton order).
+  const std::vector<CellChange>& changed_cells() const { return changed_; }
+
+  /// \brief Frontier cells, sorted.
+  std::vector<CellKey> frontier_cells() const;
+  /// \brief Frontier clusters (each sorted, ordered by their first cell).
+  const std::vector<std::vector<CellKey>>& frontier_clusters() const;
+  /// \brief Void cells, sorted.
+  std::vector<CellKey> void_cells() const;
+  std::size_t void_cell_count() const;
+  /// \brief Void clusters (ellipsoidal region growing, deterministic for options().seed).
+  const std::vector<VoidCluster>& void_clusters() const;
+  /// \brief Frontier-voids: each void cluster with the frontier clusters touching it.
+  std::vector<FrontierVoid> frontier_voids() const;
+  /// \brief Vertices of the current convex hull of the occupied cells (metres).
+  std::vector<Eigen::Vector3d> hull_vertices() const;
+  /// \brief Facet planes (n, d) with n.x + d <= 0 inside, unit n.
+  std::vector<Eigen::Vector4d> hull_planes() const;
+  /// \brief True when p lies inside (or on) the current hull.
+  bool inside_hull(const Eigen::Vector3d& p) const;
+
+  /// \brief Frontiers, their clusters and voids recomputed from the occupancy and hull alone.
+  ExplorationSnapshot recompute_from_scratch() const;
+  /// \brief The same three things as maintained incrementally.
+  ExplorationSnapshot snapshot() const;
+
+  /// \brief Counts of known / unknown cells (at the finest resolution) in an axis-aligned box.
+  std::pair<std::size_t, std::size_t> count_known(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
+
+  /// \brief Writes the tree as an OctoMap binary .bt (for octovis); temporary file + rename.
+  /// \throws FileError on failure.
+  void write_bt(const std::string& path) const;
+
+  struct Impl;
+  /// \brief The map's internal cell cache (for octoreach's own algorithms; opaque to users).
+  const Impl& internals() const { return *impl_; }
+
+ private:
+  ExplorationOptions options_;
+  double resolution_;
+  std::unique_ptr<Impl> impl_;
+  std::vector<CellChange> changed_;
+};
+
+}  // namespace octoreach

@@ -1,0 +1,94 @@
+#pragma once
+/// \file next_best_view.hpp
+/// \brief Next best view (Dornhege & Kleiner, Algorithm 1 and section IV-C).
+///
+/// 1. Utility vectors: for every frontier-void, from the void's centre and its six extremes
+///    (centroid +- semi-axis along each eigenvector) through each frontier cell touching the void.
+/// 2. Each vector is ray-traced from its frontier cell through free cells up to the sensor range
+///    (stopping at the first cell that is not free), adding the void's volume to every cell.
+/// 3. Cells outside the sensor's workspace are pruned (a box, a sphere, a user callback and/or
+///    the arm's IK below).
+/// 4. At the cells of highest utility, camera orientations are sampled around the mean direction
+///    back along the vectors that reached the cell; each is scored by casting a coarse grid of rays
+///    through the camera frustum and counting the distinct void and unknown cells met before the
+///    first occupied cell. A pose counts when the arm (if given) has an IK solution for it; the
+///    search stops after `max_valid_poses` valid poses.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "octoreach/depth_camera.hpp"
+#include "octoreach/exploration.hpp"
+#include "octoreach/ik.hpp"
+#include "octoreach/types.hpp"
+
+namespace octoreach {
+
+class Chain;
+
+/// \brief Where the sensor can be (map frame). Empty: everywhere.
+struct SensorWorkspace {
+  std::optional<Aabb> box;                                  ///< sensor positions inside this box
+  std::optional<Eigen::Vector3d> sphere_center;             ///< and within sphere_radius of this point
+  double sphere_radius = 0;
+  /// Batch filter: one bool per position (called once per search with all candidate cells).
+  std::function<std::vector<bool>(const std::vector<Eigen::Vector3d>&)> filter;
+  bool contains(const Eigen::Vector3d& p) const;
+};
+
+/// \brief Options of the next-best-view search.
+struct NbvOptions {
+  int max_valid_poses = 50;          ///< N of the paper
+  int orientations_per_cell = 8;     ///< sampled orientations per candidate cell
+  double orientation_spread = 0.35;  ///< radians: cone around the mean utility direction
+  int max_candidate_cells = 400;     ///< cells tried, best utility first
+  int score_width = 48, score_height = 36;  ///< coarse ray grid for scoring (not every pixel)
+  double min_distance = 0.0;         ///< keep the camera this far (m) from occupied cells (one cell check)
+  std::uint64_t seed = 0;
+  int threads = 0;
+  SensorWorkspace workspace;
+  /// Arm carrying the camera: its tip frame is the camera frame (+z forward); IK in Approach mode
+  /// (position and optical axis; the roll the arm reaches is scored).
+  const Chain* chain = nullptr;
+  Pose chain_base = Pose::Identity();  ///< chain base frame -> map frame
+  IkOptions ik;                        ///< mode and approach axis are set by the search
+};
+
+/// \brief One scored sensor configuration.
+struct ViewCandidate {
+  Pose pose = Pose::Identity();  ///< camera -> map
+  std::size_t void_cells = 0;    ///< distinct void cells seen before the first occupied cell
+  std::size_t unknown_cells = 0; ///< distinct unknown cells seen (void cells included)
+  double cell_utility = 0;       ///< accumulated utility (m^3 summed over vectors) at its cell
+  Eigen::VectorXd q;             ///< arm joints when a chain was given
+};
+
+/// \brief Result of a search: valid poses ranked by void cells, then unknown cells.
+struct NbvResult {
+  std::vector<ViewCandidate> ranked;
+  std::size_t utility_vectors = 0;
+  std::size_t utility_cells = 0;    ///< cells with utility > 0 before pruning
+  std::size_t candidate_cells = 0;  ///< after workspace pruning
+  std::size_t poses_scored = 0, ik_failures = 0;
+  double seconds = 0;
+  /// \brief Expected void cells of the best pose (0 when there is none).
+  std::size_t best_void_cells() const { return ranked.empty() ? 0 : ranked.front().void_cells; }
+};
+
+/// \brief Accumulated utility per free cell (steps 1-2), before pruning.
+std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap& map, double sensor_range,
+                                                           std::size_t* vectors = nullptr);
+
+/// \brief Distinct void and unknown cells a camera at `pose` sees before the first occupied cell,
+/// casting a score_width x score_height grid of rays over the field of view.
+std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, const CameraIntrinsics& camera,
+                                                 const Pose& pose, int score_width, int score_height);
+
+/// \brief The full search (steps 1-4).
+NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& camera, const NbvOptions& options);
+
+}  // namespace octoreach

@@ -1,0 +1,188 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include <octomap/OcTree.h>
+
+#include "octoreach/depth_camera.hpp"
+#include "octoreach/exploration.hpp"
+#include "octoreach/robot.hpp"
+
+using namespace octoreach;
+
+namespace {
+
+// Camera pose (camera -> world) at `eye` looking at `target`, +z forward, image +y roughly down.
+Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
+  Eigen::Vector3d z = (target - eye).normalized();
+  Eigen::Vector3d up = std::abs(z.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d x = z.cross(up).normalized();  // right
+  Eigen::Vector3d y = z.cross(x);                // down
+  Pose T = Pose::Identity();
+  T.linear().col(0) = x;
+  T.linear().col(1) = y;
+  T.linear().col(2) = z;
+  T.translation() = eye;
+  return T;
+}
+
+Scene cluttered_scene() {
+  Scene s;
+  s.add_box({-1.5, -1.5, -0.05}, {1.5, 1.5, 0.0});  // floor
+  s.add_crate({0.3, -0.5, 0.0}, {0.7, -0.1, 0.3}, 0.02);
+  s.add_closed_box({0.3, 0.2, 0.0}, {0.8, 0.6, 0.4}, 0.02, "-x", 0.12, 0.1);
+  s.add_box({-0.2, 0.6, 0.0}, {0.6, 0.65, 0.2});  // a board
+  return s;
+}
+
+// Every known cell of a tree at the finest resolution: key -> log-odds.
+std::map<CellKey, float> leaf_cells(const octomap::OcTree& t) {
+  std::map<CellKey, float> out;
+  for (auto it = t.begin_leafs(), end = t.end_leafs(); it != end; ++it) {
+    octomap::OcTreeKey k = it.getKey();
+    int size = 1 << (16 - it.getDepth());
+    int mask = ~(size - 1);
+    for (int z = 0; z < size; ++z)
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+          out[pack_key((k[0] & mask) + x, (k[1] & mask) + y, (k[2] & mask) + z)] = it->getLogOdds();
+  }
+  return out;
+}
+
+std::vector<Pose> survey_poses() {
+  return {look_at({-0.6, 0.0, 0.9}, {0.5, 0.0, 0.1}), look_at({-0.3, -0.9, 0.8}, {0.5, 0.0, 0.1}),
+          look_at({0.0, 0.9, 1.0}, {0.5, 0.1, 0.1}), look_at({1.4, 0.3, 0.9}, {0.5, 0.1, 0.1}),
+          look_at({0.5, 0.0, 1.4}, {0.5, 0.0, 0.0})};
+}
+
+}  // namespace
+
+TEST(DepthCamera, SeesTheFloorAtTheRightDepth) {
+  Scene s;
+  s.add_box({-2, -2, -0.1}, {2, 2, 0});
+  DepthCamera cam(64, 48, 1.0, 4.0, 0.0, 0);
+  auto pts = cam.capture(s, look_at({0, 0, 1.5}, {0, 0, 0}));
+  ASSERT_EQ(pts.size(), 64u * 48u);
+  for (const auto& p : pts) EXPECT_NEAR(p.z(), 0.0, 1e-9);
+  // out of range: nothing
+  DepthCamera near(64, 48, 1.0, 1.0, 0.0, 0);
+  EXPECT_TRUE(near.capture(s, look_at({0, 0, 1.5}, {0, 0, 0})).empty());
+  // noise is deterministic for a seed and changes depth
+  DepthCamera n1(16, 12, 1.0, 4.0, 0.01, 7), n2(16, 12, 1.0, 4.0, 0.01, 7);
+  auto a = n1.capture(s, look_at({0, 0, 1.5}, {0, 0, 0})), b = n2.capture(s, look_at({0, 0, 1.5}, {0, 0, 0}));
+  ASSERT_EQ(a.size(), b.size());
+  double dev = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i], b[i]);
+    dev += std::abs(a[i].z());
+  }
+  EXPECT_GT(dev, 0.0);
+}
+
+TEST(DepthCamera, ClosedBoxOpeningLetsRaysIn) {
+  Scene s;
+  s.add_closed_box({0, 0, 0}, {0.5, 0.5, 0.5}, 0.02, "-x", 0.1, 0.1);
+  double t;
+  // through the hole to the far inner wall at x = 0.48
+  EXPECT_TRUE(s.raycast({-1, 0.25, 0.25}, {1, 0, 0}, 4.0, t));
+  EXPECT_NEAR(t, 1.48, 1e-9);
+  // beside the hole: the outer wall at x = 0
+  EXPECT_TRUE(s.raycast({-1, 0.1, 0.25}, {1, 0, 0}, 4.0, t));
+  EXPECT_NEAR(t, 1.0, 1e-9);
+  ASSERT_EQ(s.interiors().size(), 1u);
+  EXPECT_THROW(s.add_closed_box({0, 0, 0}, {0.5, 0.5, 0.5}, 0.02, "up", 0.1, 0.1), std::invalid_argument);
+  EXPECT_THROW(s.load_octomap("/nonexistent/world.bt"), FileError);
+}
+
+TEST(DepthCamera, MeshAndBoxAgree) {
+  // a unit square at z = 0 as two triangles vs a thin box
+  Scene mesh;
+  mesh.add_mesh({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+  double t;
+  ASSERT_TRUE(mesh.raycast({0.2, 0.3, 1}, Eigen::Vector3d(0, 0, -1), 4, t));
+  EXPECT_NEAR(t, 1.0, 1e-12);
+  EXPECT_FALSE(mesh.raycast({1.2, 0.3, 1}, Eigen::Vector3d(0, 0, -1), 4, t));
+  EXPECT_THROW(mesh.add_mesh({{0, 0, 0}}, {{0, 1, 2}}), std::invalid_argument);
+}
+
+TEST(ExplorationMap, SameOccupancyAsStockInsertPointCloud) {
+  Scene s = cluttered_scene();
+  DepthCamera cam(160, 120, 1.0123, 2.0, 0.002, 3);
+  ExplorationOptions o;
+  o.resolution = 0.05;
+  ExplorationMap fast(o), stock(o);
+  for (const Pose& T : survey_poses()) {
+    auto pts = cam.capture(s, T);
+    pts.push_back(T.translation() + Eigen::Vector3d(0.1, 0.1, -3.5));  // beyond max range: a max-range ray
+    fast.insert(pts, T.translation(), 2.0);
+    stock.insert_stock(pts, T.translation(), 2.0);
+    auto a = leaf_cells(fast.octree()), b = leaf_cells(stock.octree());
+    ASSERT_EQ(a.size(), b.size());
+    std::size_t occupied = 0;
+    for (const auto& [k, v] : a) {
+      auto it = b.find(k);
+      ASSERT_NE(it, b.end());
+      ASSERT_FLOAT_EQ(v, it->second);
+      occupied += v > 0;
+      // the cell cache agrees with the tree
+      ASSERT_EQ(fast.state(k), v >= 0 ? CellState::Occupied : CellState::Free);
+    }
+    EXPECT_GT(occupied, 100u);
+  }
+  EXPECT_EQ(fast.octree().size(), stock.octree().size());
+}
+
+TEST(ExplorationMap, IncrementalEqualsFromScratchAfterEveryInsert) {
+  Scene s = cluttered_scene();
+  DepthCamera cam(120, 90, 1.0123, 2.5, 0.0, 0);
+  ExplorationOptions o;
+  o.resolution = 0.05;
+  ExplorationMap m(o);
+  std::size_t seen_voids = 0;
+  for (const Pose& T : survey_poses()) {
+    m.insert(cam.capture(s, T), T.translation(), 2.5);
+    ExplorationSnapshot inc = m.snapshot(), ref = m.recompute_from_scratch();
+    EXPECT_FALSE(inc.frontier_cells.empty());
+    EXPECT_EQ(inc.frontier_cells, ref.frontier_cells);
+    EXPECT_EQ(inc.frontier_clusters, ref.frontier_clusters);
+    EXPECT_EQ(inc.void_cells, ref.void_cells);
+    seen_voids = std::max(seen_voids, inc.void_cells.size());
+    // every void cell is unknown and inside the hull; every frontier cell is free
+    for (CellKey k : inc.void_cells) {
+      ASSERT_EQ(m.state(k), CellState::Unknown);
+      ASSERT_TRUE(m.inside_hull(m.center(k)));
+    }
+    for (CellKey k : inc.frontier_cells) ASSERT_EQ(m.state(k), CellState::Free);
+    // void clusters partition the void cells
+    std::size_t total = 0;
+    for (const auto& v : m.void_clusters()) {
+      total += v.cells.size();
+      EXPECT_GE(v.eigenvalues[0], v.eigenvalues[1]);
+      EXPECT_GE(v.eigenvalues[1], v.eigenvalues[2]);
+      EXPECT_NEAR(v.axes.determinant(), 1.0, 1e-9);
+    }
+    EXPECT_EQ(total, inc.void_cells.size());
+  }
+  EXPECT_GT(seen_voids, 0u);
+}
+
+TEST(ExplorationMap, BadInputsRaiseOrDoNothing) {
+  ExplorationMap m;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(m.insert({{1, 0, 0}}, {nan, 0, 0}, 4.0), std::invalid_argument);
+  EXPECT_THROW(m.insert({{1, 0, 0}}, {1e4, 0, 0}, 4.0), std::invalid_argument);  // outside +-819 m
+  EXPECT_THROW(m.insert({{1, 0, 0}}, {0, 0, 0}, nan), std::invalid_argument);
+  InsertStats st = m.insert({}, {0, 0, 0}, 4.0);
+  EXPECT_EQ(st.points, 0u);
+  EXPECT_EQ(m.octree().size(), 0u);
+  st = m.insert({{nan, 0, 0}, {1, 0, 0}}, {0, 0, 0}, 4.0);
+  EXPECT_EQ(st.dropped, 1u);
+  EXPECT_EQ(st.points, 1u);
+  EXPECT_EQ(m.state(Eigen::Vector3d(1, 0, 0)), CellState::Occupied);
+  EXPECT_EQ(m.state(Eigen::Vector3d(0.5, 0, 0)), CellState::Free);
+  ExplorationOptions bad;
+  bad.resolution = 0;
+  EXPECT_THROW(ExplorationMap{bad}, std::invalid_argument);
+}

@@ -1,0 +1,146 @@
+"""Frontier-void exploration: incremental == from scratch, the closed-box case, a short exploration,
+bad inputs. Coarse resolutions and small images keep this under a minute on two cores."""
+import numpy as np
+import pytest
+
+from octoreach import DepthCamera, ExplorationMap, Scene, next_best_view, view_utility
+from octoreach import exploration as ex
+
+FOV = np.deg2rad(58.0)
+
+
+def survey(emap, scene, cam, eyes, target):
+    for eye in eyes:
+        T = ex.look_at(eye, target)
+        emap.insert(cam.capture(scene, T), T[:3, 3], cam.max_range)
+        yield T
+
+
+def test_incremental_equals_from_scratch_after_each_insert():
+    scene = ex.paper_scene(2)
+    emap = ExplorationMap(resolution=0.05, search_space=ex.scene_region(scene))
+    cam = DepthCamera(120, 90, FOV, 3.0, noise=0.002, seed=1)
+    eyes = [(0.2, -0.5, 1.0), (0.3, 0.6, 0.9), (1.6, 0.0, 1.0), (0.9, -1.2, 0.8), (0.9, 0.0, 1.5)]
+    sizes = []
+    for _ in survey(emap, scene, cam, eyes, (0.9, 0.0, 0.1)):
+        inc, ref = emap.snapshot(), emap.recompute_from_scratch()
+        assert len(inc["frontier_cells"]) > 0
+        np.testing.assert_array_equal(inc["frontier_cells"], ref["frontier_cells"])
+        assert len(inc["frontier_clusters"]) == len(ref["frontier_clusters"])
+        for a, b in zip(inc["frontier_clusters"], ref["frontier_clusters"]):
+            np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(inc["void_cells"], ref["void_cells"])
+        # clusters partition the void cells
+        assert sum(c.size for c in emap.void_clusters()) == len(inc["void_cells"])
+        sizes.append(len(inc["void_cells"]))
+    assert max(sizes) > 0
+
+
+def test_same_occupancy_as_stock_octomap():
+    from octoreach import _core
+
+    scene = ex.cluttered_scene()
+    cam = DepthCamera(160, 120, FOV, 4.0)
+    T = ex.look_at((-0.5, 0.0, 1.2), (1.5, 0.0, 0.0))
+    pts = cam.capture(scene, T)
+    emap = ExplorationMap(resolution=0.05)
+    emap.insert(pts, T[:3, 3], 4.0)
+    ref = _core._stock_insert_point_cloud(pts, T[:3, 3], 4.0, 0.05)
+    mine = emap.occupancy_digest()
+    assert mine["occupied"] > 100
+    assert (mine["free"], mine["occupied"], mine["hash"]) == (ref["free"], ref["occupied"], ref["hash"])
+
+
+def test_closed_box_one_void_behind_one_frontier_and_the_view_looks_in():
+    scene = ex.closed_box_scene("+y", 0.16)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    centre = (0.8, 0.0, 0.2)
+    # look at the box from outside all round, so only its inside stays unknown
+    eyes = [(0.0, -0.3, 0.9), (1.6, -0.3, 0.9), (0.8, -0.9, 0.9), (0.0, 0.6, 0.9), (1.6, 0.6, 0.9)]
+    list(survey(emap, scene, cam, eyes, centre))
+    lo, hi = map(np.asarray, scene.interiors[0])
+    clusters = emap.void_clusters()
+    big = max(range(len(clusters)), key=lambda i: clusters[i].size)
+    v = clusters[big]
+    assert np.all(v.centroid > lo) and np.all(v.centroid < hi)
+    assert v.size >= 0.9 * emap.void_cell_count  # one void: the box's inside
+    assert v.size >= 0.5 * np.prod((hi - lo) / 0.04)
+    fv = [f for f in emap.frontier_voids() if f["void_index"] == big]
+    assert len(fv) == 1 and len(fv[0]["frontier_clusters"]) == 1  # behind one frontier cluster
+    assert fv[0]["utility"] == pytest.approx(v.size * 0.04 ** 3)
+    r = next_best_view(emap, cam, workspace_sphere=((0.8, 0.0, 0.3), 1.0), min_distance=0.05)
+    assert r["void_cells"] > 100 and r["ranked"][0]["void_cells"] == r["void_cells"]
+    assert r["utility_dm3"] == pytest.approx(r["void_cells"] * 0.04 ** 3 * 1000)
+    P = r["best_pose"]
+    eye, axis = P[:3, 3], P[:3, 2]
+    assert not (np.all(eye > lo) and np.all(eye < hi))  # the camera is outside the box
+    d = scene.raycast(eye, axis, 3.0)
+    hit = eye + d * axis
+    # the optical axis passes through the opening and ends on an inner wall
+    assert np.all(hit > lo - 0.03) and np.all(hit < hi + 0.03)
+    assert axis[1] < -0.7  # looking into the +y opening
+    # the ranked list is ordered and its scores are what view_utility gives
+    counts = [c["void_cells"] for c in r["ranked"]]
+    assert counts == sorted(counts, reverse=True)
+    assert view_utility(emap, cam, P)[0] == r["void_cells"]
+
+
+def test_exploration_observes_the_crate_interiors():
+    scene = ex.paper_scene(1)
+    cam = DepthCamera(160, 120, FOV, 4.0)
+    start = ex.look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))
+    result = ex.explore(scene, cam, start, robot=True, max_views=6, resolution=0.05, max_valid_poses=20,
+                        max_candidate_cells=150)
+    shares = [r.interior_share for r in result.rows]
+    assert shares == sorted(shares)  # observed space only grows
+    # both crates are within the arm's reach from above: most of their inside gets seen
+    assert result.interior_share > 0.8, result.table()
+    assert result.rows[0].void_total > 0
+    assert all(r.integration_s >= 0 and r.search_s >= 0 for r in result.rows)
+    assert "utility dm3" in result.table()
+
+
+def test_plots_and_bt_export(tmp_path):
+    scene = ex.closed_box_scene()
+    emap = ExplorationMap(resolution=0.05, search_space=ex.scene_region(scene))
+    cam = DepthCamera(80, 60, FOV, 3.0)
+    poses = list(survey(emap, scene, cam, [(0.1, -0.4, 0.9)], (0.8, 0.0, 0.2)))
+    png = ex.plot_map(emap, tmp_path / "map.png", poses=poses)
+    assert png.stat().st_size > 10000
+    emap.write_bt(str(tmp_path / "map.bt"))
+    back = ExplorationMap.from_file(str(tmp_path / "map.bt"))
+    assert back.occupancy_digest()["occupied"] == emap.occupancy_digest()["occupied"]
+    world = Scene()
+    world.load_octomap(str(tmp_path / "map.bt"))  # a .bt file as the world
+    T = poses[0]
+    assert len(cam.capture(world, T)) > 0.5 * len(cam.capture(scene, T))
+
+
+def test_bad_inputs():
+    emap = ExplorationMap(resolution=0.05)
+    with pytest.raises(ValueError, match=r"shape \(N, 3\)"):
+        emap.insert(np.zeros((5, 2)), (0, 0, 0), 4.0)
+    with pytest.raises(ValueError, match=r"shape \(N, 3\)"):
+        emap.insert(np.zeros(3), (0, 0, 0), 4.0)
+    with pytest.raises(ValueError, match="finite"):
+        emap.insert(np.ones((2, 3)), (np.nan, 0, 0), 4.0)
+    with pytest.raises(ValueError, match="outside the map bounds"):
+        emap.insert(np.ones((2, 3)), (1e5, 0, 0), 4.0)
+    st = emap.insert(np.zeros((0, 3)), (0, 0, 0), 4.0)  # empty cloud: documented no-op
+    assert st["points"] == 0 and emap.occupancy_digest()["free"] == 0
+    st = emap.insert(np.array([[1.0, 0, 0], [np.nan, 0, 0], [np.inf, 1, 1]]), (0, 0, 0), 4.0)
+    assert st["dropped"] == 2 and st["points"] == 1
+    assert list(emap.state(np.array([[1.0, 0, 0], [0.5, 0, 0], [-1, 0, 0]]))) == [2, 1, 0]
+    with pytest.raises(ValueError, match="resolution"):
+        ExplorationMap(resolution=0.0)
+    with pytest.raises(OSError):
+        Scene().load_octomap("/nonexistent/world.bt")
+    with pytest.raises(OSError):
+        ExplorationMap.from_file("/nonexistent/map.bt")
+    with pytest.raises(ValueError):
+        DepthCamera(0, 10, 1.0, 4.0)
+    with pytest.raises(ValueError):
+        Scene().add_box((1, 0, 0), (0, 1, 1))
+    with pytest.raises(ValueError, match="face"):
+        Scene().add_closed_box((0, 0, 0), (1, 1, 1), 0.02, "up", 0.1, 0.1)
