@@ -1,0 +1,196 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "octoreach/capability_map.hpp"
+#include "octoreach/ik.hpp"
+#include "octoreach/orientation_set.hpp"
+#include "octoreach/robot.hpp"
+
+using namespace octoreach;
+
+namespace {
+
+const std::string kArm = std::string(OCTOREACH_URDF_DIR) + "/test_arm.urdf";
+
+CapabilityMapOptions coarse_options() {
+  CapabilityMapOptions o;
+  o.resolution = 0.25;
+  o.directions = 16;
+  o.seed = 3;
+  return o;
+}
+
+// One coarse map of the test arm, built once for the whole file.
+const CapabilityMap& coarse_map() {
+  static std::shared_ptr<Robot> robot = Robot::from_urdf(kArm);
+  static const CapabilityMap map = CapabilityMap::build(robot->chain("base_link", "tool0"), coarse_options());
+  return map;
+}
+
+std::string temp_path(const std::string& name) {
+  return ::testing::TempDir() + "octoreach_cm_" + name;
+}
+
+std::vector<char> read_all(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(f), {});
+}
+
+void write_all(const std::string& path, const std::vector<char>& data) {
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f.write(data.data(), static_cast<std::streamsize>(data.size()));
+}
+
+// Every voxel centre of the bounds (plus one voxel) times every orientation.
+std::vector<std::pair<Eigen::Vector3d, int>> all_cells(const CapabilityMap& m) {
+  auto [lo, hi] = m.bounds();
+  const double r = m.resolution();
+  std::vector<std::pair<Eigen::Vector3d, int>> out;
+  for (double x = lo.x() - r / 2; x < hi.x() + r; x += r)
+    for (double y = lo.y() - r / 2; y < hi.y() + r; y += r)
+      for (double z = lo.z() - r / 2; z < hi.z() + r; z += r)
+        for (int o = 0; o < m.orientations().size(); ++o) out.emplace_back(Eigen::Vector3d(x, y, z), o);
+  return out;
+}
+
+}  // namespace
+
+TEST(CapabilityMap, BuildsOnTestArm) {
+  const CapabilityMap& m = coarse_map();
+  EXPECT_EQ(m.base_link(), "base_link");
+  EXPECT_EQ(m.tip_link(), "tool0");
+  EXPECT_EQ(m.dof(), 6);
+  EXPECT_EQ(m.orientations().directions(), 16);
+  EXPECT_GT(m.voxel_count(), 20u);
+  EXPECT_EQ(m.stats().voxels, m.voxel_count());
+  EXPECT_GT(m.stats().reachable_cells, m.voxel_count());
+  EXPECT_LT(m.stats().reachable_cells, m.stats().cells);
+  EXPECT_TRUE(m.has_solutions());
+
+  // D of every voxel is the share of its reachable orientations; stored solutions reach their cells.
+  auto robot = Robot::from_urdf(kArm);
+  Chain chain = robot->chain("base_link", "tool0");
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> values;
+  m.voxels(centres, values);
+  ASSERT_EQ(centres.size(), m.voxel_count());
+  const int O = m.orientations().size();
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    int count = 0;
+    for (int o = 0; o < O; ++o) {
+      if (!m.reachable(centres[i], o)) {
+        EXPECT_FALSE(m.solution(centres[i], o).has_value());
+        continue;
+      }
+      ++count;
+      auto q = m.solution(centres[i], o);
+      ASSERT_TRUE(q.has_value());
+      Pose T = chain.fk(*q);
+      EXPECT_LE((T.translation() - centres[i]).norm(), 1e-3 + 1e-5);
+      Eigen::Vector3d approach = T.linear() * m.approach_axis();
+      EXPECT_LE(std::acos(std::min(1.0, approach.dot(m.orientations().direction(o)))), 1e-2 + 1e-4);
+      EXPECT_TRUE(chain.within_limits(*q, 1e-6));
+    }
+    EXPECT_NEAR(values[i], double(count) / O, 1e-6);
+    EXPECT_NEAR(m.reachability(centres[i]), values[i], 0.0);
+  }
+  EXPECT_EQ(m.reachability(Eigen::Vector3d(50, 0, 0)), 0.0);
+}
+
+TEST(CapabilityMap, RejectsBadOptions) {
+  auto robot = Robot::from_urdf(kArm);
+  Chain chain = robot->chain("base_link", "tool0");
+  for (double r : {0.0, -0.1, std::nan("")}) {
+    CapabilityMapOptions o = coarse_options();
+    o.resolution = r;
+    EXPECT_THROW(CapabilityMap::build(chain, o), std::invalid_argument) << r;
+  }
+  CapabilityMapOptions o = coarse_options();
+  o.approach_axis.setZero();
+  EXPECT_THROW(CapabilityMap::build(chain, o), std::invalid_argument);
+}
+
+TEST(CapabilityMap, SaveLoadRoundTrip) {
+  const CapabilityMap& m = coarse_map();
+  for (bool with_solutions : {false, true}) {
+    const std::string path = temp_path(with_solutions ? "sol.map" : "plain.map");
+    m.save(path, with_solutions);
+    CapabilityMap l = CapabilityMap::load(path);
+    EXPECT_EQ(l.has_solutions(), with_solutions);
+    EXPECT_EQ(l.voxel_count(), m.voxel_count());
+    EXPECT_EQ(l.resolution(), m.resolution());
+    EXPECT_EQ(l.orientations().size(), m.orientations().size());
+    EXPECT_EQ(l.parameters(), m.parameters());
+    EXPECT_EQ(l.stats().reachable_cells, m.stats().reachable_cells);
+    for (const auto& [p, o] : all_cells(m)) {
+      ASSERT_EQ(l.reachable(p, o), m.reachable(p, o)) << p.transpose() << " " << o;
+      if (with_solutions && m.reachable(p, o)) {
+        auto a = m.solution(p, o), b = l.solution(p, o);
+        ASSERT_TRUE(a && b);
+        EXPECT_EQ(*a, *b);
+      }
+    }
+    std::remove(path.c_str());
+  }
+}
+
+TEST(CapabilityMap, DamagedFilesThrowFileError) {
+  const std::string path = temp_path("damaged.map");
+  coarse_map().save(path, true);
+  const std::vector<char> bytes = read_all(path);
+  ASSERT_GT(bytes.size(), 100u);
+  for (std::size_t cut : {std::size_t{0}, std::size_t{10}, std::size_t{30}, bytes.size() / 2, bytes.size() - 1}) {
+    write_all(path, std::vector<char>(bytes.begin(), bytes.begin() + cut));
+    EXPECT_THROW(CapabilityMap::load(path), FileError) << "cut at " << cut;
+  }
+  std::mt19937 rng(1);
+  std::vector<char> noise(2000);
+  for (char& c : noise) c = static_cast<char>(rng());
+  write_all(path, noise);
+  EXPECT_THROW(CapabilityMap::load(path), FileError);
+  std::vector<char> flipped = bytes;
+  flipped[bytes.size() - 20] ^= 0x33;
+  write_all(path, flipped);
+  EXPECT_THROW(CapabilityMap::load(path), FileError);
+  std::remove(path.c_str());
+  EXPECT_THROW(CapabilityMap::load(path), FileError);
+}
+
+TEST(OrientationSet, NearestDirectionIsExact) {
+  for (int symmetry : {1, 4}) {
+    OrientationSet s = OrientationSet::sphere(200, 1, symmetry);
+    std::mt19937_64 rng(42);
+    std::normal_distribution<double> g;
+    for (int i = 0; i < 20000; ++i) {
+      Eigen::Vector3d v(g(rng), g(rng), g(rng));
+      v.normalize();
+      int best = 0;
+      for (int j = 1; j < s.directions(); ++j)
+        if (s.direction(j).dot(v) > s.direction(best).dot(v)) best = j;
+      int got = s.nearest_direction(v);
+      // ties aside, the table lookup must find the brute-force nearest
+      EXPECT_GE(s.direction(got).dot(v), s.direction(best).dot(v) - 1e-12) << v.transpose();
+    }
+  }
+}
+
+TEST(OrientationSet, RotatedAndNearestOrientation) {
+  OrientationSet s = OrientationSet::sphere(64, 1, 4);
+  const Eigen::Matrix3d Rz = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (int i = 0; i < s.directions(); ++i) {
+    EXPECT_NEAR((Rz * s.direction(i) - s.direction(s.rotated(i, 1))).norm(), 0.0, 1e-9);
+    EXPECT_EQ(s.rotated(s.rotated(i, 1), -1), i);
+    const Eigen::Vector3d axis(1, 0, 0);
+    EXPECT_EQ(s.nearest(s.rotation(i, axis), axis), i);
+  }
+  OrientationSet rolled = OrientationSet::sphere(32, 6, 4);
+  for (int o = 0; o < rolled.size(); ++o) EXPECT_EQ(rolled.nearest(rolled.rotation(o, Eigen::Vector3d::UnitZ()), Eigen::Vector3d::UnitZ()), o);
+  EXPECT_THROW(s.subset("nowhere"), std::invalid_argument);
+}
