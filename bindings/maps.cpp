@@ -1,6 +1,7 @@
 // Capability maps, inverse point maps and surface maps.
 #include "common.hpp"
 #include "octoreach/capability_map.hpp"
+#include "octoreach/point_map.hpp"
 #include "../cpp/src/parallel.hpp"
 
 namespace octoreach::py_bindings {
@@ -40,6 +41,40 @@ py::dict stats_dict(const BuildStats& s) {
   d["cells"] = s.cells;
   d["reachable_cells"] = s.reachable_cells;
   d["voxels"] = s.voxels;
+  return d;
+}
+
+// (N, 4) rows x, y, z, theta -> values (N,) of a pose map, GIL released.
+py::array_t<double> pose_map_lookup(const PoseMap& pm, const py::object& poses) {
+  Array a = Array::ensure(poses);
+  if (!a || a.ndim() != 2 || a.shape(1) != 4) throw std::invalid_argument("poses must have shape (N, 4): x, y, z, theta");
+  std::size_t n = a.shape(0);
+  py::array_t<double> out(n);
+  const double* p = a.data();
+  double* o = out.mutable_data();
+  batch(n, [&](std::size_t i) { o[i] = pm.value(p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]); });
+  return out;
+}
+
+py::tuple pose_map_voxels(const PoseMap& pm) {
+  std::vector<Eigen::Vector3d> c;
+  std::vector<float> v;
+  pm.voxels(c, v);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> C(c.size(), 3);
+  for (std::size_t i = 0; i < c.size(); ++i) C.row(i) = c[i].transpose();
+  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> V =
+      Eigen::Map<Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(v.data(), c.size(), pm.theta_bins());
+  return py::make_tuple(C, V);
+}
+
+py::tuple pose_map_bounds(const PoseMap& pm) {
+  auto b = pm.bounds();
+  return py::make_tuple(b.first, b.second);
+}
+
+py::dict to_dict(const std::map<std::string, std::string>& m) {
+  py::dict d;
+  for (auto& [k, v] : m) d[py::str(k)] = v;
   return d;
 }
 
@@ -164,6 +199,84 @@ void wrap_maps(py::module_& m) {
       .def("__repr__", [](const CapabilityMap& cm) {
         return "<octoreach.CapabilityMap " + cm.robot_name() + " '" + cm.base_link() + "' -> '" + cm.tip_link() +
                "', " + std::to_string(cm.voxel_count()) + " voxels at " + std::to_string(cm.resolution()) + " m>";
+      });
+
+  py::class_<InversePointMap>(m, "InversePointMap",
+      "Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.")
+      .def_static("build", [](const Robot& robot, const CapabilityMap& cap, const std::string& reference_frame,
+                              const py::object& grasps, int theta_bins, double resolution, const py::object& reference,
+                              const py::object& z_range, bool use_symmetry, int threads, const py::object& progress) {
+             PointMapOptions o;
+             o.reference_frame = reference_frame;
+             if (py::isinstance<py::str>(grasps)) o.grasp_subset = grasps.cast<std::string>();
+             else if (!grasps.is_none()) {
+               o.grasps = grasps.cast<std::vector<int>>();
+               if (o.grasps.empty()) throw std::invalid_argument("the grasp set is empty");
+             }
+             o.theta_bins = theta_bins;
+             o.resolution = resolution;
+             if (!reference.is_none()) o.reference = reference.cast<Eigen::VectorXd>();
+             if (!z_range.is_none()) {
+               auto zr = z_range.cast<std::pair<double, double>>();
+               o.z_min = zr.first;
+               o.z_max = zr.second;
+             }
+             o.use_symmetry = use_symmetry;
+             o.threads = threads;
+             ProgressCallback cb = progress_arg(progress, "point map");
+             py::gil_scoped_release release;
+             return InversePointMap::build(robot, cap, o, cb);
+           }, py::arg("robot"), py::arg("capability_map"), py::arg("reference_frame") = "",
+           py::arg("grasps") = "upper_hemisphere", py::arg("theta_bins") = 16, py::arg("resolution") = 0.0,
+           py::arg("reference") = py::none(), py::arg("z_range") = py::none(), py::arg("use_symmetry") = true,
+           py::arg("threads") = 0, py::arg("progress") = true,
+           "Inverts a capability map. reference_frame: the link whose pose is mapped (default the root link, e.g.\n"
+           "base_footprint). grasps: a subset name ('upper_hemisphere', 'top', 'side', 'all') or a list of direction\n"
+           "indices; a direction d means the tool approaches the target along d (world frame). reference: robot\n"
+           "configuration fixing the joints between reference frame and arm (e.g. the torso). z_range: (min, max)\n"
+           "base z relative to the target. theta bins that the grasp set's z symmetry determines are derived by\n"
+           "rotating the grid instead of being recomputed.")
+      .def_static("load", &InversePointMap::load, py::arg("path"))
+      .def("save", &InversePointMap::save, py::arg("path"))
+      .def("export_octovis", [](const InversePointMap& pm, const std::string& path) { pm.map().export_octovis(path); },
+           py::arg("path"))
+      .def("reachability", [](const InversePointMap& pm, const py::object& poses) { return pose_map_lookup(pm.map(), poses); },
+           py::arg("poses"), "R_P (N,) of base poses (N, 4) as x, y, z, theta relative to the target; 0 outside.")
+      .def_static("direct_reachability", [](const CapabilityMap& cap, const py::object& reference_to_arm,
+                                            const std::vector<int>& orientations, const py::object& poses) {
+             Pose T = pose_from(reference_to_arm, "reference_to_arm");
+             RowMatrixXd P = matrix_from(poses, 4, "poses");
+             Eigen::VectorXd out(P.rows());
+             for (Eigen::Index i = 0; i < P.rows(); ++i)
+               out[i] = InversePointMap::direct_reachability(cap, T, orientations, P(i, 0), P(i, 1), P(i, 2), P(i, 3));
+             return out;
+           }, py::arg("capability_map"), py::arg("reference_to_arm"), py::arg("orientations"), py::arg("poses"),
+           "R_P computed straight from the capability map at continuous poses (N, 4), for checks.")
+      .def("voxels", [](const InversePointMap& pm) { return pose_map_voxels(pm.map()); },
+           "(centres (M, 3), values (M, theta_bins)) of the voxels with a non-zero value.")
+      .def_property_readonly("bounds", [](const InversePointMap& pm) { return pose_map_bounds(pm.map()); })
+      .def_property_readonly("resolution", [](const InversePointMap& pm) { return pm.map().resolution(); })
+      .def_property_readonly("theta_bins", [](const InversePointMap& pm) { return pm.map().theta_bins(); })
+      .def_property_readonly("voxel_count", [](const InversePointMap& pm) { return pm.map().voxel_count(); })
+      .def_property_readonly("pose_count", [](const InversePointMap& pm) {
+        std::vector<Eigen::Vector3d> c;
+        std::vector<float> v;
+        pm.map().voxels(c, v);
+        return std::count_if(v.begin(), v.end(), [](float x) { return x > 0; });
+      }, "Number of (voxel, theta) poses with R_P > 0.")
+      .def_property_readonly("robot_name", &InversePointMap::robot_name)
+      .def_property_readonly("urdf_hash", &InversePointMap::urdf_hash)
+      .def_property_readonly("reference_frame", &InversePointMap::reference_frame)
+      .def_property_readonly("arm_base_link", &InversePointMap::arm_base_link)
+      .def_property_readonly("arm_tip_link", &InversePointMap::arm_tip_link)
+      .def_property_readonly("reference_to_arm", [](const InversePointMap& pm) { return pose_to_array(pm.reference_to_arm()); })
+      .def_property_readonly("grasp_orientations", &InversePointMap::grasp_orientations)
+      .def_property_readonly("used_symmetry", &InversePointMap::used_symmetry)
+      .def_property_readonly("build_seconds", &InversePointMap::build_seconds)
+      .def_property_readonly("parameters", [](const InversePointMap& pm) { return to_dict(pm.parameters()); })
+      .def("__repr__", [](const InversePointMap& pm) {
+        return "<octoreach.InversePointMap " + pm.robot_name() + " frame '" + pm.reference_frame() + "', " +
+               std::to_string(pm.map().voxel_count()) + " voxels x " + std::to_string(pm.map().theta_bins()) + " theta>";
       });
 }
 

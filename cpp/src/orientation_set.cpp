@@ -122,9 +122,18 @@ int OrientationSet::nearest_direction(const Eigen::Vector3d& d) const {
   double best_dot = -2;
   for (int j : cands) {
     double v = dirs_[j].dot(d);
-    if (v > best_dot) {
+    if (v > best_dot + 1e-12) {
       best_dot = v;
       best = j;
+    } else if (v > best_dot - 1e-12) {
+      // A tie (rotated queries land exactly between symmetric directions): take the candidate
+      // counter-clockwise of the query about z. The rule turns with the set, so the nearest
+      // direction of a z-rotated query is the rotated nearest direction (exact yaw symmetry).
+      double side_j = d.cross(dirs_[j]).z(), side_best = d.cross(dirs_[best]).z();
+      if (side_j > side_best + 1e-12 || (std::abs(side_j - side_best) <= 1e-12 && j < best)) {
+        best_dot = std::max(best_dot, v);
+        best = j;
+      }
     }
   }
   return best;

@@ -10,6 +10,7 @@ from ._core import (  # noqa: F401
     Cancelled,
     CapabilityMap,
     Chain,
+    InversePointMap,
     Obstacles,
     OrientationSet,
     Robot,
@@ -28,6 +29,6 @@ from ._core import (  # noqa: F401
 from . import exploration  # noqa: F401
 from .exploration import explore  # noqa: F401
 
-__all__ = ["Cancelled", "CapabilityMap", "Chain", "OrientationSet", "Obstacles", "Robot", "robots", "__version__"]
+__all__ = ["Cancelled", "CapabilityMap", "Chain", "InversePointMap", "OrientationSet", "Obstacles", "Robot", "robots", "__version__"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore"]

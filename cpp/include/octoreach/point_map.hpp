@@ -1,0 +1,74 @@
+#pragma once
+/// \file point_map.hpp
+/// \brief Inverse point map (Vahrenkamp; Hertle & Nebel): which base poses reach a target point.
+
+#include <string>
+#include <vector>
+
+#include "octoreach/capability_map.hpp"
+#include "octoreach/pose_map.hpp"
+#include "octoreach/robot.hpp"
+
+namespace octoreach {
+
+/// \brief Build parameters of an inverse point map.
+struct PointMapOptions {
+  std::string reference_frame;  ///< link whose pose (x, y, z, theta) is mapped (empty: the robot's root link)
+  /// Grasp set: direction indices of the capability map's orientation set (all rolls of each are used).
+  /// Empty: the named subset `grasp_subset`.
+  std::vector<int> grasps;
+  std::string grasp_subset = "upper_hemisphere";
+  int theta_bins = 16;
+  double resolution = 0;       ///< voxel edge (m); 0: the capability map's resolution
+  Eigen::VectorXd reference;   ///< robot configuration for the joints between reference frame and arm (empty: home)
+  double z_min = -1e9, z_max = 1e9;  ///< base z range relative to the target (clipped to what can reach)
+  bool use_symmetry = true;    ///< derive theta bins by rotating the grid where the grasp set allows it
+  int threads = 0;
+};
+
+/// \brief Inverse point map: for base poses (x, y, z, theta) of the reference frame around a target
+/// point at the origin (axes parallel to the world's, z up), R_P = share of the grasp set that the
+/// capability map marks reachable from that pose. A grasp direction d means the tool approaches the
+/// target along d (world frame).
+class InversePointMap {
+ public:
+  static InversePointMap build(const Robot& robot, const CapabilityMap& capability, const PointMapOptions& options = {},
+                               const ProgressCallback& progress = nullptr);
+  static InversePointMap load(const std::string& path);
+  void save(const std::string& path) const;
+
+  /// \brief R_P of base pose (x, y, z, theta) relative to the target; 0 outside the map.
+  double reachability(double x, double y, double z, double theta) const { return map_.value(x, y, z, theta); }
+  /// \brief R_P computed directly from the capability map (no grid), for checks.
+  static double direct_reachability(const CapabilityMap& capability, const Pose& reference_to_arm,
+                                    const std::vector<int>& orientations, double x, double y, double z, double theta);
+
+  const PoseMap& map() const { return map_; }
+  const std::string& robot_name() const { return robot_name_; }
+  std::uint64_t urdf_hash() const { return urdf_hash_; }
+  const std::string& reference_frame() const { return reference_frame_; }
+  const std::string& arm_base_link() const { return arm_base_; }
+  const std::string& arm_tip_link() const { return arm_tip_; }
+  /// \brief Pose of the capability map's base link in the reference frame (at the reference posture).
+  const Pose& reference_to_arm() const { return reference_to_arm_; }
+  /// \brief Orientation indices (of the capability map's set) in the grasp set.
+  const std::vector<int>& grasp_orientations() const { return grasp_orientations_; }
+  bool used_symmetry() const { return used_symmetry_; }
+  double build_seconds() const { return seconds_; }
+  /// \brief The parameters recorded in files.
+  std::map<std::string, std::string> parameters() const;
+
+ private:
+  PoseMap map_;
+  std::string robot_name_, reference_frame_, arm_base_, arm_tip_, grasp_name_;
+  std::uint64_t urdf_hash_ = 0;
+  Pose reference_to_arm_ = Pose::Identity();
+  std::vector<int> grasp_orientations_;
+  bool used_symmetry_ = false;
+  double seconds_ = 0;
+};
+
+/// \brief Orientation indices of a capability map's set for direction indices (all rolls of each).
+std::vector<int> grasp_orientations(const OrientationSet& set, const std::vector<int>& directions);
+
+}  // namespace octoreach
