@@ -1,0 +1,260 @@
+#!/usr/bin/env python3
+"""Capability map of the PR2 right arm: build time, file size, agreement with IK, lookup speed.
+
+Reference: the figures Hertle and Nebel / Zacharias et al. report for their PR2 capability map
+(printed as "anchors" next to ours): 24 min 54 s to build at 0.05 m, a 401 KB file, 93.9 %
+agreement with IK and 4.8 % false positives, 3 h 7 min at 0.025 m, ~0.7 us per lookup.
+
+Map: chain torso_lift_link -> r_gripper_tool_frame (7 joints), approach axis +x of the gripper
+frame, self-collision checked with the left arm tucked (SRDF state "tuck_left_arm"), 200
+approach directions (any roll), 0.05 m voxels by default.
+
+Agreement: N random tool poses (default 10,000, seed 0). Positions uniform in the axis-aligned box
+`map.bounds` (the box of the voxels with D > 0, i.e. of the arm's forward-kinematics reach, snapped to
+voxel edges, in the torso_lift_link frame); rotations uniform on SO(3) (unit quaternions from four
+normal deviates), so the approach direction R @ (1, 0, 0) is uniform on the sphere and the roll about
+it uniform. Truth: chain.ik_batch(mode='approach', approach_axis=(1, 0, 0), self_collision=True,
+reference=tucked posture, attempts=20, position_tolerance=1e-3, orientation_tolerance=1e-2) at the
+exact pose. The map answers map.reachable(pose): the cell of the voxel holding the position and the
+direction nearest the approach axis. A false positive is "map yes, IK no", a false negative "map no,
+IK yes"; both are given as a share of all poses and of the poses whose voxel has D > 0. A second
+truth, IK at the cell itself (voxel centre, nearest direction), separates the map's own errors from
+the discretisation (a pose is not its cell's centre).
+
+Lookups: map.reachable on one numpy batch of 1,000,000 such poses and map.reachability on 1,000,000
+such points, median of 5 runs, wall clock per item (the batch runs on every core).
+
+Prints one JSON document. ``--quick`` runs at 0.1 m with fewer poses; ``--also-fine`` adds 0.025 m.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import octoreach
+from octoreach import plots, robots
+
+APPROACH = (1.0, 0.0, 0.0)
+IK_TRUTH = dict(mode="approach", approach_axis=APPROACH, self_collision=True, attempts=20,
+                position_tolerance=1e-3, orientation_tolerance=1e-2)
+
+ANCHORS = {
+    "source": "Hertle & Nebel (capability map of Zacharias et al.), PR2 right arm",
+    "build_seconds_0.05": 24 * 60 + 54,
+    "build_seconds_0.025": 3 * 3600 + 7 * 60,
+    "file_bytes_0.05": 401 * 1000,
+    "agreement_percent": 93.9,
+    "false_positive_percent": 4.8,
+    "lookup_us_per_pose": 0.7,
+}
+TARGETS = {
+    "build_seconds_0.05": 60,
+    "build_seconds_0.025": 8 * 60,
+    "agreement_percent_min": 97.0,
+    "false_positive_percent_max": 2.0,
+    "lookup_us_per_pose_max": 0.1,
+    "file_bytes_0.05_max": 400 * 1000,
+}
+
+
+def random_poses(lo, hi, n: int, rng) -> np.ndarray:
+    """(n, 4, 4) poses: positions uniform in the box [lo, hi], rotations uniform on SO(3)."""
+    q = rng.normal(size=(n, 4))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    w, x, y, z = q.T
+    T = np.zeros((n, 4, 4))
+    T[:, 0, 0] = 1 - 2 * (y * y + z * z)
+    T[:, 0, 1] = 2 * (x * y - z * w)
+    T[:, 0, 2] = 2 * (x * z + y * w)
+    T[:, 1, 0] = 2 * (x * y + z * w)
+    T[:, 1, 1] = 1 - 2 * (x * x + z * z)
+    T[:, 1, 2] = 2 * (y * z - x * w)
+    T[:, 2, 0] = 2 * (x * z - y * w)
+    T[:, 2, 1] = 2 * (y * z + x * w)
+    T[:, 2, 2] = 1 - 2 * (x * x + y * y)
+    T[:, :3, 3] = rng.uniform(lo, hi, size=(n, 3))
+    T[:, 3, 3] = 1
+    return T
+
+
+def median_seconds(fn, repeats: int = 5) -> float:
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def shares(map_yes: np.ndarray, ik_yes: np.ndarray) -> dict:
+    n = len(map_yes)
+    if n == 0:
+        return {"poses": 0}
+    return {
+        "poses": int(n),
+        "ik_reachable_percent": round(100 * ik_yes.mean(), 3),
+        "map_reachable_percent": round(100 * map_yes.mean(), 3),
+        "agreement_percent": round(100 * (map_yes == ik_yes).mean(), 3),
+        "false_positive_percent": round(100 * (map_yes & ~ik_yes).mean(), 3),
+        "false_negative_percent": round(100 * (~map_yes & ik_yes).mean(), 3),
+    }
+
+
+def cell_poses(cmap, poses: np.ndarray) -> np.ndarray:
+    """The cells of `poses`: voxel centres and the rotation of the nearest orientation."""
+    r = cmap.resolution
+    out = np.tile(np.eye(4), (len(poses), 1, 1))
+    out[:, :3, 3] = (np.floor(poses[:, :3, 3] / r) + 0.5) * r
+    D = cmap.orientations.directions
+    approach = poses[:, :3, :3] @ np.asarray(APPROACH)
+    nearest = np.argmax(approach @ D.T, axis=1)
+    rot = np.array([cmap.orientations.rotation(o, APPROACH) for o in range(len(D))])
+    out[:, :3, :3] = rot[nearest]
+    return out
+
+
+def build_and_measure(chain, reference, resolution, directions, threads, seed, workdir, progress):
+    t0 = time.perf_counter()
+    cmap = octoreach.CapabilityMap.build(chain, resolution=resolution, directions=directions, approach_axis=APPROACH,
+                                         self_collision=True, reference=reference, seed=seed, threads=threads,
+                                         progress=progress)
+    wall = time.perf_counter() - t0
+    plain = os.path.join(workdir, f"pr2_{resolution}.map")
+    full = os.path.join(workdir, f"pr2_{resolution}_solutions.map")
+    cmap.save(plain)
+    cmap.save(full, with_solutions=True)
+    stats = dict(cmap.stats)
+    return cmap, {
+        "resolution_m": resolution,
+        "directions": len(cmap.orientations),
+        "build_seconds": round(wall, 2),
+        "stats": stats,
+        "bounds_m": [np.round(b, 4).tolist() for b in cmap.bounds],
+        "file_bytes": os.path.getsize(plain),
+        "file_bytes_with_solutions": os.path.getsize(full),
+    }
+
+
+def agreement(cmap, poses, truth, cell_truth):
+    D = cmap.reachability(poses[:, :3, 3])
+    yes = cmap.reachable(poses)
+    inside = D > 0
+    out = {
+        "all_poses": shares(yes, truth),
+        "poses_in_voxels_with_D_gt_0": shares(yes[inside], truth[inside]),
+    }
+    if cell_truth is not None:
+        out["against_ik_at_the_cell"] = shares(yes, cell_truth)
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--resolution", type=float, default=0.05, help="voxel edge (m), default 0.05")
+    ap.add_argument("--directions", type=int, default=200, help="approach directions, default 200")
+    ap.add_argument("--also-fine", action="store_true", help="also build at 0.025 m")
+    ap.add_argument("--quick", action="store_true", help="0.1 m, 2000 poses, 100,000 lookups: a smoke run")
+    ap.add_argument("--poses", type=int, default=10000, help="random poses for the IK agreement")
+    ap.add_argument("--lookups", type=int, default=1_000_000, help="batch size of the lookup timing")
+    ap.add_argument("--threads", type=int, default=0, help="build threads (0: every core)")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--plot", default="benchmarks/out/pr2_capability_slices.png", help="slice plot PNG ('' for none)")
+    ap.add_argument("--progress", action="store_true", help="progress bars on stderr")
+    args = ap.parse_args(argv)
+    if args.quick:
+        args.resolution, args.poses, args.lookups = 0.1, 2000, 100_000
+
+    robot = robots.pr2()
+    chain = robot.chain("torso_lift_link", "r_gripper_tool_frame")
+    tucked = robot.configuration(robot.named_states["tuck_left_arm"])
+    rng = np.random.default_rng(args.seed)
+    out = {
+        "benchmark": "capability_map",
+        "robot": robot.name,
+        "chain": [chain.base_link, chain.tip_link],
+        "approach_axis": list(APPROACH),
+        "reference_posture": "tuck_left_arm (SRDF group state), other joints at robot.home()",
+        "octoreach": octoreach.__version__,
+    }
+    with tempfile.TemporaryDirectory() as workdir:
+        cmap, main_run = build_and_measure(chain, tucked, args.resolution, args.directions, args.threads, args.seed,
+                                           workdir, args.progress)
+        out["map"] = main_run
+
+        # Agreement with IK on random poses in the map's box.
+        lo, hi = cmap.bounds
+        poses = random_poses(lo, hi, args.poses, rng)
+        t0 = time.perf_counter()
+        _, truth = chain.ik_batch(poses, reference=tucked, rng_seed=args.seed + 1, **IK_TRUTH)
+        ik_seconds = time.perf_counter() - t0
+        _, cell_truth = chain.ik_batch(cell_poses(cmap, poses), reference=tucked, rng_seed=args.seed + 2, **IK_TRUTH)
+        out["agreement"] = {
+            "sampling": "positions uniform in map.bounds (box of voxels with D > 0, torso_lift_link frame); "
+                        "rotations uniform on SO(3) (approach direction uniform on the sphere, uniform roll)",
+            "truth": "chain.ik_batch(mode='approach', approach_axis=(1,0,0), self_collision=True, reference=tucked, "
+                     "attempts=20, position_tolerance=1e-3, orientation_tolerance=1e-2) at the exact pose",
+            "ik_seconds": round(ik_seconds, 2),
+            **agreement(cmap, poses, truth, cell_truth),
+        }
+
+        # Lookup speed.
+        big = random_poses(lo, hi, args.lookups, np.random.default_rng(args.seed + 3))
+        points = np.ascontiguousarray(big[:, :3, 3])
+        cmap.reachable(big[:1000])
+        s_pose = median_seconds(lambda: cmap.reachable(big))
+        s_point = median_seconds(lambda: cmap.reachability(points))
+        out["lookups"] = {
+            "batch": args.lookups,
+            "repeats": 5,
+            "threads": os.cpu_count(),
+            "reachable_us_per_pose": round(1e6 * s_pose / args.lookups, 4),
+            "reachability_us_per_point": round(1e6 * s_point / args.lookups, 4),
+        }
+        del big, points
+
+        if args.also_fine:
+            fine_map, fine = build_and_measure(chain, tucked, 0.025, args.directions, args.threads, args.seed, workdir,
+                                               args.progress)
+            fine["agreement"] = agreement(fine_map, poses, truth, None)
+            out["fine_map"] = fine
+            del fine_map
+
+    if args.plot:
+        Path(args.plot).parent.mkdir(parents=True, exist_ok=True)
+        heights = plots.default_heights(cmap, 4)
+        out["plot"] = {"path": plots.capability_slices(cmap, heights, args.plot), "heights_m": heights}
+
+    res = main_run["resolution_m"]
+    agree = out["agreement"]["all_poses"]
+    out["anchors"] = ANCHORS
+    out["targets"] = TARGETS
+    met = {
+        "agreement": agree["agreement_percent"] >= TARGETS["agreement_percent_min"],
+        "false_positives": agree["false_positive_percent"] <= TARGETS["false_positive_percent_max"],
+        "lookup": out["lookups"]["reachable_us_per_pose"] <= TARGETS["lookup_us_per_pose_max"],
+    }
+    if abs(res - 0.05) < 1e-9:
+        met["build_0.05"] = main_run["build_seconds"] <= TARGETS["build_seconds_0.05"]
+        met["file_0.05"] = main_run["file_bytes"] <= TARGETS["file_bytes_0.05_max"]
+    if "fine_map" in out:
+        met["build_0.025"] = out["fine_map"]["build_seconds"] <= TARGETS["build_seconds_0.025"]
+    out["targets_met"] = {k: bool(v) for k, v in met.items()}
+    out["machine"] = {"cpu_count": os.cpu_count(), "platform": platform.platform(),
+                      "python": platform.python_version(), "numpy": np.__version__,
+                      "load_average": [round(x, 2) for x in os.getloadavg()]}
+    json.dump(out, sys.stdout, indent=2)
+    sys.stdout.write("\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
