@@ -95,6 +95,7 @@ void wrap_collision(py::module_& m);
 void wrap_robot(py::module_& m);
 void wrap_kdl_reference(py::module_& m);
 void wrap_maps(py::module_& m);
+void wrap_surface(py::module_& m);
 void wrap_exploration(py::module_& m);
 
 }  // namespace octoreach::py_bindings

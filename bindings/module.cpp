@@ -17,5 +17,6 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_robot(m);
   octoreach::py_bindings::wrap_kdl_reference(m);
   octoreach::py_bindings::wrap_maps(m);
+  octoreach::py_bindings::wrap_surface(m);
   octoreach::py_bindings::wrap_exploration(m);
 }

@@ -354,13 +354,29 @@ bool CapabilityMap::reachable(const Pose& T) const {
 
 std::optional<Eigen::VectorXd> CapabilityMap::solution(const Eigen::Vector3d& p, int orientation) const {
   if (!has_solutions() || !reachable(p, orientation)) return std::nullopt;
-  const VoxelNode* n = leaf(p);
-  std::size_t rank = 0;
-  const std::uint64_t* w = bits_.data() + static_cast<std::size_t>(n->payload) * words_;
-  for (int i = 0; i < (orientation >> 6); ++i) rank += std::bitset<64>(w[i]).count();
-  rank += std::bitset<64>(w[orientation >> 6] & ((1ULL << (orientation & 63)) - 1)).count();
-  const float* q = solutions_.data() + (sol_offset_[n->payload] + rank) * dof_;
+  const float* q = record_solution(leaf(p)->payload, orientation);
   return Eigen::Map<const Eigen::VectorXf>(q, dof_).cast<double>();
+}
+
+std::int64_t CapabilityMap::record_at(const Eigen::Vector3d& p, Eigen::Vector3d* centre) const {
+  octomap::OcTreeKey key;
+  if (!tree_->coordToKeyChecked(p.x(), p.y(), p.z(), key)) return -1;
+  const VoxelNode* n = tree_->search(key);
+  if (!n || tree_->nodeHasChildren(n)) return -1;
+  if (centre) {
+    octomap::point3d c = tree_->keyToCoord(key);
+    *centre = Eigen::Vector3d(c.x(), c.y(), c.z());
+  }
+  return n->payload;
+}
+
+const float* CapabilityMap::record_solution(std::uint32_t rec, int o) const {
+  if (!has_solutions() || !bit(rec, o)) return nullptr;
+  std::size_t rank = 0;
+  const std::uint64_t* w = bits_.data() + static_cast<std::size_t>(rec) * words_;
+  for (int i = 0; i < (o >> 6); ++i) rank += std::bitset<64>(w[i]).count();
+  rank += std::bitset<64>(w[o >> 6] & ((1ULL << (o & 63)) - 1)).count();
+  return solutions_.data() + (sol_offset_[rec] + rank) * dof_;
 }
 
 void CapabilityMap::voxels(std::vector<Eigen::Vector3d>& centres, std::vector<double>& values) const {

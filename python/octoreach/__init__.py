@@ -10,13 +10,18 @@ from ._core import (  # noqa: F401
     Cancelled,
     CapabilityMap,
     Chain,
+    CostMap,
     InversePointMap,
     Obstacles,
     OrientationSet,
+    PoseSampler,
     Robot,
+    Surface,
+    SurfaceMap,
     __version__,
 )
 from . import robots  # noqa: F401
+from . import arms, surface_maps  # noqa: F401  (surface_maps adds SurfaceMap.build)
 from ._core import (  # noqa: F401
     CameraIntrinsics,
     DepthCamera,
@@ -29,6 +34,7 @@ from ._core import (  # noqa: F401
 from . import exploration  # noqa: F401
 from .exploration import explore  # noqa: F401
 
-__all__ = ["Cancelled", "CapabilityMap", "Chain", "InversePointMap", "OrientationSet", "Obstacles", "Robot", "robots", "__version__"]
+__all__ = ["Cancelled", "CapabilityMap", "Chain", "CostMap", "InversePointMap", "PoseSampler", "Surface",
+           "SurfaceMap", "arms", "OrientationSet", "Obstacles", "Robot", "robots", "__version__"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore"]

@@ -72,6 +72,13 @@ class CapabilityMap {
   std::optional<Eigen::VectorXd> solution(const Eigen::Vector3d& p, int orientation) const;
   bool has_solutions() const { return !solutions_.empty(); }
 
+  /// \brief Record (voxel) index of the voxel holding p, or -1; its centre goes to `centre`.
+  std::int64_t record_at(const Eigen::Vector3d& p, Eigen::Vector3d* centre = nullptr) const;
+  /// \brief True when orientation o is reachable in voxel record `rec`.
+  bool record_has(std::uint32_t rec, int o) const { return bit(rec, o); }
+  /// \brief The stored solution (dof floats) of (record, orientation), or nullptr.
+  const float* record_solution(std::uint32_t rec, int o) const;
+
   /// \brief Centres (base link frame) and D of every voxel with D > 0.
   void voxels(std::vector<Eigen::Vector3d>& centres, std::vector<double>& values) const;
   /// \brief Axis-aligned bounds of the voxels with D > 0: (min, max) corners.

@@ -105,6 +105,10 @@ class Chain {
   /// \brief The same chain as a KDL::Chain (built by octoreach, not by kdl_parser).
   KDL::Chain to_kdl() const;
 
+  /// \brief Bit i set when chain joint i moves robot link `link` (0: the chain does not move it;
+  /// all dof bits: rigidly attached to the tip, e.g. a gripper).
+  std::uint64_t link_mask(int link) const { return link_masks_.at(link); }
+
   /// \brief Splits the robot's checked self-collision pairs into those whose relative pose this
   /// chain's joints change (`moving`) and those it never changes (`fixed`).
   void split_collision_pairs(std::vector<std::pair<int, int>>& moving, std::vector<std::pair<int, int>>& fixed) const;

@@ -1,0 +1,80 @@
+#pragma once
+/// \file surface_map.hpp
+/// \brief Surface inverse reachability maps (Hertle & Nebel): base poses from which a robot's arm
+/// reaches a large share of a working surface.
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "octoreach/capability_map.hpp"
+#include "octoreach/pose_map.hpp"
+#include "octoreach/robot.hpp"
+#include "octoreach/surface.hpp"
+
+namespace octoreach {
+
+/// \brief Build parameters of a surface map.
+struct SurfaceMapOptions {
+  std::string reference_frame;      ///< link whose pose (x, y, z, theta) is mapped (empty: root link)
+  std::vector<int> grasps;          ///< grasp direction indices (empty: `grasp_subset`)
+  std::string grasp_subset = "upper_hemisphere";
+  int theta_bins = 16;
+  double resolution = 0;            ///< 0: the capability map's resolution
+  double z_min = -1e9, z_max = 1e9; ///< base z range (world frame); a wheeled robot on the floor: (0, 0)
+  Eigen::VectorXd reference;        ///< robot configuration off the arm (torso, other arm); empty: home
+  bool check_body = true;           ///< reject base poses where the robot body touches the surface or boxes
+  bool check_arm = true;            ///< reject grasps whose arm passes below the surface inside its outline
+  int threads = 0;
+};
+
+/// \brief Figures of a surface map build.
+struct SurfaceMapStats {
+  double seconds = 0;
+  std::size_t surface_points = 0;
+  std::size_t base_poses = 0;          ///< (x, y, z, theta) cells examined
+  std::size_t candidate_poses = 0;     ///< (base pose, surface point) pairs with a capability voxel
+  std::size_t valid_poses = 0;         ///< of those, pairs with at least one valid grasp
+  std::size_t body_collisions = 0;     ///< base poses rejected because the body touches the surface
+  std::size_t arm_rejections = 0;      ///< grasps rejected because the arm passes under the surface
+};
+
+/// \brief Surface map: R_S(x, y, z, theta) = (1/n) sum over the n surface points of the validated R_P.
+class SurfaceMap {
+ public:
+  static SurfaceMap build(const Robot& robot, const CapabilityMap& capability, const Surface& surface,
+                          const SurfaceMapOptions& options = {}, const ProgressCallback& progress = nullptr);
+  /// \brief Per-pose maximum ("any arm") or minimum ("both arms") of maps of the same robot, frame,
+  /// resolution and theta bins; throws std::invalid_argument otherwise.
+  static SurfaceMap combine(const std::vector<const SurfaceMap*>& maps, const std::string& mode);
+  static SurfaceMap load(const std::string& path);
+  void save(const std::string& path) const;
+
+  /// \brief R_S of base pose (x, y, z, theta) of the reference frame (world frame); 0 outside.
+  double reachability(double x, double y, double z, double theta) const { return map_.value(x, y, z, theta); }
+  const PoseMap& map() const { return map_; }
+  const SurfaceMapStats& stats() const { return stats_; }
+  const std::string& robot_name() const { return robot_name_; }
+  std::uint64_t urdf_hash() const { return urdf_hash_; }
+  const std::string& reference_frame() const { return reference_frame_; }
+  const std::string& arms() const { return arms_; }
+  /// \brief Surface outline (world frame) the map was built for.
+  const std::vector<Eigen::Vector3d>& polygon() const { return polygon_; }
+  /// \brief The base z range the map was built for (world frame): poses are evaluated at heights
+  /// clipped into it, so a single height (a robot on the floor) is exact.
+  std::pair<double, double> z_range() const { return {z_min_, z_max_}; }
+  /// \brief Why the map is empty ("" when it is not).
+  const std::string& empty_reason() const { return empty_reason_; }
+  std::map<std::string, std::string> parameters() const;
+
+ private:
+  PoseMap map_;
+  SurfaceMapStats stats_;
+  std::string robot_name_, reference_frame_, arms_, empty_reason_, grasp_name_;
+  std::uint64_t urdf_hash_ = 0;
+  std::vector<Eigen::Vector3d> polygon_;
+  double z_min_ = -1e9, z_max_ = 1e9;
+};
+
+}  // namespace octoreach
