@@ -31,8 +31,6 @@ py::array_t<double> lookup(const SurfaceMap& sm, const py::object& poses) {
   return out;
 }
 
-Eigen::Vector4d row4(const Eigen::Vector4d& v) { return v; }
-
 }  // namespace
 
 void wrap_surface(py::module_& m) {
@@ -77,7 +75,8 @@ void wrap_surface(py::module_& m) {
       .def_static("_build", [](const Robot& robot, const CapabilityMap& cap, const Surface& surface,
                                const std::string& reference_frame, const py::object& grasps, int theta_bins,
                                double resolution, const py::object& z_range, const py::object& reference,
-                               bool check_body, bool check_arm, int threads, const py::object& progress) {
+                               bool check_body, bool check_arm, double grasp_height, int threads,
+                               const py::object& progress) {
              SurfaceMapOptions o;
              o.reference_frame = reference_frame;
              if (py::isinstance<py::str>(grasps)) o.grasp_subset = grasps.cast<std::string>();
@@ -95,6 +94,7 @@ void wrap_surface(py::module_& m) {
              if (!reference.is_none()) o.reference = reference.cast<Eigen::VectorXd>();
              o.check_body = check_body;
              o.check_arm = check_arm;
+             o.grasp_height = grasp_height;
              o.threads = threads;
              py::object cb_obj = py::module_::import("octoreach.progress").attr("make_progress")(progress, "surface map");
              ProgressCallback cb = progress_from(cb_obj);
@@ -103,7 +103,8 @@ void wrap_surface(py::module_& m) {
            }, py::arg("robot"), py::arg("capability_map"), py::arg("surface"), py::arg("reference_frame") = "",
            py::arg("grasps") = "upper_hemisphere", py::arg("theta_bins") = 16, py::arg("resolution") = 0.0,
            py::arg("z_range") = py::none(), py::arg("reference") = py::none(), py::arg("check_body") = true,
-           py::arg("check_arm") = true, py::arg("threads") = 0, py::arg("progress") = true)
+           py::arg("check_arm") = true, py::arg("grasp_height") = 0.05, py::arg("threads") = 0,
+           py::arg("progress") = true)
       .def_static("combine", [](const std::vector<std::shared_ptr<SurfaceMap>>& maps, const std::string& mode) {
              std::vector<const SurfaceMap*> ptrs;
              for (const auto& p : maps) {

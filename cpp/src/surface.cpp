@@ -112,6 +112,18 @@ Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness)
     if (!clipped) throw std::invalid_argument("surface polygon could not be triangulated (degenerate shape)");
   }
   triangles_.push_back({idx[0], idx[1], idx[2]});
+  // Convex polygons get a half-plane test (the hot loop of surface-map builds).
+  std::vector<Eigen::Vector2d> ccw;
+  for (std::size_t i = 0; i < N; ++i) ccw.push_back(polygon_[a2 < 0 ? N - 1 - i : i]);
+  convex_ = true;
+  for (std::size_t i = 0; i < N && convex_; ++i)
+    if (cross2(ccw[(i + 1) % N] - ccw[i], ccw[(i + 2) % N] - ccw[(i + 1) % N]) < -1e-12) convex_ = false;
+  if (convex_)
+    for (std::size_t i = 0; i < N; ++i) {
+      Eigen::Vector2d e = ccw[(i + 1) % N] - ccw[i];
+      Eigen::Vector2d out(e.y(), -e.x());  // outward normal of a counter-clockwise polygon
+      halfplanes_.emplace_back(out.x(), out.y(), out.dot(ccw[i]));
+    }
 }
 
 Surface Surface::rectangle(double sx, double sy, double height, double x, double y, double yaw, double thickness) {
@@ -143,7 +155,7 @@ void Surface::add_legs(double width) {
   }
 }
 
-bool Surface::contains(const Eigen::Vector2d& p) const {
+bool Surface::contains_even_odd(const Eigen::Vector2d& p) const {
   bool inside = false;
   const std::size_t N = polygon_.size();
   for (std::size_t i = 0, j = N - 1; i < N; j = i++) {

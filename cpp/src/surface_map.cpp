@@ -43,7 +43,7 @@ void witness_points(const Shape& s, std::vector<Eigen::Vector3d>& out) {
     case Shape::Type::Mesh: {
       auto* bvh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(s.geometry.get());
       if (!bvh || bvh->num_vertices == 0) break;
-      int stride = std::max(1, bvh->num_vertices / 96);
+      int stride = std::max(1, bvh->num_vertices / 48);
       for (int i = 0; i < bvh->num_vertices; i += stride) local.push_back(bvh->vertices[i]);
       break;
     }
@@ -82,7 +82,10 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   if (dirs.empty()) throw std::invalid_argument("the grasp set is empty");
   const std::vector<int> grasps = grasp_orientations(set, dirs);
 
-  const std::vector<Eigen::Vector3d> targets = surface.sample_points(res);
+  if (!(o.grasp_height >= 0) || !std::isfinite(o.grasp_height))
+    throw std::invalid_argument("grasp_height must be zero or positive");
+  std::vector<Eigen::Vector3d> targets = surface.sample_points(res);
+  for (auto& t : targets) t += o.grasp_height * surface.normal();
   m.stats_.surface_points = targets.size();
   if (targets.empty()) {
     m.empty_reason_ = "the surface holds no grid point at this resolution (polygon smaller than one cell)";
@@ -157,6 +160,65 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   const double inv_g = 1.0 / grasps.size(), inv_n = 1.0 / targets.size();
   const int O = set.size();
 
+  // Witness points of the arm (relative to the reached voxel centre, arm frame) below the plane
+  // through the target. For an upright arm frame and a horizontal surface the plane normal in the
+  // arm frame is z whatever the yaw, so the points are computed once per capability cell, for the
+  // voxel layers the targets can fall in; otherwise each yaw bin computes its own.
+  const bool upright = std::abs(ref_to_arm.linear()(2, 2) - 1.0) < 1e-9 && std::abs(surface.normal().z() - 1.0) < 1e-9;
+  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> shared_low;
+  std::vector<Pose> scratch;
+  auto compute_low = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre, const Eigen::Vector3d& n_arm,
+                         std::vector<Pose>& poses, std::vector<Eigen::Vector3f>& out) {
+    const float* qf = cap.record_solution(rec, orient);
+    Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm.dof()).cast<double>();
+    robot.link_poses(arm.to_robot_configuration(q, ref), poses);
+    for (int li : arm_links) {
+      Pose in_arm = root_from_arm_base * poses[li];
+      for (const auto& w : link_witness[li]) {
+        Eigen::Vector3d rel = in_arm * w - centre;  // relative to the reached point
+        // Below the surface top, which lies grasp_height under the reached point.
+        if (n_arm.dot(rel) < -o.grasp_height - 1e-3) out.push_back(rel.cast<float>());
+      }
+    }
+    // Nearest to the target first: those fall inside the outline soonest, ending the test early.
+    std::sort(out.begin(), out.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+      return a.head<2>().squaredNorm() < b.head<2>().squaredNorm();
+    });
+  };
+  if (upright && o.check_arm) {
+    // Arm-frame heights of the targets over every base height in the grid.
+    double za_lo = 1e9, za_hi = -1e9;
+    for (int iz = 0; iz < nz; ++iz) {
+      double bz = tree.keyToCoord(kmin[2] + iz);
+      bz = std::min(std::max(bz, o.z_min), o.z_max);
+      for (const auto& t : targets) {
+        double za = t.z() - bz - ref_to_arm.translation().z();
+        za_lo = std::min(za_lo, za);
+        za_hi = std::max(za_hi, za);
+      }
+    }
+    std::vector<std::pair<std::uint32_t, Eigen::Vector3d>> records;
+    for (std::size_t i = 0; i < cc.size(); ++i)
+      if (cc[i].z() >= za_lo - cap.resolution() && cc[i].z() <= za_hi + cap.resolution()) {
+        Eigen::Vector3d centre;
+        std::int64_t rec = cap.record_at(cc[i], &centre);
+        if (rec >= 0) records.emplace_back(static_cast<std::uint32_t>(rec), centre);
+      }
+    std::vector<std::vector<std::pair<std::uint64_t, std::vector<Eigen::Vector3f>>>> parts(records.size());
+    detail::parallel_for(records.size(), o.threads, [&](std::size_t i, int) {
+      thread_local std::vector<Pose> poses;
+      auto [rec, centre] = records[i];
+      for (int orient = 0; orient < O; ++orient) {
+        if (!cap.record_has(rec, orient)) continue;
+        std::vector<Eigen::Vector3f> pts;
+        compute_low(rec, orient, centre, Eigen::Vector3d::UnitZ(), poses, pts);
+        parts[i].emplace_back(static_cast<std::uint64_t>(rec) * O + orient, std::move(pts));
+      }
+    }, 4);
+    for (auto& part : parts)
+      for (auto& [key, pts] : part) shared_low.emplace(key, std::move(pts));
+  }
+
   std::atomic<std::size_t> bins_done{0}, candidates{0}, valid{0}, body_hits{0}, arm_hits{0};
   // One theta bin per task: each owns its cache of arm witness points, so no locking is needed
   // and the result does not depend on the thread count.
@@ -175,25 +237,19 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
     }
     // Lazily filled: for cell (record, orientation), the uv offsets (relative to the target) of the
     // arm's witness points that lie below the surface plane.
-    std::unordered_map<std::uint64_t, std::vector<Eigen::Vector2f>> low;
+    std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> own_low;
     std::vector<Pose> poses;
-    auto low_points = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre) -> const std::vector<Eigen::Vector2f>& {
+    auto low_points = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre) -> const std::vector<Eigen::Vector3f>& {
       std::uint64_t key = static_cast<std::uint64_t>(rec) * O + orient;
-      auto it = low.find(key);
-      if (it != low.end()) return it->second;
-      auto& out = low[key];
-      const float* qf = cap.record_solution(rec, orient);
-      Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm.dof()).cast<double>();
-      robot.link_poses(arm.to_robot_configuration(q, ref), poses);
-      for (int li : arm_links) {
-        Pose in_arm = root_from_arm_base * poses[li];
-        for (const auto& w : link_witness[li]) {
-          Eigen::Vector3d rel = in_arm * w - centre;  // relative to the reached point
-          if (n_arm.dot(rel) < -1e-3) out.push_back((A * rel).cast<float>());
-        }
-      }
+      auto& cache = upright ? shared_low : own_low;
+      auto it = cache.find(key);
+      if (it != cache.end()) return it->second;
+      if (upright) throw std::logic_error("surface map: capability cell outside the precomputed layers");
+      auto& out = own_low[key];
+      compute_low(rec, orient, centre, n_arm, poses, out);
       return out;
     };
+    const Eigen::Matrix<float, 2, 3> Af = A.cast<float>();
     std::size_t local_cand = 0, local_valid = 0, local_body = 0, local_arm = 0;
     for (int ix = 0; ix < nx; ++ix)
       for (int iy = 0; iy < ny; ++iy)
@@ -216,8 +272,8 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
               if (!cap.record_has(static_cast<std::uint32_t>(rec), mo)) continue;
               bool ok = true;
               if (o.check_arm) {
-                for (const auto& off : low_points(static_cast<std::uint32_t>(rec), mo, centre))
-                  if (surf->contains(target_uv[i] + off.cast<double>())) {
+                for (const auto& w : low_points(static_cast<std::uint32_t>(rec), mo, centre))
+                  if (surf->contains(target_uv[i] + (Af * w).cast<double>())) {
                     ok = false;
                     break;
                   }

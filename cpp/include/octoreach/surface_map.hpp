@@ -26,6 +26,9 @@ struct SurfaceMapOptions {
   Eigen::VectorXd reference;        ///< robot configuration off the arm (torso, other arm); empty: home
   bool check_body = true;           ///< reject base poses where the robot body touches the surface or boxes
   bool check_arm = true;            ///< reject grasps whose arm passes below the surface inside its outline
+  /// Grasp points lie this far above the surface along its normal (the tool frame holds an object,
+  /// it does not touch the board): 0.05 m suits cans and cups.
+  double grasp_height = 0.05;
   int threads = 0;
 };
 
