@@ -16,8 +16,11 @@ IkMode parse_mode(const std::string& mode) {
 IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, double rot_tol, int attempts,
                        int max_iterations, std::uint64_t seed, const Eigen::Vector3d& approach_axis,
                        bool self_collision, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
-                       const py::object& reference) {
+                       const py::object& reference, const py::object& obstacle_links) {
   IkOptions o;
+  if (!obstacle_links.is_none())
+    for (const auto& name : obstacle_links.cast<std::vector<std::string>>())
+      o.obstacle_links.push_back(c.robot().link_index(name));
   o.mode = parse_mode(mode);
   o.position_tolerance = pos_tol;
   o.orientation_tolerance = rot_tol;
@@ -57,7 +60,8 @@ Eigen::VectorXd robot_q(const Robot& r, const py::handle& q) {
   py::arg("mode") = "full", py::arg("position_tolerance") = 1e-4, py::arg("orientation_tolerance") = 1e-3,    \
   py::arg("attempts") = 20, py::arg("max_iterations") = 100, py::arg("rng_seed") = 0,                          \
   py::arg("approach_axis") = Eigen::Vector3d::UnitZ(), py::arg("self_collision") = false,                     \
-  py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none()
+  py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none(),     \
+  py::arg("obstacle_links") = py::none()
 
 }  // namespace
 
@@ -88,6 +92,10 @@ void wrap_robot(py::module_& m) {
              c.fk_jacobian(q_from(c, q), J);
              return Eigen::MatrixXd(J);
            }, py::arg("q"), "Geometric Jacobian (6, dof), rows vx vy vz wx wy wz, in the base link frame.")
+      .def("link_mask", [](const Chain& c, const std::string& link) { return c.link_mask(c.robot().link_index(link)); },
+           py::arg("link"),
+           "Bit i set when chain joint i moves `link`: 0 for links the chain does not move, all bits for links\n"
+           "rigid with the tip (a gripper).")
       .def("within_limits", [](const Chain& c, const py::object& q) { return c.within_limits(q_from(c, q)); })
       .def("wrap", [](const Chain& c, const py::object& q) { return c.wrap(q_from(c, q)); },
            "Continuous joints wrapped into [-pi, pi), revolute joints shifted by 2 pi into their limits where possible.")
@@ -103,10 +111,10 @@ void wrap_robot(py::module_& m) {
       .def("ik", [](const Chain& c, const py::object& T, const py::object& seed, const std::string& mode, double pt,
                     double rt, int attempts, int iters, std::uint64_t rng_seed, const Eigen::Vector3d& axis,
                     bool self_col, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
-                    const py::object& reference) -> py::object {
+                    const py::object& reference, const py::object& obstacle_links) -> py::object {
              Pose target = pose_from(T, "target");
              IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
-                                        base_pose, reference);
+                                        base_pose, reference, obstacle_links);
              Eigen::VectorXd s;
              if (!seed.is_none()) s = q_from(c, seed, "seed");
              std::optional<Eigen::VectorXd> q;
@@ -120,15 +128,17 @@ void wrap_robot(py::module_& m) {
            "Joint vector reaching the 4x4 tip pose T (base link frame), or None.\n\n"
            "mode: 'full' (position and orientation), 'position', or 'approach' (position and the tip's\n"
            "approach_axis, any roll about it). Restarts from random configurations inside the limits;\n"
-           "deterministic for rng_seed. self_collision / obstacles reject colliding solutions; joints outside\n"
-           "the chain take their values from `reference` (default robot.home()).")
+           "deterministic for rng_seed. self_collision / obstacles reject colliding solutions (obstacles in the\n"
+           "world frame, the robot's root at base_pose; obstacle_links restricts that check to the named links);\n"
+           "joints outside the chain take their values from `reference` (default robot.home()).")
       .def("ik_batch", [](const Chain& c, const py::object& Ts, const py::object& seeds, const std::string& mode,
                           double pt, double rt, int attempts, int iters, std::uint64_t rng_seed,
                           const Eigen::Vector3d& axis, bool self_col, std::shared_ptr<Obstacles> obstacles,
-                          const py::object& base_pose, const py::object& reference, int threads) {
+                          const py::object& base_pose, const py::object& reference, const py::object& obstacle_links,
+                          int threads) {
              std::vector<Pose> targets = poses_from(Ts, "Ts");
              IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
-                                        base_pose, reference);
+                                        base_pose, reference, obstacle_links);
              Eigen::MatrixXd S;
              bool has_seeds = !seeds.is_none();
              if (has_seeds) {
@@ -202,13 +212,23 @@ void wrap_robot(py::module_& m) {
              return r.in_self_collision(v);
            }, py::arg("q"), "True when two links that are not allowed to touch collide at q.")
       .def("in_collision", [](const Robot& r, const py::object& q, const Obstacles& obstacles,
-                              const py::object& base_pose, bool self) {
+                              const py::object& base_pose, bool self, const py::object& links) {
              Eigen::VectorXd v = robot_q(r, q);
              Pose base = base_pose.is_none() ? Pose::Identity() : pose_from(base_pose, "base_pose");
+             std::vector<int> only;
+             if (!links.is_none())
+               for (const auto& name : links.cast<std::vector<std::string>>()) only.push_back(r.link_index(name));
              py::gil_scoped_release release;
+             if (!links.is_none()) {
+               std::vector<Pose> poses = r.link_poses(v);
+               if (r.links_in_collision(poses, obstacles, base, &only)) return true;
+               return self && r.in_self_collision_poses(poses);
+             }
              return r.in_collision(v, obstacles, base, self);
            }, py::arg("q"), py::arg("obstacles"), py::arg("base_pose") = py::none(), py::arg("self_collision") = false,
-           "True when a link touches an obstacle (world frame) with the root link at base_pose (4x4).")
+           py::arg("links") = py::none(),
+           "True when a link (all, or the named `links`) touches an obstacle (world frame) with the root link at\n"
+           "base_pose (4x4); self_collision also checks the robot against itself.")
       .def_property_readonly("allowed_collisions", [](const Robot& r) {
         std::vector<std::pair<std::string, std::string>> out;
         for (auto [a, b] : r.allowed_pairs()) out.emplace_back(r.links()[a].name, r.links()[b].name);

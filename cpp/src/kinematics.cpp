@@ -217,7 +217,9 @@ std::optional<Eigen::VectorXd> Chain::ik_impl_(const Pose& target, const IkOptio
     if (!need_full) return true;
     Eigen::VectorXd full = to_robot_configuration(sol, reference);
     robot_->link_poses(full, poses);
-    if (o.obstacles && robot_->links_in_collision(poses, *o.obstacles, o.base_pose)) return false;
+    if (o.obstacles && robot_->links_in_collision(poses, *o.obstacles, o.base_pose,
+                                                  o.obstacle_links.empty() ? nullptr : &o.obstacle_links))
+      return false;
     if (o.check_self_collision) {
       if (fixed_state < 0) fixed_state = robot_->in_self_collision_poses(poses, fixed_pairs) ? 1 : 0;
       if (fixed_state == 1) return false;

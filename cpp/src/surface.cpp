@@ -1,6 +1,7 @@
 #include "octoreach/surface.hpp"
 
 #include <algorithm>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <string>
 
@@ -46,7 +47,18 @@ Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness)
     n.y() += (a.z() - b.z()) * (a.x() + b.x());
     n.z() += (a.x() - b.x()) * (a.y() + b.y());
   }
-  if (n.norm() < 1e-12) throw std::invalid_argument("degenerate surface polygon: its vertices enclose no area");
+  if (n.norm() < 1e-12) {
+    // No net area (a bow tie, or collinear points): fall back to the best-fit plane so that the
+    // checks below can say what is wrong.
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& v : vertices) mean += v;
+    mean /= static_cast<double>(N);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& v : vertices) cov += (v - mean) * (v - mean).transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    if (eig.eigenvalues()[1] < 1e-18) throw std::invalid_argument("degenerate surface polygon: its vertices are collinear");
+    n = eig.eigenvectors().col(0);
+  }
   n.normalize();
   if (n.z() < -1e-9) n = -n;
   normal_ = n;

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -33,6 +34,7 @@ struct IkOptions {
   /// other (a caller that checked the reference posture once may switch this off).
   bool check_fixed_pairs = true;
   std::shared_ptr<const Obstacles> obstacles;  ///< reject solutions touching these (world frame)
+  std::vector<int> obstacle_links;      ///< links checked against the obstacles (empty: every link)
   Pose base_pose = Pose::Identity();    ///< robot root pose in the world (for obstacles)
   /// Full robot configuration for joints outside the chain (empty: Robot::home()).
   Eigen::VectorXd reference;
