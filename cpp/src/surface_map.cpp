@@ -1,6 +1,8 @@
 #include "octoreach/surface_map.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -50,6 +52,26 @@ void witness_points(const Shape& s, std::vector<Eigen::Vector3d>& out) {
   }
   for (const auto& p : local) out.push_back(s.origin * p);
 }
+
+// The arm's witness points below the surface for one capability cell, nearest to the target first,
+// with a summary for a quick "all outside one edge" test: for 32 horizontal directions phi_k the
+// smallest projection of the points on (cos phi_k, sin phi_k), and the largest horizontal radius.
+struct LowSet {
+  static constexpr int kDirs = 32;
+  std::vector<Eigen::Vector3f> points;
+  std::array<float, kDirs> min_proj{};
+  float r_max = 0;
+  void summarise() {
+    r_max = 0;
+    for (const auto& w : points) r_max = std::max(r_max, w.head<2>().norm());
+    for (int k = 0; k < kDirs; ++k) {
+      float c = static_cast<float>(std::cos(2 * M_PI * k / kDirs)), s = static_cast<float>(std::sin(2 * M_PI * k / kDirs));
+      float m = std::numeric_limits<float>::infinity();
+      for (const auto& w : points) m = std::min(m, c * w.x() + s * w.y());
+      min_proj[k] = m;
+    }
+  }
+};
 
 }  // namespace
 
@@ -165,10 +187,11 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   // arm frame is z whatever the yaw, so the points are computed once per capability cell, for the
   // voxel layers the targets can fall in; otherwise each yaw bin computes its own.
   const bool upright = std::abs(ref_to_arm.linear()(2, 2) - 1.0) < 1e-9 && std::abs(surface.normal().z() - 1.0) < 1e-9;
-  std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> shared_low;
+  std::unordered_map<std::uint64_t, LowSet> shared_low;
   std::vector<Pose> scratch;
   auto compute_low = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre, const Eigen::Vector3d& n_arm,
-                         std::vector<Pose>& poses, std::vector<Eigen::Vector3f>& out) {
+                         std::vector<Pose>& poses, LowSet& low) {
+    std::vector<Eigen::Vector3f>& out = low.points;
     const float* qf = cap.record_solution(rec, orient);
     Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm.dof()).cast<double>();
     robot.link_poses(arm.to_robot_configuration(q, ref), poses);
@@ -184,6 +207,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
     std::sort(out.begin(), out.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
       return a.head<2>().squaredNorm() < b.head<2>().squaredNorm();
     });
+    low.summarise();
   };
   if (upright && o.check_arm) {
     // Arm-frame heights of the targets over every base height in the grid.
@@ -204,13 +228,13 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
         std::int64_t rec = cap.record_at(cc[i], &centre);
         if (rec >= 0) records.emplace_back(static_cast<std::uint32_t>(rec), centre);
       }
-    std::vector<std::vector<std::pair<std::uint64_t, std::vector<Eigen::Vector3f>>>> parts(records.size());
+    std::vector<std::vector<std::pair<std::uint64_t, LowSet>>> parts(records.size());
     detail::parallel_for(records.size(), o.threads, [&](std::size_t i, int) {
       thread_local std::vector<Pose> poses;
       auto [rec, centre] = records[i];
       for (int orient = 0; orient < O; ++orient) {
         if (!cap.record_has(rec, orient)) continue;
-        std::vector<Eigen::Vector3f> pts;
+        LowSet pts;
         compute_low(rec, orient, centre, Eigen::Vector3d::UnitZ(), poses, pts);
         parts[i].emplace_back(static_cast<std::uint64_t>(rec) * O + orient, std::move(pts));
       }
@@ -237,9 +261,9 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
     }
     // Lazily filled: for cell (record, orientation), the uv offsets (relative to the target) of the
     // arm's witness points that lie below the surface plane.
-    std::unordered_map<std::uint64_t, std::vector<Eigen::Vector3f>> own_low;
+    std::unordered_map<std::uint64_t, LowSet> own_low;
     std::vector<Pose> poses;
-    auto low_points = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre) -> const std::vector<Eigen::Vector3f>& {
+    auto low_points = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre) -> const LowSet& {
       std::uint64_t key = static_cast<std::uint64_t>(rec) * O + orient;
       auto& cache = upright ? shared_low : own_low;
       auto it = cache.find(key);
@@ -250,6 +274,24 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
       return out;
     };
     const Eigen::Matrix<float, 2, 3> Af = A.cast<float>();
+    // Convex outline: its half-planes h . uv <= c become g . w <= c - h . uv_target in the arm frame,
+    // with g = A^T h. In the upright case g is horizontal, so a cell's direction summary can show at
+    // once that every witness point lies outside one edge.
+    const auto& hp = surf->halfplanes();
+    std::vector<Eigen::Vector3f> g(hp.size());
+    std::vector<int> g_dir(hp.size());
+    std::vector<float> g_norm(hp.size()), g_slack(hp.size());
+    for (std::size_t j = 0; j < hp.size(); ++j) {
+      g[j] = (A.transpose() * hp[j].head<2>()).cast<float>();
+      double phi = std::atan2(g[j].y(), g[j].x());
+      double step = 2 * M_PI / LowSet::kDirs;
+      long kk = std::lround(phi / step);
+      g_dir[j] = static_cast<int>(((kk % LowSet::kDirs) + LowSet::kDirs) % LowSet::kDirs);
+      g_norm[j] = g[j].head<2>().norm();
+      g_slack[j] = static_cast<float>(std::abs(phi - kk * step)) + 1e-6f;
+    }
+    const bool fast = upright && surf->convex();
+    std::vector<float> d(hp.size());  // per target: c - h . uv_target
     std::size_t local_cand = 0, local_valid = 0, local_body = 0, local_arm = 0;
     for (int ix = 0; ix < nx; ++ix)
       for (int iy = 0; iy < ny; ++iy)
@@ -268,15 +310,34 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
             if (rec < 0) continue;
             ++local_cand;
             int count = 0;
+            if (fast)
+              for (std::size_t j = 0; j < hp.size(); ++j)
+                d[j] = static_cast<float>(hp[j].z() - hp[j].head<2>().dot(target_uv[i]));
             for (int mo : mapped) {
               if (!cap.record_has(static_cast<std::uint32_t>(rec), mo)) continue;
               bool ok = true;
               if (o.check_arm) {
-                for (const auto& w : low_points(static_cast<std::uint32_t>(rec), mo, centre))
-                  if (surf->contains(target_uv[i] + (Af * w).cast<double>())) {
-                    ok = false;
-                    break;
-                  }
+                const LowSet& low = low_points(static_cast<std::uint32_t>(rec), mo, centre);
+                if (fast) {
+                  bool all_outside = low.points.empty();
+                  for (std::size_t j = 0; j < hp.size() && !all_outside; ++j)
+                    all_outside = g_norm[j] * (low.min_proj[g_dir[j]] - g_slack[j] * low.r_max) > d[j];
+                  if (!all_outside)
+                    for (const auto& w : low.points) {
+                      bool inside = true;
+                      for (std::size_t j = 0; j < hp.size() && inside; ++j) inside = g[j].dot(w) <= d[j];
+                      if (inside) {
+                        ok = false;
+                        break;
+                      }
+                    }
+                } else {
+                  for (const auto& w : low.points)
+                    if (surf->contains(target_uv[i] + (Af * w).cast<double>())) {
+                      ok = false;
+                      break;
+                    }
+                }
                 if (!ok) ++local_arm;
               }
               count += ok;
@@ -302,8 +363,8 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
     valid += local_valid;
     body_hits += local_body;
     arm_hits += local_arm;
-    std::size_t d = ++bins_done;
-    if (progress && tid == 0 && !progress(d, T)) throw Cancelled("surface map build cancelled");
+    std::size_t finished = ++bins_done;
+    if (progress && tid == 0 && !progress(finished, T)) throw Cancelled("surface map build cancelled");
   }, 1);
 
   for (std::size_t c = 0; c < ncells; ++c) {

@@ -55,6 +55,8 @@ class Surface {
     return contains_even_odd(uv);
   }
   bool convex() const { return convex_; }
+  /// \brief For a convex polygon, its edges as half-planes (a, b, c): inside where a u + b v <= c.
+  const std::vector<Eigen::Vector3d>& halfplanes() const { return halfplanes_; }
   /// \brief Grid points inside the polygon at `resolution` (cell centres of a grid aligned with u, v
   /// starting at the polygon's bounding box): 1.4 x 0.65 m at 0.05 m gives 28 x 13 = 364 points.
   std::vector<Eigen::Vector3d> sample_points(double resolution) const;

@@ -1,0 +1,139 @@
+"""Surface-map benchmark: the paper's setting (PR2, both arms, 1.4 x 0.65 m table, 0.05 m, 2 pi / 16).
+
+Prints JSON. References: the paper (2.5 days at 0.05 m, 2 h at 0.1 m) and the original authors' build
+logs (GKIFreiburg inverse_capability_map: 521,540 s per arm at 0.05 m, 18,511 s at 0.1 m, a 3.19 MB
+combined map file). Capability maps are built first and timed apart (benchmarks/capability_map.py covers
+them in depth); the surface-map figure includes the point maps and the surface maps of both arms and
+their combination, as the issue asks.
+
+    .venv/bin/python benchmarks/surface_map.py               # 0.05 m and 0.1 m
+    .venv/bin/python benchmarks/surface_map.py --quick       # 0.1 m only
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import statistics
+import tempfile
+import time
+
+import numpy as np
+
+import octoreach
+from octoreach import arms
+
+TABLE = dict(size_x=1.4, size_y=0.65, height=0.72, x=0.0, y=0.0)
+ANCHORS = {
+    "paper_build": {"0.05": "2.5 days", "0.1": "2 hours"},
+    "authors_build_logs_s_per_arm": {"0.05": 521540, "0.1": 18511},
+    "authors_combined_file_bytes": 3.19e6,
+    "paper_candidate_poses_0.05": 20e6,
+}
+TARGETS = {"both_arms_s": {"0.05": 60, "0.1": 10}, "file_bytes": 1e6, "lookup_us": 0.2, "sample_ms_median": 1.0}
+
+
+def timed(fn):
+    t = time.perf_counter()
+    out = fn()
+    return out, time.perf_counter() - t
+
+
+def run(res: float, directions: int, samples: int) -> dict:
+    robot = octoreach.robots.pr2()
+    table = octoreach.Surface.rectangle(TABLE["size_x"], TABLE["size_y"], TABLE["height"], TABLE["x"], TABLE["y"])
+    table.add_legs()
+    out = {"resolution_m": res, "theta_bins": 16, "directions": directions, "table": TABLE,
+           "surface_points": int(len(table.points(res)))}
+    caps, refs = {}, {}
+    for arm in ("right_arm", "left_arm"):
+        refs[arm] = arms.default_reference(robot, arm)
+        caps[arm], t = timed(lambda: arms.capability_map(robot, arm, resolution=res, directions=directions,
+                                                         progress=False))
+        out[f"capability_map_{arm}_s"] = round(t, 2)
+    maps, t_total = {}, 0.0
+    for arm in ("right_arm", "left_arm"):
+        pm, t_pm = timed(lambda: octoreach.InversePointMap.build(robot, caps[arm], reference_frame="base_footprint",
+                                                                 reference=refs[arm], progress=False))
+        sm, t_sm = timed(lambda: octoreach.SurfaceMap.build(robot, caps[arm], table, resolution=res, z_range=(0, 0),
+                                                            reference=refs[arm], progress=False))
+        maps[arm] = sm
+        t_total += t_pm + t_sm
+        out[arm] = {"point_map_s": round(t_pm, 3), "point_map_poses": int(pm.pose_count),
+                    "point_map_voxels": int(pm.voxel_count), "surface_map_s": round(t_sm, 2), **sm.stats}
+    combined, t_c = timed(lambda: octoreach.SurfaceMap.combine([maps["right_arm"], maps["left_arm"]], "max"))
+    both, _ = timed(lambda: octoreach.SurfaceMap.combine([maps["right_arm"], maps["left_arm"]], "min"))
+    t_total += t_c
+    out["both_arms_point_and_surface_maps_s"] = round(t_total, 2)
+    out["candidate_poses_both_arms"] = int(sum(maps[a].stats["candidate_poses"] for a in maps))
+    out["valid_poses_both_arms"] = int(sum(maps[a].stats["valid_poses"] for a in maps))
+    out["combined_max_reachability"] = round(combined.max_reachability, 3)
+    out["both_hands_max_reachability"] = round(both.max_reachability, 3)
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "table.orsm")
+        combined.save(path)
+        out["combined_file_bytes"] = os.path.getsize(path)
+
+    # Lookups: a million random poses in the map's bounds.
+    lo, hi = combined.bounds
+    rng = np.random.default_rng(0)
+    n = 1_000_000
+    poses = np.column_stack([rng.uniform(lo[0], hi[0], n), rng.uniform(lo[1], hi[1], n), np.zeros(n),
+                             rng.uniform(-np.pi, np.pi, n)])
+    times = [timed(lambda: combined.reachability(poses))[1] for _ in range(5)]
+    out["lookup_us_per_pose"] = round(statistics.median(times) / n * 1e6, 4)
+
+    # Sampling with all three checks: R_S, a navigation cost map of the room, FCL collision of the
+    # whole robot with the table (top and legs) and the room's walls.
+    cells = int(8.0 / 0.05)
+    grid = np.zeros((cells, cells), np.float32)
+    xs = -4.0 + (np.arange(cells) + 0.5) * 0.05
+    X, Y = np.meshgrid(xs, xs)
+    grid[(np.abs(X) < TABLE["size_x"] / 2 + 0.3) & (np.abs(Y) < TABLE["size_y"] / 2 + 0.3)] = 0.8  # inflated table
+    grid[(np.abs(X) > 3.5) | (np.abs(Y) > 3.5)] = 1.0  # walls
+    cost = octoreach.CostMap(grid, origin=np.array([-4.0, -4.0]), resolution=0.05)
+    world = table.obstacles()
+    sampler = octoreach.PoseSampler(combined, candidates=40, seed=1, is_free=cost,
+                                    in_collision=(robot, world, refs["right_arm"]))
+    durations = []
+    for _ in range(samples):
+        _, t = timed(sampler.sample)
+        durations.append(t)
+    out["sample_ms_median"] = round(statistics.median(durations) * 1e3, 3)
+    out["sample_ms_p90"] = round(float(np.percentile(durations, 90)) * 1e3, 3)
+    out["samples"] = samples
+    key = f"{res:g}"
+    out["ratios"] = {
+        "authors_per_arm_s_over_ours_per_arm":
+            round(ANCHORS["authors_build_logs_s_per_arm"].get(key, float("nan")) / (t_total / 2), 1)
+            if key in ANCHORS["authors_build_logs_s_per_arm"] else None,
+        "authors_file_over_ours": round(ANCHORS["authors_combined_file_bytes"] / out["combined_file_bytes"], 2),
+        "candidate_poses_over_paper_20M": round(out["candidate_poses_both_arms"] / ANCHORS["paper_candidate_poses_0.05"], 3),
+    }
+    out["targets_met"] = {
+        "both_arms_time": t_total <= TARGETS["both_arms_s"].get(key, float("inf")),
+        "file_size": out["combined_file_bytes"] <= TARGETS["file_bytes"],
+        "lookup": out["lookup_us_per_pose"] <= TARGETS["lookup_us"],
+        "sample": out["sample_ms_median"] <= TARGETS["sample_ms_median"],
+    }
+    return out
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--quick", action="store_true", help="0.1 m only, fewer directions")
+    p.add_argument("--directions", type=int, default=200)
+    p.add_argument("--samples", type=int, default=200)
+    args = p.parse_args()
+    resolutions = [0.1] if args.quick else [0.05, 0.1]
+    result = {"benchmark": "surface_map", "anchors": ANCHORS, "targets": TARGETS,
+              "machine": {"cpus": os.cpu_count(), "platform": platform.platform(), "octoreach": octoreach.__version__},
+              "runs": {}}
+    for res in resolutions:
+        result["runs"][f"{res:g}"] = run(res, 100 if args.quick else args.directions, args.samples)
+    print(json.dumps(result, indent=2))
+
+
+if __name__ == "__main__":
+    main()
