@@ -4,6 +4,8 @@
 #include <array>
 #include <bitset>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <random>
 #include <unordered_set>
@@ -266,11 +268,15 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
     }
   std::vector<std::uint32_t> newly;
   run_wave(wave0, seed_pool, 1, newly);
+  const char* debug = std::getenv("OCTOREACH_DEBUG");
+  if (debug) std::fprintf(stderr, "capability map: wave0 %zu calls, %zu reachable\n", wave0.size(), newly.size());
   stage.report(0.15, 0.5, 1.0);
   flood(newly);
+  if (debug) std::fprintf(stderr, "capability map: after flood %zu calls\n", ik_calls);
   // Retry pass: a failed cell next to several reachable ones gets their solutions as seeds
   // (a single neighbour's seed can sit on the wrong side of a joint limit or a collision).
-  for (int pass = 0; pass < 2; ++pass) {
+  // One pass: a second recovered about 1% of what it tried on the PR2 arm.
+  for (int pass = 0; pass < 1; ++pass) {
     std::vector<Item> retry;
     std::vector<std::uint32_t> nb;
     for (std::uint32_t c = 0; c < ncells; ++c) {
@@ -287,7 +293,8 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
       if (k >= 2) retry.push_back(it);
     }
     if (retry.empty()) break;
-    run_wave(retry, sol_pool, 2, newly);
+    run_wave(retry, sol_pool, 1, newly);
+    if (debug) std::fprintf(stderr, "capability map: retry pass %d: %zu cells, %zu recovered\n", pass, retry.size(), newly.size());
     if (newly.empty()) break;
     flood(newly);
   }
