@@ -14,6 +14,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
@@ -183,6 +187,8 @@ class KeyBitmap {
   }
   static unsigned bit(unsigned x, unsigned y, unsigned z) { return (x & 3) | ((y & 3) << 2) | ((z & 3) << 4); }
   int lo(int i) const { return lo_[i]; }
+  std::size_t bricks(int i) const { return nb_[i]; }
+  std::uint64_t* data() { return words_.data(); }
 
  private:
   int lo_[3];
@@ -190,9 +196,13 @@ class KeyBitmap {
   std::vector<std::uint64_t> words_;
 };
 
-// The cells OcTreeBaseImpl::computeRayKeys(origin, end) returns (the same arithmetic, step for
-// step, so the same cells), written straight into a bitmap instead of a KeyRay. Both keys are
-// known to be inside the map.
+// The cells OcTreeBaseImpl::computeRayKeys(origin, end) returns, written straight into a bitmap
+// instead of a KeyRay. The set-up is the same code; the walk does the same double arithmetic in
+// the same order (t_max[dim] += t_delta[dim], the same comparisons and tie-breaks), so it yields
+// the same cells. It is written without data-dependent branches: the axis is picked with
+// selects, the key is one packed integer (21 bits per axis, relative to the bitmap's box) that
+// is compared with the end key in one instruction. Both keys are known to be inside the map and
+// the bitmap's box is padded, so a walk that overshoots the end cell by rounding stays inside.
 void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::OcTreeKey& key_origin,
                 const octomap::point3d& end, const octomap::OcTreeKey& key_end, KeyBitmap& bits) {
   if (key_origin == key_end) return;
@@ -202,7 +212,6 @@ void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, con
   direction /= length;
   int step[3];
   double t_max[3], t_delta[3];
-  octomap::OcTreeKey current = key_origin;
   const double res = tree.getResolution();
   for (unsigned i = 0; i < 3; ++i) {
     if (direction(i) > 0.0)
@@ -212,7 +221,7 @@ void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, con
     else
       step[i] = 0;
     if (step[i] != 0) {
-      double border = tree.keyToCoord(current[i]);
+      double border = tree.keyToCoord(key_origin[i]);
       border += (float)(step[i] * res * 0.5);
       t_max[i] = (border - origin(i)) / direction(i);
       t_delta[i] = res / std::fabs(direction(i));
@@ -221,19 +230,64 @@ void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, con
       t_delta[i] = std::numeric_limits<double>::max();
     }
   }
+  constexpr int kB = 21;
+  constexpr std::uint64_t kM = (std::uint64_t(1) << kB) - 1;
+  auto local = [&](const octomap::OcTreeKey& k) {
+    return std::uint64_t(k[0] - bits.lo(0)) | (std::uint64_t(k[1] - bits.lo(1)) << kB) |
+           (std::uint64_t(k[2] - bits.lo(2)) << (2 * kB));
+  };
+  std::uint64_t cur = local(key_origin);
+  const std::uint64_t target = local(key_end);
+  const std::uint64_t inc0 = std::uint64_t(std::int64_t(step[0])),
+                      inc1 = std::uint64_t(std::int64_t(step[1]) * (std::int64_t(1) << kB)),
+                      inc2 = std::uint64_t(std::int64_t(step[2]) * (std::int64_t(1) << (2 * kB)));
+  const double len = length;
+  std::uint64_t* words = bits.data();
+  const std::size_t nb0 = bits.bricks(0), nb1 = bits.bricks(1);
+  auto set_bit = [&](std::uint64_t c) {
+    const unsigned x = unsigned(c & kM), y = unsigned((c >> kB) & kM), z = unsigned(c >> (2 * kB));
+    words[(std::size_t(z >> 2) * nb1 + (y >> 2)) * nb0 + (x >> 2)] |=
+        std::uint64_t(1) << ((x & 3) | ((y & 3) << 2) | ((z & 3) << 4));
+  };
+#if defined(__SSE2__)
+  // Masks in SSE registers: t_dim += (mask_dim & t_delta_dim) adds either t_delta or +0.0,
+  // which leaves t unchanged (t > 0), so the arithmetic equals t_max[dim] += t_delta[dim].
+  __m128d t0 = _mm_set_sd(t_max[0]), t1 = _mm_set_sd(t_max[1]), t2 = _mm_set_sd(t_max[2]);
+  const __m128d d0 = _mm_set_sd(t_delta[0]), d1 = _mm_set_sd(t_delta[1]), d2 = _mm_set_sd(t_delta[2]);
+  const __m128d ones = _mm_castsi128_pd(_mm_set1_epi32(-1));
   for (;;) {
-    unsigned dim;
-    if (t_max[0] < t_max[1])
-      dim = t_max[0] < t_max[2] ? 0 : 2;
-    else
-      dim = t_max[1] < t_max[2] ? 1 : 2;
-    current[dim] = octomap::key_type(current[dim] + step[dim]);
-    t_max[dim] += t_delta[dim];
-    if (current == key_end) return;
-    double dist = std::min(std::min(t_max[0], t_max[1]), t_max[2]);
-    if (dist > length) return;
-    bits.set(current);
+    // computeRayKeys: t0 < t1 ? (t0 < t2 ? 0 : 2) : (t1 < t2 ? 1 : 2)
+    const __m128d lt01 = _mm_cmplt_sd(t0, t1);
+    const __m128d m0 = _mm_and_pd(lt01, _mm_cmplt_sd(t0, t2));
+    const __m128d m1 = _mm_andnot_pd(lt01, _mm_cmplt_sd(t1, t2));
+    const __m128d m2 = _mm_andnot_pd(_mm_or_pd(m0, m1), ones);
+    t0 = _mm_add_sd(t0, _mm_and_pd(m0, d0));
+    t1 = _mm_add_sd(t1, _mm_and_pd(m1, d1));
+    t2 = _mm_add_sd(t2, _mm_and_pd(m2, d2));
+    const std::uint64_t c0 = std::uint64_t(_mm_movemask_pd(m0) & 1), c1 = std::uint64_t(_mm_movemask_pd(m1) & 1),
+                        c2 = std::uint64_t(_mm_movemask_pd(m2) & 1);
+    cur += (inc0 & (std::uint64_t(0) - c0)) + (inc1 & (std::uint64_t(0) - c1)) + (inc2 & (std::uint64_t(0) - c2));
+    if (cur == target) return;
+    if (_mm_cvtsd_f64(_mm_min_sd(_mm_min_sd(t0, t1), t2)) > len) return;
+    set_bit(cur);
   }
+#else
+  double t0 = t_max[0], t1 = t_max[1], t2 = t_max[2];
+  const double d0 = t_delta[0], d1 = t_delta[1], d2 = t_delta[2];
+  for (;;) {
+    const bool lt01 = t0 < t1;
+    const bool c0 = lt01 & (t0 < t2);
+    const bool c1 = !lt01 & (t1 < t2);
+    const bool c2 = !(c0 | c1);
+    cur += (inc0 & (std::uint64_t(0) - c0)) + (inc1 & (std::uint64_t(0) - c1)) + (inc2 & (std::uint64_t(0) - c2));
+    t0 += c0 ? d0 : 0.0;
+    t1 += c1 ? d1 : 0.0;
+    t2 += c2 ? d2 : 0.0;
+    if (cur == target) return;
+    if (std::min(std::min(t0, t1), t2) > len) return;
+    set_bit(cur);
+  }
+#endif
 }
 
 std::string fmt_vec(const Eigen::Vector3d& v) {
@@ -505,6 +559,11 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
       hi[j] = std::max(hi[j], b[3 + j]);
     }
   for (std::size_t i = 0; i < n; ++i) st.out_of_bounds += kind[i] == 0;
+  // a walk may step one cell past its end cell by rounding: pad the bitmap's box
+  for (int j = 0; j < 3; ++j) {
+    lo[j] = std::max(lo[j] - 2, 0);
+    hi[j] = std::min(hi[j] + 2, 0xffff);
+  }
   double cells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
   if (cells > 8.0e9)
     throw std::invalid_argument("the cloud spans " + std::to_string(cells) +

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "exploration_impl.hpp"
+#include "octoreach/capability_map.hpp"
 #include "octoreach/robot.hpp"
 #include "parallel.hpp"
 
@@ -141,6 +142,8 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   if (opt.max_valid_poses <= 0 || opt.orientations_per_cell <= 0 || opt.max_candidate_cells <= 0)
     throw std::invalid_argument("max_valid_poses, orientations_per_cell and max_candidate_cells must be positive");
   if (!(opt.orientation_spread >= 0)) throw std::invalid_argument("orientation_spread must be >= 0");
+  if (!(opt.min_reachability >= 0 && opt.min_reachability < 1))
+    throw std::invalid_argument("min_reachability must be in [0, 1), got " + std::to_string(opt.min_reachability));
   NbvResult r;
   const auto& I = map.internals();
   const double res = map.resolution();
@@ -191,6 +194,16 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
       if (keep.size() != cells.size())
         throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
                                     std::to_string(cells.size()) + " positions");
+    }
+    if (opt.capability_map) {
+      // Zacharias et al.: a cell is a sensor position only where the arm reaches some orientation.
+      const Pose to_arm = opt.capability_base.inverse();
+      for (std::size_t i = 0; i < cells.size(); ++i)
+        if (keep[i] && opt.workspace.contains(pos[i]) &&
+            !(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability)) {
+          keep[i] = false;
+          ++r.capability_pruned;
+        }
     }
     const int margin = int(std::ceil(opt.min_distance / res));
     detail::GridReader g(I.grid);
