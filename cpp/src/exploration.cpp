@@ -612,8 +612,9 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
                   tree.getClampingThresMaxLog(),
                   changed_};
   up.run(root, created_root, updates.data(), updates.data() + updates.size(), 0);
+  detail::GridWriter gw3(impl_->grid);
   for (const auto& c : changed_) {
-    std::uint8_t& cell = impl_->grid.at(c.key);
+    std::uint8_t& cell = gw3.at(c.key);
     cell = std::uint8_t((cell & ~kStateMask) | std::uint8_t(c.after));
   }
   st.changed_cells = changed_.size();
@@ -631,8 +632,9 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     }, 512);
     std::vector<CellKey> added;
     std::vector<std::pair<CellKey, int>> removed;
+    detail::GridWriter gw(I.grid);  // every cell touched here already has its block
     auto remove = [&](CellKey k) {
-      std::uint8_t& f = I.grid.at(k);
+      std::uint8_t& f = gw.at(k);
       f = std::uint8_t(f & ~kFrontierFlag);
       auto it = I.frontier_label.find(k);
       if (it != I.frontier_label.end()) {
@@ -643,9 +645,10 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     detail::GridReader g(I.grid);
     for (std::size_t i = 0; i < changed_.size(); ++i) {
       CellKey k = changed_[i].key;
-      bool was = (I.grid.get(k) & kFrontierFlag) != 0;
+      std::uint8_t& fk = gw.at(k);
+      bool was = (fk & kFrontierFlag) != 0;
       if (own[i] && !was) {
-        I.grid.at(k) |= kFrontierFlag;
+        fk |= kFrontierFlag;
         added.push_back(k);
       } else if (!own[i] && was) {
         remove(k);
@@ -654,7 +657,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
       for (const auto& d : detail::kN6) {
         CellKey nb;
         if (!detail::neighbour(k, d[0], d[1], d[2], nb)) continue;
-        if ((I.grid.get(nb) & kFrontierFlag) && !frontier_test(g, nb)) remove(nb);
+        if ((g.get(nb) & kFrontierFlag) && !frontier_test(g, nb)) remove(nb);
       }
     }
     st.frontier_added = added.size();
@@ -702,10 +705,11 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     bool have_hull = convex_hull(hull_in, planes, verts);
     st.seconds_hull = seconds_since(t0);
     t0 = Clock::now();
+    detail::GridWriter gw(I.grid);
     // cells that became known are no longer voids
     for (const auto& c : changed_)
-      if (c.before == CellState::Unknown && (I.grid.get(c.key) & kVoidFlag)) {
-        I.grid.at(c.key) &= std::uint8_t(~kVoidFlag);
+      if (c.before == CellState::Unknown && (gw.get(c.key) & kVoidFlag)) {
+        gw.at(c.key) &= std::uint8_t(~kVoidFlag);
         I.void_set.erase(c.key);
         ++st.void_removed;
       }
@@ -729,9 +733,9 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
           for (int z = nl; z <= nh; ++z) {  // new cells of the hull
             if (z >= ol && z <= oh) continue;
             CellKey k = pack_key(x, y, z);
-            std::uint8_t f = I.grid.get(k);
+            std::uint8_t f = gw.get(k);
             if ((f & kStateMask) == 0 && !(f & kVoidFlag)) {
-              I.grid.at(k) |= kVoidFlag;
+              gw.at(k) |= kVoidFlag;
               I.void_set.insert(k);
               ++st.void_added;
             }
@@ -739,8 +743,8 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
           for (int z = ol; z <= oh; ++z) {  // cells that left the hull (numerical merging only)
             if (z >= nl && z <= nh) continue;
             CellKey k = pack_key(x, y, z);
-            if (I.grid.get(k) & kVoidFlag) {
-              I.grid.at(k) &= std::uint8_t(~kVoidFlag);
+            if (gw.get(k) & kVoidFlag) {
+              gw.at(k) &= std::uint8_t(~kVoidFlag);
               I.void_set.erase(k);
               ++st.void_removed;
             }
