@@ -505,6 +505,9 @@ void wrap_exploration(py::module_& m) {
           d["ik_failures"] = r.ik_failures;
           d["capability_pruned"] = r.capability_pruned;
           d["seconds"] = r.seconds;
+          d["seconds_vectors"] = r.seconds_vectors;
+          d["seconds_prune"] = r.seconds_prune;
+          d["seconds_score"] = r.seconds_score;
           return d;
         }, py::arg("map"), py::arg("camera"), py::arg("max_valid_poses") = 50, py::arg("orientations_per_cell") = 8,
         py::arg("orientation_spread") = 0.35, py::arg("max_candidate_cells") = 400, py::arg("score_width") = 48,

@@ -915,6 +915,7 @@ std::vector<FrontierVoid> ExplorationMap::frontier_voids() const {
   (void)fcs;
   auto& I = *impl_;
   std::vector<FrontierVoid> out;
+  detail::GridReader g(I.grid);
   for (std::size_t v = 0; v < vcs.size(); ++v) {
     FrontierVoid fv;
     fv.void_index = int(v);
@@ -922,7 +923,7 @@ std::vector<FrontierVoid> ExplorationMap::frontier_voids() const {
       for (const auto& d : detail::kN26.d) {
         CellKey nb;
         if (!detail::neighbour(k, d[0], d[1], d[2], nb)) continue;
-        if (!(I.grid.get(nb) & kFrontierFlag)) continue;
+        if (!(g.get(nb) & kFrontierFlag)) continue;
         fv.frontier_cells.push_back(nb);
         auto it = I.frontier_label.find(nb);
         if (it != I.frontier_label.end()) {

@@ -79,10 +79,11 @@ struct NbvResult {
   std::vector<ViewCandidate> ranked;
   std::size_t utility_vectors = 0;
   std::size_t utility_cells = 0;    ///< cells with utility > 0 before pruning
-  std::size_t candidate_cells = 0;  ///< after workspace pruning
+  std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
   std::size_t capability_pruned = 0;  ///< cells the capability map removed
   std::size_t poses_scored = 0, ik_failures = 0;
   double seconds = 0;
+  double seconds_vectors = 0, seconds_prune = 0, seconds_score = 0;  ///< parts: steps 1-2, 3, 4
   /// \brief Expected void cells of the best pose (0 when there is none).
   std::size_t best_void_cells() const { return ranked.empty() ? 0 : ranked.front().void_cells; }
 };
