@@ -9,6 +9,7 @@
 
 #include "exploration_impl.hpp"
 #include "octoreach/capability_map.hpp"
+#include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
 #include "parallel.hpp"
 
@@ -334,8 +335,20 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   const std::size_t per_cell = std::size_t(opt.orientations_per_cell);
   const std::size_t total = cells.size() * per_cell;
   const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
+  // The map's occupied cells as FCL obstacles for the arm (the tree is not copied: the map
+  // outlives the search, so the shared_ptr does not own it).
+  std::optional<Obstacles> obstacles;
+  Pose robot_root = Pose::Identity();
+  Eigen::VectorXd reference;
+  if (opt.chain && opt.arm_collisions && map.octree().size() > 0) {
+    const Robot& robot = opt.chain->robot();
+    obstacles.emplace();
+    obstacles->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
+    reference = robot.home();
+    robot_root = opt.chain_base * robot.link_poses(reference)[robot.link_index(opt.chain->base_link())].inverse();
+  }
   struct Slot {
-    bool valid = false, tried_ik = false;
+    bool valid = false, tried_ik = false, collides = false;
     ViewCandidate view;
   };
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
@@ -366,6 +379,11 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
         o.seed = ik.seed + idx;
         auto q = opt.chain->ik(base_inv * s.view.pose, o);
         if (!q) return;
+        if (obstacles &&
+            opt.chain->robot().in_collision(opt.chain->to_robot_configuration(*q, reference), *obstacles, robot_root)) {
+          s.collides = true;
+          return;
+        }
         s.view.q = *q;
         s.view.pose = opt.chain_base * opt.chain->fk(*q);  // the roll the arm actually reaches
       }
@@ -375,7 +393,8 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
       s.valid = true;
     }, 1);
     for (std::size_t b = 0; b < slots.size(); ++b) {
-      if (slots[b].tried_ik && !slots[b].valid) ++r.ik_failures;
+      if (slots[b].collides) ++r.arm_collisions;
+      else if (slots[b].tried_ik && !slots[b].valid) ++r.ik_failures;
       if (!slots[b].valid) continue;
       ++r.poses_scored;
       if (valid.size() < std::size_t(opt.max_valid_poses)) valid.emplace_back(start + b, std::move(slots[b].view));

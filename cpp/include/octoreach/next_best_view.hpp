@@ -12,8 +12,8 @@
 /// 4. At the cells of highest utility, camera orientations are sampled around the mean direction
 ///    back along the vectors that reached the cell; each is scored by casting a coarse grid of rays
 ///    through the camera frustum and counting the distinct void and unknown cells met before the
-///    first occupied cell. A pose counts when the arm (if given) has an IK solution for it; the
-///    search stops after `max_valid_poses` valid poses.
+///    first occupied cell. A pose counts when the arm (if given) has an IK solution for it whose
+///    links are clear of the occupied cells; the search stops after `max_valid_poses` valid poses.
 
 #include <cstdint>
 #include <functional>
@@ -58,6 +58,10 @@ struct NbvOptions {
   const Chain* chain = nullptr;
   Pose chain_base = Pose::Identity();  ///< chain base frame -> map frame
   IkOptions ik;                        ///< mode and approach axis are set by the search
+  /// With a chain: reject IK solutions where a link of the chain's robot (its collision shapes, the
+  /// rest of the robot at home, the robot placed so the chain base sits at chain_base) touches an
+  /// occupied cell of the map. Unknown cells are not obstacles here.
+  bool arm_collisions = true;
   /// Capability map of the arm carrying the camera (positions in its base link frame): candidate
   /// cells whose voxel has reachability index D <= min_reachability are pruned before any IK.
   const CapabilityMap* capability_map = nullptr;
@@ -82,6 +86,7 @@ struct NbvResult {
   std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
   std::size_t capability_pruned = 0;  ///< cells the capability map removed
   std::size_t poses_scored = 0, ik_failures = 0;
+  std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied cell
   double seconds = 0;
   double seconds_vectors = 0, seconds_prune = 0, seconds_score = 0;  ///< parts: steps 1-2, 3, 4
   /// \brief Expected void cells of the best pose (0 when there is none).
