@@ -193,3 +193,34 @@ def test_capability_map_prunes_view_cells_and_ik_stays_the_final_check():
     assert none["candidate_cells"] == 0 and none["best_pose"] is None
     with pytest.raises(ValueError):
         next_best_view(emap, cam, capability_map=cmap, min_reachability=1.5)
+
+
+def test_views_whose_arm_touches_occupied_cells_are_rejected():
+    from octoreach import Obstacles
+
+    scene = ex.paper_scene(2)
+    robot, chain = ex.explorer_robot()
+    base = robot.link_poses(robot.home())[chain.base_link]
+    root = base @ np.linalg.inv(robot.link_poses(robot.home())[chain.base_link])  # footprint at the origin
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    for T in survey(emap, scene, cam, [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)], (0.9, 0.0, 0.1)):
+        pass
+    obstacles = Obstacles()
+    obstacles.add_points(emap.cells("occupied"), emap.resolution)  # the same cells, checked independently
+
+    def colliding(result):
+        n = 0
+        for v in result["ranked"]:
+            q = robot.home().copy()
+            q[: chain.dof] = v["q"]  # the explorer's configuration is its arm's
+            n += robot.in_collision(q, obstacles, root)
+        return n
+
+    kw = dict(max_valid_poses=40, max_candidate_cells=300, chain=chain, chain_base=base,
+              workspace_sphere=((0.2, 0.0, 0.3), 1.1))
+    free = next_best_view(emap, cam, **kw)
+    loose = next_best_view(emap, cam, arm_collisions=False, **kw)
+    assert loose["arm_collisions"] == 0 and colliding(loose) > 0  # the check is needed here
+    assert free["arm_collisions"] > 0 and colliding(free) == 0
+    assert free["best_pose"] is not None
