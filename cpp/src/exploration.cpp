@@ -147,52 +147,46 @@ struct BatchUpdater {
   }
 };
 
-// Bitmap over a box of keys (one per thread, OR-ed at the end). Each 64-bit word holds a
-// 4 x 4 x 4 brick of cells, so consecutive cells of a ray mostly hit the same cache line.
+// Bitmap over a box of keys (one per thread, OR-ed at the end), one bit per cell, x fastest,
+// so a step of a ray along an axis is a constant step of the bit index.
 class KeyBitmap {
  public:
   KeyBitmap(const int lo[3], const int hi[3]) {
     for (int i = 0; i < 3; ++i) {
       lo_[i] = lo[i];
-      nb_[i] = std::size_t((hi[i] - lo[i]) / 4 + 1);
+      n_[i] = std::size_t(hi[i] - lo[i] + 1);
     }
-    words_.assign(nb_[0] * nb_[1] * nb_[2], 0);
+    words_.assign((n_[0] * n_[1] * n_[2] + 63) / 64, 0);
   }
-  void set(const octomap::OcTreeKey& k) {
-    unsigned x = k[0] - lo_[0], y = k[1] - lo_[1], z = k[2] - lo_[2];
-    words_[word(x, y, z)] |= std::uint64_t(1) << bit(x, y, z);
+  std::size_t index(const octomap::OcTreeKey& k) const {
+    return (std::size_t(k[2] - lo_[2]) * n_[1] + std::size_t(k[1] - lo_[1])) * n_[0] + std::size_t(k[0] - lo_[0]);
   }
+  void set(const octomap::OcTreeKey& k) { set(index(k)); }
+  void set(std::size_t i) { words_[i >> 6] |= std::uint64_t(1) << (i & 63); }
   void clear(const octomap::OcTreeKey& k) {
-    unsigned x = k[0] - lo_[0], y = k[1] - lo_[1], z = k[2] - lo_[2];
-    words_[word(x, y, z)] &= ~(std::uint64_t(1) << bit(x, y, z));
+    std::size_t i = index(k);
+    words_[i >> 6] &= ~(std::uint64_t(1) << (i & 63));
   }
   std::vector<std::uint64_t>& words() { return words_; }
+  std::uint64_t* data() { return words_.data(); }
+  std::size_t size(int i) const { return n_[i]; }
   // Appends (morton << 1) of every set bit.
   void extract(std::vector<std::uint64_t>& out) const {
+    const std::size_t nxy = n_[0] * n_[1];
     for (std::size_t w = 0; w < words_.size(); ++w) {
       std::uint64_t bits = words_[w];
-      if (!bits) continue;
-      std::size_t bz = w / (nb_[0] * nb_[1]), r = w % (nb_[0] * nb_[1]), by = r / nb_[0], bx = r % nb_[0];
       while (bits) {
-        unsigned b = unsigned(__builtin_ctzll(bits));
+        std::size_t i = w * 64 + unsigned(__builtin_ctzll(bits));
         bits &= bits - 1;
-        std::uint32_t x = std::uint32_t(bx * 4 + (b & 3) + lo_[0]), y = std::uint32_t(by * 4 + ((b >> 2) & 3) + lo_[1]),
-                      z = std::uint32_t(bz * 4 + (b >> 4) + lo_[2]);
-        out.push_back(morton(x, y, z) << 1);
+        std::size_t z = i / nxy, r = i % nxy, y = r / n_[0], x = r % n_[0];
+        out.push_back(morton(std::uint32_t(x + lo_[0]), std::uint32_t(y + lo_[1]), std::uint32_t(z + lo_[2])) << 1);
       }
     }
   }
-  std::size_t word(unsigned x, unsigned y, unsigned z) const {
-    return (std::size_t(z >> 2) * nb_[1] + (y >> 2)) * nb_[0] + (x >> 2);
-  }
-  static unsigned bit(unsigned x, unsigned y, unsigned z) { return (x & 3) | ((y & 3) << 2) | ((z & 3) << 4); }
-  int lo(int i) const { return lo_[i]; }
-  std::size_t bricks(int i) const { return nb_[i]; }
-  std::uint64_t* data() { return words_.data(); }
 
  private:
   int lo_[3];
-  std::size_t nb_[3];
+  std::size_t n_[3];
   std::vector<std::uint64_t> words_;
 };
 
@@ -200,9 +194,8 @@ class KeyBitmap {
 // instead of a KeyRay. The set-up is the same code; the walk does the same double arithmetic in
 // the same order (t_max[dim] += t_delta[dim], the same comparisons and tie-breaks), so it yields
 // the same cells. It is written without data-dependent branches: the axis is picked with
-// selects, the key is one packed integer (21 bits per axis, relative to the bitmap's box) that
-// is compared with the end key in one instruction. Both keys are known to be inside the map and
-// the bitmap's box is padded, so a walk that overshoots the end cell by rounding stays inside.
+// SSE masks. Both keys are known to be inside the map and the bitmap's box is padded, so a
+// walk that overshoots the end cell by rounding stays inside.
 void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::OcTreeKey& key_origin,
                 const octomap::point3d& end, const octomap::OcTreeKey& key_end, KeyBitmap& bits) {
   if (key_origin == key_end) return;
@@ -230,46 +223,33 @@ void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, con
       t_delta[i] = std::numeric_limits<double>::max();
     }
   }
-  constexpr int kB = 21;
-  constexpr std::uint64_t kM = (std::uint64_t(1) << kB) - 1;
-  auto local = [&](const octomap::OcTreeKey& k) {
-    return std::uint64_t(k[0] - bits.lo(0)) | (std::uint64_t(k[1] - bits.lo(1)) << kB) |
-           (std::uint64_t(k[2] - bits.lo(2)) << (2 * kB));
-  };
-  std::uint64_t cur = local(key_origin);
-  const std::uint64_t target = local(key_end);
-  const std::uint64_t inc0 = std::uint64_t(std::int64_t(step[0])),
-                      inc1 = std::uint64_t(std::int64_t(step[1]) * (std::int64_t(1) << kB)),
-                      inc2 = std::uint64_t(std::int64_t(step[2]) * (std::int64_t(1) << (2 * kB)));
+  // The walk keeps the cell as its bit index in the bitmap (a step along an axis adds a constant;
+  // the box is padded, so the index never leaves it) and compares it with the end cell's index.
+  std::size_t idx = bits.index(key_origin);
+  const std::size_t target = bits.index(key_end);
+  const std::int64_t nx = std::int64_t(bits.size(0)), nxy = nx * std::int64_t(bits.size(1));
+  // increment by the chosen axis: [m0 | m1 << 1] -> 0: z, 1: x, 2: y
+  const std::size_t inc[4] = {std::size_t(std::int64_t(step[2]) * nxy), std::size_t(std::int64_t(step[0])),
+                              std::size_t(std::int64_t(step[1]) * nx), 0};
   const double len = length;
   std::uint64_t* words = bits.data();
-  const std::size_t nb0 = bits.bricks(0), nb1 = bits.bricks(1);
-  auto set_bit = [&](std::uint64_t c) {
-    const unsigned x = unsigned(c & kM), y = unsigned((c >> kB) & kM), z = unsigned(c >> (2 * kB));
-    words[(std::size_t(z >> 2) * nb1 + (y >> 2)) * nb0 + (x >> 2)] |=
-        std::uint64_t(1) << ((x & 3) | ((y & 3) << 2) | ((z & 3) << 4));
-  };
 #if defined(__SSE2__)
   // Masks in SSE registers: t_dim += (mask_dim & t_delta_dim) adds either t_delta or +0.0,
   // which leaves t unchanged (t > 0), so the arithmetic equals t_max[dim] += t_delta[dim].
   __m128d t0 = _mm_set_sd(t_max[0]), t1 = _mm_set_sd(t_max[1]), t2 = _mm_set_sd(t_max[2]);
   const __m128d d0 = _mm_set_sd(t_delta[0]), d1 = _mm_set_sd(t_delta[1]), d2 = _mm_set_sd(t_delta[2]);
-  const __m128d ones = _mm_castsi128_pd(_mm_set1_epi32(-1));
   for (;;) {
     // computeRayKeys: t0 < t1 ? (t0 < t2 ? 0 : 2) : (t1 < t2 ? 1 : 2)
     const __m128d lt01 = _mm_cmplt_sd(t0, t1);
     const __m128d m0 = _mm_and_pd(lt01, _mm_cmplt_sd(t0, t2));
     const __m128d m1 = _mm_andnot_pd(lt01, _mm_cmplt_sd(t1, t2));
-    const __m128d m2 = _mm_andnot_pd(_mm_or_pd(m0, m1), ones);
+    idx += inc[_mm_movemask_pd(_mm_unpacklo_pd(m0, m1))];
     t0 = _mm_add_sd(t0, _mm_and_pd(m0, d0));
     t1 = _mm_add_sd(t1, _mm_and_pd(m1, d1));
-    t2 = _mm_add_sd(t2, _mm_and_pd(m2, d2));
-    const std::uint64_t c0 = std::uint64_t(_mm_movemask_pd(m0) & 1), c1 = std::uint64_t(_mm_movemask_pd(m1) & 1),
-                        c2 = std::uint64_t(_mm_movemask_pd(m2) & 1);
-    cur += (inc0 & (std::uint64_t(0) - c0)) + (inc1 & (std::uint64_t(0) - c1)) + (inc2 & (std::uint64_t(0) - c2));
-    if (cur == target) return;
+    t2 = _mm_add_sd(t2, _mm_andnot_pd(_mm_or_pd(m0, m1), d2));
+    if (idx == target) return;
     if (_mm_cvtsd_f64(_mm_min_sd(_mm_min_sd(t0, t1), t2)) > len) return;
-    set_bit(cur);
+    words[idx >> 6] |= std::uint64_t(1) << (idx & 63);
   }
 #else
   double t0 = t_max[0], t1 = t_max[1], t2 = t_max[2];
@@ -278,14 +258,13 @@ void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, con
     const bool lt01 = t0 < t1;
     const bool c0 = lt01 & (t0 < t2);
     const bool c1 = !lt01 & (t1 < t2);
-    const bool c2 = !(c0 | c1);
-    cur += (inc0 & (std::uint64_t(0) - c0)) + (inc1 & (std::uint64_t(0) - c1)) + (inc2 & (std::uint64_t(0) - c2));
+    idx += inc[unsigned(c0) | (unsigned(c1) << 1)];
     t0 += c0 ? d0 : 0.0;
     t1 += c1 ? d1 : 0.0;
-    t2 += c2 ? d2 : 0.0;
-    if (cur == target) return;
+    t2 += (c0 | c1) ? 0.0 : d2;
+    if (idx == target) return;
     if (std::min(std::min(t0, t1), t2) > len) return;
-    set_bit(cur);
+    words[idx >> 6] |= std::uint64_t(1) << (idx & 63);
   }
 #endif
 }
