@@ -191,81 +191,136 @@ class KeyBitmap {
 };
 
 // The cells OcTreeBaseImpl::computeRayKeys(origin, end) returns, written straight into a bitmap
-// instead of a KeyRay. The set-up is the same code; the walk does the same double arithmetic in
-// the same order (t_max[dim] += t_delta[dim], the same comparisons and tie-breaks), so it yields
-// the same cells. It is written without data-dependent branches: the axis is picked with
-// SSE masks. Both keys are known to be inside the map and the bitmap's box is padded, so a
-// walk that overshoots the end cell by rounding stays inside.
-void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::OcTreeKey& key_origin,
-                const octomap::point3d& end, const octomap::OcTreeKey& key_end, KeyBitmap& bits) {
-  if (key_origin == key_end) return;
-  bits.set(key_origin);
-  octomap::point3d direction = (end - origin);
-  float length = (float)direction.norm();
-  direction /= length;
-  int step[3];
-  double t_max[3], t_delta[3];
-  const double res = tree.getResolution();
-  for (unsigned i = 0; i < 3; ++i) {
-    if (direction(i) > 0.0)
-      step[i] = 1;
-    else if (direction(i) < 0.0)
-      step[i] = -1;
-    else
-      step[i] = 0;
-    if (step[i] != 0) {
-      double border = tree.keyToCoord(key_origin[i]);
-      border += (float)(step[i] * res * 0.5);
-      t_max[i] = (border - origin(i)) / direction(i);
-      t_delta[i] = res / std::fabs(direction(i));
-    } else {
-      t_max[i] = std::numeric_limits<double>::max();
-      t_delta[i] = std::numeric_limits<double>::max();
+// instead of a KeyRay. The set-up (RayWalk::init) is computeRayKeys' code; the walk does the
+// same double arithmetic in the same order (t_max[dim] += t_delta[dim], the same comparisons and
+// tie-breaks), so it yields the same cells. It is written without data-dependent branches: the
+// axis is picked with SSE masks, and the cell is kept as its bit index in the bitmap (a step
+// along an axis adds a constant) and compared with the end cell's index. Both keys are known to
+// be inside the map and the bitmap's box is padded, so a walk that overshoots the end cell by
+// rounding stays inside. Two rays are walked side by side in the two lanes of the SSE registers,
+// which hides the latency of each step's compare-select-add chain.
+struct RayWalk {
+  double t[3], d[3], len;
+  std::size_t idx, target;
+  std::size_t inc[4];  // by the chosen axis: [m0 | m1 << 1] -> 0: z, 1: x, 2: y
+  // false when there is nothing to walk (origin and end in one cell)
+  bool init(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::OcTreeKey& key_origin,
+            const octomap::point3d& end, const octomap::OcTreeKey& key_end, KeyBitmap& bits) {
+    if (key_origin == key_end) return false;
+    bits.set(key_origin);
+    octomap::point3d direction = (end - origin);
+    float length = (float)direction.norm();
+    direction /= length;
+    int step[3];
+    const double res = tree.getResolution();
+    for (unsigned i = 0; i < 3; ++i) {
+      if (direction(i) > 0.0)
+        step[i] = 1;
+      else if (direction(i) < 0.0)
+        step[i] = -1;
+      else
+        step[i] = 0;
+      if (step[i] != 0) {
+        double border = tree.keyToCoord(key_origin[i]);
+        border += (float)(step[i] * res * 0.5);
+        t[i] = (border - origin(i)) / direction(i);
+        d[i] = res / std::fabs(direction(i));
+      } else {
+        t[i] = std::numeric_limits<double>::max();
+        d[i] = std::numeric_limits<double>::max();
+      }
     }
+    len = length;
+    idx = bits.index(key_origin);
+    target = bits.index(key_end);
+    const std::int64_t nx = std::int64_t(bits.size(0)), nxy = nx * std::int64_t(bits.size(1));
+    inc[0] = std::size_t(std::int64_t(step[2]) * nxy);
+    inc[1] = std::size_t(std::int64_t(step[0]));
+    inc[2] = std::size_t(std::int64_t(step[1]) * nx);
+    inc[3] = 0;
+    return true;
   }
-  // The walk keeps the cell as its bit index in the bitmap (a step along an axis adds a constant;
-  // the box is padded, so the index never leaves it) and compares it with the end cell's index.
-  std::size_t idx = bits.index(key_origin);
-  const std::size_t target = bits.index(key_end);
-  const std::int64_t nx = std::int64_t(bits.size(0)), nxy = nx * std::int64_t(bits.size(1));
-  // increment by the chosen axis: [m0 | m1 << 1] -> 0: z, 1: x, 2: y
-  const std::size_t inc[4] = {std::size_t(std::int64_t(step[2]) * nxy), std::size_t(std::int64_t(step[0])),
-                              std::size_t(std::int64_t(step[1]) * nx), 0};
-  const double len = length;
-  std::uint64_t* words = bits.data();
-#if defined(__SSE2__)
-  // Masks in SSE registers: t_dim += (mask_dim & t_delta_dim) adds either t_delta or +0.0,
-  // which leaves t unchanged (t > 0), so the arithmetic equals t_max[dim] += t_delta[dim].
-  __m128d t0 = _mm_set_sd(t_max[0]), t1 = _mm_set_sd(t_max[1]), t2 = _mm_set_sd(t_max[2]);
-  const __m128d d0 = _mm_set_sd(t_delta[0]), d1 = _mm_set_sd(t_delta[1]), d2 = _mm_set_sd(t_delta[2]);
-  for (;;) {
-    // computeRayKeys: t0 < t1 ? (t0 < t2 ? 0 : 2) : (t1 < t2 ? 1 : 2)
-    const __m128d lt01 = _mm_cmplt_sd(t0, t1);
-    const __m128d m0 = _mm_and_pd(lt01, _mm_cmplt_sd(t0, t2));
-    const __m128d m1 = _mm_andnot_pd(lt01, _mm_cmplt_sd(t1, t2));
-    idx += inc[_mm_movemask_pd(_mm_unpacklo_pd(m0, m1))];
-    t0 = _mm_add_sd(t0, _mm_and_pd(m0, d0));
-    t1 = _mm_add_sd(t1, _mm_and_pd(m1, d1));
-    t2 = _mm_add_sd(t2, _mm_andnot_pd(_mm_or_pd(m0, m1), d2));
-    if (idx == target) return;
-    if (_mm_cvtsd_f64(_mm_min_sd(_mm_min_sd(t0, t1), t2)) > len) return;
+  // One step; false when the walk ends (the cell is then not free space of this ray).
+  bool step(std::uint64_t* words) {
+    const bool lt01 = t[0] < t[1];
+    const bool c0 = lt01 & (t[0] < t[2]);
+    const bool c1 = !lt01 & (t[1] < t[2]);
+    idx += inc[unsigned(c0) | (unsigned(c1) << 1)];
+    t[0] += c0 ? d[0] : 0.0;
+    t[1] += c1 ? d[1] : 0.0;
+    t[2] += (c0 | c1) ? 0.0 : d[2];
+    if (idx == target) return false;
+    if (std::min(std::min(t[0], t[1]), t[2]) > len) return false;
     words[idx >> 6] |= std::uint64_t(1) << (idx & 63);
+    return true;
+  }
+  void run(std::uint64_t* words) {
+#if defined(__SSE2__)
+    __m128d t0 = _mm_set_sd(t[0]), t1 = _mm_set_sd(t[1]), t2 = _mm_set_sd(t[2]);
+    const __m128d d0 = _mm_set_sd(d[0]), d1 = _mm_set_sd(d[1]), d2 = _mm_set_sd(d[2]);
+    for (;;) {
+      // computeRayKeys: t0 < t1 ? (t0 < t2 ? 0 : 2) : (t1 < t2 ? 1 : 2); adding (mask & d) adds
+      // d or +0.0, and t + 0.0 == t
+      const __m128d lt01 = _mm_cmplt_sd(t0, t1);
+      const __m128d m0 = _mm_and_pd(lt01, _mm_cmplt_sd(t0, t2));
+      const __m128d m1 = _mm_andnot_pd(lt01, _mm_cmplt_sd(t1, t2));
+      idx += inc[_mm_movemask_pd(_mm_unpacklo_pd(m0, m1))];
+      t0 = _mm_add_sd(t0, _mm_and_pd(m0, d0));
+      t1 = _mm_add_sd(t1, _mm_and_pd(m1, d1));
+      t2 = _mm_add_sd(t2, _mm_andnot_pd(_mm_or_pd(m0, m1), d2));
+      if (idx == target) return;
+      if (_mm_cvtsd_f64(_mm_min_sd(_mm_min_sd(t0, t1), t2)) > len) return;
+      words[idx >> 6] |= std::uint64_t(1) << (idx & 63);
+    }
+#else
+    while (step(words)) {
+    }
+#endif
+  }
+};
+
+// Walks two rays side by side (lane 0: a, lane 1: b) until one ends, then finishes the other.
+void walk_pair(RayWalk& a, RayWalk& b, std::uint64_t* words) {
+#if defined(__SSE2__)
+  __m128d t0 = _mm_set_pd(b.t[0], a.t[0]), t1 = _mm_set_pd(b.t[1], a.t[1]), t2 = _mm_set_pd(b.t[2], a.t[2]);
+  const __m128d d0 = _mm_set_pd(b.d[0], a.d[0]), d1 = _mm_set_pd(b.d[1], a.d[1]), d2 = _mm_set_pd(b.d[2], a.d[2]);
+  const __m128d len = _mm_set_pd(b.len, a.len);
+  bool a_on = true, b_on = true;
+  for (;;) {
+    const __m128d lt01 = _mm_cmplt_pd(t0, t1);
+    const __m128d m0 = _mm_and_pd(lt01, _mm_cmplt_pd(t0, t2));
+    const __m128d m1 = _mm_andnot_pd(lt01, _mm_cmplt_pd(t1, t2));
+    a.idx += a.inc[_mm_movemask_pd(_mm_unpacklo_pd(m0, m1))];
+    b.idx += b.inc[_mm_movemask_pd(_mm_unpackhi_pd(m0, m1))];
+    t0 = _mm_add_pd(t0, _mm_and_pd(m0, d0));
+    t1 = _mm_add_pd(t1, _mm_and_pd(m1, d1));
+    t2 = _mm_add_pd(t2, _mm_andnot_pd(_mm_or_pd(m0, m1), d2));
+    const int past = _mm_movemask_pd(_mm_cmpgt_pd(_mm_min_pd(_mm_min_pd(t0, t1), t2), len));
+    a_on = a.idx != a.target && !(past & 1);
+    b_on = b.idx != b.target && !(past & 2);
+    if (!(a_on & b_on)) break;
+    words[a.idx >> 6] |= std::uint64_t(1) << (a.idx & 63);
+    words[b.idx >> 6] |= std::uint64_t(1) << (b.idx & 63);
+  }
+  alignas(16) double v[2];
+  _mm_store_pd(v, t0);
+  a.t[0] = v[0];
+  b.t[0] = v[1];
+  _mm_store_pd(v, t1);
+  a.t[1] = v[0];
+  b.t[1] = v[1];
+  _mm_store_pd(v, t2);
+  a.t[2] = v[0];
+  b.t[2] = v[1];
+  // the lane still walking: this step's cell is free, then it goes on alone
+  RayWalk* rest = a_on ? &a : b_on ? &b : nullptr;
+  if (rest) {
+    words[rest->idx >> 6] |= std::uint64_t(1) << (rest->idx & 63);
+    rest->run(words);
   }
 #else
-  double t0 = t_max[0], t1 = t_max[1], t2 = t_max[2];
-  const double d0 = t_delta[0], d1 = t_delta[1], d2 = t_delta[2];
-  for (;;) {
-    const bool lt01 = t0 < t1;
-    const bool c0 = lt01 & (t0 < t2);
-    const bool c1 = !lt01 & (t1 < t2);
-    idx += inc[unsigned(c0) | (unsigned(c1) << 1)];
-    t0 += c0 ? d0 : 0.0;
-    t1 += c1 ? d1 : 0.0;
-    t2 += (c0 | c1) ? 0.0 : d2;
-    if (idx == target) return;
-    if (std::min(std::min(t0, t1), t2) > len) return;
-    words[idx >> 6] |= std::uint64_t(1) << (idx & 63);
-  }
+  a.run(words);
+  b.run(words);
 #endif
 }
 
@@ -553,12 +608,21 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
   free_local.reserve(threads);
   for (int t = 0; t < threads; ++t) free_local.emplace_back(lo, hi);
   std::vector<std::vector<std::uint64_t>> occ_local(threads);
-  detail::parallel_for(n, threads, [&](std::size_t i, int tid) {
-    if (kind[i] == 0) return;
-    octomap::OcTreeKey kend = tree.coordToKey(ends[i]);
-    trace_free(tree, o, okey, ends[i], kend, free_local[tid]);
-    if (kind[i] == 1) occ_local[tid].push_back((morton(kend[0], kend[1], kend[2]) << 1) | 1);
-  }, 256);
+  // rays in pairs: two walks share the SSE registers (see walk_pair)
+  detail::parallel_for((n + 1) / 2, threads, [&](std::size_t pair, int tid) {
+    RayWalk w[2];
+    int m = 0;
+    for (std::size_t i = 2 * pair; i < std::min(n, 2 * pair + 2); ++i) {
+      if (kind[i] == 0) continue;
+      octomap::OcTreeKey kend = tree.coordToKey(ends[i]);
+      if (w[m].init(tree, o, okey, ends[i], kend, free_local[tid])) ++m;
+      if (kind[i] == 1) occ_local[tid].push_back((morton(kend[0], kend[1], kend[2]) << 1) | 1);
+    }
+    if (m == 2)
+      walk_pair(w[0], w[1], free_local[tid].data());
+    else if (m == 1)
+      w[0].run(free_local[tid].data());
+  }, 128);
   KeyBitmap& free_bits = free_local[0];
   {
     auto& w0 = free_bits.words();
