@@ -97,6 +97,8 @@ def main() -> int:
             "interior_share_per_box": [round(ex.observed_share(r.map, scene, [box]), 3) for box in scene.interiors],
             "final_utility_dm3": r.rows[-1].utility_dm3,
             "bases": [x.base for x in r.rows],
+            # void cells the search expected the next view to see, and those it turned known
+            "void_cells_expected_vs_seen": [[a.void_cells, b.void_seen] for a, b in zip(r.rows, r.rows[1:])],
         }
     out["machine_note"] = "shared 2-core machine: medians of %d runs; timings are noisy" % a.repeats
     print(json.dumps(out, indent=1))

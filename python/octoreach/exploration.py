@@ -206,6 +206,7 @@ class ViewRow:
     void_total: int  # void cells in the map
     void_clusters: int
     pose: list = field(default_factory=list)  # camera pose of this view (4x4 as nested lists)
+    void_seen: int = 0  # void cells this view's insert turned known (compare with the previous row's void_cells)
     base: int = 0  # index of the base the view was taken from (0: base_pose, i: base_moves[i - 1])
 
 
@@ -329,7 +330,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
                       interior_share=observed_share(emap, scene, interiors) if interiors else 0.0,
                       points=int(stats["points"]), frontier_cells=int(emap.frontier_cell_count),
                       void_total=int(emap.void_cell_count), void_clusters=len(clusters),
-                      pose=pose.tolist(), base=current)
+                      pose=pose.tolist(), base=current, void_seen=int(stats["void_removed"]))
         rows.append(row)
         if on_view is not None:
             on_view(row, emap, nbv)
