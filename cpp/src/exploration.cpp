@@ -385,27 +385,60 @@ struct UnionFind {
   }
 };
 
+// Open-addressing index CellKey -> position (power-of-two capacity, multiplicative hash).
+class KeyIndex {
+ public:
+  explicit KeyIndex(std::size_t n) {
+    bits_ = 4;
+    while ((std::size_t(1) << bits_) < 2 * n + 16) ++bits_;
+    keys_.assign(std::size_t(1) << bits_, kEmpty);
+    vals_.resize(keys_.size());
+  }
+  void insert(CellKey k, int v) {
+    std::size_t i = slot(k);
+    while (keys_[i] != kEmpty && keys_[i] != k) i = (i + 1) & (keys_.size() - 1);
+    keys_[i] = k;
+    vals_[i] = v;
+  }
+  int find(CellKey k) const {
+    for (std::size_t i = slot(k);; i = (i + 1) & (keys_.size() - 1)) {
+      if (keys_[i] == k) return vals_[i];
+      if (keys_[i] == kEmpty) return -1;
+    }
+  }
+
+ private:
+  static constexpr CellKey kEmpty = ~CellKey(0);
+  std::size_t slot(CellKey k) const { return std::size_t((k * 0x9E3779B97F4A7C15ULL) >> (64 - bits_)); }
+  int bits_;
+  std::vector<CellKey> keys_;
+  std::vector<int> vals_;
+};
+
 // Connected components (26-neighbourhood) of `cells`, each sorted, ordered by first cell.
 std::vector<std::vector<CellKey>> components26(std::vector<CellKey> cells) {
   std::sort(cells.begin(), cells.end());
-  std::unordered_map<CellKey, int> pos;
-  pos.reserve(cells.size() * 2);
-  for (std::size_t i = 0; i < cells.size(); ++i) pos.emplace(cells[i], int(i));
+  KeyIndex pos(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) pos.insert(cells[i], int(i));
   UnionFind uf(cells.size());
+  // each neighbouring pair once: the 13 offsets after (0, 0, 0) in (dz, dy, dx) order
   for (std::size_t i = 0; i < cells.size(); ++i)
-    for (const auto& d : detail::kN26.d) {
+    for (int o = 13; o < 26; ++o) {
+      const auto& d = detail::kN26.d[o];
       CellKey n;
       if (!detail::neighbour(cells[i], d[0], d[1], d[2], n)) continue;
-      auto it = pos.find(n);
-      if (it != pos.end()) uf.unite(int(i), it->second);
+      int j = pos.find(n);
+      if (j >= 0) uf.unite(int(i), j);
     }
-  std::unordered_map<int, int> root_to_comp;
+  std::vector<int> root_to_comp(cells.size(), -1);
   std::vector<std::vector<CellKey>> out;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     int r = uf.find(int(i));
-    auto [it, fresh] = root_to_comp.emplace(r, int(out.size()));
-    if (fresh) out.emplace_back();
-    out[it->second].push_back(cells[i]);
+    if (root_to_comp[r] < 0) {
+      root_to_comp[r] = int(out.size());
+      out.emplace_back();
+    }
+    out[root_to_comp[r]].push_back(cells[i]);
   }
   return out;  // cells were sorted, so each component is sorted and components are ordered by first cell
 }
