@@ -441,7 +441,8 @@ void wrap_exploration(py::module_& m) {
                              const py::object& sphere, const py::object& workspace, const Chain* chain,
                              const py::object& chain_base, int ik_attempts, double ik_position_tolerance,
                              double ik_orientation_tolerance, const CapabilityMap* capability_map,
-                             const py::object& capability_base, double min_reachability, bool arm_collisions) {
+                             const py::object& capability_base, double min_reachability, bool arm_collisions,
+                             bool capability_orientations) {
           CameraIntrinsics c = intrinsics_from(camera);
           NbvOptions o;
           o.max_valid_poses = max_valid_poses;
@@ -485,6 +486,7 @@ void wrap_exploration(py::module_& m) {
           if (!capability_base.is_none()) o.capability_base = pose_from(capability_base, "capability_base");
           o.min_reachability = min_reachability;
           o.arm_collisions = arm_collisions;
+          o.capability_orientations = capability_orientations;
           NbvResult r;
           {
             py::gil_scoped_release release;
@@ -506,6 +508,7 @@ void wrap_exploration(py::module_& m) {
           d["ik_failures"] = r.ik_failures;
           d["capability_pruned"] = r.capability_pruned;
           d["arm_collisions"] = r.arm_collisions;
+          d["capability_rejected"] = r.capability_rejected;
           d["seconds"] = r.seconds;
           d["seconds_vectors"] = r.seconds_vectors;
           d["seconds_prune"] = r.seconds_prune;
@@ -518,7 +521,7 @@ void wrap_exploration(py::module_& m) {
         py::arg("workspace") = py::none(), py::arg("chain") = nullptr, py::arg("chain_base") = py::none(),
         py::arg("ik_attempts") = 8, py::arg("ik_position_tolerance") = 1e-3, py::arg("ik_orientation_tolerance") = 1e-2,
         py::arg("capability_map") = nullptr, py::arg("capability_base") = py::none(), py::arg("min_reachability") = 0.0,
-        py::arg("arm_collisions") = true,
+        py::arg("arm_collisions") = true, py::arg("capability_orientations") = true,
         "Next best view (Algorithm 1 + frustum scoring). Returns a dict: best_pose (4x4 camera -> map, or None),\n"
         "void_cells and utility_dm3 expected from it, ranked (valid poses, best first, each with pose,\n"
         "void_cells, unknown_cells, utility_dm3, cell_utility, q), and search statistics. The workspace is\n"
@@ -526,7 +529,8 @@ void wrap_exploration(py::module_& m) {
         "taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,\n"
         "+z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.\n"
         "capability_map (a CapabilityMap of that arm) with capability_base (4x4 map base link -> map) prunes\n"
-        "candidate cells whose voxel has reachability index <= min_reachability before any IK.\n"
+        "candidate cells whose voxel has reachability index <= min_reachability before any IK, and with\n"
+        "capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.\n"
         "arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.");
 
   m.def("_stock_insert_point_cloud", [](const py::object& points, const py::object& origin, double max_range,

@@ -347,8 +347,11 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
     reference = robot.home();
     robot_root = opt.chain_base * robot.link_poses(reference)[robot.link_index(opt.chain->base_link())].inverse();
   }
+  const bool cap_orient = opt.capability_map && opt.capability_orientations &&
+                          opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9);
+  const Pose cap_inv = opt.capability_base.inverse();
   struct Slot {
-    bool valid = false, tried_ik = false, collides = false;
+    bool valid = false, tried_ik = false, collides = false, cap_rejected = false;
     ViewCandidate view;
   };
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
@@ -373,6 +376,10 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
       Slot& s = slots[b];
       s.view.pose = camera_pose(map.center(cell.first), forward, roll);
       s.view.cell_utility = cell.second.u;
+      if (cap_orient && !opt.capability_map->reachable(cap_inv * s.view.pose)) {
+        s.cap_rejected = true;
+        return;
+      }
       if (opt.chain) {
         s.tried_ik = true;
         IkOptions o = ik;
@@ -393,6 +400,7 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
       s.valid = true;
     }, 1);
     for (std::size_t b = 0; b < slots.size(); ++b) {
+      if (slots[b].cap_rejected) ++r.capability_rejected;
       if (slots[b].collides) ++r.arm_collisions;
       else if (slots[b].tried_ik && !slots[b].valid) ++r.ik_failures;
       if (!slots[b].valid) continue;

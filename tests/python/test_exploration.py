@@ -175,8 +175,9 @@ def test_capability_map_prunes_view_cells_and_ik_stays_the_final_check():
     kw = dict(max_valid_poses=10, max_candidate_cells=60, workspace_sphere=((0.0, 0.0, 0.5), 3.0), chain=chain,
               chain_base=base)
     plain = next_best_view(emap, cam, **kw)
-    pruned = next_best_view(emap, cam, capability_map=cmap, capability_base=base, **kw)
+    pruned = next_best_view(emap, cam, capability_map=cmap, capability_base=base, capability_orientations=False, **kw)
     assert plain["capability_pruned"] == 0
+    assert pruned["capability_rejected"] == 0
     # the 3 m sphere lets far cells through; the capability map removes them, and only them
     assert pruned["capability_pruned"] > 0
     assert pruned["candidate_cells"] + pruned["capability_pruned"] == plain["candidate_cells"]
@@ -186,6 +187,12 @@ def test_capability_map_prunes_view_cells_and_ik_stays_the_final_check():
         p_arm = (inv @ v["pose"])[:3, 3]
         assert cmap.reachability(p_arm[None, :])[0] > 0
         assert v["q"] is not None and len(v["q"]) == chain.dof  # IK still settled the pose
+    # with the orientation check, poses whose (voxel, optical axis) cell is unreachable skip IK;
+    # every pose kept still has its IK solution and lies in a reachable (voxel, direction) cell
+    fast = next_best_view(emap, cam, capability_map=cmap, capability_base=base, **kw)
+    assert fast["capability_rejected"] > 0 and fast["best_pose"] is not None
+    for v in fast["ranked"]:
+        assert v["q"] is not None and cmap.reachable((inv @ v["pose"])[None])[0]
     # an arm standing 10 m away reaches none of the cells
     far = base.copy()
     far[:3, 3] += (10.0, 0.0, 0.0)

@@ -67,6 +67,9 @@ struct NbvOptions {
   const CapabilityMap* capability_map = nullptr;
   Pose capability_base = Pose::Identity();  ///< capability map base link frame -> map frame
   double min_reachability = 0.0;            ///< keep cells with D > this (0: any reachable orientation)
+  /// Also skip IK for sampled poses whose (voxel, optical-axis direction) cell the capability map
+  /// marks unreachable (only when the map's approach axis is the camera's +z).
+  bool capability_orientations = true;
 };
 
 /// \brief One scored sensor configuration.
@@ -87,6 +90,7 @@ struct NbvResult {
   std::size_t capability_pruned = 0;  ///< cells the capability map removed
   std::size_t poses_scored = 0, ik_failures = 0;
   std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied cell
+  std::size_t capability_rejected = 0;  ///< sampled poses the capability map ruled out before IK
   double seconds = 0;
   double seconds_vectors = 0, seconds_prune = 0, seconds_score = 0;  ///< parts: steps 1-2, 3, 4
   /// \brief Expected void cells of the best pose (0 when there is none).
