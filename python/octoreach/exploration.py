@@ -150,9 +150,9 @@ def base_ring(region, standoff: float = 0.45) -> list:
     return out
 
 
-def explorer_capability_map(chain, resolution: float = 0.1, directions: int = 50, seed: int = 0):
+def explorer_capability_map(chain, resolution: float = 0.1, directions: int = 100, seed: int = 0):
     """A coarse capability map of `chain` (camera +z as the approach axis; positions in the chain's
-    base link frame) for pruning next-best-view cells: about 5-10 s on two cores at 0.1 m."""
+    base link frame) for pruning next-best-view cells and poses: about 5-10 s on two cores."""
     from ._core import CapabilityMap
 
     return CapabilityMap.build(chain, resolution=resolution, directions=directions, approach_axis=(0.0, 0.0, 1.0),
@@ -244,7 +244,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
             max_views: int = 10, resolution: float = 0.025, max_valid_poses: int = 50,
             orientations_per_cell: int = 8, max_candidate_cells: int = 400, min_distance: float = 0.05,
             score_size=(48, 36), void_fit_threshold: float = 0.6, seed: int = 0, search_space=None,
-            capability_map=None, min_reachability: float = 0.0, base_moves=None,
+            capability_map=None, min_reachability: float = 0.0, capability_orientations: bool = True,
+            base_moves=None,
             on_view: Optional[Callable] = None) -> ExplorationResult:
     """Runs the paper's loop from `start_pose` (4x4 camera -> world) and returns the per-view table.
 
@@ -259,7 +260,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     observed share is measured over the same box.
     `capability_map` (a CapabilityMap of `chain`, positions in its base link frame, which sits at
     `base_pose`) prunes candidate cells whose voxel has reachability index <= `min_reachability`;
-    IK stays the final check of each pose. `capability_map="auto"` builds a coarse one
+    with `capability_orientations` it also rules out sampled poses whose (voxel, optical axis) cell
+    is unreachable before any IK. IK stays the final check of each pose. `capability_map="auto"` builds a coarse one
     (explorer_capability_map).
     Stops when the best view expects 0 void cells or after `max_views` views.
     `on_view(row, emap, nbv)` is called after each view (plots, progress)."""
@@ -321,7 +323,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
                                workspace=workspace, chain=chain, chain_base=bp,
                                capability_map=capability_map,
                                capability_base=None if capability_map is None else bp,
-                               min_reachability=min_reachability)
+                               min_reachability=min_reachability,
+                               capability_orientations=capability_orientations)
             if nbv is None or r["void_cells"] > nbv["void_cells"]:
                 nbv, best_base = r, i
         t_search = time.perf_counter() - t0
