@@ -4,6 +4,8 @@ Reference: stock OctoMap OcTree::insertPointCloud of the same cloud into a fresh
 the same run (octoreach._core._stock_insert_point_cloud), and the paper's figures (3-4.5 s per
 integration, 14-100 s per next-best-view search). Cloud: one 640 x 480 depth image of a cluttered
 scene (12 crates and closed boxes, a wall, a floor), 2.5 cm cells, 4 m range.
+Explorations: the explorer robot with a coarse capability map (built once, timed separately), fixed
+base, and for scene 2 also with the base allowed to drive to four poses around the scene.
 Run: .venv/bin/python benchmarks/exploration.py [--repeats 5]
 """
 from __future__ import annotations
@@ -15,7 +17,7 @@ import time
 
 import numpy as np
 
-from octoreach import DepthCamera, ExplorationMap, _core, next_best_view
+from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _core, next_best_view
 from octoreach import exploration as ex
 
 
@@ -45,10 +47,12 @@ def main() -> int:
         d = emap.occupancy_digest()
         same &= (d["free"], d["occupied"], d["hash"]) == (ref["free"], ref["occupied"], ref["hash"])
     # next best view on the map after the first image, free camera within 1 m of a point in front
-    nbv_s, nbv = [], None
+    nbv_s, nbv, nbv_parts = [], None, {}
     for _ in range(a.repeats):
         nbv = next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05)
         nbv_s.append(nbv["seconds"])
+        for k in ("seconds_vectors", "seconds_prune", "seconds_score"):
+            nbv_parts.setdefault(k, []).append(nbv[k])
     med = statistics.median
     out = {
         "cloud": {"points": int(len(pts)), "image": [640, 480], "resolution_m": res, "max_range_m": rng},
@@ -65,7 +69,8 @@ def main() -> int:
             "void_clusters": len(emap.void_clusters()),
         },
         "next_best_view": {
-            "median_s": med(nbv_s), "utility_vectors": nbv["utility_vectors"],
+            "median_s": med(nbv_s), "parts_median_s": {k: med(v) for k, v in nbv_parts.items()},
+            "utility_vectors": nbv["utility_vectors"],
             "candidate_cells": nbv["candidate_cells"], "poses_scored": nbv["poses_scored"],
             "best_void_cells": nbv["void_cells"], "best_utility_dm3": nbv["utility_dm3"],
             "score_grid": [48, 36],
@@ -73,16 +78,27 @@ def main() -> int:
         "paper_reference": {"integration_s": [3.0, 4.5], "nbv_search_s": [14, 100]},
         "explorations": {},
     }
-    for sid in (1, 2):
-        r = ex.run_demo(sid, out=f"/tmp/octoreach_bench_scene{sid}", max_views=a.views, plots=False, quiet=True,
-                        export=False)
-        out["explorations"][f"paper_scene_{sid}"] = {
+    _, chain = ex.explorer_robot()
+    t0 = time.perf_counter()
+    cmap = ex.explorer_capability_map(chain)
+    out["capability_map"] = {"build_s": time.perf_counter() - t0, "resolution_m": cmap.resolution,
+                             "voxels": cmap.voxel_count}
+    runs = [(1, False, "paper_scene_1"), (2, False, "paper_scene_2"), (2, True, "paper_scene_2_moving_base")]
+    for sid, move, name in runs:
+        r = ex.run_demo(sid, out=f"/tmp/octoreach_bench_{name}", max_views=a.views, plots=False, quiet=True,
+                        export=False, capability_map=cmap, move_base=move)
+        scene = ex.paper_scene(sid)
+        out["explorations"][name] = {
             "views": len(r.rows), "total_s": r.total_s,
             "median_integration_s": med([x.integration_s for x in r.rows]),
             "median_search_s": med([x.search_s for x in r.rows]),
             "max_search_s": max(x.search_s for x in r.rows),
             "observed_share": r.observed_share, "interior_share": r.interior_share,
+            "interior_share_per_box": [round(ex.observed_share(r.map, scene, [box]), 3) for box in scene.interiors],
             "final_utility_dm3": r.rows[-1].utility_dm3,
+            "bases": [x.base for x in r.rows],
+            # void cells the search expected the next view to see, and those it turned known
+            "void_cells_expected_vs_seen": [[a.void_cells, b.void_seen] for a, b in zip(r.rows, r.rows[1:])],
         }
     out["machine_note"] = "shared 2-core machine: medians of %d runs; timings are noisy" % a.repeats
     print(json.dumps(out, indent=1))

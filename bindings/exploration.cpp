@@ -5,6 +5,7 @@
 #include <octomap/OcTree.h>
 
 #include "common.hpp"
+#include "octoreach/capability_map.hpp"
 #include "octoreach/depth_camera.hpp"
 #include "octoreach/exploration.hpp"
 #include "octoreach/next_best_view.hpp"
@@ -439,7 +440,9 @@ void wrap_exploration(py::module_& m) {
                              double min_distance, std::uint64_t seed, int threads, const py::object& box,
                              const py::object& sphere, const py::object& workspace, const Chain* chain,
                              const py::object& chain_base, int ik_attempts, double ik_position_tolerance,
-                             double ik_orientation_tolerance) {
+                             double ik_orientation_tolerance, const CapabilityMap* capability_map,
+                             const py::object& capability_base, double min_reachability, bool arm_collisions,
+                             bool capability_orientations) {
           CameraIntrinsics c = intrinsics_from(camera);
           NbvOptions o;
           o.max_valid_poses = max_valid_poses;
@@ -479,6 +482,11 @@ void wrap_exploration(py::module_& m) {
           o.ik.position_tolerance = ik_position_tolerance;
           o.ik.orientation_tolerance = ik_orientation_tolerance;
           o.ik.seed = seed;
+          o.capability_map = capability_map;
+          if (!capability_base.is_none()) o.capability_base = pose_from(capability_base, "capability_base");
+          o.min_reachability = min_reachability;
+          o.arm_collisions = arm_collisions;
+          o.capability_orientations = capability_orientations;
           NbvResult r;
           {
             py::gil_scoped_release release;
@@ -498,7 +506,13 @@ void wrap_exploration(py::module_& m) {
           d["candidate_cells"] = r.candidate_cells;
           d["poses_scored"] = r.poses_scored;
           d["ik_failures"] = r.ik_failures;
+          d["capability_pruned"] = r.capability_pruned;
+          d["arm_collisions"] = r.arm_collisions;
+          d["capability_rejected"] = r.capability_rejected;
           d["seconds"] = r.seconds;
+          d["seconds_vectors"] = r.seconds_vectors;
+          d["seconds_prune"] = r.seconds_prune;
+          d["seconds_score"] = r.seconds_score;
           return d;
         }, py::arg("map"), py::arg("camera"), py::arg("max_valid_poses") = 50, py::arg("orientations_per_cell") = 8,
         py::arg("orientation_spread") = 0.35, py::arg("max_candidate_cells") = 400, py::arg("score_width") = 48,
@@ -506,12 +520,18 @@ void wrap_exploration(py::module_& m) {
         py::arg("workspace_box") = py::none(), py::arg("workspace_sphere") = py::none(),
         py::arg("workspace") = py::none(), py::arg("chain") = nullptr, py::arg("chain_base") = py::none(),
         py::arg("ik_attempts") = 8, py::arg("ik_position_tolerance") = 1e-3, py::arg("ik_orientation_tolerance") = 1e-2,
+        py::arg("capability_map") = nullptr, py::arg("capability_base") = py::none(), py::arg("min_reachability") = 0.0,
+        py::arg("arm_collisions") = true, py::arg("capability_orientations") = true,
         "Next best view (Algorithm 1 + frustum scoring). Returns a dict: best_pose (4x4 camera -> map, or None),\n"
         "void_cells and utility_dm3 expected from it, ranked (valid poses, best first, each with pose,\n"
         "void_cells, unknown_cells, utility_dm3, cell_utility, q), and search statistics. The workspace is\n"
         "workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable\n"
         "taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,\n"
-        "+z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.");
+        "+z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.\n"
+        "capability_map (a CapabilityMap of that arm) with capability_base (4x4 map base link -> map) prunes\n"
+        "candidate cells whose voxel has reachability index <= min_reachability before any IK, and with\n"
+        "capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.\n"
+        "arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.");
 
   m.def("_stock_insert_point_cloud", [](const py::object& points, const py::object& origin, double max_range,
                                         double resolution) {

@@ -14,6 +14,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
 }
@@ -143,97 +147,181 @@ struct BatchUpdater {
   }
 };
 
-// Bitmap over a box of keys (one per thread, OR-ed at the end). Each 64-bit word holds a
-// 4 x 4 x 4 brick of cells, so consecutive cells of a ray mostly hit the same cache line.
+// Bitmap over a box of keys (one per thread, OR-ed at the end), one bit per cell, x fastest,
+// so a step of a ray along an axis is a constant step of the bit index.
 class KeyBitmap {
  public:
   KeyBitmap(const int lo[3], const int hi[3]) {
     for (int i = 0; i < 3; ++i) {
       lo_[i] = lo[i];
-      nb_[i] = std::size_t((hi[i] - lo[i]) / 4 + 1);
+      n_[i] = std::size_t(hi[i] - lo[i] + 1);
     }
-    words_.assign(nb_[0] * nb_[1] * nb_[2], 0);
+    words_.assign((n_[0] * n_[1] * n_[2] + 63) / 64, 0);
   }
-  void set(const octomap::OcTreeKey& k) {
-    unsigned x = k[0] - lo_[0], y = k[1] - lo_[1], z = k[2] - lo_[2];
-    words_[word(x, y, z)] |= std::uint64_t(1) << bit(x, y, z);
+  std::size_t index(const octomap::OcTreeKey& k) const {
+    return (std::size_t(k[2] - lo_[2]) * n_[1] + std::size_t(k[1] - lo_[1])) * n_[0] + std::size_t(k[0] - lo_[0]);
   }
+  void set(const octomap::OcTreeKey& k) { set(index(k)); }
+  void set(std::size_t i) { words_[i >> 6] |= std::uint64_t(1) << (i & 63); }
   void clear(const octomap::OcTreeKey& k) {
-    unsigned x = k[0] - lo_[0], y = k[1] - lo_[1], z = k[2] - lo_[2];
-    words_[word(x, y, z)] &= ~(std::uint64_t(1) << bit(x, y, z));
+    std::size_t i = index(k);
+    words_[i >> 6] &= ~(std::uint64_t(1) << (i & 63));
   }
   std::vector<std::uint64_t>& words() { return words_; }
+  std::uint64_t* data() { return words_.data(); }
+  std::size_t size(int i) const { return n_[i]; }
   // Appends (morton << 1) of every set bit.
   void extract(std::vector<std::uint64_t>& out) const {
+    const std::size_t nxy = n_[0] * n_[1];
     for (std::size_t w = 0; w < words_.size(); ++w) {
       std::uint64_t bits = words_[w];
-      if (!bits) continue;
-      std::size_t bz = w / (nb_[0] * nb_[1]), r = w % (nb_[0] * nb_[1]), by = r / nb_[0], bx = r % nb_[0];
       while (bits) {
-        unsigned b = unsigned(__builtin_ctzll(bits));
+        std::size_t i = w * 64 + unsigned(__builtin_ctzll(bits));
         bits &= bits - 1;
-        std::uint32_t x = std::uint32_t(bx * 4 + (b & 3) + lo_[0]), y = std::uint32_t(by * 4 + ((b >> 2) & 3) + lo_[1]),
-                      z = std::uint32_t(bz * 4 + (b >> 4) + lo_[2]);
-        out.push_back(morton(x, y, z) << 1);
+        std::size_t z = i / nxy, r = i % nxy, y = r / n_[0], x = r % n_[0];
+        out.push_back(morton(std::uint32_t(x + lo_[0]), std::uint32_t(y + lo_[1]), std::uint32_t(z + lo_[2])) << 1);
       }
     }
   }
-  std::size_t word(unsigned x, unsigned y, unsigned z) const {
-    return (std::size_t(z >> 2) * nb_[1] + (y >> 2)) * nb_[0] + (x >> 2);
-  }
-  static unsigned bit(unsigned x, unsigned y, unsigned z) { return (x & 3) | ((y & 3) << 2) | ((z & 3) << 4); }
-  int lo(int i) const { return lo_[i]; }
 
  private:
   int lo_[3];
-  std::size_t nb_[3];
+  std::size_t n_[3];
   std::vector<std::uint64_t> words_;
 };
 
-// The cells OcTreeBaseImpl::computeRayKeys(origin, end) returns (the same arithmetic, step for
-// step, so the same cells), written straight into a bitmap instead of a KeyRay. Both keys are
-// known to be inside the map.
-void trace_free(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::OcTreeKey& key_origin,
-                const octomap::point3d& end, const octomap::OcTreeKey& key_end, KeyBitmap& bits) {
-  if (key_origin == key_end) return;
-  bits.set(key_origin);
-  octomap::point3d direction = (end - origin);
-  float length = (float)direction.norm();
-  direction /= length;
-  int step[3];
-  double t_max[3], t_delta[3];
-  octomap::OcTreeKey current = key_origin;
-  const double res = tree.getResolution();
-  for (unsigned i = 0; i < 3; ++i) {
-    if (direction(i) > 0.0)
-      step[i] = 1;
-    else if (direction(i) < 0.0)
-      step[i] = -1;
-    else
-      step[i] = 0;
-    if (step[i] != 0) {
-      double border = tree.keyToCoord(current[i]);
-      border += (float)(step[i] * res * 0.5);
-      t_max[i] = (border - origin(i)) / direction(i);
-      t_delta[i] = res / std::fabs(direction(i));
-    } else {
-      t_max[i] = std::numeric_limits<double>::max();
-      t_delta[i] = std::numeric_limits<double>::max();
+// The cells OcTreeBaseImpl::computeRayKeys(origin, end) returns, written straight into a bitmap
+// instead of a KeyRay. The set-up (RayWalk::init) is computeRayKeys' code; the walk does the
+// same double arithmetic in the same order (t_max[dim] += t_delta[dim], the same comparisons and
+// tie-breaks), so it yields the same cells. It is written without data-dependent branches: the
+// axis is picked with SSE masks, and the cell is kept as its bit index in the bitmap (a step
+// along an axis adds a constant) and compared with the end cell's index. Both keys are known to
+// be inside the map and the bitmap's box is padded, so a walk that overshoots the end cell by
+// rounding stays inside. Two rays are walked side by side in the two lanes of the SSE registers,
+// which hides the latency of each step's compare-select-add chain.
+struct RayWalk {
+  double t[3], d[3], len;
+  std::size_t idx, target;
+  std::size_t inc[4];  // by the chosen axis: [m0 | m1 << 1] -> 0: z, 1: x, 2: y
+  // false when there is nothing to walk (origin and end in one cell)
+  bool init(const octomap::OcTree& tree, const octomap::point3d& origin, const octomap::OcTreeKey& key_origin,
+            const octomap::point3d& end, const octomap::OcTreeKey& key_end, KeyBitmap& bits) {
+    if (key_origin == key_end) return false;
+    bits.set(key_origin);
+    octomap::point3d direction = (end - origin);
+    float length = (float)direction.norm();
+    direction /= length;
+    int step[3];
+    const double res = tree.getResolution();
+    for (unsigned i = 0; i < 3; ++i) {
+      if (direction(i) > 0.0)
+        step[i] = 1;
+      else if (direction(i) < 0.0)
+        step[i] = -1;
+      else
+        step[i] = 0;
+      if (step[i] != 0) {
+        double border = tree.keyToCoord(key_origin[i]);
+        border += (float)(step[i] * res * 0.5);
+        t[i] = (border - origin(i)) / direction(i);
+        d[i] = res / std::fabs(direction(i));
+      } else {
+        t[i] = std::numeric_limits<double>::max();
+        d[i] = std::numeric_limits<double>::max();
+      }
     }
+    len = length;
+    idx = bits.index(key_origin);
+    target = bits.index(key_end);
+    const std::int64_t nx = std::int64_t(bits.size(0)), nxy = nx * std::int64_t(bits.size(1));
+    inc[0] = std::size_t(std::int64_t(step[2]) * nxy);
+    inc[1] = std::size_t(std::int64_t(step[0]));
+    inc[2] = std::size_t(std::int64_t(step[1]) * nx);
+    inc[3] = 0;
+    return true;
   }
+  // One step; false when the walk ends (the cell is then not free space of this ray).
+  bool step(std::uint64_t* words) {
+    const bool lt01 = t[0] < t[1];
+    const bool c0 = lt01 & (t[0] < t[2]);
+    const bool c1 = !lt01 & (t[1] < t[2]);
+    idx += inc[unsigned(c0) | (unsigned(c1) << 1)];
+    t[0] += c0 ? d[0] : 0.0;
+    t[1] += c1 ? d[1] : 0.0;
+    t[2] += (c0 | c1) ? 0.0 : d[2];
+    if (idx == target) return false;
+    if (std::min(std::min(t[0], t[1]), t[2]) > len) return false;
+    words[idx >> 6] |= std::uint64_t(1) << (idx & 63);
+    return true;
+  }
+  void run(std::uint64_t* words) {
+#if defined(__SSE2__)
+    __m128d t0 = _mm_set_sd(t[0]), t1 = _mm_set_sd(t[1]), t2 = _mm_set_sd(t[2]);
+    const __m128d d0 = _mm_set_sd(d[0]), d1 = _mm_set_sd(d[1]), d2 = _mm_set_sd(d[2]);
+    for (;;) {
+      // computeRayKeys: t0 < t1 ? (t0 < t2 ? 0 : 2) : (t1 < t2 ? 1 : 2); adding (mask & d) adds
+      // d or +0.0, and t + 0.0 == t
+      const __m128d lt01 = _mm_cmplt_sd(t0, t1);
+      const __m128d m0 = _mm_and_pd(lt01, _mm_cmplt_sd(t0, t2));
+      const __m128d m1 = _mm_andnot_pd(lt01, _mm_cmplt_sd(t1, t2));
+      idx += inc[_mm_movemask_pd(_mm_unpacklo_pd(m0, m1))];
+      t0 = _mm_add_sd(t0, _mm_and_pd(m0, d0));
+      t1 = _mm_add_sd(t1, _mm_and_pd(m1, d1));
+      t2 = _mm_add_sd(t2, _mm_andnot_pd(_mm_or_pd(m0, m1), d2));
+      if (idx == target) return;
+      if (_mm_cvtsd_f64(_mm_min_sd(_mm_min_sd(t0, t1), t2)) > len) return;
+      words[idx >> 6] |= std::uint64_t(1) << (idx & 63);
+    }
+#else
+    while (step(words)) {
+    }
+#endif
+  }
+};
+
+// Walks two rays side by side (lane 0: a, lane 1: b) until one ends, then finishes the other.
+void walk_pair(RayWalk& a, RayWalk& b, std::uint64_t* words) {
+#if defined(__SSE2__)
+  __m128d t0 = _mm_set_pd(b.t[0], a.t[0]), t1 = _mm_set_pd(b.t[1], a.t[1]), t2 = _mm_set_pd(b.t[2], a.t[2]);
+  const __m128d d0 = _mm_set_pd(b.d[0], a.d[0]), d1 = _mm_set_pd(b.d[1], a.d[1]), d2 = _mm_set_pd(b.d[2], a.d[2]);
+  const __m128d len = _mm_set_pd(b.len, a.len);
+  bool a_on = true, b_on = true;
   for (;;) {
-    unsigned dim;
-    if (t_max[0] < t_max[1])
-      dim = t_max[0] < t_max[2] ? 0 : 2;
-    else
-      dim = t_max[1] < t_max[2] ? 1 : 2;
-    current[dim] = octomap::key_type(current[dim] + step[dim]);
-    t_max[dim] += t_delta[dim];
-    if (current == key_end) return;
-    double dist = std::min(std::min(t_max[0], t_max[1]), t_max[2]);
-    if (dist > length) return;
-    bits.set(current);
+    const __m128d lt01 = _mm_cmplt_pd(t0, t1);
+    const __m128d m0 = _mm_and_pd(lt01, _mm_cmplt_pd(t0, t2));
+    const __m128d m1 = _mm_andnot_pd(lt01, _mm_cmplt_pd(t1, t2));
+    a.idx += a.inc[_mm_movemask_pd(_mm_unpacklo_pd(m0, m1))];
+    b.idx += b.inc[_mm_movemask_pd(_mm_unpackhi_pd(m0, m1))];
+    t0 = _mm_add_pd(t0, _mm_and_pd(m0, d0));
+    t1 = _mm_add_pd(t1, _mm_and_pd(m1, d1));
+    t2 = _mm_add_pd(t2, _mm_andnot_pd(_mm_or_pd(m0, m1), d2));
+    const int past = _mm_movemask_pd(_mm_cmpgt_pd(_mm_min_pd(_mm_min_pd(t0, t1), t2), len));
+    a_on = a.idx != a.target && !(past & 1);
+    b_on = b.idx != b.target && !(past & 2);
+    if (!(a_on & b_on)) break;
+    words[a.idx >> 6] |= std::uint64_t(1) << (a.idx & 63);
+    words[b.idx >> 6] |= std::uint64_t(1) << (b.idx & 63);
   }
+  alignas(16) double v[2];
+  _mm_store_pd(v, t0);
+  a.t[0] = v[0];
+  b.t[0] = v[1];
+  _mm_store_pd(v, t1);
+  a.t[1] = v[0];
+  b.t[1] = v[1];
+  _mm_store_pd(v, t2);
+  a.t[2] = v[0];
+  b.t[2] = v[1];
+  // the lane still walking: this step's cell is free, then it goes on alone
+  RayWalk* rest = a_on ? &a : b_on ? &b : nullptr;
+  if (rest) {
+    words[rest->idx >> 6] |= std::uint64_t(1) << (rest->idx & 63);
+    rest->run(words);
+  }
+#else
+  a.run(words);
+  b.run(words);
+#endif
 }
 
 std::string fmt_vec(const Eigen::Vector3d& v) {
@@ -297,27 +385,60 @@ struct UnionFind {
   }
 };
 
+// Open-addressing index CellKey -> position (power-of-two capacity, multiplicative hash).
+class KeyIndex {
+ public:
+  explicit KeyIndex(std::size_t n) {
+    bits_ = 4;
+    while ((std::size_t(1) << bits_) < 2 * n + 16) ++bits_;
+    keys_.assign(std::size_t(1) << bits_, kEmpty);
+    vals_.resize(keys_.size());
+  }
+  void insert(CellKey k, int v) {
+    std::size_t i = slot(k);
+    while (keys_[i] != kEmpty && keys_[i] != k) i = (i + 1) & (keys_.size() - 1);
+    keys_[i] = k;
+    vals_[i] = v;
+  }
+  int find(CellKey k) const {
+    for (std::size_t i = slot(k);; i = (i + 1) & (keys_.size() - 1)) {
+      if (keys_[i] == k) return vals_[i];
+      if (keys_[i] == kEmpty) return -1;
+    }
+  }
+
+ private:
+  static constexpr CellKey kEmpty = ~CellKey(0);
+  std::size_t slot(CellKey k) const { return std::size_t((k * 0x9E3779B97F4A7C15ULL) >> (64 - bits_)); }
+  int bits_;
+  std::vector<CellKey> keys_;
+  std::vector<int> vals_;
+};
+
 // Connected components (26-neighbourhood) of `cells`, each sorted, ordered by first cell.
 std::vector<std::vector<CellKey>> components26(std::vector<CellKey> cells) {
   std::sort(cells.begin(), cells.end());
-  std::unordered_map<CellKey, int> pos;
-  pos.reserve(cells.size() * 2);
-  for (std::size_t i = 0; i < cells.size(); ++i) pos.emplace(cells[i], int(i));
+  KeyIndex pos(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) pos.insert(cells[i], int(i));
   UnionFind uf(cells.size());
+  // each neighbouring pair once: the 13 offsets after (0, 0, 0) in (dz, dy, dx) order
   for (std::size_t i = 0; i < cells.size(); ++i)
-    for (const auto& d : detail::kN26.d) {
+    for (int o = 13; o < 26; ++o) {
+      const auto& d = detail::kN26.d[o];
       CellKey n;
       if (!detail::neighbour(cells[i], d[0], d[1], d[2], n)) continue;
-      auto it = pos.find(n);
-      if (it != pos.end()) uf.unite(int(i), it->second);
+      int j = pos.find(n);
+      if (j >= 0) uf.unite(int(i), j);
     }
-  std::unordered_map<int, int> root_to_comp;
+  std::vector<int> root_to_comp(cells.size(), -1);
   std::vector<std::vector<CellKey>> out;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     int r = uf.find(int(i));
-    auto [it, fresh] = root_to_comp.emplace(r, int(out.size()));
-    if (fresh) out.emplace_back();
-    out[it->second].push_back(cells[i]);
+    if (root_to_comp[r] < 0) {
+      root_to_comp[r] = int(out.size());
+      out.emplace_back();
+    }
+    out[root_to_comp[r]].push_back(cells[i]);
   }
   return out;  // cells were sorted, so each component is sorted and components are ordered by first cell
 }
@@ -505,6 +626,11 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
       hi[j] = std::max(hi[j], b[3 + j]);
     }
   for (std::size_t i = 0; i < n; ++i) st.out_of_bounds += kind[i] == 0;
+  // a walk may step one cell past its end cell by rounding: pad the bitmap's box
+  for (int j = 0; j < 3; ++j) {
+    lo[j] = std::max(lo[j] - 2, 0);
+    hi[j] = std::min(hi[j] + 2, 0xffff);
+  }
   double cells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
   if (cells > 8.0e9)
     throw std::invalid_argument("the cloud spans " + std::to_string(cells) +
@@ -515,12 +641,21 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
   free_local.reserve(threads);
   for (int t = 0; t < threads; ++t) free_local.emplace_back(lo, hi);
   std::vector<std::vector<std::uint64_t>> occ_local(threads);
-  detail::parallel_for(n, threads, [&](std::size_t i, int tid) {
-    if (kind[i] == 0) return;
-    octomap::OcTreeKey kend = tree.coordToKey(ends[i]);
-    trace_free(tree, o, okey, ends[i], kend, free_local[tid]);
-    if (kind[i] == 1) occ_local[tid].push_back((morton(kend[0], kend[1], kend[2]) << 1) | 1);
-  }, 256);
+  // rays in pairs: two walks share the SSE registers (see walk_pair)
+  detail::parallel_for((n + 1) / 2, threads, [&](std::size_t pair, int tid) {
+    RayWalk w[2];
+    int m = 0;
+    for (std::size_t i = 2 * pair; i < std::min(n, 2 * pair + 2); ++i) {
+      if (kind[i] == 0) continue;
+      octomap::OcTreeKey kend = tree.coordToKey(ends[i]);
+      if (w[m].init(tree, o, okey, ends[i], kend, free_local[tid])) ++m;
+      if (kind[i] == 1) occ_local[tid].push_back((morton(kend[0], kend[1], kend[2]) << 1) | 1);
+    }
+    if (m == 2)
+      walk_pair(w[0], w[1], free_local[tid].data());
+    else if (m == 1)
+      w[0].run(free_local[tid].data());
+  }, 128);
   KeyBitmap& free_bits = free_local[0];
   {
     auto& w0 = free_bits.words();
@@ -553,8 +688,9 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
                   tree.getClampingThresMaxLog(),
                   changed_};
   up.run(root, created_root, updates.data(), updates.data() + updates.size(), 0);
+  detail::GridWriter gw3(impl_->grid);
   for (const auto& c : changed_) {
-    std::uint8_t& cell = impl_->grid.at(c.key);
+    std::uint8_t& cell = gw3.at(c.key);
     cell = std::uint8_t((cell & ~kStateMask) | std::uint8_t(c.after));
   }
   st.changed_cells = changed_.size();
@@ -572,8 +708,9 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     }, 512);
     std::vector<CellKey> added;
     std::vector<std::pair<CellKey, int>> removed;
+    detail::GridWriter gw(I.grid);  // every cell touched here already has its block
     auto remove = [&](CellKey k) {
-      std::uint8_t& f = I.grid.at(k);
+      std::uint8_t& f = gw.at(k);
       f = std::uint8_t(f & ~kFrontierFlag);
       auto it = I.frontier_label.find(k);
       if (it != I.frontier_label.end()) {
@@ -584,9 +721,10 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     detail::GridReader g(I.grid);
     for (std::size_t i = 0; i < changed_.size(); ++i) {
       CellKey k = changed_[i].key;
-      bool was = (I.grid.get(k) & kFrontierFlag) != 0;
+      std::uint8_t& fk = gw.at(k);
+      bool was = (fk & kFrontierFlag) != 0;
       if (own[i] && !was) {
-        I.grid.at(k) |= kFrontierFlag;
+        fk |= kFrontierFlag;
         added.push_back(k);
       } else if (!own[i] && was) {
         remove(k);
@@ -595,7 +733,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
       for (const auto& d : detail::kN6) {
         CellKey nb;
         if (!detail::neighbour(k, d[0], d[1], d[2], nb)) continue;
-        if ((I.grid.get(nb) & kFrontierFlag) && !frontier_test(g, nb)) remove(nb);
+        if ((g.get(nb) & kFrontierFlag) && !frontier_test(g, nb)) remove(nb);
       }
     }
     st.frontier_added = added.size();
@@ -643,10 +781,11 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     bool have_hull = convex_hull(hull_in, planes, verts);
     st.seconds_hull = seconds_since(t0);
     t0 = Clock::now();
+    detail::GridWriter gw(I.grid);
     // cells that became known are no longer voids
     for (const auto& c : changed_)
-      if (c.before == CellState::Unknown && (I.grid.get(c.key) & kVoidFlag)) {
-        I.grid.at(c.key) &= std::uint8_t(~kVoidFlag);
+      if (c.before == CellState::Unknown && (gw.get(c.key) & kVoidFlag)) {
+        gw.at(c.key) &= std::uint8_t(~kVoidFlag);
         I.void_set.erase(c.key);
         ++st.void_removed;
       }
@@ -670,9 +809,9 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
           for (int z = nl; z <= nh; ++z) {  // new cells of the hull
             if (z >= ol && z <= oh) continue;
             CellKey k = pack_key(x, y, z);
-            std::uint8_t f = I.grid.get(k);
+            std::uint8_t f = gw.get(k);
             if ((f & kStateMask) == 0 && !(f & kVoidFlag)) {
-              I.grid.at(k) |= kVoidFlag;
+              gw.at(k) |= kVoidFlag;
               I.void_set.insert(k);
               ++st.void_added;
             }
@@ -680,8 +819,8 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
           for (int z = ol; z <= oh; ++z) {  // cells that left the hull (numerical merging only)
             if (z >= nl && z <= nh) continue;
             CellKey k = pack_key(x, y, z);
-            if (I.grid.get(k) & kVoidFlag) {
-              I.grid.at(k) &= std::uint8_t(~kVoidFlag);
+            if (gw.get(k) & kVoidFlag) {
+              gw.at(k) &= std::uint8_t(~kVoidFlag);
               I.void_set.erase(k);
               ++st.void_removed;
             }
@@ -852,6 +991,7 @@ std::vector<FrontierVoid> ExplorationMap::frontier_voids() const {
   (void)fcs;
   auto& I = *impl_;
   std::vector<FrontierVoid> out;
+  detail::GridReader g(I.grid);
   for (std::size_t v = 0; v < vcs.size(); ++v) {
     FrontierVoid fv;
     fv.void_index = int(v);
@@ -859,7 +999,7 @@ std::vector<FrontierVoid> ExplorationMap::frontier_voids() const {
       for (const auto& d : detail::kN26.d) {
         CellKey nb;
         if (!detail::neighbour(k, d[0], d[1], d[2], nb)) continue;
-        if (!(I.grid.get(nb) & kFrontierFlag)) continue;
+        if (!(g.get(nb) & kFrontierFlag)) continue;
         fv.frontier_cells.push_back(nb);
         auto it = I.frontier_label.find(nb);
         if (it != I.frontier_label.end()) {

@@ -53,6 +53,14 @@ class StateGrid {
     }
     return (*b)[offset(k)];
   }
+  Block& block(CellKey block) {
+    auto& b = blocks_[block];
+    if (!b) {
+      b = std::make_unique<Block>();
+      b->fill(0);
+    }
+    return *b;
+  }
   const Block* find_block(CellKey block) const {
     auto it = blocks_.find(block);
     return it == blocks_.end() ? nullptr : it->second.get();
@@ -84,6 +92,37 @@ class GridReader {
   const StateGrid& g_;
   mutable CellKey last_key_ = ~CellKey(0);
   mutable const StateGrid::Block* last_ = nullptr;
+};
+
+// Read-write access to existing cells of a StateGrid with a one-block cache. Blocks are never
+// freed or moved while the grid lives (unique_ptr), so the cached pointer stays valid even when
+// other blocks are created.
+class GridWriter {
+ public:
+  explicit GridWriter(StateGrid& g) : g_(g) {}
+  std::uint8_t& at(CellKey k) {
+    CellKey b = StateGrid::block_of(k);
+    if (b != last_key_ || !last_) {
+      last_ = &g_.block(b);
+      last_key_ = b;
+    }
+    return (*last_)[StateGrid::offset(k)];
+  }
+  std::uint8_t get(CellKey k) { return at_if(k); }
+
+ private:
+  std::uint8_t at_if(CellKey k) {
+    CellKey b = StateGrid::block_of(k);
+    if (b == last_key_ && last_) return (*last_)[StateGrid::offset(k)];
+    const StateGrid::Block* p = g_.find_block(b);
+    if (!p) return 0;
+    last_ = const_cast<StateGrid::Block*>(p);
+    last_key_ = b;
+    return (*p)[StateGrid::offset(k)];
+  }
+  StateGrid& g_;
+  CellKey last_key_ = ~CellKey(0);
+  StateGrid::Block* last_ = nullptr;
 };
 
 // Neighbour of k by (dx, dy, dz); false when it would leave the key range.

@@ -8,6 +8,8 @@
 #include <unordered_map>
 
 #include "exploration_impl.hpp"
+#include "octoreach/capability_map.hpp"
+#include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
 #include "parallel.hpp"
 
@@ -63,6 +65,47 @@ Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward
   return T;
 }
 
+// Open-addressing table CellKey -> accumulated utility and direction (power-of-two capacity,
+// multiplicative hash): the accumulation touches a few hundred thousand cells millions of times.
+struct UtilityTable {
+  struct Acc {
+    double u = 0;
+    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
+  };
+  static constexpr CellKey kEmpty = ~CellKey(0);
+  std::vector<CellKey> keys;
+  std::vector<Acc> vals;
+  std::size_t used = 0;
+  int bits = 0;
+  UtilityTable() { rehash(12); }
+  void rehash(int b) {
+    std::vector<CellKey> ok = std::move(keys);
+    std::vector<Acc> ov = std::move(vals);
+    bits = b;
+    keys.assign(std::size_t(1) << b, kEmpty);
+    vals.assign(std::size_t(1) << b, Acc());
+    used = 0;
+    for (std::size_t i = 0; i < ok.size(); ++i)
+      if (ok[i] != kEmpty) at(ok[i]) = ov[i];
+  }
+  Acc& at(CellKey k) {
+    const std::size_t mask = keys.size() - 1;
+    std::size_t i = std::size_t((k * 0x9E3779B97F4A7C15ULL) >> (64 - bits));
+    for (;; i = (i + 1) & mask) {
+      if (keys[i] == k) return vals[i];
+      if (keys[i] == kEmpty) {
+        if (2 * (used + 1) > keys.size()) {
+          rehash(bits + 1);
+          return at(k);
+        }
+        keys[i] = k;
+        ++used;
+        return vals[i];
+      }
+    }
+  }
+};
+
 }  // namespace
 
 bool SensorWorkspace::contains(const Eigen::Vector3d& p) const {
@@ -111,28 +154,49 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
     throw std::invalid_argument("score grid must be positive, got " + std::to_string(sw) + " x " + std::to_string(sh));
   const auto& I = map.internals();
   detail::GridReader g(I.grid);
-  std::vector<CellKey> voids, unknown;
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
+  const double res = map.resolution();
+  std::vector<Eigen::Vector3d> dirs(std::size_t(sw) * sh);
+  // key box of the frustum (every walked cell lies within a cell of a ray's end points)
+  Eigen::Vector3d lo = o, hi = o;
   for (int j = 0; j < sh; ++j)
     for (int i = 0; i < sw; ++i) {
       Eigen::Vector3d d = R * cam.ray((i + 0.5) * cam.width / sw, (j + 0.5) * cam.height / sh);
-      walk_cells(map.resolution(), o, d, cam.max_range, [&](CellKey k) {
-        std::uint8_t f = g.get(k);
-        std::uint8_t s = f & detail::kStateMask;
-        if (s == std::uint8_t(CellState::Occupied)) return false;
-        if (s == std::uint8_t(CellState::Unknown)) {
-          unknown.push_back(k);
-          if (f & detail::kVoidFlag) voids.push_back(k);
-        }
-        return true;
-      });
+      dirs[std::size_t(j) * sw + i] = d;
+      Eigen::Vector3d e = o + d.normalized() * cam.max_range;
+      lo = lo.cwiseMin(e);
+      hi = hi.cwiseMax(e);
     }
-  for (auto* v : {&voids, &unknown}) {
-    std::sort(v->begin(), v->end());
-    v->erase(std::unique(v->begin(), v->end()), v->end());
+  std::int64_t klo[3], n[3];
+  for (int a = 0; a < 3; ++a) {
+    klo[a] = std::int64_t(std::floor(lo[a] / res + 32768.0)) - 2;
+    n[a] = std::int64_t(std::floor(hi[a] / res + 32768.0)) + 2 - klo[a] + 1;
   }
-  return {voids.size(), unknown.size()};
+  // distinct unknown cells: one bit per cell of the box instead of collecting and sorting keys
+  std::vector<std::uint64_t> seen(std::size_t((n[0] * n[1] * n[2] + 63) / 64), 0);
+  std::size_t voids = 0, unknown = 0;
+  for (const Eigen::Vector3d& d : dirs) {
+    walk_cells(res, o, d, cam.max_range, [&](CellKey k) {
+      std::uint8_t f = g.get(k);
+      std::uint8_t s = f & detail::kStateMask;
+      if (s == std::uint8_t(CellState::Occupied)) return false;
+      if (s == std::uint8_t(CellState::Unknown)) {
+        std::int64_t x = std::int64_t(key_x(k)) - klo[0], y = std::int64_t(key_y(k)) - klo[1],
+                     z = std::int64_t(key_z(k)) - klo[2];
+        if (x < 0 || y < 0 || z < 0 || x >= n[0] || y >= n[1] || z >= n[2]) return false;  // cannot happen
+        std::size_t idx = std::size_t((z * n[1] + y) * n[0] + x);
+        std::uint64_t bit = std::uint64_t(1) << (idx & 63);
+        if (!(seen[idx >> 6] & bit)) {
+          seen[idx >> 6] |= bit;
+          ++unknown;
+          if (f & detail::kVoidFlag) ++voids;
+        }
+      }
+      return true;
+    });
+  }
+  return {voids, unknown};
 }
 
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt) {
@@ -141,6 +205,8 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   if (opt.max_valid_poses <= 0 || opt.orientations_per_cell <= 0 || opt.max_candidate_cells <= 0)
     throw std::invalid_argument("max_valid_poses, orientations_per_cell and max_candidate_cells must be positive");
   if (!(opt.orientation_spread >= 0)) throw std::invalid_argument("orientation_spread must be >= 0");
+  if (!(opt.min_reachability >= 0 && opt.min_reachability < 1))
+    throw std::invalid_argument("min_reachability must be in [0, 1), got " + std::to_string(opt.min_reachability));
   NbvResult r;
   const auto& I = map.internals();
   const double res = map.resolution();
@@ -148,13 +214,16 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   // 1-2. utility vectors and per-cell accumulation, with the mean direction back to the voids
   std::vector<FrontierVoid> fvs = map.frontier_voids();
   const auto& vcs = map.void_clusters();
-  struct Acc {
-    double u = 0;
-    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
-  };
-  std::unordered_map<CellKey, Acc> acc;
+  using Acc = UtilityTable::Acc;
+  const int threads = detail::default_threads(opt.threads);
+  std::vector<std::pair<CellKey, Acc>> cells;
   {
-    detail::GridReader g(I.grid);
+    // the utility vectors, in a fixed order
+    struct Vec {
+      Eigen::Vector3d from, dir;
+      double u;
+    };
+    std::vector<Vec> vecs;
     for (const auto& fv : fvs) {
       const VoidCluster& v = vcs[fv.void_index];
       std::vector<Eigen::Vector3d> corners{v.centroid};
@@ -165,22 +234,52 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
           Eigen::Vector3d pf = map.center(f);
           Eigen::Vector3d dir = pf - c;
           if (dir.norm() < 1e-9) continue;
-          dir.normalize();
-          ++r.utility_vectors;
-          walk_cells(res, pf, dir, cam.max_range, [&](CellKey k) {
-            if ((g.get(k) & detail::kStateMask) != std::uint8_t(CellState::Free)) return false;
-            Acc& a = acc[k];
-            a.u += fv.utility;
-            a.dir -= fv.utility * dir;
-            return true;
-          });
+          vecs.push_back({pf, dir.normalized(), fv.utility});
         }
     }
+    r.utility_vectors = vecs.size();
+    // A fixed number of slices, each summed into its own table and merged in slice order: the
+    // sums do not depend on the number of threads or on scheduling.
+    constexpr std::size_t kSlices = 8;
+    std::vector<UtilityTable> tables(kSlices);
+    detail::parallel_for(kSlices, threads, [&](std::size_t sl, int) {
+      detail::GridReader g(I.grid);
+      UtilityTable& t = tables[sl];
+      const std::size_t b = vecs.size() * sl / kSlices, e = vecs.size() * (sl + 1) / kSlices;
+      for (std::size_t i = b; i < e; ++i) {
+        const Vec& v = vecs[i];
+        walk_cells(res, v.from, v.dir, cam.max_range, [&](CellKey k) {
+          if ((g.get(k) & detail::kStateMask) != std::uint8_t(CellState::Free)) return false;
+          Acc& a = t.at(k);
+          a.u += v.u;
+          a.dir -= v.u * v.dir;
+          return true;
+        });
+      }
+    }, 1);
+    UtilityTable& all = tables[0];
+    for (std::size_t sl = 1; sl < kSlices; ++sl) {
+      const UtilityTable& t = tables[sl];
+      for (std::size_t i = 0; i < t.keys.size(); ++i) {
+        if (t.keys[i] == UtilityTable::kEmpty) continue;
+        Acc& a = all.at(t.keys[i]);
+        a.u += t.vals[i].u;
+        a.dir += t.vals[i].dir;
+      }
+    }
+    cells.reserve(all.used);
+    for (std::size_t i = 0; i < all.keys.size(); ++i)
+      if (all.keys[i] != UtilityTable::kEmpty) cells.emplace_back(all.keys[i], all.vals[i]);
   }
-  r.utility_cells = acc.size();
+  r.utility_cells = cells.size();
+  auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  r.seconds_vectors = since(t0);
+  auto t_prune = std::chrono::steady_clock::now();
 
-  // 3. prune by the workspace
-  std::vector<std::pair<CellKey, Acc>> cells(acc.begin(), acc.end());
+  // 3. prune by the workspace and the capability map, best utility first; the clearance check
+  //    (min_distance) runs only until max_candidate_cells cells are kept.
   std::sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   {
     std::vector<Eigen::Vector3d> pos(cells.size());
@@ -192,11 +291,26 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
         throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
                                     std::to_string(cells.size()) + " positions");
     }
-    const int margin = int(std::ceil(opt.min_distance / res));
-    detail::GridReader g(I.grid);
+    const Pose to_arm = opt.capability_base.inverse();
     std::size_t w = 0;
     for (std::size_t i = 0; i < cells.size(); ++i) {
       if (!keep[i] || !opt.workspace.contains(pos[i])) continue;
+      // Zacharias et al.: a cell is a sensor position only where the arm reaches some orientation.
+      if (opt.capability_map && !(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability)) {
+        ++r.capability_pruned;
+        continue;
+      }
+      cells[w++] = cells[i];
+    }
+    cells.resize(w);
+  }
+  r.candidate_cells = cells.size();
+  std::stable_sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.second.u > b.second.u; });
+  {
+    const int margin = int(std::ceil(opt.min_distance / res));
+    detail::GridReader g(I.grid);
+    std::size_t w = 0;
+    for (std::size_t i = 0; i < cells.size() && w < std::size_t(opt.max_candidate_cells); ++i) {
       bool clear = true;
       for (int dz = -margin; dz <= margin && clear; ++dz)
         for (int dy = -margin; dy <= margin && clear; ++dy)
@@ -210,10 +324,9 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
     }
     cells.resize(w);
   }
-  r.candidate_cells = cells.size();
-  std::stable_sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.second.u > b.second.u; });
-  if (cells.size() > std::size_t(opt.max_candidate_cells)) cells.resize(opt.max_candidate_cells);
 
+  r.seconds_prune = since(t_prune);
+  auto t_score = std::chrono::steady_clock::now();
   // 4. sample orientations at the best cells, check IK, score; stop after N valid poses
   IkOptions ik = opt.ik;
   ik.mode = IkMode::Approach;
@@ -221,10 +334,24 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   const Pose base_inv = opt.chain_base.inverse();
   const std::size_t per_cell = std::size_t(opt.orientations_per_cell);
   const std::size_t total = cells.size() * per_cell;
-  const int threads = detail::default_threads(opt.threads);
   const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
+  // The map's occupied cells as FCL obstacles for the arm (the tree is not copied: the map
+  // outlives the search, so the shared_ptr does not own it).
+  std::optional<Obstacles> obstacles;
+  Pose robot_root = Pose::Identity();
+  Eigen::VectorXd reference;
+  if (opt.chain && opt.arm_collisions && map.octree().size() > 0) {
+    const Robot& robot = opt.chain->robot();
+    obstacles.emplace();
+    obstacles->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
+    reference = robot.home();
+    robot_root = opt.chain_base * robot.link_poses(reference)[robot.link_index(opt.chain->base_link())].inverse();
+  }
+  const bool cap_orient = opt.capability_map && opt.capability_orientations &&
+                          opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9);
+  const Pose cap_inv = opt.capability_base.inverse();
   struct Slot {
-    bool valid = false, tried_ik = false;
+    bool valid = false, tried_ik = false, collides = false, cap_rejected = false;
     ViewCandidate view;
   };
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
@@ -249,12 +376,21 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
       Slot& s = slots[b];
       s.view.pose = camera_pose(map.center(cell.first), forward, roll);
       s.view.cell_utility = cell.second.u;
+      if (cap_orient && !opt.capability_map->reachable(cap_inv * s.view.pose)) {
+        s.cap_rejected = true;
+        return;
+      }
       if (opt.chain) {
         s.tried_ik = true;
         IkOptions o = ik;
         o.seed = ik.seed + idx;
         auto q = opt.chain->ik(base_inv * s.view.pose, o);
         if (!q) return;
+        if (obstacles &&
+            opt.chain->robot().in_collision(opt.chain->to_robot_configuration(*q, reference), *obstacles, robot_root)) {
+          s.collides = true;
+          return;
+        }
         s.view.q = *q;
         s.view.pose = opt.chain_base * opt.chain->fk(*q);  // the roll the arm actually reaches
       }
@@ -264,7 +400,9 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
       s.valid = true;
     }, 1);
     for (std::size_t b = 0; b < slots.size(); ++b) {
-      if (slots[b].tried_ik && !slots[b].valid) ++r.ik_failures;
+      if (slots[b].cap_rejected) ++r.capability_rejected;
+      if (slots[b].collides) ++r.arm_collisions;
+      else if (slots[b].tried_ik && !slots[b].valid) ++r.ik_failures;
       if (!slots[b].valid) continue;
       ++r.poses_scored;
       if (valid.size() < std::size_t(opt.max_valid_poses)) valid.emplace_back(start + b, std::move(slots[b].view));
@@ -276,7 +414,8 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
     return a.first < b.first;
   });
   for (auto& v : valid) r.ranked.push_back(std::move(v.second));
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.seconds_score = since(t_score);
+  r.seconds = since(t0);
   return r;
 }
 

@@ -29,6 +29,8 @@ __all__ = [
     "closed_box_scene",
     "cluttered_scene",
     "explore",
+    "base_ring",
+    "explorer_capability_map",
     "explorer_robot",
     "look_at",
     "observed_share",
@@ -133,6 +135,30 @@ def explorer_robot():
     return robot, robot.chain("arm_base_link", "camera_optical_frame")
 
 
+def base_ring(region, standoff: float = 0.45) -> list:
+    """Four base_footprint poses (4x4, world) around a search region ((2, 3) lo, hi), each
+    `standoff` metres outside one of its vertical faces and facing the region's centre."""
+    lo, hi = np.asarray(region, float)
+    c = (lo + hi) / 2
+    out = []
+    for x, y in ((lo[0] - standoff, c[1]), (c[0], lo[1] - standoff), (c[0], hi[1] + standoff), (hi[0] + standoff, c[1])):
+        yaw = np.arctan2(c[1] - y, c[0] - x)
+        T = np.eye(4)
+        T[:2, :2] = [[np.cos(yaw), -np.sin(yaw)], [np.sin(yaw), np.cos(yaw)]]
+        T[:2, 3] = (x, y)
+        out.append(T)
+    return out
+
+
+def explorer_capability_map(chain, resolution: float = 0.1, directions: int = 100, seed: int = 0):
+    """A coarse capability map of `chain` (camera +z as the approach axis; positions in the chain's
+    base link frame) for pruning next-best-view cells and poses: about 5-10 s on two cores."""
+    from ._core import CapabilityMap
+
+    return CapabilityMap.build(chain, resolution=resolution, directions=directions, approach_axis=(0.0, 0.0, 1.0),
+                               seed=seed, progress=False)
+
+
 # ---------------------------------------------------------------------------------- metrics
 
 
@@ -180,6 +206,8 @@ class ViewRow:
     void_total: int  # void cells in the map
     void_clusters: int
     pose: list = field(default_factory=list)  # camera pose of this view (4x4 as nested lists)
+    void_seen: int = 0  # void cells this view's insert turned known (compare with the previous row's void_cells)
+    base: int = 0  # index of the base the view was taken from (0: base_pose, i: base_moves[i - 1])
 
 
 @dataclass
@@ -216,15 +244,25 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
             max_views: int = 10, resolution: float = 0.025, max_valid_poses: int = 50,
             orientations_per_cell: int = 8, max_candidate_cells: int = 400, min_distance: float = 0.05,
             score_size=(48, 36), void_fit_threshold: float = 0.6, seed: int = 0, search_space=None,
+            capability_map=None, min_reachability: float = 0.0, capability_orientations: bool = True,
+            base_moves=None,
             on_view: Optional[Callable] = None) -> ExplorationResult:
     """Runs the paper's loop from `start_pose` (4x4 camera -> world) and returns the per-view table.
 
     The camera is carried by `chain` (tip = camera frame, +z forward) whose base sits at `base_pose`
     (4x4 chain base -> world), or moves freely inside the workspace (box (2, 3), sphere (centre,
     radius), callable on (N, 3) positions). `robot=True` uses urdf/explorer.urdf standing at the
-    origin (or at `base_pose`, the pose of its base_footprint). The base does not move.
+    origin (or at `base_pose`, the pose of its base_footprint). The base does not move unless
+    `base_moves` lists other poses of the chain's base (4x4 chain base -> world, like `base_pose`
+    with a chain): then each view searches from the current base and from each of them, and the
+    robot drives to the base of the best view (ties keep the current base; driving is free).
     Voids are looked for in `search_space` ((2, 3) lo, hi; default scene_region(scene)), and the
     observed share is measured over the same box.
+    `capability_map` (a CapabilityMap of `chain`, positions in its base link frame, which sits at
+    `base_pose`) prunes candidate cells whose voxel has reachability index <= `min_reachability`;
+    with `capability_orientations` it also rules out sampled poses whose (voxel, optical axis) cell
+    is unreachable before any IK. IK stays the final check of each pose. `capability_map="auto"` builds a coarse one
+    (explorer_capability_map).
     Stops when the best view expects 0 void cells or after `max_views` views.
     `on_view(row, emap, nbv)` is called after each view (plots, progress)."""
     if robot is True or (robot is not None and chain is None):
@@ -235,7 +273,9 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         base_pose = footprint @ rob.link_poses(rob.home())[chain.base_link]
     if chain is not None and base_pose is None:
         base_pose = np.eye(4)
-    if chain is not None and workspace_sphere is None and workspace_box is None and workspace is None:
+    auto_sphere = chain is not None and workspace_sphere is None and workspace_box is None and workspace is None
+    reach = 0.0
+    if auto_sphere:
         # a cheap first prune: the arm's reach around its first joint, estimated by sampling FK
         rng = np.random.default_rng(seed)
         lo = np.where(np.isfinite(chain.lower), chain.lower, -np.pi)
@@ -244,7 +284,18 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         tips = chain.fk_batch(Q)[:, :3, 3]
         centre = np.zeros(3)  # the chain's base frame origin
         reach = float(np.max(np.linalg.norm(tips - centre, axis=1)))
-        workspace_sphere = ((np.asarray(base_pose) @ np.append(centre, 1.0))[:3], reach)
+    bases = [np.asarray(base_pose, float)] if chain is not None else [None]
+    if base_moves is not None:
+        if chain is None:
+            raise ValueError("base_moves needs a chain (or robot=True)")
+        bases += [np.asarray(b, float) for b in base_moves]
+        if any(b.shape != (4, 4) for b in bases):
+            raise ValueError("base_moves must be 4x4 poses (chain base -> world)")
+    current = 0
+    if isinstance(capability_map, str):
+        if capability_map != "auto" or chain is None:
+            raise ValueError(f"capability_map must be a CapabilityMap, None or 'auto' (with a chain), got {capability_map!r}")
+        capability_map = explorer_capability_map(chain)
     region = scene_region(scene) if search_space is None else np.asarray(search_space, float)
     emap = ExplorationMap(resolution=resolution, void_fit_threshold=void_fit_threshold, seed=seed,
                           search_space=region)
@@ -260,25 +311,36 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         clusters = emap.void_clusters()
         t_int = time.perf_counter() - t0
         t0 = time.perf_counter()
-        nbv = next_best_view(emap, camera, max_valid_poses=max_valid_poses,
-                             orientations_per_cell=orientations_per_cell,
-                             max_candidate_cells=max_candidate_cells, score_width=score_size[0],
-                             score_height=score_size[1], min_distance=min_distance, seed=seed + view,
-                             workspace_box=workspace_box, workspace_sphere=workspace_sphere,
-                             workspace=workspace, chain=chain, chain_base=base_pose)
+        nbv = None
+        for i in [current] + [j for j in range(len(bases)) if j != current]:
+            bp = bases[i]
+            sphere = ((bp[:3, 3]).copy(), reach) if auto_sphere else workspace_sphere
+            r = next_best_view(emap, camera, max_valid_poses=max_valid_poses,
+                               orientations_per_cell=orientations_per_cell,
+                               max_candidate_cells=max_candidate_cells, score_width=score_size[0],
+                               score_height=score_size[1], min_distance=min_distance, seed=seed + view,
+                               workspace_box=workspace_box, workspace_sphere=sphere,
+                               workspace=workspace, chain=chain, chain_base=bp,
+                               capability_map=capability_map,
+                               capability_base=None if capability_map is None else bp,
+                               min_reachability=min_reachability,
+                               capability_orientations=capability_orientations)
+            if nbv is None or r["void_cells"] > nbv["void_cells"]:
+                nbv, best_base = r, i
         t_search = time.perf_counter() - t0
         row = ViewRow(view=view, integration_s=t_int, search_s=t_search, void_cells=int(nbv["void_cells"]),
                       utility_dm3=float(nbv["utility_dm3"]), observed_share=observed_share(emap, scene, [tuple(region)]),
                       interior_share=observed_share(emap, scene, interiors) if interiors else 0.0,
                       points=int(stats["points"]), frontier_cells=int(emap.frontier_cell_count),
                       void_total=int(emap.void_cell_count), void_clusters=len(clusters),
-                      pose=pose.tolist())
+                      pose=pose.tolist(), base=current, void_seen=int(stats["void_removed"]))
         rows.append(row)
         if on_view is not None:
             on_view(row, emap, nbv)
         if nbv["best_pose"] is None or nbv["void_cells"] == 0:
             break
         pose = nbv["best_pose"]
+        current = best_base
     return ExplorationResult(rows=rows, map=emap, poses=poses, total_s=time.perf_counter() - t_all)
 
 
@@ -356,9 +418,11 @@ def plot_map(emap: ExplorationMap, path, poses=(), next_pose=None, title: str = 
 
 def run_demo(scene_id: int = 2, out="exploration_out", max_views: int = 10, resolution: float = 0.025,
              width: int = 640, height: int = 480, seed: int = 0, plots: bool = True, quiet: bool = False,
-             export: bool = True):
+             export: bool = True, capability_map="auto", move_base: bool = False):
     """One exploration of a paper scene with the explorer robot; writes table.txt, table.json,
-    view_NN.png and map.bt into `out`. Returns the ExplorationResult."""
+    view_NN.png and map.bt into `out`. `capability_map`: a CapabilityMap of the arm, "auto" (build a
+    coarse one) or None (IK only). `move_base`: the base may also drive to the four poses of
+    base_ring(scene_region(scene)) between views. Returns the ExplorationResult."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     scene = paper_scene(scene_id)
@@ -378,8 +442,12 @@ def run_demo(scene_id: int = 2, out="exploration_out", max_views: int = 10, reso
             plot_map(emap, out / f"view_{row.view:02d}.png", poses=poses_so_far, next_pose=nbv["best_pose"],
                      title=f"scene {scene_id}, after view {row.view}: {row.void_total} void cells")
 
+    if isinstance(capability_map, str) and capability_map == "auto":
+        capability_map = explorer_capability_map(chain, seed=seed)
+    moves = [F @ base_link for F in base_ring(scene_region(scene))] if move_base else None
     result = explore(scene, camera, start, chain=chain, base_pose=base_link, max_views=max_views,
-                     resolution=resolution, seed=seed, on_view=on_view)
+                     resolution=resolution, seed=seed, capability_map=capability_map, base_moves=moves,
+                     on_view=on_view)
     (out / "table.txt").write_text(result.table() + "\n")
     (out / "table.json").write_text(json.dumps({"scene": scene_id, "resolution": resolution,
                                                 "total_s": result.total_s, "rows": result.to_dicts()},
@@ -401,8 +469,11 @@ def main(argv=None) -> int:
     ap.add_argument("--resolution", type=float, default=0.025)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--no-plots", action="store_true")
+    ap.add_argument("--no-capability-map", action="store_true", help="prune view cells by IK only")
+    ap.add_argument("--move-base", action="store_true", help="let the base drive to 4 poses around the scene")
     a = ap.parse_args(argv)
-    run_demo(a.scene, a.out, a.views, a.resolution, seed=a.seed, plots=not a.no_plots)
+    run_demo(a.scene, a.out, a.views, a.resolution, seed=a.seed, plots=not a.no_plots,
+             capability_map=None if a.no_capability_map else "auto", move_base=a.move_base)
     return 0
 
 

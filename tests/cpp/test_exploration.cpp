@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <random>
 
 #include <octomap/OcTree.h>
 
@@ -132,6 +133,43 @@ TEST(ExplorationMap, SameOccupancyAsStockInsertPointCloud) {
     EXPECT_GT(occupied, 100u);
   }
   EXPECT_EQ(fast.octree().size(), stock.octree().size());
+}
+
+// The ray walk replicates computeRayKeys' arithmetic without its branches: check it on rays of
+// every kind, including axis-aligned ones (zero direction components), end points on cell
+// borders, rays beyond max_range and unlimited range.
+TEST(ExplorationMap, RandomAndAxisAlignedRaysMatchStock) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> U(-1.5, 1.5);
+  for (double res : {0.02, 0.05}) {
+    for (double range : {1.2, -1.0}) {
+      ExplorationOptions o;
+      o.resolution = res;
+      ExplorationMap fast(o), stock(o);
+      const Eigen::Vector3d origin(0.013, -0.021, 0.4);
+      std::vector<Eigen::Vector3d> pts;
+      for (int i = 0; i < 4000; ++i) pts.emplace_back(origin + Eigen::Vector3d(U(rng), U(rng), U(rng)));
+      for (int i = -20; i <= 20; ++i) {
+        const double d = i * 0.07;
+        pts.emplace_back(origin + Eigen::Vector3d(d, 0, 0));
+        pts.emplace_back(origin + Eigen::Vector3d(0, d, 0));
+        pts.emplace_back(origin + Eigen::Vector3d(0, 0, d));
+        pts.emplace_back(origin + Eigen::Vector3d(d, d, 0));
+        pts.emplace_back(origin + Eigen::Vector3d(d, -d, d));
+        pts.emplace_back(Eigen::Vector3d(i * res, 0.5 * res, 1.0));  // on cell borders
+      }
+      fast.insert(pts, origin, range);
+      stock.insert_stock(pts, origin, range);
+      auto a = leaf_cells(fast.octree()), b = leaf_cells(stock.octree());
+      ASSERT_EQ(a.size(), b.size()) << "res " << res << " range " << range;
+      for (const auto& [k, v] : a) {
+        auto it = b.find(k);
+        ASSERT_NE(it, b.end());
+        ASSERT_FLOAT_EQ(v, it->second);
+      }
+      EXPECT_EQ(fast.octree().size(), stock.octree().size());
+    }
+  }
 }
 
 TEST(ExplorationMap, IncrementalEqualsFromScratchAfterEveryInsert) {

@@ -144,3 +144,90 @@ def test_bad_inputs():
         Scene().add_box((1, 0, 0), (0, 1, 1))
     with pytest.raises(ValueError, match="face"):
         Scene().add_closed_box((0, 0, 0), (1, 1, 1), 0.02, "up", 0.1, 0.1)
+
+
+def test_same_occupancy_as_stock_fine_resolution_noisy_clouds():
+    from octoreach import _core
+
+    scene = ex.cluttered_scene()
+    cam = DepthCamera(320, 240, FOV, 4.0, noise=0.003, seed=5)
+    for eye, rng in (((-0.8, 0.0, 1.2), 4.0), ((0.3, -1.5, 0.7), 2.5), ((2.0, 1.0, 1.6), -1.0)):
+        T = ex.look_at(eye, (1.5, 0.0, 0.0))
+        pts = cam.capture(scene, T)
+        emap = ExplorationMap(resolution=0.02)
+        emap.insert(pts, T[:3, 3], rng)
+        ref = _core._stock_insert_point_cloud(pts, T[:3, 3], rng, 0.02)
+        mine = emap.occupancy_digest()
+        assert (mine["free"], mine["occupied"], mine["hash"]) == (ref["free"], ref["occupied"], ref["hash"])
+
+
+def test_capability_map_prunes_view_cells_and_ik_stays_the_final_check():
+    from octoreach import CapabilityMap
+
+    scene = ex.paper_scene(1)
+    robot, chain = ex.explorer_robot()
+    base = robot.link_poses(robot.home())[chain.base_link]
+    cmap = CapabilityMap.build(chain, resolution=0.15, directions=20, approach_axis=(0.0, 0.0, 1.0), progress=False)
+    cam = DepthCamera(120, 90, FOV, 3.0)
+    emap = ExplorationMap(resolution=0.05, search_space=ex.scene_region(scene))
+    T = ex.look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))
+    emap.insert(cam.capture(scene, T), T[:3, 3], cam.max_range)
+    kw = dict(max_valid_poses=10, max_candidate_cells=60, workspace_sphere=((0.0, 0.0, 0.5), 3.0), chain=chain,
+              chain_base=base)
+    plain = next_best_view(emap, cam, **kw)
+    pruned = next_best_view(emap, cam, capability_map=cmap, capability_base=base, capability_orientations=False, **kw)
+    assert plain["capability_pruned"] == 0
+    assert pruned["capability_rejected"] == 0
+    # the 3 m sphere lets far cells through; the capability map removes them, and only them
+    assert pruned["capability_pruned"] > 0
+    assert pruned["candidate_cells"] + pruned["capability_pruned"] == plain["candidate_cells"]
+    assert pruned["best_pose"] is not None
+    inv = np.linalg.inv(base)
+    for v in pruned["ranked"]:
+        p_arm = (inv @ v["pose"])[:3, 3]
+        assert cmap.reachability(p_arm[None, :])[0] > 0
+        assert v["q"] is not None and len(v["q"]) == chain.dof  # IK still settled the pose
+    # with the orientation check, poses whose (voxel, optical axis) cell is unreachable skip IK;
+    # every pose kept still has its IK solution and lies in a reachable (voxel, direction) cell
+    fast = next_best_view(emap, cam, capability_map=cmap, capability_base=base, **kw)
+    assert fast["capability_rejected"] > 0 and fast["best_pose"] is not None
+    for v in fast["ranked"]:
+        assert v["q"] is not None and cmap.reachable((inv @ v["pose"])[None])[0]
+    # an arm standing 10 m away reaches none of the cells
+    far = base.copy()
+    far[:3, 3] += (10.0, 0.0, 0.0)
+    none = next_best_view(emap, cam, capability_map=cmap, capability_base=far, **kw)
+    assert none["candidate_cells"] == 0 and none["best_pose"] is None
+    with pytest.raises(ValueError):
+        next_best_view(emap, cam, capability_map=cmap, min_reachability=1.5)
+
+
+def test_views_whose_arm_touches_occupied_cells_are_rejected():
+    from octoreach import Obstacles
+
+    scene = ex.paper_scene(2)
+    robot, chain = ex.explorer_robot()
+    base = robot.link_poses(robot.home())[chain.base_link]
+    root = base @ np.linalg.inv(robot.link_poses(robot.home())[chain.base_link])  # footprint at the origin
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    for T in survey(emap, scene, cam, [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)], (0.9, 0.0, 0.1)):
+        pass
+    obstacles = Obstacles()
+    obstacles.add_points(emap.cells("occupied"), emap.resolution)  # the same cells, checked independently
+
+    def colliding(result):
+        n = 0
+        for v in result["ranked"]:
+            q = robot.home().copy()
+            q[: chain.dof] = v["q"]  # the explorer's configuration is its arm's
+            n += robot.in_collision(q, obstacles, root)
+        return n
+
+    kw = dict(max_valid_poses=40, max_candidate_cells=300, chain=chain, chain_base=base,
+              workspace_sphere=((0.2, 0.0, 0.3), 1.1))
+    free = next_best_view(emap, cam, **kw)
+    loose = next_best_view(emap, cam, arm_collisions=False, **kw)
+    assert loose["arm_collisions"] == 0 and colliding(loose) > 0  # the check is needed here
+    assert free["arm_collisions"] > 0 and colliding(free) == 0
+    assert free["best_pose"] is not None

@@ -6,13 +6,14 @@
 ///    (centroid +- semi-axis along each eigenvector) through each frontier cell touching the void.
 /// 2. Each vector is ray-traced from its frontier cell through free cells up to the sensor range
 ///    (stopping at the first cell that is not free), adding the void's volume to every cell.
-/// 3. Cells outside the sensor's workspace are pruned (a box, a sphere, a user callback and/or
-///    the arm's IK below).
+/// 3. Cells outside the sensor's workspace are pruned: a box, a sphere, a user callback and/or a
+///    capability map of the arm carrying the sensor (cells whose voxel has a reachability index
+///    at or below a threshold go). The arm's IK stays the final check of each pose (step 4).
 /// 4. At the cells of highest utility, camera orientations are sampled around the mean direction
 ///    back along the vectors that reached the cell; each is scored by casting a coarse grid of rays
 ///    through the camera frustum and counting the distinct void and unknown cells met before the
-///    first occupied cell. A pose counts when the arm (if given) has an IK solution for it; the
-///    search stops after `max_valid_poses` valid poses.
+///    first occupied cell. A pose counts when the arm (if given) has an IK solution for it whose
+///    links are clear of the occupied cells; the search stops after `max_valid_poses` valid poses.
 
 #include <cstdint>
 #include <functional>
@@ -29,6 +30,7 @@
 namespace octoreach {
 
 class Chain;
+class CapabilityMap;
 
 /// \brief Where the sensor can be (map frame). Empty: everywhere.
 struct SensorWorkspace {
@@ -56,6 +58,18 @@ struct NbvOptions {
   const Chain* chain = nullptr;
   Pose chain_base = Pose::Identity();  ///< chain base frame -> map frame
   IkOptions ik;                        ///< mode and approach axis are set by the search
+  /// With a chain: reject IK solutions where a link of the chain's robot (its collision shapes, the
+  /// rest of the robot at home, the robot placed so the chain base sits at chain_base) touches an
+  /// occupied cell of the map. Unknown cells are not obstacles here.
+  bool arm_collisions = true;
+  /// Capability map of the arm carrying the camera (positions in its base link frame): candidate
+  /// cells whose voxel has reachability index D <= min_reachability are pruned before any IK.
+  const CapabilityMap* capability_map = nullptr;
+  Pose capability_base = Pose::Identity();  ///< capability map base link frame -> map frame
+  double min_reachability = 0.0;            ///< keep cells with D > this (0: any reachable orientation)
+  /// Also skip IK for sampled poses whose (voxel, optical-axis direction) cell the capability map
+  /// marks unreachable (only when the map's approach axis is the camera's +z).
+  bool capability_orientations = true;
 };
 
 /// \brief One scored sensor configuration.
@@ -72,9 +86,13 @@ struct NbvResult {
   std::vector<ViewCandidate> ranked;
   std::size_t utility_vectors = 0;
   std::size_t utility_cells = 0;    ///< cells with utility > 0 before pruning
-  std::size_t candidate_cells = 0;  ///< after workspace pruning
+  std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
+  std::size_t capability_pruned = 0;  ///< cells the capability map removed
   std::size_t poses_scored = 0, ik_failures = 0;
+  std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied cell
+  std::size_t capability_rejected = 0;  ///< sampled poses the capability map ruled out before IK
   double seconds = 0;
+  double seconds_vectors = 0, seconds_prune = 0, seconds_score = 0;  ///< parts: steps 1-2, 3, 4
   /// \brief Expected void cells of the best pose (0 when there is none).
   std::size_t best_void_cells() const { return ranked.empty() ? 0 : ranked.front().void_cells; }
 };
