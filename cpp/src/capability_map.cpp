@@ -500,7 +500,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   using detail::header_int;
   using detail::header_string;
   m.robot_name_ = header_string(h, "robot", path);
-  m.urdf_hash_ = std::stoull(header_string(h, "urdf_hash", path));
+  m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
   m.base_link_ = header_string(h, "base_link", path);
   m.tip_link_ = header_string(h, "tip_link", path);
   m.dof_ = static_cast<int>(header_int(h, "dof", path));
@@ -517,7 +517,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
       throw FileError("'" + path + "' has a malformed approach_axis");
   }
   m.self_collision_ = header_int(h, "self_collision", path) != 0;
-  m.seed_ = std::stoull(header_string(h, "seed", path));
+  m.seed_ = detail::header_u64(h, "seed", path);
   m.fk_samples_ = static_cast<std::size_t>(header_int(h, "fk_samples", path));
   m.exhaustive_ = header_int(h, "exhaustive", path) != 0;
   m.position_tolerance_ = header_double(h, "position_tolerance", path);

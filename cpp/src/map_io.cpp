@@ -41,7 +41,10 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
   if (compress2(compressed.data(), &bound, reinterpret_cast<const Bytef*>(payload.data()), payload.size(), 6) != Z_OK)
     throw FileError("cannot compress map data for '" + path + "'");
   compressed.resize(bound);
-  std::uint32_t crc = crc32(0L, compressed.data(), compressed.size());
+  // The checksum covers the kind, the header (build parameters) and the payload.
+  std::uint32_t crc = crc32(0L, reinterpret_cast<const Bytef*>(kind.data()), kind.size());
+  crc = crc32(crc, reinterpret_cast<const Bytef*>(text.data()), text.size());
+  crc = crc32(crc, compressed.data(), compressed.size());
 
   std::string tmp = path + ".tmp." + std::to_string(::getpid());
   {
@@ -102,7 +105,10 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   std::vector<Bytef> compressed(size);
   if (!f.read(reinterpret_cast<char*>(compressed.data()), size))
     throw FileError("'" + path + "' is truncated (payload has fewer bytes than its header says)");
-  if (crc32(0L, compressed.data(), compressed.size()) != crc)
+  std::uint32_t actual = crc32(0L, reinterpret_cast<const Bytef*>(file_kind.data()), file_kind.size());
+  actual = crc32(actual, reinterpret_cast<const Bytef*>(text.data()), text.size());
+  actual = crc32(actual, compressed.data(), compressed.size());
+  if (actual != crc)
     throw FileError("'" + path + "' is damaged (checksum mismatch)");
   payload.resize(raw);
   uLongf out = raw;
@@ -129,6 +135,20 @@ long long header_int(const Header& h, const std::string& key, const std::string&
   try {
     std::size_t pos = 0;
     long long v = std::stoll(it->second, &pos);
+    if (pos != it->second.size()) throw std::invalid_argument("");
+    return v;
+  } catch (const std::exception&) {
+    throw FileError("'" + path + "' has a malformed header entry '" + key + "'");
+  }
+}
+
+std::uint64_t header_u64(const Header& h, const std::string& key, const std::string& path) {
+  auto it = h.find(key);
+  if (it == h.end()) throw FileError("'" + path + "' lacks header entry '" + key + "'");
+  try {
+    std::size_t pos = 0;
+    if (it->second.empty() || it->second[0] == '-') throw std::invalid_argument("");
+    unsigned long long v = std::stoull(it->second, &pos);
     if (pos != it->second.size()) throw std::invalid_argument("");
     return v;
   } catch (const std::exception&) {

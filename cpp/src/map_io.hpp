@@ -6,7 +6,7 @@
 //   uint32 format version  (kFormatVersion)
 //   uint32 kind length, kind text ("capability", "point", "surface")
 //   uint32 header length, header text: "key=value\n" lines (build parameters, robot)
-//   uint64 raw payload size, uint64 compressed size, uint32 CRC-32 of the compressed bytes
+//   uint64 raw payload size, uint64 compressed size, uint32 CRC-32 of kind, header and compressed bytes
 //   compressed payload (zlib)
 // Saves write a temporary file beside the target and rename it over the target.
 #include <cstdint>
@@ -76,6 +76,7 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
 double header_double(const Header& h, const std::string& key, const std::string& path);
 long long header_int(const Header& h, const std::string& key, const std::string& path);
 std::string header_string(const Header& h, const std::string& key, const std::string& path);
+std::uint64_t header_u64(const Header& h, const std::string& key, const std::string& path);
 std::string format_double(double v);
 
 }  // namespace octoreach::detail

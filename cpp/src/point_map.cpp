@@ -226,11 +226,7 @@ InversePointMap InversePointMap::load(const std::string& path) {
   m.map_ = PoseMap::load(path, "point", h);
   using detail::header_string;
   m.robot_name_ = header_string(h, "robot", path);
-  try {
-    m.urdf_hash_ = std::stoull(header_string(h, "urdf_hash", path));
-  } catch (const std::logic_error&) {
-    throw FileError("'" + path + "' has a malformed urdf_hash");
-  }
+  m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
   m.reference_frame_ = header_string(h, "reference_frame", path);
   m.arm_base_ = header_string(h, "arm_base_link", path);
   m.arm_tip_ = header_string(h, "arm_tip_link", path);

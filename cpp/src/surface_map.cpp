@@ -469,14 +469,10 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   m.map_ = PoseMap::load(path, "surface", h);
   using detail::header_string;
   m.robot_name_ = header_string(h, "robot", path);
-  try {
-    m.urdf_hash_ = std::stoull(header_string(h, "urdf_hash", path));
-    m.stats_.surface_points = std::stoull(header_string(h, "surface_points", path));
-    m.stats_.candidate_poses = std::stoull(header_string(h, "candidate_poses", path));
-    m.stats_.valid_poses = std::stoull(header_string(h, "valid_poses", path));
-  } catch (const std::logic_error&) {
-    throw FileError("'" + path + "' has a malformed numeric header entry");
-  }
+  m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
+  m.stats_.surface_points = detail::header_u64(h, "surface_points", path);
+  m.stats_.candidate_poses = detail::header_u64(h, "candidate_poses", path);
+  m.stats_.valid_poses = detail::header_u64(h, "valid_poses", path);
   m.reference_frame_ = header_string(h, "reference_frame", path);
   m.arms_ = header_string(h, "arms", path);
   m.grasp_name_ = header_string(h, "grasp_set", path);

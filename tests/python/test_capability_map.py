@@ -396,9 +396,6 @@ def test_other_kinds_of_file(saved_bytes, tmp_path):
         _load_bytes(tmp_path, b"# Octomap OcTree file\nid ColorOcTree\nsize 0\nres 0.1\ndata\n")
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "library bug: CapabilityMap::load parses header entries 'urdf_hash' and 'seed' with bare std::stoull "
-    "(cpp/src/capability_map.cpp, load()), so a damaged header raises ValueError('stoull'), not OSError"))
 def test_damaged_header_number_is_a_file_error(saved_bytes, tmp_path):
     i = saved_bytes.index(b"\nseed=") + len(b"\nseed=")
     data = saved_bytes[:i] + b"z" + saved_bytes[i + 1:]
@@ -406,10 +403,6 @@ def test_damaged_header_number_is_a_file_error(saved_bytes, tmp_path):
         _load_bytes(tmp_path, data)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "library weakness: the CRC-32 of the map container (cpp/src/map_io.cpp) covers only the payload, "
-    "not the header text, so a damaged build parameter (here directions=16 -> 20) loads silently as "
-    "a different map"))
 def test_damaged_header_parameter_is_detected(saved_bytes, tmp_path):
     assert b"\ndirections=16\n" in saved_bytes
     data = saved_bytes.replace(b"\ndirections=16\n", b"\ndirections=20\n")
