@@ -330,6 +330,7 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
       }
   }
   tree.update_inner_values();
+  m.finish_();
   m.fk_samples_ = samples;
   m.stats_.fk_samples = samples;
   m.stats_.ik_calls = ik_calls;
@@ -341,40 +342,46 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   return m;
 }
 
+void CapabilityMap::finish_() {
+  d_.assign(sol_offset_.size(), 0.0f);
+  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it)
+    if (it->payload != DenseIndex::kNone) d_[it->payload] = it->getValue();
+  index_.build(*tree_);
+}
+
 double CapabilityMap::reachability(const Eigen::Vector3d& p) const {
-  const VoxelNode* n = leaf(p);
-  return n ? n->getValue() : 0.0;
+  std::uint32_t r = record(p);
+  return r == DenseIndex::kNone ? 0.0 : d_[r];
 }
 
 bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation) const {
   if (orientation < 0 || orientation >= orientations_.size())
     throw std::invalid_argument("orientation index " + std::to_string(orientation) + " out of range [0, " +
                                 std::to_string(orientations_.size()) + ")");
-  const VoxelNode* n = leaf(p);
-  return n && bit(n->payload, orientation);
+  std::uint32_t r = record(p);
+  return r != DenseIndex::kNone && bit(r, orientation);
 }
 
 bool CapabilityMap::reachable(const Pose& T) const {
-  const VoxelNode* n = leaf(T.translation());
-  return n && bit(n->payload, orientations_.nearest(T.linear(), approach_axis_));
+  std::uint32_t r = record(T.translation());
+  return r != DenseIndex::kNone && bit(r, orientations_.nearest(T.linear(), approach_axis_));
 }
 
 std::optional<Eigen::VectorXd> CapabilityMap::solution(const Eigen::Vector3d& p, int orientation) const {
   if (!has_solutions() || !reachable(p, orientation)) return std::nullopt;
-  const float* q = record_solution(leaf(p)->payload, orientation);
+  const float* q = record_solution(record(p), orientation);
   return Eigen::Map<const Eigen::VectorXf>(q, dof_).cast<double>();
 }
 
 std::int64_t CapabilityMap::record_at(const Eigen::Vector3d& p, Eigen::Vector3d* centre) const {
-  octomap::OcTreeKey key;
-  if (!tree_->coordToKeyChecked(p.x(), p.y(), p.z(), key)) return -1;
-  const VoxelNode* n = tree_->search(key);
-  if (!n || tree_->nodeHasChildren(n)) return -1;
+  std::uint32_t r = record(p);
+  if (r == DenseIndex::kNone) return -1;
   if (centre) {
+    octomap::OcTreeKey key = tree_->coordToKey(p.x(), p.y(), p.z());
     octomap::point3d c = tree_->keyToCoord(key);
     *centre = Eigen::Vector3d(c.x(), c.y(), c.z());
   }
-  return n->payload;
+  return r;
 }
 
 const float* CapabilityMap::record_solution(std::uint32_t rec, int o) const {
@@ -562,6 +569,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   if (m.sol_offset_.size() != count) r.fail("damaged map data (voxel count mismatch)");
   m.stats_.voxels = count;
   m.stats_.reachable_cells = cells;
+  m.finish_();
   return m;
 }
 

@@ -101,7 +101,8 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   std::uint64_t raw = 0, size = 0;
   std::uint32_t crc = 0;
   if (!get(f, raw) || !get(f, size) || !get(f, crc)) throw FileError("'" + path + "' is truncated (payload sizes)");
-  if (size > (1ull << 34) || raw > (1ull << 36)) throw FileError("'" + path + "' is damaged (implausible sizes)");
+  // zlib expands at most about 1032 times: a larger raw size is damage, and must not drive an allocation.
+  if (size > (1ull << 34) || raw > 1032 * size + 1024) throw FileError("'" + path + "' is damaged (implausible sizes)");
   std::vector<Bytef> compressed(size);
   if (!f.read(reinterpret_cast<char*>(compressed.data()), size))
     throw FileError("'" + path + "' is truncated (payload has fewer bytes than its header says)");

@@ -28,6 +28,10 @@ int PoseMap::theta_bin(double theta) const {
 
 const float* PoseMap::voxel_values(double x, double y, double z) const {
   if (!tree_) return nullptr;
+  if (index_.active()) {
+    std::uint32_t r = index_.find(*tree_, x, y, z);
+    return r == DenseIndex::kNone ? nullptr : values_.data() + static_cast<std::size_t>(r) * theta_bins_;
+  }
   const VoxelNode* n = tree_->find(x, y, z);
   if (!n || n->payload == std::numeric_limits<std::uint32_t>::max()) return nullptr;
   return values_.data() + static_cast<std::size_t>(n->payload) * theta_bins_;
@@ -40,6 +44,7 @@ double PoseMap::value(double x, double y, double z, double theta) const {
 }
 
 void PoseMap::set_voxel(const octomap::OcTreeKey& key, const float* values) {
+  index_ = DenseIndex();  // stale once the tree changes; finalize() rebuilds it
   VoxelNode* n = tree_->touch(key);
   if (n->payload == std::numeric_limits<std::uint32_t>::max()) {
     n->payload = static_cast<std::uint32_t>(voxel_count());
@@ -63,6 +68,7 @@ void PoseMap::finalize() {
     set_voxel(it.getKey(), v);
   }
   tree_->update_inner_values();
+  index_.build(*tree_);
 }
 
 void PoseMap::voxels(std::vector<Eigen::Vector3d>& centres, std::vector<float>& values) const {
@@ -168,6 +174,7 @@ PoseMap PoseMap::load(const std::string& path, const std::string& kind, std::map
     m.tree_->update_inner_values();
   }
   if (!r.done()) r.fail("damaged map data (trailing bytes)");
+  m.index_.build(*m.tree_);
   if (m.voxel_count() != count) r.fail("damaged map data (voxel count mismatch)");
   header.clear();
   header.insert(h.begin(), h.end());

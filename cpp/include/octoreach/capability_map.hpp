@@ -100,7 +100,13 @@ class CapabilityMap {
 
  private:
   CapabilityMap() = default;
-  const VoxelNode* leaf(const Eigen::Vector3d& p) const { return tree_->find(p.x(), p.y(), p.z()); }
+  /// Record of the voxel holding p, or DenseIndex::kNone.
+  std::uint32_t record(const Eigen::Vector3d& p) const {
+    if (index_.active()) return index_.find(*tree_, p.x(), p.y(), p.z());
+    const VoxelNode* n = tree_->find(p.x(), p.y(), p.z());
+    return n ? n->payload : DenseIndex::kNone;
+  }
+  void finish_();  // builds the query tables once the tree and records are complete
   bool bit(std::uint32_t record, int o) const {
     return (bits_[static_cast<std::size_t>(record) * words_ + (o >> 6)] >> (o & 63)) & 1ULL;
   }
@@ -114,6 +120,8 @@ class CapabilityMap {
   std::vector<std::uint64_t> bits_;      // records x words_
   std::vector<std::uint64_t> sol_offset_;  // per record: first solution row
   std::vector<float> solutions_;         // rows of dof_ floats, in record/bit order
+  std::vector<float> d_;                 // per record: reachability index D
+  DenseIndex index_;
   std::string robot_name_, base_link_, tip_link_;
   std::uint64_t urdf_hash_ = 0;
   int dof_ = 0;

@@ -57,6 +57,7 @@ class PoseMap {
   int theta_bins_ = 16;
   std::shared_ptr<VoxelOcTree> tree_;
   std::vector<float> values_;  // voxel record r: values_[r * theta_bins_ + k]
+  DenseIndex index_;
 };
 
 }  // namespace octoreach

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include <octomap/AbstractOcTree.h>
 #include <octomap/OcTreeBaseImpl.h>
@@ -73,6 +74,55 @@ class VoxelOcTree : public octomap::OcTreeBaseImpl<VoxelNode, octomap::AbstractO
     node->setValue(best);
     return best;
   }
+};
+
+/// \brief A dense key -> record table over the bounding box of a tree's leaves: a lookup is a key
+/// computation and one array access instead of an octree descent. Built after a map is complete;
+/// maps whose box would need more than `max_cells` entries keep using the octree.
+class DenseIndex {
+ public:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+  void build(const VoxelOcTree& tree, std::size_t max_cells = std::size_t(1) << 26) {
+    records_.clear();
+    bool first = true;
+    for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+      if (it->payload == kNone) continue;
+      for (int a = 0; a < 3; ++a) {
+        int k = it.getKey()[a];
+        lo_[a] = first ? k : std::min(lo_[a], k);
+        hi_[a] = first ? k : std::max(hi_[a], k);
+      }
+      first = false;
+    }
+    if (first) return;
+    std::size_t cells = 1;
+    for (int a = 0; a < 3; ++a) {
+      dim_[a] = hi_[a] - lo_[a] + 1;
+      cells *= dim_[a];
+    }
+    if (cells > max_cells) return;
+    records_.assign(cells, kNone);
+    for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it)
+      if (it->payload != kNone) records_[offset(it.getKey())] = it->payload;
+  }
+  bool active() const { return !records_.empty(); }
+  /// \brief Record of the voxel holding (x, y, z), or kNone; the caller checks active() first.
+  std::uint32_t find(const VoxelOcTree& tree, double x, double y, double z) const {
+    octomap::OcTreeKey key;
+    if (!tree.coordToKeyChecked(x, y, z, key)) return kNone;
+    for (int a = 0; a < 3; ++a)
+      if (key[a] < lo_[a] || key[a] > hi_[a]) return kNone;
+    return records_[offset(key)];
+  }
+
+ private:
+  std::size_t offset(const octomap::OcTreeKey& k) const {
+    return (static_cast<std::size_t>(k[0] - lo_[0]) * dim_[1] + (k[1] - lo_[1])) * dim_[2] + (k[2] - lo_[2]);
+  }
+  int lo_[3] = {0, 0, 0}, hi_[3] = {-1, -1, -1};
+  std::size_t dim_[3] = {0, 0, 0};
+  std::vector<std::uint32_t> records_;
 };
 
 }  // namespace octoreach
