@@ -12,7 +12,7 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf -type f 2>/dev/null) \
            CMakeLists.txt pyproject.toml
 
-.PHONY: all demo test test-cpp test-python install sysdeps venv benchmarks clean
+.PHONY: all demo demo-exploration test test-cpp test-python install sysdeps venv benchmarks clean
 
 all: install
 
@@ -45,10 +45,16 @@ test-python: install
 test: test-cpp test-python
 
 demo: install
-	$(PY) -m octoreach.demo
+	$(PY) -m octoreach.demo --out demo_out
+
+demo-exploration: install
+	$(PY) -m octoreach.exploration --scene 2 --out demo_out/exploration
 
 benchmarks: install
 	$(PY) benchmarks/ik.py
+	$(PY) benchmarks/capability_map.py
+	$(PY) benchmarks/surface_map.py
+	$(PY) benchmarks/exploration.py
 
 clean:
-	rm -rf build $(VENV)
+	rm -rf build $(VENV) demo_out

@@ -247,3 +247,115 @@ def reachability_histogram(data, path: Union[str, os.PathLike], *, bins: int = 2
     path = os.fspath(path)
     fig.savefig(path, format="png")
     return path
+
+
+def _pose_map_layer(smap, z: Optional[float]):
+    """(centres (M, 3), values (M, theta_bins), z) of the voxel layer of a pose map holding height z
+    (default: the lowest layer, where a robot on the floor stands)."""
+    centres, values = smap.voxels()
+    centres = np.asarray(centres, float)
+    values = np.asarray(values, float)
+    if len(centres) == 0:
+        raise ValueError("the map is empty: nothing to plot")
+    r = smap.resolution
+    if z is None:
+        z = float(centres[:, 2].min())
+    if not math.isfinite(z):
+        raise ValueError(f"z must be finite, got {z}")
+    sel = (z >= centres[:, 2] - r / 2 - 1e-9) & (z < centres[:, 2] + r / 2 - 1e-9)
+    return centres[sel], values[sel], z
+
+
+def surface_slices(smap, path: Union[str, os.PathLike], *, z: Optional[float] = None, thetas=(0, 90, 180, 270),
+                   title: Optional[str] = None, dpi: int = 110) -> str:
+    """Writes the surface map's layer at height `z` (default: its floor layer) as PNG panels: R_S of the best
+    orientation per position, then R_S for the given orientations (degrees), red (low) to blue (high), with
+    the surface outline drawn (the paper's Fig. 2b); returns `path`."""
+    centres, values, z = _pose_map_layer(smap, z)
+    r = smap.resolution
+    bins = values.shape[1]
+    poly = np.asarray(smap.polygon, float) if hasattr(smap, "polygon") and len(smap.polygon) else None
+    panels = [("best orientation", values.max(axis=1))]
+    for deg in thetas:
+        k = int(round(math.radians(deg) / (2 * math.pi / bins))) % bins
+        panels.append((f"theta = {math.degrees(2 * math.pi * k / bins):.1f} deg", values[:, k]))
+    x0, y0 = centres[:, :2].min(axis=0) - r / 2
+    x1, y1 = centres[:, :2].max(axis=0) + r / 2
+    if poly is not None:
+        x0, y0 = min(x0, poly[:, 0].min() - r), min(y0, poly[:, 1].min() - r)
+        x1, y1 = max(x1, poly[:, 0].max() + r), max(y1, poly[:, 1].max() + r)
+    nx, ny = max(1, int(round((x1 - x0) / r))), max(1, int(round((y1 - y0) / r)))
+    ix = np.floor((centres[:, 0] - x0) / r).astype(int).clip(0, nx - 1)
+    iy = np.floor((centres[:, 1] - y0) / r).astype(int).clip(0, ny - 1)
+    cols = min(len(panels), 3)
+    rows = math.ceil(len(panels) / cols)
+    fig = Figure(figsize=(3.6 * cols + 1.2, 3.2 * rows + 0.6), dpi=dpi, constrained_layout=True)
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(rows, cols, squeeze=False, sharex=True, sharey=True)
+    vmax = max(1e-9, float(values.max()))
+    image = None
+    for k, (label, v) in enumerate(panels):
+        ax = axes[k // cols][k % cols]
+        grid = np.full((ny, nx), np.nan)
+        grid[iy, ix] = np.where(v > 0, v, np.nan)
+        image = ax.imshow(np.ma.masked_invalid(grid), origin="lower", extent=(x0, x0 + nx * r, y0, y0 + ny * r),
+                          cmap=COLORMAP, vmin=0, vmax=vmax, interpolation="nearest")
+        if poly is not None:
+            closed = np.vstack([poly[:, :2], poly[:1, :2]])
+            ax.plot(closed[:, 0], closed[:, 1], color="black", linewidth=1.5)
+        ax.set_title(label, fontsize=9)
+        ax.set_aspect("equal")
+    for k in range(len(panels), rows * cols):
+        axes[k // cols][k % cols].set_visible(False)
+    for row in axes:
+        row[0].set_ylabel("y (m)")
+    for ax in axes[-1]:
+        ax.set_xlabel("x (m)")
+    fig.colorbar(image, ax=axes.ravel().tolist(), shrink=0.85, label="surface reachability R_S")
+    z_label = z
+    zr = getattr(smap, "z_range", None)
+    if zr is not None and zr[0] == zr[1] and abs(zr[0] - z) <= r:
+        z_label = zr[0]  # a single evaluated height (a robot on the floor)
+    fig.suptitle(title or f"{smap.robot_name} surface map ({getattr(smap, 'arms', '')}), z = {z_label:.2f} m, "
+                 f"{r:g} m, {bins} orientations", fontsize=9)
+    path = os.fspath(path)
+    fig.savefig(path, format="png")
+    return path
+
+
+def sample_comparison(smap, path: Union[str, os.PathLike], *, count: int = 500, seed: int = 0,
+                      candidates: int = 40, dpi: int = 110) -> str:
+    """Writes `count` consecutive samples of a PoseSampler without and with the reachability discount of
+    eq. (3), side by side (the paper's Fig. 3): positions coloured by R_S, arrows for the orientation, the
+    surface outline in black; returns `path`."""
+    from ._core import PoseSampler
+
+    if not isinstance(count, (int, np.integer)) or count < 1:
+        raise ValueError(f"count must be a positive integer, got {count!r}")
+    runs = [("without discount", PoseSampler(smap, candidates=candidates, seed=seed,
+                                             discount_sigma=(1e-9, 1e-9, 1e-9, 1e-9))),
+            ("with discount (eq. 3)", PoseSampler(smap, candidates=candidates, seed=seed))]
+    poly = np.asarray(smap.polygon, float) if len(smap.polygon) else None
+    fig = Figure(figsize=(11, 4.8), dpi=dpi, constrained_layout=True)
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(1, 2, sharex=True, sharey=True)
+    scatter = None
+    for ax, (label, sampler) in zip(axes, runs):
+        poses = sampler.sample(count)
+        rs = smap.reachability(poses)
+        scatter = ax.scatter(poses[:, 0], poses[:, 1], c=rs, cmap=COLORMAP, vmin=0, vmax=max(1e-9, rs.max()), s=10)
+        ax.quiver(poses[:, 0], poses[:, 1], np.cos(poses[:, 3]), np.sin(poses[:, 3]), rs, cmap=COLORMAP,
+                  angles="xy", scale_units="xy", scale=12, width=0.003)
+        if poly is not None:
+            closed = np.vstack([poly[:, :2], poly[:1, :2]])
+            ax.plot(closed[:, 0], closed[:, 1], color="black", linewidth=1.5)
+        spread = np.linalg.norm(poses[:, None, :2] - poses[None, :, :2], axis=-1)
+        ax.set_title(f"{count} samples {label}: {len(np.unique(poses.round(6), axis=0))} distinct, "
+                     f"mean gap {spread[np.triu_indices(count, 1)].mean():.2f} m", fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (m)")
+    axes[0].set_ylabel("y (m)")
+    fig.colorbar(scatter, ax=list(axes), shrink=0.85, label="R_S")
+    path = os.fspath(path)
+    fig.savefig(path, format="png")
+    return path

@@ -71,3 +71,24 @@ def test_bad_data_and_polygon(cmap, tmp_path):
     with pytest.raises(ValueError):
         plots.slices(cmap, [0.5], tmp_path / "x.png", vmin=1, vmax=0)
     assert not (tmp_path / "x.png").exists()
+
+
+def test_surface_map_plots(tmp_path):
+    import octoreach
+
+    robot = octoreach.robots.test_arm()
+    cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.15, directions=24,
+                                        progress=False)
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)
+    sm = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.15, z_range=(0, 0), progress=False)
+    a = plots.surface_slices(sm, tmp_path / "surface.png")
+    b = plots.sample_comparison(sm, tmp_path / "samples.png", count=60)
+    for p in (a, b):
+        data = open(p, "rb").read()
+        assert data.startswith(b"\x89PNG") and len(data) > 10_000
+    with pytest.raises(ValueError):
+        plots.sample_comparison(sm, tmp_path / "x.png", count=0)
+    empty = octoreach.SurfaceMap.build(robot, cap, octoreach.Surface.rectangle(0.3, 0.3, 5.0), resolution=0.15,
+                                       z_range=(0, 0), progress=False)
+    with pytest.raises(ValueError, match="empty"):
+        plots.surface_slices(empty, tmp_path / "empty.png")
