@@ -231,8 +231,8 @@ void wrap_surface(py::module_& m) {
            py::arg("is_free") = py::none(), py::arg("in_collision") = py::none(), py::arg("max_draws") = 0,
            py::keep_alive<1, 2>(),
            "candidates: valid candidates per sample (best R_S x w wins). discount_sigma: S of eq. (3).\n"
-           "is_free: a CostMap or a callable (x, y, z, theta) -> bool. in_collision: a tuple (robot, obstacles[,\n"
-           "reference configuration]) checked with FCL in C++, or a callable -> bool (True = in collision).")
+           "is_free: a CostMap or a callable (pose (4,) as x, y, z, theta) -> bool. in_collision: a tuple (robot, obstacles[,\n"
+           "reference configuration]) checked with FCL in C++, or a callable (pose (4,)) -> bool (True = in collision).")
       .def("sample", [](PoseSampler& s, const py::object& k) -> py::object {
              auto one = [&]() {
                auto p = s.sample();

@@ -91,7 +91,8 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
   // the theta bins must contain those rotations, and the arm frame must not be tilted.
   const int sym = set.symmetry();
   // Only 90 and 180 degree rotations map grid cells onto grid cells.
-  bool symmetric = o.use_symmetry && (sym == 2 || sym == 4) && o.theta_bins % sym == 0;
+  // With several rolls per direction a rotated roll need not be a roll of the set: no symmetry then.
+  bool symmetric = o.use_symmetry && (sym == 2 || sym == 4) && o.theta_bins % sym == 0 && set.rolls() == 1;
   if (symmetric) {
     std::vector<char> in(set.size(), 0);
     for (int g : m.grasp_orientations_) in[g] = 1;

@@ -20,7 +20,7 @@ PoseMap::PoseMap(double resolution, int theta_bins) : resolution_(resolution), t
 
 int PoseMap::theta_bin(double theta) const {
   double step = 2.0 * M_PI / theta_bins_;
-  long k = std::lround(theta / step);
+  long k = std::lround(std::remainder(theta, 2.0 * M_PI) / step);
   k %= theta_bins_;
   if (k < 0) k += theta_bins_;
   return static_cast<int>(k);

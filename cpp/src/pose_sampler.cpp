@@ -56,14 +56,16 @@ void PoseSampler::reset() {
 std::optional<Eigen::Vector4d> PoseSampler::sample(double* score) {
   std::uniform_real_distribution<double> ux(lo_.x(), hi_.x()), uy(lo_.y(), hi_.y()), uz(lo_.z(), hi_.z()),
       ut(-M_PI, M_PI);
-  const std::size_t max_draws = options_.max_draws ? options_.max_draws : 2000 * options_.candidates;
+  const std::size_t max_draws = options_.max_draws ? options_.max_draws : std::size_t(2000) * options_.candidates;
   counts_ = {0, 0, 0, 0};
   double best = -1;
   Eigen::Vector4d best_pose;
   int found = 0;
   while (found < options_.candidates && counts_[0] < max_draws) {
     ++counts_[0];
-    Eigen::Vector4d c(ux(rng_), uy(rng_), uz(rng_), ut(rng_));
+    // Named draws: argument evaluation order is unspecified, and the stream must not depend on the compiler.
+    const double x = ux(rng_), y = uy(rng_), z = uz(rng_), t = ut(rng_);
+    Eigen::Vector4d c(x, y, z, t);
     // Heights outside the map's z range were never evaluated: clip into it, so a robot on the
     // floor (z range (0, 0)) gets z = 0 exactly.
     auto zr = map_->z_range();

@@ -10,11 +10,18 @@ namespace {
 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+bool on_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double eps) {
+  return std::abs(cross2(b - a, p - a)) <= eps * (b - a).norm() && (p - a).dot(p - b) <= eps * eps;
+}
+
+// True when the closed segments touch or cross (eps: a length tolerance).
 bool segments_intersect(const Eigen::Vector2d& p1, const Eigen::Vector2d& p2, const Eigen::Vector2d& q1,
-                        const Eigen::Vector2d& q2) {
+                        const Eigen::Vector2d& q2, double eps) {
   double d1 = cross2(p2 - p1, q1 - p1), d2 = cross2(p2 - p1, q2 - p1);
   double d3 = cross2(q2 - q1, p1 - q1), d4 = cross2(q2 - q1, p2 - q1);
-  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
+  return on_segment(q1, p1, p2, eps) || on_segment(q2, p1, p2, eps) || on_segment(p1, q1, q2, eps) ||
+         on_segment(p2, q1, q2, eps);
 }
 
 bool point_in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
@@ -87,13 +94,20 @@ Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness)
   for (std::size_t i = 0; i < N; ++i)
     if ((polygon_[i] - polygon_[(i + 1) % N]).norm() < 1e-9)
       throw std::invalid_argument("surface polygon has repeated vertex " + vec(vertices[i]));
-  for (std::size_t i = 0; i < N; ++i)
+  const double eps = 1e-9 * std::max(1.0, scale);
+  for (std::size_t i = 0; i < N; ++i) {
+    // Adjacent edges folding back onto each other make a spike of zero width.
+    Eigen::Vector2d e0 = polygon_[(i + 1) % N] - polygon_[i], e1 = polygon_[(i + 2) % N] - polygon_[(i + 1) % N];
+    if (std::abs(cross2(e0, e1)) <= eps * e0.norm() && e0.dot(e1) < 0)
+      throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
+                                  std::to_string((i + 1) % N) + " fold back onto each other");
     for (std::size_t j = i + 1; j < N; ++j) {
       if (j == i + 1 || (i == 0 && j == N - 1)) continue;
-      if (segments_intersect(polygon_[i], polygon_[(i + 1) % N], polygon_[j], polygon_[(j + 1) % N]))
+      if (segments_intersect(polygon_[i], polygon_[(i + 1) % N], polygon_[j], polygon_[(j + 1) % N], eps))
         throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
-                                    std::to_string(j) + " cross");
+                                    std::to_string(j) + " cross or touch");
     }
+  }
   // Signed area; orient the 2D polygon counter-clockwise for ear clipping.
   double a2 = 0;
   for (std::size_t i = 0; i < N; ++i) a2 += cross2(polygon_[i], polygon_[(i + 1) % N]);

@@ -81,7 +81,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   if (cap.robot_name() != robot.name() || cap.urdf_hash() != robot.urdf_hash())
     throw std::invalid_argument("the capability map was built for robot '" + cap.robot_name() +
                                 "' (another URDF), not for '" + robot.name() + "'");
-  if (!cap.has_solutions())
+  if (o.check_arm && !cap.has_solutions())
     throw std::invalid_argument("the capability map holds no joint solutions (build it with keep_solutions=True "
                                 "or save it with_solutions) : the surface map checks the arm against the surface");
   if (o.theta_bins < 1 || o.theta_bins > 360) throw std::invalid_argument("theta_bins must be in [1, 360]");
@@ -97,6 +97,8 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   m.polygon_ = surface.vertices();
   m.z_min_ = o.z_min;
   m.z_max_ = o.z_max;
+  m.grasp_height_ = o.grasp_height;
+  m.checks_ = std::string(o.check_body ? "body" : "") + (o.check_body && o.check_arm ? "+" : "") + (o.check_arm ? "arm" : "");
   m.map_ = PoseMap(res, o.theta_bins);
   const OrientationSet& set = cap.orientations();
   std::vector<int> dirs = o.grasps.empty() ? set.subset(o.grasp_subset) : o.grasps;
@@ -304,7 +306,9 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
           for (std::size_t i = 0; i < targets.size(); ++i) {
             // Target in the arm frame for a base at `base` with yaw theta.
             Eigen::Vector3d in_ref = Rz.transpose() * (targets[i] - base);
-            Eigen::Vector3d p = ref_to_arm.inverse() * in_ref;
+            // The fixed sub-resolution offset of the point map: targets on capability-voxel
+            // boundaries (common when the grids line up) land in the same voxel on every machine.
+            Eigen::Vector3d p = ref_to_arm.inverse() * in_ref + Eigen::Vector3d(1.3e-7, 0.7e-7, 0.3e-7);
             Eigen::Vector3d centre;
             std::int64_t rec = cap.record_at(p, &centre);
             if (rec < 0) continue;
@@ -400,6 +404,14 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
       throw std::invalid_argument("cannot combine maps of different resolutions");
     if (m->map_.theta_bins() != first.map_.theta_bins())
       throw std::invalid_argument("cannot combine maps of different theta bins");
+    bool same_polygon = m->polygon_.size() == first.polygon_.size();
+    for (std::size_t i = 0; same_polygon && i < m->polygon_.size(); ++i)
+      same_polygon = (m->polygon_[i] - first.polygon_[i]).norm() < 1e-9;
+    if (!same_polygon) throw std::invalid_argument("cannot combine maps of different surfaces (polygons differ)");
+    if (m->z_min_ != first.z_min_ || m->z_max_ != first.z_max_)
+      throw std::invalid_argument("cannot combine maps of different z ranges");
+    if (m->grasp_name_ != first.grasp_name_ || m->grasp_height_ != first.grasp_height_ || m->checks_ != first.checks_)
+      throw std::invalid_argument("cannot combine maps built with different grasp sets, grasp heights or checks");
   }
   const int T = first.map_.theta_bins();
   SurfaceMap out;
@@ -409,10 +421,9 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
   out.polygon_ = first.polygon_;
   out.z_min_ = first.z_min_;
   out.z_max_ = first.z_max_;
-  for (const SurfaceMap* m : maps) {
-    out.z_min_ = std::min(out.z_min_, m->z_min_);
-    out.z_max_ = std::max(out.z_max_, m->z_max_);
-  }
+  out.grasp_height_ = first.grasp_height_;
+  out.checks_ = first.checks_;
+  out.stats_.surface_points = first.stats_.surface_points;
   out.grasp_name_ = first.grasp_name_;
   out.map_ = PoseMap(first.map_.resolution(), T);
   for (std::size_t i = 0; i < maps.size(); ++i) out.arms_ += (i ? " " + mode + " " : "") + maps[i]->arms_;
@@ -455,6 +466,10 @@ std::map<std::string, std::string> SurfaceMap::parameters() const {
           {"polygon", poly.str()},
           {"surface_points", std::to_string(stats_.surface_points)},
           {"z_min", detail::format_double(z_min_)},
+          {"grasp_height", detail::format_double(grasp_height_)},
+          {"checks", checks_},
+          {"body_collisions", std::to_string(stats_.body_collisions)},
+          {"arm_rejections", std::to_string(stats_.arm_rejections)},
           {"z_max", detail::format_double(z_max_)},
           {"candidate_poses", std::to_string(stats_.candidate_poses)},
           {"valid_poses", std::to_string(stats_.valid_poses)},
@@ -478,6 +493,10 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   m.grasp_name_ = header_string(h, "grasp_set", path);
   m.stats_.seconds = detail::header_double(h, "build_seconds", path);
   m.z_min_ = detail::header_double(h, "z_min", path);
+  m.grasp_height_ = detail::header_double(h, "grasp_height", path);
+  m.checks_ = header_string(h, "checks", path);
+  m.stats_.body_collisions = detail::header_u64(h, "body_collisions", path);
+  m.stats_.arm_rejections = detail::header_u64(h, "arm_rejections", path);
   m.z_max_ = detail::header_double(h, "z_max", path);
   std::istringstream poly(header_string(h, "polygon", path));
   double x, y, z;

@@ -15,6 +15,7 @@ from typing import Callable, Optional, Sequence, Union
 import numpy as np
 from matplotlib import colormaps
 from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
 #: Red (low) to blue (high), the colouring of the paper's figures.
@@ -284,9 +285,13 @@ def surface_slices(smap, path: Union[str, os.PathLike], *, z: Optional[float] = 
     if poly is not None:
         x0, y0 = min(x0, poly[:, 0].min() - r), min(y0, poly[:, 1].min() - r)
         x1, y1 = max(x1, poly[:, 0].max() + r), max(y1, poly[:, 1].max() + r)
+    # Snap the frame to the voxel grid (voxel edges at multiples of r), so cells sit where they belong
+    # relative to the outline.
+    x0, y0 = math.floor(x0 / r + 1e-9) * r, math.floor(y0 / r + 1e-9) * r
+    x1, y1 = math.ceil(x1 / r - 1e-9) * r, math.ceil(y1 / r - 1e-9) * r
     nx, ny = max(1, int(round((x1 - x0) / r))), max(1, int(round((y1 - y0) / r)))
-    ix = np.floor((centres[:, 0] - x0) / r).astype(int).clip(0, nx - 1)
-    iy = np.floor((centres[:, 1] - y0) / r).astype(int).clip(0, ny - 1)
+    ix = np.floor((centres[:, 0] - x0) / r + 1e-9).astype(int).clip(0, nx - 1)
+    iy = np.floor((centres[:, 1] - y0) / r + 1e-9).astype(int).clip(0, ny - 1)
     cols = min(len(panels), 3)
     rows = math.ceil(len(panels) / cols)
     fig = Figure(figsize=(3.6 * cols + 1.2, 3.2 * rows + 0.6), dpi=dpi, constrained_layout=True)
@@ -343,15 +348,17 @@ def sample_comparison(smap, path: Union[str, os.PathLike], *, count: int = 500, 
     for ax, (label, sampler) in zip(axes, runs):
         poses = sampler.sample(count)
         rs = smap.reachability(poses)
-        scatter = ax.scatter(poses[:, 0], poses[:, 1], c=rs, cmap=COLORMAP, vmin=0, vmax=max(1e-9, rs.max()), s=10)
-        ax.quiver(poses[:, 0], poses[:, 1], np.cos(poses[:, 3]), np.sin(poses[:, 3]), rs, cmap=COLORMAP,
+        norm = Normalize(vmin=0.0, vmax=max(1e-9, float(smap.max_reachability)))  # one scale for both panels
+        scatter = ax.scatter(poses[:, 0], poses[:, 1], c=rs, cmap=COLORMAP, norm=norm, s=10)
+        ax.quiver(poses[:, 0], poses[:, 1], np.cos(poses[:, 3]), np.sin(poses[:, 3]), rs, cmap=COLORMAP, norm=norm,
                   angles="xy", scale_units="xy", scale=12, width=0.003)
         if poly is not None:
             closed = np.vstack([poly[:, :2], poly[:1, :2]])
             ax.plot(closed[:, 0], closed[:, 1], color="black", linewidth=1.5)
-        spread = np.linalg.norm(poses[:, None, :2] - poses[None, :, :2], axis=-1)
-        ax.set_title(f"{count} samples {label}: {len(np.unique(poses.round(6), axis=0))} distinct, "
-                     f"mean gap {spread[np.triu_indices(count, 1)].mean():.2f} m", fontsize=9)
+        gaps = [np.linalg.norm(poses[i + 1:, :2] - poses[i, :2], axis=1) for i in range(count - 1)]
+        gap = f"mean gap {np.concatenate(gaps).mean():.2f} m" if count > 1 else "one sample"
+        ax.set_title(f"{count} samples {label}: {len(np.unique(poses.round(6), axis=0))} distinct, {gap}",
+                     fontsize=9)
         ax.set_aspect("equal")
         ax.set_xlabel("x (m)")
     axes[0].set_ylabel("y (m)")

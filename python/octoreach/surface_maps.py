@@ -7,7 +7,7 @@ from . import arms as _arms
 from ._core import CapabilityMap, Robot, Surface, SurfaceMap
 
 
-def build(robot: Robot, arm, surface: Surface, resolution: float = 0.05, theta_bins: int = 16, z_range=None,
+def build(robot: Robot, arm, surface: Surface, resolution: float = None, theta_bins: int = 16, z_range=None,
           reference=None, grasps="upper_hemisphere", reference_frame: str = "", directions: int = 200,
           seed: int = 0, check_body: bool = True, check_arm: bool = True, grasp_height: float = 0.05,
           threads: int = 0,
@@ -16,16 +16,22 @@ def build(robot: Robot, arm, surface: Surface, resolution: float = 0.05, theta_b
 
     Base poses (x, y, z, theta) are of `reference_frame` (default: the robot's root link, e.g.
     base_footprint) in the world frame. z_range=(0, 0) evaluates a robot standing on the floor.
-    `reference` fixes the joints off the arm (default: home with the other arm tucked). Grasp points
+    `reference` fixes the joints off the arm (default: home with the other arm tucked, whether the arm is
+    given by name or as a CapabilityMap). resolution defaults to the capability map's (0.05 m when the map
+    is built here). Grasp points
     lie `grasp_height` above the surface (the tool holds an object standing on it).
     """
     if isinstance(arm, CapabilityMap):
         cap = arm
         if reference is None:
-            reference = robot.home()
+            reference = _arms.default_reference(robot, (cap.base_link, cap.tip_link))
+        if resolution is None:
+            resolution = cap.resolution
     else:
         if reference is None:
             reference = _arms.default_reference(robot, arm)
+        if resolution is None:
+            resolution = 0.05
         cap = _arms.capability_map(robot, arm, resolution=resolution, directions=directions, seed=seed,
                                    reference=reference, progress=progress)
     return SurfaceMap._build(robot, cap, surface, reference_frame=reference_frame, grasps=grasps,
@@ -67,8 +73,9 @@ def direct_reachability(robot: Robot, capability_map: CapabilityMap, surface: Su
     roles = link_roles(robot, chain)
     slab = surface.obstacles()
     targets = surface.points(res) + grasp_height * np.asarray(surface.normal)
-    dirs = capability_map.orientations.directions
-    ids = capability_map.orientations.subset(grasps) if isinstance(grasps, str) else list(grasps)
+    dirs_ids = capability_map.orientations.subset(grasps) if isinstance(grasps, str) else list(grasps)
+    rolls = capability_map.orientations.rolls
+    ids = [d * rolls + r for d in dirs_ids for r in range(rolls)]  # orientation indices, as the C++ build
     rots = np.array([capability_map.orientations.rotation(i, axis) for i in ids])
     link_poses = robot.link_poses(reference)
     root_in_ref = np.linalg.inv(link_poses[frame])
@@ -92,7 +99,7 @@ def direct_reachability(robot: Robot, capability_map: CapabilityMap, surface: Su
                 T[:3, 3] = t
                 Ts[n] = world_to_arm @ T
                 n += 1
-        _, ok = chain.ik_batch(Ts, mode="approach", approach_axis=axis, attempts=attempts, rng_seed=seed,
+        _, ok = chain.ik_batch(Ts, mode="approach" if rolls == 1 else "full", approach_axis=axis, attempts=attempts, rng_seed=seed,
                                position_tolerance=1e-3, orientation_tolerance=1e-2, self_collision=True,
                                reference=reference, obstacles=slab, base_pose=root, obstacle_links=roles["arm"])
         out[k] = ok.reshape(len(targets), len(ids)).mean(axis=1).mean()

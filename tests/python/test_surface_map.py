@@ -88,9 +88,12 @@ def test_reachability_is_r_s_in_unit_interval(arm_setup):
 
 
 def test_combine_max_and_min(arm_setup):
+    # Two "arms" for the same table: capability maps with other direction sets stand in for them.
     robot, cap, table, sm = arm_setup
-    other = octoreach.SurfaceMap.build(robot, cap, octoreach.Surface.rectangle(0.4, 0.4, 0.4, x=-0.5), resolution=0.1,
-                                       z_range=(0, 0), progress=False)
+    cap2 = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.1, directions=24,
+                                         progress=False, seed=5)
+    other = octoreach.SurfaceMap.build(robot, cap2, table, resolution=0.1, z_range=(0, 0), progress=False)
+    assert not np.allclose(other.reachability(_sample_poses(sm, 30, 5)), sm.reachability(_sample_poses(sm, 30, 5)))
     hi = octoreach.SurfaceMap.combine([sm, other], "max")
     lo = octoreach.SurfaceMap.combine([sm, other], "min")
     poses = np.vstack([_sample_poses(sm, 30, 5), _sample_poses(other, 30, 6)])
@@ -111,6 +114,10 @@ def test_combine_rejects_mismatched_maps(arm_setup, pr2_setup):
     fewer = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.1, theta_bins=8, z_range=(0, 0), progress=False)
     with pytest.raises(ValueError, match="theta"):
         octoreach.SurfaceMap.combine([sm, fewer], "max")
+    elsewhere = octoreach.SurfaceMap.build(robot, cap, octoreach.Surface.rectangle(0.4, 0.4, 0.4, x=-0.5),
+                                           resolution=0.1, z_range=(0, 0), progress=False)
+    with pytest.raises(ValueError, match="surfaces"):
+        octoreach.SurfaceMap.combine([sm, elsewhere], "max")
 
 
 def test_bad_polygons():
@@ -124,6 +131,10 @@ def test_bad_polygons():
         octoreach.Surface(np.array([[0, 0, np.nan], [1, 0, 0.7], [1, 1, 0.7]]))
     with pytest.raises(ValueError):
         octoreach.Surface(np.zeros((4, 2)))
+    with pytest.raises(ValueError, match="self-intersecting"):  # a vertex touching another edge
+        octoreach.Surface(np.array([[0, 0, 0.7], [2, 0, 0.7], [2, 2, 0.7], [1, 0, 0.7], [0, 2, 0.7]]))
+    with pytest.raises(ValueError, match="self-intersecting"):  # a spike folding back
+        octoreach.Surface(np.array([[0, 0, 0.7], [2, 0, 0.7], [2, 2, 0.7], [2, 1, 0.7], [2, 3, 0.7], [0, 3, 0.7]]))
 
 
 def test_non_convex_and_tilted_surfaces(arm_setup):
@@ -173,6 +184,13 @@ def test_save_load_and_damaged_files(arm_setup, tmp_path):
 
 def test_lookup_shapes(arm_setup):
     _, _, _, sm = arm_setup
+    pose = _sample_poses(sm, 1, 9)
+    below = pose.copy()
+    below[0, 2] = -1e-12  # a floor robot's height after a transform: clipped into the z range
+    assert sm.reachability(below)[0] == sm.reachability(pose)[0] > 0
+    turned = pose.copy()
+    turned[0, 3] += 2 * np.pi * 1000
+    assert sm.reachability(turned)[0] == pytest.approx(sm.reachability(pose)[0])
     with pytest.raises(ValueError, match=r"\(N, 4\)"):
         sm.reachability(np.zeros((3, 3)))
     assert sm.reachability(np.array([[np.nan, 0, 0, 0]]))[0] == 0

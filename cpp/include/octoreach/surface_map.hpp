@@ -3,6 +3,7 @@
 /// \brief Surface inverse reachability maps (Hertle & Nebel): base poses from which a robot's arm
 /// reaches a large share of a working surface.
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <string>
@@ -54,8 +55,11 @@ class SurfaceMap {
   static SurfaceMap load(const std::string& path);
   void save(const std::string& path) const;
 
-  /// \brief R_S of base pose (x, y, z, theta) of the reference frame (world frame); 0 outside.
-  double reachability(double x, double y, double z, double theta) const { return map_.value(x, y, z, theta); }
+  /// \brief R_S of base pose (x, y, z, theta) of the reference frame (world frame); 0 outside. Heights
+  /// are clipped into z_range() first, as in the build (a floor robot's z of -1e-12 is z = 0).
+  double reachability(double x, double y, double z, double theta) const {
+    return map_.value(x, y, std::min(std::max(z, z_min_), z_max_), theta);
+  }
   const PoseMap& map() const { return map_; }
   const SurfaceMapStats& stats() const { return stats_; }
   const std::string& robot_name() const { return robot_name_; }
@@ -78,6 +82,8 @@ class SurfaceMap {
   std::uint64_t urdf_hash_ = 0;
   std::vector<Eigen::Vector3d> polygon_;
   double z_min_ = -1e9, z_max_ = 1e9;
+  double grasp_height_ = 0.05;
+  std::string checks_ = "body+arm";
 };
 
 }  // namespace octoreach

@@ -96,6 +96,10 @@ class DenseIndex {
       first = false;
     }
     if (first) return;
+    std::size_t leaves = 0;
+    for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) leaves += it->payload != kNone;
+    // Sparse maps with a large box (two tables far apart) keep the octree rather than a mostly empty table.
+    max_cells = std::min(max_cells, 16 * leaves + (std::size_t(1) << 20));
     std::size_t cells = 1;
     for (int a = 0; a < 3; ++a) {
       dim_[a] = hi_[a] - lo_[a] + 1;
