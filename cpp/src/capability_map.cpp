@@ -10,7 +10,6 @@
 #include <random>
 #include <unordered_set>
 
-#include <octomap/ColorOcTree.h>
 
 #include "map_io.hpp"
 #include "octoreach/ik.hpp"
@@ -443,37 +442,6 @@ std::vector<std::pair<std::string, std::string>> CapabilityMap::parameters() con
           {"octoreach_version", version()}};
 }
 
-namespace {
-
-// Octree structure: per node a child mask; at the finest depth the leaf record follows.
-template <class LeafWriter>
-void write_tree(const VoxelOcTree& tree, const VoxelNode* node, unsigned depth, detail::ByteWriter& w,
-                LeafWriter&& leaf) {
-  if (depth == tree.getTreeDepth()) {
-    leaf(*node);
-    return;
-  }
-  std::uint8_t mask = 0;
-  for (unsigned i = 0; i < 8; ++i)
-    if (tree.nodeChildExists(node, i)) mask |= static_cast<std::uint8_t>(1u << i);
-  w.put(mask);
-  for (unsigned i = 0; i < 8; ++i)
-    if (mask & (1u << i)) write_tree(tree, tree.getNodeChild(node, i), depth + 1, w, leaf);
-}
-
-template <class LeafReader>
-void read_tree(VoxelOcTree& tree, VoxelNode* node, unsigned depth, detail::ByteReader& r, LeafReader&& leaf) {
-  if (depth == tree.getTreeDepth()) {
-    leaf(*node);
-    return;
-  }
-  auto mask = r.get<std::uint8_t>();
-  if (mask == 0) r.fail("damaged map data (empty inner node)");
-  for (unsigned i = 0; i < 8; ++i)
-    if (mask & (1u << i)) read_tree(tree, tree.createNodeChild(node, i), depth + 1, r, leaf);
-}
-
-}  // namespace
 
 void CapabilityMap::save(const std::string& path, bool with_solutions) const {
   detail::Header h;
@@ -573,19 +541,6 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   return m;
 }
 
-void CapabilityMap::export_octovis(const std::string& path) const {
-  octomap::ColorOcTree color(resolution_);
-  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
-    double v = it->getValue();
-    octomap::ColorOcTreeNode* n = color.updateNode(it.getKey(), true);
-    // red (low) -> blue (high), as in the paper's figures
-    n->setColor(static_cast<std::uint8_t>(255 * (1 - v)), static_cast<std::uint8_t>(80 * std::sin(M_PI * v)),
-                static_cast<std::uint8_t>(255 * v));
-  }
-  color.updateInnerOccupancy();
-  std::string tmp = path + ".tmp";
-  if (!color.write(tmp)) throw FileError("cannot write '" + path + "'");
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw FileError("cannot write '" + path + "' (rename failed)");
-}
+void CapabilityMap::export_octovis(const std::string& path) const { detail::write_color_octree(*tree_, 1.0, path); }
 
 }  // namespace octoreach

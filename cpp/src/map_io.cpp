@@ -4,6 +4,9 @@
 #include <fstream>
 #include <sstream>
 
+#include <cmath>
+
+#include <octomap/ColorOcTree.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -161,6 +164,27 @@ std::string header_string(const Header& h, const std::string& key, const std::st
   auto it = h.find(key);
   if (it == h.end()) throw FileError("'" + path + "' lacks header entry '" + key + "'");
   return it->second;
+}
+
+void write_color_octree(const VoxelOcTree& tree, double top, const std::string& path) {
+  octomap::ColorOcTree color(tree.getResolution());
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    double v = std::min(1.0, std::max(0.0, it->getValue() / top));
+    octomap::ColorOcTreeNode* n = color.updateNode(it.getKey(), true);
+    // red (low) -> blue (high), as in the paper's figures
+    n->setColor(static_cast<std::uint8_t>(255 * (1 - v)), static_cast<std::uint8_t>(80 * std::sin(M_PI * v)),
+                static_cast<std::uint8_t>(255 * v));
+  }
+  color.updateInnerOccupancy();
+  std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  if (!color.write(tmp)) {
+    std::remove(tmp.c_str());
+    throw FileError("cannot write '" + path + "'");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw FileError("cannot write '" + path + "' (rename failed)");
+  }
 }
 
 }  // namespace octoreach::detail

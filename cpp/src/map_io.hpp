@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "octoreach/types.hpp"
+#include "octoreach/voxel_octree.hpp"
 
 namespace octoreach::detail {
 
@@ -78,5 +79,37 @@ long long header_int(const Header& h, const std::string& key, const std::string&
 std::string header_string(const Header& h, const std::string& key, const std::string& path);
 std::uint64_t header_u64(const Header& h, const std::string& key, const std::string& path);
 std::string format_double(double v);
+
+/// Octree structure of a voxel tree: per inner node a child mask; at the finest depth `leaf(node)`
+/// writes the voxel's record.
+template <class LeafWriter>
+void write_tree(const VoxelOcTree& tree, const VoxelNode* node, unsigned depth, ByteWriter& w, LeafWriter&& leaf) {
+  if (depth == tree.getTreeDepth()) {
+    leaf(*node);
+    return;
+  }
+  std::uint8_t mask = 0;
+  for (unsigned i = 0; i < 8; ++i)
+    if (tree.nodeChildExists(node, i)) mask |= static_cast<std::uint8_t>(1u << i);
+  w.put(mask);
+  for (unsigned i = 0; i < 8; ++i)
+    if (mask & (1u << i)) write_tree(tree, tree.getNodeChild(node, i), depth + 1, w, leaf);
+}
+
+/// Reads what write_tree wrote below `node`; an empty inner node is damage.
+template <class LeafReader>
+void read_tree(VoxelOcTree& tree, VoxelNode* node, unsigned depth, ByteReader& r, LeafReader&& leaf) {
+  if (depth == tree.getTreeDepth()) {
+    leaf(*node);
+    return;
+  }
+  auto mask = r.get<std::uint8_t>();
+  if (mask == 0) r.fail("damaged map data (empty inner node)");
+  for (unsigned i = 0; i < 8; ++i)
+    if (mask & (1u << i)) read_tree(tree, tree.createNodeChild(node, i), depth + 1, r, leaf);
+}
+
+/// Writes the leaves as an octomap ColorOcTree (.ot) coloured red (0) to blue (`top`), atomically.
+void write_color_octree(const VoxelOcTree& tree, double top, const std::string& path);
 
 }  // namespace octoreach::detail

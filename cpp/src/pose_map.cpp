@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include <octomap/ColorOcTree.h>
 
 #include "map_io.hpp"
 
@@ -97,33 +96,6 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> PoseMap::bounds() const {
 
 double PoseMap::max_value() const { return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end()); }
 
-namespace {
-template <class LeafWriter>
-void write_tree(const VoxelOcTree& tree, const VoxelNode* node, unsigned depth, detail::ByteWriter& w, LeafWriter&& leaf) {
-  if (depth == tree.getTreeDepth()) {
-    leaf(*node);
-    return;
-  }
-  std::uint8_t mask = 0;
-  for (unsigned i = 0; i < 8; ++i)
-    if (tree.nodeChildExists(node, i)) mask |= static_cast<std::uint8_t>(1u << i);
-  w.put(mask);
-  for (unsigned i = 0; i < 8; ++i)
-    if (mask & (1u << i)) write_tree(tree, tree.getNodeChild(node, i), depth + 1, w, leaf);
-}
-
-template <class LeafReader>
-void read_tree(VoxelOcTree& tree, VoxelNode* node, unsigned depth, detail::ByteReader& r, LeafReader&& leaf) {
-  if (depth == tree.getTreeDepth()) {
-    leaf(*node);
-    return;
-  }
-  auto mask = r.get<std::uint8_t>();
-  if (mask == 0) r.fail("damaged map data (empty inner node)");
-  for (unsigned i = 0; i < 8; ++i)
-    if (mask & (1u << i)) read_tree(tree, tree.createNodeChild(node, i), depth + 1, r, leaf);
-}
-}  // namespace
 
 void PoseMap::save(const std::string& path, const std::string& kind, const std::map<std::string, std::string>& header) const {
   detail::Header h(header.begin(), header.end());
@@ -182,18 +154,7 @@ PoseMap PoseMap::load(const std::string& path, const std::string& kind, std::map
 }
 
 void PoseMap::export_octovis(const std::string& path) const {
-  octomap::ColorOcTree color(resolution_);
-  double top = std::max(1e-9, max_value());
-  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
-    double v = it->getValue() / top;
-    octomap::ColorOcTreeNode* n = color.updateNode(it.getKey(), true);
-    n->setColor(static_cast<std::uint8_t>(255 * (1 - v)), static_cast<std::uint8_t>(80 * std::sin(M_PI * v)),
-                static_cast<std::uint8_t>(255 * v));
-  }
-  color.updateInnerOccupancy();
-  std::string tmp = path + ".tmp";
-  if (!color.write(tmp)) throw FileError("cannot write '" + path + "'");
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw FileError("cannot write '" + path + "' (rename failed)");
+  detail::write_color_octree(*tree_, std::max(1e-9, max_value()), path);
 }
 
 }  // namespace octoreach
