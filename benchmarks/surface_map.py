@@ -60,8 +60,12 @@ def run(res: float, directions: int, samples: int) -> dict:
                                                             reference=refs[arm], progress=False))
         maps[arm] = sm
         t_total += t_pm + t_sm
+        with tempfile.TemporaryDirectory() as d:
+            pm.save(os.path.join(d, "point.orpm"))
+            pm_bytes = os.path.getsize(os.path.join(d, "point.orpm"))
         out[arm] = {"point_map_s": round(t_pm, 3), "point_map_poses": int(pm.pose_count),
-                    "point_map_voxels": int(pm.voxel_count), "surface_map_s": round(t_sm, 2), **sm.stats}
+                    "point_map_voxels": int(pm.voxel_count), "point_map_file_bytes": pm_bytes,
+                    "surface_map_s": round(t_sm, 2), **sm.stats}
     combined, t_c = timed(lambda: octoreach.SurfaceMap.combine([maps["right_arm"], maps["left_arm"]], "max"))
     both, _ = timed(lambda: octoreach.SurfaceMap.combine([maps["right_arm"], maps["left_arm"]], "min"))
     t_total += t_c
