@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "../cpp/src/parallel.hpp"
 #include "octoreach/types.hpp"
 
 namespace octoreach::py_bindings {
@@ -89,6 +90,25 @@ inline ProgressCallback progress_from(const py::object& cb) {
     py::object r = cb(done, total);
     return r.is_none() ? true : r.cast<bool>();
   };
+}
+
+/// Values (N,) of f(x, y, z, theta) over pose rows (N, 4), computed without the GIL and on every core
+/// for large batches: the lookup path of pose and surface maps.
+template <class F>
+py::array_t<double> pose_rows_lookup(const py::object& poses, F&& f) {
+  Array a = Array::ensure(poses);
+  if (!a || a.ndim() != 2 || a.shape(1) != 4) throw std::invalid_argument("poses must have shape (N, 4): x, y, z, theta");
+  std::size_t n = a.shape(0);
+  py::array_t<double> out(n);
+  const double* p = a.data();
+  double* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    detail::parallel_for(n, n > 20000 ? 0 : 1, [&](std::size_t i, int) {
+      o[i] = f(p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]);
+    }, 4096);
+  }
+  return out;
 }
 
 void wrap_collision(py::module_& m);

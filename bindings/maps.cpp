@@ -2,7 +2,6 @@
 #include "common.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/point_map.hpp"
-#include "../cpp/src/parallel.hpp"
 
 namespace octoreach::py_bindings {
 
@@ -44,16 +43,9 @@ py::dict stats_dict(const BuildStats& s) {
   return d;
 }
 
-// (N, 4) rows x, y, z, theta -> values (N,) of a pose map, GIL released.
+// (N, 4) rows x, y, z, theta -> values (N,) of a pose map.
 py::array_t<double> pose_map_lookup(const PoseMap& pm, const py::object& poses) {
-  Array a = Array::ensure(poses);
-  if (!a || a.ndim() != 2 || a.shape(1) != 4) throw std::invalid_argument("poses must have shape (N, 4): x, y, z, theta");
-  std::size_t n = a.shape(0);
-  py::array_t<double> out(n);
-  const double* p = a.data();
-  double* o = out.mutable_data();
-  batch(n, [&](std::size_t i) { o[i] = pm.value(p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]); });
-  return out;
+  return pose_rows_lookup(poses, [&](double x, double y, double z, double t) { return pm.value(x, y, z, t); });
 }
 
 py::tuple pose_map_voxels(const PoseMap& pm) {

@@ -3,7 +3,6 @@
 #include "octoreach/pose_sampler.hpp"
 #include "octoreach/surface.hpp"
 #include "octoreach/surface_map.hpp"
-#include "../cpp/src/parallel.hpp"
 
 namespace octoreach::py_bindings {
 namespace {
@@ -16,19 +15,7 @@ std::vector<Eigen::Vector3d> vertices_from(const py::object& obj) {
 }
 
 py::array_t<double> lookup(const SurfaceMap& sm, const py::object& poses) {
-  Array a = Array::ensure(poses);
-  if (!a || a.ndim() != 2 || a.shape(1) != 4) throw std::invalid_argument("poses must have shape (N, 4): x, y, z, theta");
-  std::size_t n = a.shape(0);
-  py::array_t<double> out(n);
-  const double* p = a.data();
-  double* o = out.mutable_data();
-  {
-    py::gil_scoped_release release;
-    detail::parallel_for(n, n > 20000 ? 0 : 1, [&](std::size_t i, int) {
-      o[i] = sm.reachability(p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]);
-    }, 4096);
-  }
-  return out;
+  return pose_rows_lookup(poses, [&](double x, double y, double z, double t) { return sm.reachability(x, y, z, t); });
 }
 
 }  // namespace
