@@ -3,7 +3,7 @@
 # Runs as root or through sudo. Used by `make demo` and `make test`.
 set -euo pipefail
 PACKAGES=(
-  build-essential cmake git pkg-config
+  build-essential cmake ninja-build git pkg-config
   python3 python3-dev python3-venv python3-pip
   libeigen3-dev liboctomap-dev liborocos-kdl-dev liburdfdom-dev libtinyxml-dev
   libfcl-dev libccd-dev libqhull-dev libassimp-dev libgtest-dev zlib1g-dev
