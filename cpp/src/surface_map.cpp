@@ -424,6 +424,14 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
   out.grasp_height_ = first.grasp_height_;
   out.checks_ = first.checks_;
   out.stats_.surface_points = first.stats_.surface_points;
+  for (const SurfaceMap* m : maps) {  // the combination's cost and scale are those of its parts
+    out.stats_.seconds += m->stats_.seconds;
+    out.stats_.base_poses += m->stats_.base_poses;
+    out.stats_.candidate_poses += m->stats_.candidate_poses;
+    out.stats_.valid_poses += m->stats_.valid_poses;
+    out.stats_.body_collisions += m->stats_.body_collisions;
+    out.stats_.arm_rejections += m->stats_.arm_rejections;
+  }
   out.grasp_name_ = first.grasp_name_;
   out.map_ = PoseMap(first.map_.resolution(), T);
   for (std::size_t i = 0; i < maps.size(); ++i) out.arms_ += (i ? " " + mode + " " : "") + maps[i]->arms_;

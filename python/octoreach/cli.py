@@ -39,6 +39,143 @@ def _cmd_ik(args) -> int:
     return 0
 
 
+def _arm_arg(args):
+    """An arm name (SRDF group or known arm) or BASE,TIP[,AX,AY,AZ]."""
+    if args.arm is None:
+        if not (args.base and args.tip):
+            raise ValueError("give --arm NAME, or --base LINK --tip LINK")
+        return (args.base, args.tip, tuple(args.approach_axis))
+    return args.arm
+
+
+def _surface(args):
+    import json
+    from ._core import Surface
+
+    if args.polygon:
+        try:
+            with open(args.polygon) as f:
+                text = f.read()
+        except OSError as e:
+            raise OSError(f"cannot read polygon file {args.polygon!r}: {e.strerror}") from None
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError:
+            try:
+                import yaml  # optional
+
+                data = yaml.safe_load(text)
+            except ImportError:
+                raise ValueError(f"polygon file {args.polygon!r} is not JSON (YAML needs PyYAML)") from None
+            except Exception as e:  # noqa: BLE001 - any YAML error is a malformed file
+                raise ValueError(f"polygon file {args.polygon!r} is malformed: {e}") from None
+        vertices = data.get("vertices") if isinstance(data, dict) else data
+        thickness = data.get("thickness", 0.03) if isinstance(data, dict) else 0.03
+        try:
+            vertices = np.asarray(vertices, dtype=float)
+        except (TypeError, ValueError):
+            raise ValueError(f"polygon file {args.polygon!r}: 'vertices' must be a list of [x, y, z]") from None
+        return Surface(vertices, thickness)
+    sx, sy, h = args.table
+    return Surface.rectangle(sx, sy, h, args.table_x, args.table_y, np.radians(args.table_yaw))
+
+
+def _cmd_capability(args) -> int:
+    from . import arms
+
+    robot = _load_robot(args)
+    cap = arms.capability_map(robot, _arm_arg(args), resolution=args.resolution, directions=args.directions,
+                              seed=args.seed, progress=not args.quiet)
+    cap.save(args.out, with_solutions=args.with_solutions)
+    if args.octovis:
+        cap.export_octovis(args.octovis)
+    print(f"{cap!r}: {cap.stats['reachable_cells']} reachable cells in {cap.stats['seconds']:.1f} s -> {args.out}")
+    return 0
+
+
+def _cmd_surface(args) -> int:
+    from ._core import CapabilityMap, SurfaceMap
+
+    robot = _load_robot(args)
+    surface = _surface(args)
+    maps = []
+    for arm in args.arms:
+        source = CapabilityMap.load(arm) if arm.endswith(".orcm") else arm
+        if isinstance(source, CapabilityMap) and not source.has_solutions:
+            raise ValueError(f"{arm}: the capability map was saved without joint solutions (--with-solutions)")
+        maps.append(SurfaceMap.build(robot, source, surface, resolution=args.resolution, theta_bins=args.theta_bins,
+                                     z_range=(args.z, args.z), directions=args.directions, seed=args.seed,
+                                     progress=not args.quiet))
+    smap = maps[0] if len(maps) == 1 else SurfaceMap.combine(maps, args.combine)
+    if smap.voxel_count == 0:
+        print(f"octoreach: warning: empty surface map: {smap.empty_reason}", file=sys.stderr)
+    smap.save(args.out)
+    if args.octovis:
+        smap.export_octovis(args.octovis)
+    if args.plot:
+        from . import plots
+
+        plots.surface_slices(smap, args.plot)
+    print(f"{smap!r}: best R_S {smap.max_reachability:.3f} -> {args.out}")
+    return 0
+
+
+def _load_any_map(path):
+    from ._core import CapabilityMap, InversePointMap, SurfaceMap
+
+    errors = []
+    for cls in (SurfaceMap, CapabilityMap, InversePointMap):
+        try:
+            return cls.load(path)
+        except OSError as e:
+            if "holds a" not in str(e):
+                raise
+            errors.append(str(e))
+    raise OSError(errors[-1])
+
+
+def _cmd_info(args) -> int:
+    m = _load_any_map(args.map)
+    print(repr(m))
+    for k, v in sorted(m.parameters.items()):
+        print(f"  {k}: {v}")
+    centres, values = m.voxels()
+    values = np.asarray(values)
+    if values.size:
+        print(f"  values: min {values[values > 0].min():.4f}, max {values.max():.4f}, voxels {len(centres)}")
+    lo, hi = m.bounds
+    print(f"  bounds: {np.round(lo, 3).tolist()} .. {np.round(hi, 3).tolist()}")
+    return 0
+
+
+def _cmd_export(args) -> int:
+    m = _load_any_map(args.map)
+    m.export_octovis(args.out)
+    print(f"wrote {args.out} (open with octovis)")
+    return 0
+
+
+def _cmd_query(args) -> int:
+    from ._core import SurfaceMap
+
+    smap = SurfaceMap.load(args.map)
+    poses = np.asarray(args.pose, dtype=float).reshape(-1, 4)
+    for pose, r in zip(poses, smap.reachability(poses)):
+        print(f"{pose[0]:+.3f} {pose[1]:+.3f} {pose[2]:+.3f} {pose[3]:+.3f}  R_S={r:.4f}")
+    return 0
+
+
+def _cmd_sample(args) -> int:
+    from ._core import PoseSampler, SurfaceMap
+
+    smap = SurfaceMap.load(args.map)
+    sampler = PoseSampler(smap, candidates=args.candidates, seed=args.seed)
+    poses = sampler.sample(args.count)
+    for pose, r in zip(poses, smap.reachability(poses)):
+        print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="octoreach", description="Where a robot should stand and where it should look.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -62,6 +199,70 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--approach-axis", type=float, nargs=3, default=[0, 0, 1])
     sp.add_argument("--seed", type=int, default=0)
     sp.set_defaults(func=_cmd_ik)
+
+    def arm_args(sp, many=False):
+        if many:
+            sp.add_argument("--arms", nargs="+", default=["right_arm"],
+                            help="arm names (SRDF groups, e.g. right_arm left_arm) or saved capability maps (.orcm "
+                                 "with solutions); several are combined (default: right_arm)")
+        else:
+            sp.add_argument("--arm", help="arm name (SRDF group or known arm, e.g. right_arm)")
+            sp.add_argument("--base", help="chain base link (instead of --arm)")
+            sp.add_argument("--tip", help="chain tip (tool) link (instead of --arm)")
+            sp.add_argument("--approach-axis", type=float, nargs=3, default=[0, 0, 1],
+                            help="tool axis that approaches the object, tip frame (default 0 0 1)")
+        sp.add_argument("--resolution", type=float, default=0.05, help="voxel edge in m (default 0.05)")
+        sp.add_argument("--directions", type=int, default=200, help="approach directions (default 200)")
+        sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+        sp.add_argument("--quiet", action="store_true", help="no progress bar")
+        sp.add_argument("--octovis", help="also write a colour octree (.ot) for octovis")
+
+    sp = sub.add_parser("capability", help="build an arm's capability map")
+    robot_args(sp)
+    arm_args(sp)
+    sp.add_argument("--with-solutions", action="store_true", help="store joint solutions (needed for surface maps)")
+    sp.add_argument("--out", required=True, help="output map file (.orcm)")
+    sp.set_defaults(func=_cmd_capability)
+
+    sp = sub.add_parser("surface", help="build a surface map for a table or shelf polygon")
+    robot_args(sp)
+    arm_args(sp, many=True)
+    sp.add_argument("--table", type=float, nargs=3, default=[1.4, 0.65, 0.72], metavar=("SX", "SY", "HEIGHT"),
+                    help="rectangular table: sizes and top height in m (default 1.4 0.65 0.72)")
+    sp.add_argument("--table-x", type=float, default=0.0, help="table centre x (m)")
+    sp.add_argument("--table-y", type=float, default=0.0, help="table centre y (m)")
+    sp.add_argument("--table-yaw", type=float, default=0.0, help="table yaw (degrees)")
+    sp.add_argument("--polygon", help="JSON (or YAML) file: a list of [x, y, z] vertices, or "
+                                      "{\"vertices\": [...], \"thickness\": 0.03}; replaces --table")
+    sp.add_argument("--theta-bins", type=int, default=16, help="orientation bins (default 16)")
+    sp.add_argument("--z", type=float, default=0.0, help="height of the robot's reference frame (default 0: floor)")
+    sp.add_argument("--combine", choices=["max", "min"], default="max",
+                    help="several arms: max = any arm reaches, min = both reach (default max)")
+    sp.add_argument("--plot", help="also write a PNG of the map's slices")
+    sp.add_argument("--out", required=True, help="output map file (.orsm)")
+    sp.set_defaults(func=_cmd_surface)
+
+    sp = sub.add_parser("info", help="print a map file's parameters, robot, size and value range")
+    sp.add_argument("map", help="a capability (.orcm), point (.orpm) or surface (.orsm) map file")
+    sp.set_defaults(func=_cmd_info)
+
+    sp = sub.add_parser("export", help="write a map as a colour octree (.ot) for octovis")
+    sp.add_argument("map", help="a map file")
+    sp.add_argument("--out", required=True, help="output .ot file")
+    sp.set_defaults(func=_cmd_export)
+
+    sp = sub.add_parser("query", help="R_S of base poses in a surface map (the condition attachment)")
+    sp.add_argument("map", help="a surface map file")
+    sp.add_argument("--pose", type=float, nargs=4, action="append", required=True, metavar=("X", "Y", "Z", "THETA"),
+                    help="a base pose (m, m, m, rad); repeatable")
+    sp.set_defaults(func=_cmd_query)
+
+    sp = sub.add_parser("sample", help="sample well spread base poses from a surface map (the grounding attachment)")
+    sp.add_argument("map", help="a surface map file")
+    sp.add_argument("--count", type=int, default=5, help="poses to sample (default 5)")
+    sp.add_argument("--candidates", type=int, default=40, help="valid candidates per pose (default 40)")
+    sp.add_argument("--seed", type=int, default=0)
+    sp.set_defaults(func=_cmd_sample)
     return p
 
 
@@ -69,7 +270,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (ValueError, OSError) as e:
+    except (ValueError, OSError, RuntimeError) as e:
         print(f"octoreach: error: {e}", file=sys.stderr)
         return 2
 
