@@ -12,7 +12,7 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf -type f 2>/dev/null) \
            CMakeLists.txt pyproject.toml
 
-.PHONY: all demo demo-exploration test test-cpp test-python install sysdeps venv benchmarks clean
+.PHONY: all demo demo-exploration stubs test test-cpp test-python install sysdeps venv benchmarks clean
 
 all: install
 
@@ -55,6 +55,13 @@ benchmarks: install
 	$(PY) benchmarks/capability_map.py
 	$(PY) benchmarks/surface_map.py
 	$(PY) benchmarks/exploration.py
+
+# Regenerates the type stubs of the compiled module (python/octoreach/_core.pyi); review the diff:
+# SurfaceMap.build, which Python adds, is declared by hand after the generated class docstring.
+stubs: install
+	$(PIP) install -q pybind11-stubgen
+	$(VENV)/bin/pybind11-stubgen octoreach._core -o build/stubs
+	@echo "generated build/stubs/octoreach/_core.pyi: compare with python/octoreach/_core.pyi"
 
 clean:
 	rm -rf build $(VENV) demo_out

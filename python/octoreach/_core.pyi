@@ -1,0 +1,886 @@
+"""
+octoreach compiled core: robot model, IK, collision, reachability maps, exploration
+"""
+from __future__ import annotations
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+__all__: list[str] = ['CameraIntrinsics', 'Cancelled', 'CapabilityMap', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'Obstacles', 'OrientationSet', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'VoidCluster', 'accumulate_utility', 'next_best_view', 'view_utility']
+class Cancelled(KeyboardInterrupt):
+    pass
+class Obstacles:
+    """
+    Environment objects in the world frame (boxes, spheres, cylinders, meshes, OctoMaps).
+    """
+    def __init__(self) -> None:
+        ...
+    def __len__(self) -> int:
+        ...
+    def add_box(self, size: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], pose: typing.Any = None, name: str = '') -> None:
+        """
+        Adds a box of extents `size` (x, y, z) centred at `pose` (4x4, world frame).
+        """
+    def add_cylinder(self, radius: typing.SupportsFloat | typing.SupportsIndex, length: typing.SupportsFloat | typing.SupportsIndex, pose: typing.Any = None, name: str = '') -> None:
+        """
+        Adds a cylinder along the local z axis of `pose`.
+        """
+    def add_mesh(self, path: str, pose: typing.Any = None, scale: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ..., name: str = '') -> None:
+        """
+        Adds a mesh file (STL, DAE, OBJ ... read by assimp).
+        """
+    def add_octree_file(self, path: str, pose: typing.Any = None, name: str = '') -> None:
+        """
+        Adds the occupied cells of an OctoMap file (.bt or .ot).
+        """
+    def add_points(self, points: typing.Any, resolution: typing.SupportsFloat | typing.SupportsIndex, name: str = '') -> None:
+        """
+        Adds occupied cells at the given points (N, 3) as an OctoMap of the given resolution.
+        """
+    def add_sphere(self, radius: typing.SupportsFloat | typing.SupportsIndex, pose: typing.Any = None, name: str = '') -> None:
+        ...
+    def add_triangles(self, vertices: typing.Any, triangles: typing.Any, pose: typing.Any = None, name: str = '') -> None:
+        """
+        Adds a triangle mesh from arrays: vertices (N, 3) and triangles (M, 3) of vertex indices.
+        """
+    def collides_box(self, size: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], pose: typing.Any) -> bool:
+        """
+        True when a box of extents `size` at `pose` touches an obstacle.
+        """
+    @property
+    def names(self) -> list[str]:
+        ...
+class Chain:
+    """
+    Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).
+    """
+    def __repr__(self) -> str:
+        ...
+    def fk(self, q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Pose (4x4) of the tip link in the base link frame.
+        """
+    def fk_batch(self, Q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Tip poses (N, 4, 4) in the base link frame for joint rows Q (N, dof).
+        """
+    def ik(self, T: typing.Any, seed: typing.Any = None, mode: str = 'full', position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, attempts: typing.SupportsInt | typing.SupportsIndex = 20, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100, rng_seed: typing.SupportsInt | typing.SupportsIndex = 0, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ..., self_collision: bool = False, obstacles: Obstacles = None, base_pose: typing.Any = None, reference: typing.Any = None, obstacle_links: typing.Any = None) -> typing.Any:
+        """
+        Joint vector reaching the 4x4 tip pose T (base link frame), or None.
+        
+        mode: 'full' (position and orientation), 'position', or 'approach' (position and the tip's
+        approach_axis, any roll about it). Restarts from random configurations inside the limits;
+        deterministic for rng_seed. self_collision / obstacles reject colliding solutions (obstacles in the
+        world frame, the robot's root at base_pose; obstacle_links restricts that check to the named links);
+        joints outside the chain take their values from `reference` (default robot.home()).
+        """
+    def ik_batch(self, Ts: typing.Any, seeds: typing.Any = None, mode: str = 'full', position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, attempts: typing.SupportsInt | typing.SupportsIndex = 20, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100, rng_seed: typing.SupportsInt | typing.SupportsIndex = 0, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ..., self_collision: bool = False, obstacles: Obstacles = None, base_pose: typing.Any = None, reference: typing.Any = None, obstacle_links: typing.Any = None, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], numpy.typing.NDArray[numpy.bool]]:
+        """
+        IK of poses Ts (N, 4, 4) on every core. Returns (Q of shape (N, dof) with NaN rows where it failed,
+        success mask (N,)). Item i uses a random stream derived from rng_seed and i.
+        """
+    def jacobian(self, q: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        Geometric Jacobian (6, dof), rows vx vy vz wx wy wz, in the base link frame.
+        """
+    def link_mask(self, link: str) -> int:
+        """
+        Bit i set when chain joint i moves `link`: 0 for links the chain does not move, all bits for links
+        rigid with the tip (a gripper).
+        """
+    def random_configuration(self, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    def to_robot_configuration(self, q: typing.Any, reference: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Full robot configuration with this chain's joints set to q, the rest from `reference` (default home).
+        """
+    def within_limits(self, arg0: typing.Any) -> bool:
+        ...
+    def wrap(self, arg0: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Continuous joints wrapped into [-pi, pi), revolute joints shifted by 2 pi into their limits where possible.
+        """
+    @property
+    def base_link(self) -> str:
+        ...
+    @property
+    def continuous(self) -> list[bool]:
+        ...
+    @property
+    def dof(self) -> int:
+        ...
+    @property
+    def joint_names(self) -> list[str]:
+        ...
+    @property
+    def lower(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Lower joint limits (-inf for continuous joints).
+        """
+    @property
+    def robot_indices(self) -> list[int]:
+        """
+        Positions of this chain's joints in the robot configuration vector.
+        """
+    @property
+    def tip_link(self) -> str:
+        ...
+    @property
+    def upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Upper joint limits (+inf for continuous joints).
+        """
+class Robot:
+    """
+    Robot model from a URDF: links, joints, collision shapes.
+    """
+    @staticmethod
+    def from_urdf(urdf: str, package_dirs: collections.abc.Sequence[str] = [], srdf: typing.Any = None) -> Robot:
+        """
+        Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through
+        package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs.
+        """
+    def __repr__(self) -> str:
+        ...
+    def allow_collision(self, link_a: str, link_b: str) -> None:
+        ...
+    def chain(self, base_link: str, tip_link: str) -> Chain:
+        ...
+    def compute_allowed_collisions(self, samples: typing.SupportsInt | typing.SupportsIndex = 2000, seed: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None) -> int:
+        """
+        Allows the link pairs never or always in collision over random configurations; returns how many.
+        """
+    def configuration(self, values: collections.abc.Mapping[str, typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Configuration vector from a {joint name: value} dict, the rest from home().
+        """
+    def has_link(self, arg0: str) -> bool:
+        ...
+    def home(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Zero configuration moved into the joint limits.
+        """
+    def in_collision(self, q: typing.Any, obstacles: Obstacles, base_pose: typing.Any = None, self_collision: bool = False, links: typing.Any = None) -> bool:
+        """
+        True when a link (all, or the named `links`) touches an obstacle (world frame) with the root link at
+        base_pose (4x4); self_collision also checks the robot against itself.
+        """
+    def in_self_collision(self, q: typing.Any) -> bool:
+        """
+        True when two links that are not allowed to touch collide at q.
+        """
+    def link_poses(self, q: typing.Any) -> dict:
+        """
+        {link name: 4x4 pose in the root link frame}.
+        """
+    @property
+    def allowed_collisions(self) -> list[tuple[str, str]]:
+        """
+        Link pairs whose contacts are ignored (adjacent, SRDF, sampled).
+        """
+    @property
+    def checked_pairs(self) -> int:
+        """
+        Number of link pairs checked for self-collision.
+        """
+    @property
+    def collision_links(self) -> list[str]:
+        ...
+    @property
+    def dof(self) -> int:
+        ...
+    @property
+    def groups(self) -> dict:
+        """
+        SRDF chain groups: name -> (base_link, tip_link).
+        """
+    @property
+    def joint_names(self) -> list[str]:
+        """
+        Joints of the configuration vector, in order.
+        """
+    @property
+    def link_names(self) -> list[str]:
+        ...
+    @property
+    def lower(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def mimic_joints(self) -> list[str]:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def named_states(self) -> dict[str, dict[str, float]]:
+        """
+        SRDF group states: name -> {joint: value} (for example 'tuck_left_arm').
+        """
+    @property
+    def root_link(self) -> str:
+        ...
+    @property
+    def upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def urdf_hash(self) -> int:
+        """
+        64-bit FNV-1a hash of the URDF text.
+        """
+class OrientationSet:
+    """
+    Evenly spread approach directions on the sphere, times rolls about each (index = direction * rolls + roll).
+    """
+    @staticmethod
+    def sphere(count: typing.SupportsInt | typing.SupportsIndex = 200, rolls: typing.SupportsInt | typing.SupportsIndex = 1, symmetry: typing.SupportsInt | typing.SupportsIndex = 4) -> OrientationSet:
+        ...
+    def __len__(self) -> int:
+        ...
+    def nearest_direction(self, d: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> int:
+        ...
+    def rotation(self, index: typing.SupportsInt | typing.SupportsIndex, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        """
+        Tool rotation (3x3) of orientation `index` for a tool whose approach axis is `approach_axis`.
+        """
+    def subset(self, name: str) -> list[int]:
+        """
+        Direction indices of 'all', 'upper_hemisphere' (d_z <= 0: gripper above the object), 'top', 'side', 'lower_hemisphere'.
+        """
+    @property
+    def directions(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
+        """
+        (K, 3) unit approach directions.
+        """
+    @property
+    def rolls(self) -> int:
+        ...
+    @property
+    def symmetry(self) -> int:
+        ...
+class CapabilityMap:
+    """
+    Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.
+    """
+    @staticmethod
+    def build(chain: Chain, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.05, directions: typing.SupportsInt | typing.SupportsIndex = 200, rolls: typing.SupportsInt | typing.SupportsIndex = 1, symmetry: typing.SupportsInt | typing.SupportsIndex = 4, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ..., self_collision: bool = True, reference: typing.Any = None, seed: typing.SupportsInt | typing.SupportsIndex = 0, fk_samples: typing.SupportsInt | typing.SupportsIndex = 0, exhaustive: bool = False, exhaustive_attempts: typing.SupportsInt | typing.SupportsIndex = 10, position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.01, keep_solutions: bool = True, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = True) -> CapabilityMap:
+        """
+        Builds the map of `chain` (positions in its base link frame). A cell (voxel, orientation) is reachable
+        when IK finds a solution inside the limits, free of self-collision (joints off the chain at `reference`,
+        default robot.home()), for the voxel centre. Forward-kinematics sampling proposes cells and IK seeds;
+        a flood fill over neighbouring cells settles the rest; exhaustive=True also tries every other cell.
+        progress: True draws a bar, False is silent, or a callable (done, total).
+        """
+    @staticmethod
+    def load(path: str) -> CapabilityMap:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def export_octovis(self, path: str) -> None:
+        """
+        Writes a ColorOcTree (.ot) for octovis, red (low D) to blue (high D).
+        """
+    def reachability(self, points: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Reachability index D (N,) of points (N, 3) in the base link frame; 0 outside.
+        """
+    def reachable(self, poses: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        True (N,) where the cell of tool pose (N, 4, 4) (base link frame) is reachable.
+        """
+    def reachable_cell(self, point: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], orientation: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        ...
+    def save(self, path: str, with_solutions: bool = False) -> None:
+        """
+        Writes the map atomically; with_solutions also stores one joint solution per reachable cell.
+        """
+    def solution(self, point: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], orientation: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"] | None:
+        """
+        Stored joint solution of a reachable cell, or None.
+        """
+    def voxels(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
+        """
+        (centres (M, 3), D (M,)) of the voxels with D > 0, base link frame.
+        """
+    @property
+    def approach_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def base_link(self) -> str:
+        ...
+    @property
+    def bounds(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
+        """
+        (min corner, max corner) of the reachable voxels.
+        """
+    @property
+    def has_solutions(self) -> bool:
+        ...
+    @property
+    def orientations(self) -> OrientationSet:
+        ...
+    @property
+    def parameters(self) -> dict:
+        ...
+    @property
+    def resolution(self) -> float:
+        ...
+    @property
+    def robot_name(self) -> str:
+        ...
+    @property
+    def stats(self) -> dict:
+        ...
+    @property
+    def tip_link(self) -> str:
+        ...
+    @property
+    def urdf_hash(self) -> int:
+        ...
+    @property
+    def voxel_count(self) -> int:
+        ...
+class InversePointMap:
+    """
+    Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.
+    """
+    @staticmethod
+    def build(robot: Robot, capability_map: CapabilityMap, reference_frame: str = '', grasps: typing.Any = 'upper_hemisphere', theta_bins: typing.SupportsInt | typing.SupportsIndex = 16, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.Any = None, z_range: typing.Any = None, use_symmetry: bool = True, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = True) -> InversePointMap:
+        """
+        Inverts a capability map. reference_frame: the link whose pose is mapped (default the root link, e.g.
+        base_footprint). grasps: a subset name ('upper_hemisphere', 'top', 'side', 'all') or a list of direction
+        indices; a direction d means the tool approaches the target along d (world frame). reference: robot
+        configuration fixing the joints between reference frame and arm (e.g. the torso). z_range: (min, max)
+        base z relative to the target. theta bins that the grasp set's z symmetry determines are derived by
+        rotating the grid instead of being recomputed.
+        """
+    @staticmethod
+    def direct_reachability(capability_map: CapabilityMap, reference_to_arm: typing.Any, orientations: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], poses: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        R_P computed straight from the capability map at continuous poses (N, 4), for checks.
+        """
+    @staticmethod
+    def load(path: str) -> InversePointMap:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def export_octovis(self, path: str) -> None:
+        ...
+    def reachability(self, poses: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        R_P (N,) of base poses (N, 4) as x, y, z, theta relative to the target; 0 outside.
+        """
+    def save(self, path: str) -> None:
+        ...
+    def voxels(self) -> tuple:
+        """
+        (centres (M, 3), values (M, theta_bins)) of the voxels with a non-zero value.
+        """
+    @property
+    def arm_base_link(self) -> str:
+        ...
+    @property
+    def arm_tip_link(self) -> str:
+        ...
+    @property
+    def bounds(self) -> tuple:
+        ...
+    @property
+    def build_seconds(self) -> float:
+        ...
+    @property
+    def grasp_orientations(self) -> list[int]:
+        ...
+    @property
+    def parameters(self) -> dict:
+        ...
+    @property
+    def pose_count(self) -> int:
+        """
+        Number of (voxel, theta) poses with R_P > 0.
+        """
+    @property
+    def reference_frame(self) -> str:
+        ...
+    @property
+    def reference_to_arm(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def resolution(self) -> float:
+        ...
+    @property
+    def robot_name(self) -> str:
+        ...
+    @property
+    def theta_bins(self) -> int:
+        ...
+    @property
+    def urdf_hash(self) -> int:
+        ...
+    @property
+    def used_symmetry(self) -> bool:
+        ...
+    @property
+    def voxel_count(self) -> int:
+        ...
+class Surface:
+    """
+    A flat working surface: a planar polygon (3D vertices, world frame, convex or not, any height and tilt)
+    with a thickness below its top face, plus obstacle boxes (legs, walls).
+    """
+    @staticmethod
+    def rectangle(size_x: typing.SupportsFloat | typing.SupportsIndex, size_y: typing.SupportsFloat | typing.SupportsIndex, height: typing.SupportsFloat | typing.SupportsIndex, x: typing.SupportsFloat | typing.SupportsIndex = 0.0, y: typing.SupportsFloat | typing.SupportsIndex = 0.0, yaw: typing.SupportsFloat | typing.SupportsIndex = 0.0, thickness: typing.SupportsFloat | typing.SupportsIndex = 0.03) -> Surface:
+        """
+        A rectangular table top of size_x by size_y centred at (x, y), top face at `height`.
+        """
+    def __init__(self, vertices: typing.Any, thickness: typing.SupportsFloat | typing.SupportsIndex = 0.03) -> None:
+        ...
+    def add_box(self, size: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], pose: typing.Any) -> None:
+        """
+        Adds an obstacle box (extents, 4x4 centre pose in the world frame).
+        """
+    def add_legs(self, width: typing.SupportsFloat | typing.SupportsIndex = 0.05) -> None:
+        """
+        Adds a leg under each vertex down to the floor.
+        """
+    def contains(self, points: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        True where a point's projection on the plane lies inside the polygon.
+        """
+    def obstacles(self) -> Obstacles:
+        """
+        The surface slab and its boxes as Obstacles (for collision checks).
+        """
+    def points(self, resolution: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        Grid points (M, 3) inside the polygon, as used to build surface maps.
+        """
+    @property
+    def area(self) -> float:
+        ...
+    @property
+    def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def thickness(self) -> float:
+        ...
+    @property
+    def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+class SurfaceMap:
+    """
+    Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.
+    """
+    @staticmethod
+    def build(robot: Robot, arm: typing.Any, surface: Surface, resolution: float | None = None, theta_bins: int = 16,
+              z_range: tuple[float, float] | None = None, reference: typing.Any = None, grasps: typing.Any = "upper_hemisphere",
+              reference_frame: str = "", directions: int = 200, seed: int = 0, check_body: bool = True,
+              check_arm: bool = True, grasp_height: float = 0.05, threads: int = 0,
+              progress: typing.Any = True) -> SurfaceMap:
+        """
+        Surface map of `arm` (name, (base, tip[, approach]) tuple, or a CapabilityMap with solutions);
+        defined in octoreach.surface_maps.
+        """
+    @staticmethod
+    def _build(robot: Robot, capability_map: CapabilityMap, surface: Surface, reference_frame: str = '', grasps: typing.Any = 'upper_hemisphere', theta_bins: typing.SupportsInt | typing.SupportsIndex = 16, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.0, z_range: typing.Any = None, reference: typing.Any = None, check_body: bool = True, check_arm: bool = True, grasp_height: typing.SupportsFloat | typing.SupportsIndex = 0.05, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = True) -> SurfaceMap:
+        ...
+    @staticmethod
+    def build(robot: Robot, arm, surface: Surface, resolution: float = None, theta_bins: int = 16, z_range = None, reference = None, grasps = 'upper_hemisphere', reference_frame: str = '', directions: int = 200, seed: int = 0, check_body: bool = True, check_arm: bool = True, grasp_height: float = 0.05, threads: int = 0, progress = True) -> SurfaceMap:
+        """
+        Surface map of `arm` (name, (base, tip[, approach]) tuple, or a CapabilityMap with solutions).
+        
+            Base poses (x, y, z, theta) are of `reference_frame` (default: the robot's root link, e.g.
+            base_footprint) in the world frame. z_range=(0, 0) evaluates a robot standing on the floor.
+            `reference` fixes the joints off the arm (default: home with the other arm tucked, whether the arm is
+            given by name or as a CapabilityMap). resolution defaults to the capability map's (0.05 m when the map
+            is built here). Grasp points
+            lie `grasp_height` above the surface (the tool holds an object standing on it).
+            
+        """
+    @staticmethod
+    def combine(maps: collections.abc.Sequence[SurfaceMap], mode: str = 'max') -> SurfaceMap:
+        """
+        Per-pose max ('max': any arm reaches) or min ('min': both arms reach) of maps of one robot, frame,
+        resolution and theta bins; ValueError otherwise.
+        """
+    @staticmethod
+    def load(path: str) -> SurfaceMap:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def export_octovis(self, path: str) -> None:
+        """
+        ColorOcTree (.ot) for octovis: each voxel coloured by its best theta, red low, blue high.
+        """
+    def reachability(self, poses: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        R_S (N,) of base poses (N, 4) as x, y, z, theta (world frame); 0 outside the map. The condition attachment.
+        """
+    def save(self, path: str) -> None:
+        """
+        Writes the map atomically.
+        """
+    def voxels(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.float32], "[m, n]"]]:
+        """
+        (centres (M, 3), R_S (M, theta_bins)) of the voxels with R_S > 0.
+        """
+    @property
+    def arms(self) -> str:
+        ...
+    @property
+    def bounds(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
+        """
+        (min corner, max corner) of the voxels with R_S > 0.
+        """
+    @property
+    def empty_reason(self) -> str:
+        ...
+    @property
+    def max_reachability(self) -> float:
+        ...
+    @property
+    def parameters(self) -> dict:
+        ...
+    @property
+    def polygon(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        ...
+    @property
+    def reference_frame(self) -> str:
+        ...
+    @property
+    def resolution(self) -> float:
+        ...
+    @property
+    def robot_name(self) -> str:
+        ...
+    @property
+    def stats(self) -> dict:
+        ...
+    @property
+    def theta_bins(self) -> int:
+        ...
+    @property
+    def urdf_hash(self) -> int:
+        ...
+    @property
+    def voxel_count(self) -> int:
+        ...
+    @property
+    def z_range(self) -> tuple[float, float]:
+        ...
+class CostMap:
+    """
+    2D navigation cost map: grid[row, col] covers x in [ox + col r, ...), y in [oy + row r, ...);
+    free where the cost is below threshold; outside the grid is not free.
+    """
+    def __init__(self, grid: typing.Annotated[numpy.typing.ArrayLike, numpy.float32, "[m, n]"], origin: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[2, 1]"], resolution: typing.SupportsFloat | typing.SupportsIndex, threshold: typing.SupportsFloat | typing.SupportsIndex = 0.5) -> None:
+        ...
+    def is_free(self, x: typing.SupportsFloat | typing.SupportsIndex, y: typing.SupportsFloat | typing.SupportsIndex) -> bool:
+        ...
+class PoseSampler:
+    """
+    Samples good, well spread base poses (x, y, z, theta) from a surface map: the grounding attachment.
+    """
+    def __init__(self, surface_map: SurfaceMap, candidates: typing.SupportsInt | typing.SupportsIndex = 40, discount_sigma: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"] = ..., seed: typing.SupportsInt | typing.SupportsIndex = 0, is_free: typing.Any = None, in_collision: typing.Any = None, max_draws: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        """
+        candidates: valid candidates per sample (best R_S x w wins). discount_sigma: S of eq. (3).
+        is_free: a CostMap or a callable (pose (4,) as x, y, z, theta) -> bool. in_collision: a tuple (robot, obstacles[,
+        reference configuration]) checked with FCL in C++, or a callable (pose (4,)) -> bool (True = in collision).
+        """
+    def discount(self, pose: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"]) -> float:
+        """
+        w of eq. (3) for a pose against the history.
+        """
+    def reset(self) -> None:
+        """
+        Forgets the history and restarts the random stream.
+        """
+    def sample(self, k: typing.Any = None) -> typing.Any:
+        """
+        One base pose (4,) as x, y, z, theta, or k poses (k, 4); each is discounted against all earlier ones.
+        """
+    @property
+    def history(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        Poses returned so far (K, 4).
+        """
+    @property
+    def last_counts(self) -> dict:
+        ...
+class VoidCluster:
+    """
+    Ellipsoidal cluster of void cells (map frame, metres): centroid, axes (columns e1..e3),
+    eigenvalues (m^2, decreasing), semi_axes sqrt(5 lambda), fit score of eq. (2), cells.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        ...
+    @property
+    def centroid(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def eigenvalues(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        ...
+    @property
+    def score(self) -> float:
+        ...
+    @property
+    def semi_axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def size(self) -> int:
+        ...
+class ExplorationMap:
+    """
+    OctoMap occupancy map with incremental frontiers (free cells with an unknown 6-neighbour,
+    clustered by 26-connectivity) and voids (unknown cells inside the convex hull of the
+    occupied cells), clustered into ellipsoids. Map frame, metres.
+    """
+    @staticmethod
+    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> ExplorationMap:
+        """
+        Map from an OctoMap .bt file (OSError if it cannot be read).
+        """
+    def __init__(self, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.025, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, track_voids: bool = True, search_space: typing.Any = None) -> None:
+        """
+        search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.
+        """
+    def cells(self, which: str) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Centres (N, 3) of the frontier, void, occupied or free cells.
+        """
+    def center(self, key: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Centre (metres) of a cell key.
+        """
+    def centers(self, keys: typing.Annotated[numpy.typing.ArrayLike, numpy.uint64]) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def changed_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        """
+        Keys of the cells whose class the last insert changed.
+        """
+    def count_known(self, lo: typing.Any, hi: typing.Any) -> tuple[int, int]:
+        """
+        (known, unknown) cell counts in an axis-aligned box.
+        """
+    def frontier_clusters(self) -> list:
+        """
+        Frontier clusters as a list of (N, 3) cell centres.
+        """
+    def frontier_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        ...
+    def frontier_voids(self) -> list:
+        """
+        Void clusters with the frontier clusters touching them: dicts with void_index, frontier_clusters,
+        frontier_cells (touching frontier cells, (K, 3)) and utility (void volume, m^3).
+        """
+    def hull_vertices(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def insert(self, points: typing.Any, sensor_origin: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = -1.0) -> dict:
+        """
+        Integrates points (N, 3) seen from sensor_origin (map frame); returns statistics and timings.
+        Same occupancy as OctoMap insertPointCloud. Rows with NaN/inf are dropped; an empty cloud is a
+        no-op; max_range <= 0 means unlimited. ValueError for a wrong shape, a non-finite origin or an
+        origin outside the map bounds.
+        """
+    def insert_stock(self, points: typing.Any, sensor_origin: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = -1.0) -> float:
+        """
+        Stock OctoMap insertPointCloud into this map's tree (reference; frontiers and voids go stale).
+        """
+    def inside_hull(self, arg0: typing.Any) -> bool:
+        ...
+    def key_of(self, arg0: typing.Any) -> int:
+        ...
+    def occupancy_digest(self) -> dict:
+        """
+        Counts and an order-independent hash of the finest-resolution occupancy (to compare trees).
+        """
+    def recompute_from_scratch(self) -> dict:
+        """
+        The same, recomputed from the occupancy and hull alone.
+        """
+    def snapshot(self) -> dict:
+        """
+        Incrementally maintained frontier cells, clusters and void cells (keys).
+        """
+    def state(self, points: typing.Any) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        Class of the cell of each point (N, 3): 0 unknown, 1 free, 2 occupied.
+        """
+    def void_cluster_cells(self, cluster: VoidCluster) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Centres (N, 3) of a void cluster's cells.
+        """
+    def void_clusters(self) -> list[VoidCluster]:
+        """
+        Void clusters (ellipsoid region growing, deterministic for the map's seed).
+        """
+    def void_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        ...
+    def write_bt(self, path: str) -> None:
+        """
+        Writes an OctoMap .bt file (octovis can open it).
+        """
+    @property
+    def frontier_cell_count(self) -> int:
+        ...
+    @property
+    def resolution(self) -> float:
+        ...
+    @property
+    def void_cell_count(self) -> int:
+        ...
+class Scene:
+    """
+    Simulated world: axis-aligned boxes, crates, closed boxes with an opening, boards, triangle
+    meshes, or an OctoMap .bt file. Metres, world frame.
+    """
+    def __init__(self) -> None:
+        ...
+    def add_board(self, lo: typing.Any, hi: typing.Any) -> None:
+        ...
+    def add_box(self, lo: typing.Any, hi: typing.Any) -> None:
+        """
+        Solid box (a board is a thin box).
+        """
+    def add_closed_box(self, lo: typing.Any, hi: typing.Any, thickness: typing.SupportsFloat | typing.SupportsIndex = 0.02, face: str = '-x', opening_width: typing.SupportsFloat | typing.SupportsIndex = 0.1, opening_height: typing.SupportsFloat | typing.SupportsIndex = 0.1) -> None:
+        """
+        Closed box with one opening centred in face '+x', '-x', '+y', '-y' or '+z'; its inside is an interior.
+        """
+    def add_crate(self, lo: typing.Any, hi: typing.Any, thickness: typing.SupportsFloat | typing.SupportsIndex = 0.02) -> None:
+        """
+        Open-topped crate; its inside is an interior.
+        """
+    def add_interior(self, lo: typing.Any, hi: typing.Any) -> None:
+        """
+        Records a region of interest for coverage figures.
+        """
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.int64]) -> None:
+        ...
+    def bounds(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
+        ...
+    def load_octomap(self, path: str) -> None:
+        """
+        Adds the occupied cells of an OctoMap .bt file to the world (OSError if it cannot be read).
+        """
+    def raycast(self, origin: typing.Any, direction: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0) -> typing.Any:
+        """
+        Distance to the first surface along the ray, or None.
+        """
+    def solid(self, points: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        True for points inside a solid box.
+        """
+    @property
+    def boxes(self) -> list:
+        """
+        Solid boxes as (lo, hi) pairs.
+        """
+    @property
+    def interiors(self) -> list:
+        """
+        Regions of interest (insides of crates and closed boxes) as (lo, hi) pairs.
+        """
+    @property
+    def triangle_count(self) -> int:
+        ...
+class CameraIntrinsics:
+    """
+    Pinhole depth sensor: image size, horizontal fov (rad), range (m).
+    """
+    def __init__(self, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 480, fov: typing.SupportsFloat | typing.SupportsIndex = 1.0123, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0) -> None:
+        ...
+    @property
+    def fov(self) -> float:
+        ...
+    @property
+    def height(self) -> int:
+        ...
+    @property
+    def max_range(self) -> float:
+        ...
+    @property
+    def width(self) -> int:
+        ...
+class DepthCamera:
+    """
+    Simulated depth camera. It looks along its +z axis (+x right, +y down in the image, as
+    ROS optical frames); poses are 4x4 camera -> world transforms. noise: depth standard
+    deviation at 1 m, growing with depth^2.
+    """
+    def __init__(self, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 480, fov: typing.SupportsFloat | typing.SupportsIndex = 1.0123, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0, noise: typing.SupportsFloat | typing.SupportsIndex = 0.0, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+        ...
+    def capture(self, scene: Scene, camera_pose: typing.Any, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Points (N, 3), world frame, seen from camera_pose (4x4 camera -> world).
+        """
+    @property
+    def fov(self) -> float:
+        ...
+    @property
+    def height(self) -> int:
+        ...
+    @property
+    def intrinsics(self) -> CameraIntrinsics:
+        ...
+    @property
+    def max_range(self) -> float:
+        ...
+    @property
+    def noise(self) -> float:
+        ...
+    @property
+    def width(self) -> int:
+        ...
+def _kdl_fk_batch(chain: Chain, Q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Reference FK with plain KDL (ChainFkSolverPos_recursive on chain.to_kdl()), single-threaded: tip poses
+    (N, 4, 4) in the base link frame for joint rows Q (N, dof). For benchmarks only; releases the GIL.
+    """
+def _kdl_ik_batch(chain: Chain, Ts: typing.Any, solver: str = 'nr_jl', attempts: typing.SupportsInt | typing.SupportsIndex = 20, max_iterations: typing.Any = None, eps: typing.SupportsFloat | typing.SupportsIndex = 1e-05, position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, rng_seed: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], numpy.typing.NDArray[numpy.bool]]:
+    """
+    Reference IK with plain KDL on chain.to_kdl(), single-threaded: for benchmarks only.
+    
+    Solves the tip poses Ts (N, 4, 4, base link frame) with KDL::ChainIkSolverPos_NR_JL (solver='nr_jl',
+    ChainIkSolverVel_pinv + ChainFkSolverPos_recursive, clamped to the chain's limits; continuous joints
+    unbounded) or KDL::ChainIkSolverPos_LMA (solver='lma', task weights 1,1,1,0.25,0.25,0.25; no limits).
+    Each target gets up to `attempts` starts drawn uniformly inside the chain's limits (continuous joints
+    in [-pi, pi)) from a stream derived from rng_seed and the target's index, like Chain.ik_batch.
+    max_iterations is per start (default: KDL's own, 100 for NR_JL and 500 for LMA); eps is KDL's stopping
+    tolerance. Success is judged afterwards exactly as octoreach's own IK judges it (mode 'full'): the
+    result, continuous joints wrapped, must be inside the limits and its tip pose by octoreach's Chain.fk
+    within position_tolerance (m) and orientation_tolerance (rad) of the target; KDL's return code is
+    ignored. Returns (Q (N, dof) with NaN rows where it failed, success mask (N,)). Releases the GIL.
+    """
+def _stock_insert_point_cloud(points: typing.Any, sensor_origin: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex, resolution: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+    """
+    Reference: stock OctoMap OcTree::insertPointCloud into a fresh tree; returns seconds and the
+    occupancy digest (compare with ExplorationMap.occupancy_digest()).
+    """
+def accumulate_utility(map: ExplorationMap, sensor_range: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
+    """
+    Algorithm 1: (cell centres (N, 3), accumulated utility (N,), m^3) before workspace pruning.
+    """
+def next_best_view(map: ExplorationMap, camera: typing.Any, max_valid_poses: typing.SupportsInt | typing.SupportsIndex = 50, orientations_per_cell: typing.SupportsInt | typing.SupportsIndex = 8, orientation_spread: typing.SupportsFloat | typing.SupportsIndex = 0.35, max_candidate_cells: typing.SupportsInt | typing.SupportsIndex = 400, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, min_distance: typing.SupportsFloat | typing.SupportsIndex = 0.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, workspace_box: typing.Any = None, workspace_sphere: typing.Any = None, workspace: typing.Any = None, chain: Chain = None, chain_base: typing.Any = None, ik_attempts: typing.SupportsInt | typing.SupportsIndex = 8, ik_position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, ik_orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.01, capability_map: CapabilityMap = None, capability_base: typing.Any = None, min_reachability: typing.SupportsFloat | typing.SupportsIndex = 0.0, arm_collisions: bool = True, capability_orientations: bool = True) -> dict:
+    """
+    Next best view (Algorithm 1 + frustum scoring). Returns a dict: best_pose (4x4 camera -> map, or None),
+    void_cells and utility_dm3 expected from it, ranked (valid poses, best first, each with pose,
+    void_cells, unknown_cells, utility_dm3, cell_utility, q), and search statistics. The workspace is
+    workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable
+    taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,
+    +z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.
+    capability_map (a CapabilityMap of that arm) with capability_base (4x4 map base link -> map) prunes
+    candidate cells whose voxel has reachability index <= min_reachability before any IK, and with
+    capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.
+    arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.
+    """
+def view_utility(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36) -> tuple[int, int]:
+    """
+    (void cells, unknown cells) a camera at camera_pose (4x4) sees before the first occupied cell,
+    casting a score_width x score_height grid of rays.
+    """
+__version__: str = '0.1.0'
