@@ -176,6 +176,26 @@ def _cmd_sample(args) -> int:
     return 0
 
 
+def _cmd_experiment(args) -> int:
+    from . import experiments
+
+    if args.name == "tidy-up":
+        if args.tables not in (1, 2):
+            raise ValueError(f"--tables must be 1 or 2, got {args.tables}")
+        if args.trials < 1:
+            raise ValueError(f"--trials must be at least 1, got {args.trials}")
+        rows = experiments.tidy_up(trials=args.trials, objects=tuple(args.objects), tables=args.tables,
+                                   seed=args.seed, progress=not args.quiet)
+        print(experiments.format_tidy_up(rows))
+        return 0
+    if args.scene not in (1, 2):
+        raise ValueError(f"--scene must be 1 or 2, got {args.scene}")
+    if args.views < 1:
+        raise ValueError(f"--views must be at least 1, got {args.views}")
+    experiments.exploration_tables(scenes=(args.scene,), max_views=args.views, seed=args.seed)
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="octoreach", description="Where a robot should stand and where it should look.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -263,6 +283,17 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--candidates", type=int, default=40, help="valid candidates per pose (default 40)")
     sp.add_argument("--seed", type=int, default=0)
     sp.set_defaults(func=_cmd_sample)
+
+    sp = sub.add_parser("experiment", help="paper experiments: tidy-up (surface maps) or exploration (frontier voids)")
+    sp.add_argument("name", choices=["tidy-up", "exploration"], help="which experiment")
+    sp.add_argument("--trials", type=int, default=100, help="tidy-up: tasks per object count (default 100)")
+    sp.add_argument("--tables", type=int, default=1, help="tidy-up: 1 or 2 tables (default 1)")
+    sp.add_argument("--objects", type=int, nargs="+", default=[1, 2, 3, 4], help="tidy-up: object counts (default 1 2 3 4)")
+    sp.add_argument("--scene", type=int, default=1, help="exploration: paper scene 1 or 2 (default 1)")
+    sp.add_argument("--views", type=int, default=10, help="exploration: view budget (default 10)")
+    sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    sp.add_argument("--quiet", action="store_true", help="no progress line")
+    sp.set_defaults(func=_cmd_experiment)
     return p
 
 
