@@ -1,7 +1,7 @@
 """Paper experiments in kinematic simulation, written as examples a planner author can copy.
 
-``tidy_up`` is the task of Section V of "Identifying Good Poses When Doing Your Household Chores"
-(Dornhege et al.): objects lie on one or two tables and the PR2 must reach every one of them with
+``tidy_up`` is the task of Section V of "Identifying Good Poses When Doing Your Household Chores" (Hertle &
+Nebel): objects lie on one or two tables and the PR2 must reach every one of them with
 either arm. Two ways to choose where the robot stands are compared:
 
 * **A, predefined poses**: 1-4 hand-placed base poses per table (the middle of each long side,
