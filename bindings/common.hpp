@@ -111,6 +111,24 @@ py::array_t<double> pose_rows_lookup(const py::object& poses, F&& f) {
   return out;
 }
 
+/// A grasp-set argument: a subset name (into `subset`) or a list of direction indices (into `grasps`).
+inline void grasps_arg(const py::object& grasps, std::vector<int>& indices, std::string& subset) {
+  if (py::isinstance<py::str>(grasps)) {
+    subset = grasps.cast<std::string>();
+  } else if (!grasps.is_none()) {
+    indices = grasps.cast<std::vector<int>>();
+    if (indices.empty()) throw std::invalid_argument("the grasp set is empty");
+  }
+}
+
+/// A z_range argument: None keeps the defaults, else (min, max) in metres.
+inline void z_range_arg(const py::object& z_range, double& z_min, double& z_max) {
+  if (z_range.is_none()) return;
+  auto zr = z_range.cast<std::pair<double, double>>();
+  z_min = zr.first;
+  z_max = zr.second;
+}
+
 void wrap_collision(py::module_& m);
 void wrap_robot(py::module_& m);
 void wrap_kdl_reference(py::module_& m);

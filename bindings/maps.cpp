@@ -200,19 +200,11 @@ void wrap_maps(py::module_& m) {
                               const py::object& z_range, bool use_symmetry, int threads, const py::object& progress) {
              PointMapOptions o;
              o.reference_frame = reference_frame;
-             if (py::isinstance<py::str>(grasps)) o.grasp_subset = grasps.cast<std::string>();
-             else if (!grasps.is_none()) {
-               o.grasps = grasps.cast<std::vector<int>>();
-               if (o.grasps.empty()) throw std::invalid_argument("the grasp set is empty");
-             }
+             grasps_arg(grasps, o.grasps, o.grasp_subset);
              o.theta_bins = theta_bins;
              o.resolution = resolution;
              if (!reference.is_none()) o.reference = reference.cast<Eigen::VectorXd>();
-             if (!z_range.is_none()) {
-               auto zr = z_range.cast<std::pair<double, double>>();
-               o.z_min = zr.first;
-               o.z_max = zr.second;
-             }
+             z_range_arg(z_range, o.z_min, o.z_max);
              o.use_symmetry = use_symmetry;
              o.threads = threads;
              ProgressCallback cb = progress_arg(progress, "point map");
