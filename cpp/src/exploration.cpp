@@ -66,6 +66,18 @@ inline CellKey key_from_morton(std::uint64_t m) {
   return pack_key(std::uint32_t(compact3(m)), std::uint32_t(compact3(m >> 1)), std::uint32_t(compact3(m >> 2)));
 }
 inline CellKey to_cell(const octomap::OcTreeKey& k) { return pack_key(k[0], k[1], k[2]); }
+// Calls f(cell) for every finest-resolution cell an octree leaf covers: a pruned leaf of depth d covers
+// 8^(16 - d) cells starting at its key rounded down to the leaf size.
+template <class LeafIterator, class F>
+void for_each_covered_cell(const LeafIterator& it, F&& f) {
+  octomap::OcTreeKey k = it.getKey();
+  int size = 1 << (16 - it.getDepth());
+  int mask = ~(size - 1);
+  int x0 = k[0] & mask, y0 = k[1] & mask, z0 = k[2] & mask;
+  for (int z = 0; z < size; ++z)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) f(pack_key(x0 + x, y0 + y, z0 + z));
+}
 inline octomap::OcTreeKey to_octo(CellKey k) {
   return octomap::OcTreeKey(octomap::key_type(key_x(k)), octomap::key_type(key_y(k)), octomap::key_type(key_z(k)));
 }
@@ -1035,14 +1047,7 @@ ExplorationSnapshot ExplorationMap::recompute_from_scratch() const {
   const auto& tree = I.tree;
   for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
     std::uint8_t c = std::uint8_t(tree.isNodeOccupied(*it) ? CellState::Occupied : CellState::Free);
-    octomap::OcTreeKey k = it.getKey();
-    int size = 1 << (16 - it.getDepth());
-    // key of the leaf is its centre-ish key; the covered cells start at the aligned corner
-    int mask = ~(size - 1);
-    int x0 = k[0] & mask, y0 = k[1] & mask, z0 = k[2] & mask;
-    for (int z = 0; z < size; ++z)
-      for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) cls[pack_key(x0 + x, y0 + y, z0 + z)] = c;
+    for_each_covered_cell(it, [&](CellKey cell) { cls[cell] = c; });
   }
   auto state_of = [&](CellKey k) {
     auto it = cls.find(k);
@@ -1117,17 +1122,10 @@ std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& pat
   std::vector<Eigen::Vector3d> occupied;
   for (auto it = I.tree.begin_leafs(), end = I.tree.end_leafs(); it != end; ++it) {
     bool occ = I.tree.isNodeOccupied(*it);
-    octomap::OcTreeKey k = it.getKey();
-    int size = 1 << (16 - it.getDepth());
-    int mask = ~(size - 1);
-    int x0 = k[0] & mask, y0 = k[1] & mask, z0 = k[2] & mask;
-    for (int z = 0; z < size; ++z)
-      for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) {
-          CellKey c = pack_key(x0 + x, y0 + y, z0 + z);
-          I.grid.at(c) = std::uint8_t(occ ? CellState::Occupied : CellState::Free);
-          if (occ) occupied.push_back(m->center(c));
-        }
+    for_each_covered_cell(it, [&](CellKey c) {
+      I.grid.at(c) = std::uint8_t(occ ? CellState::Occupied : CellState::Free);
+      if (occ) occupied.push_back(m->center(c));
+    });
   }
   ExplorationSnapshot s = m->recompute_from_scratch();  // frontiers only: no hull yet
   for (CellKey k : s.frontier_cells) I.grid.at(k) |= kFrontierFlag;

@@ -106,6 +106,32 @@ struct UtilityTable {
   }
 };
 
+// Algorithm 1's utility vectors: from each void's centre and the ends of its axes through every
+// frontier cell next to it, carrying the void's utility; in a fixed order.
+struct UtilityVector {
+  Eigen::Vector3d from, dir;
+  double u;
+};
+
+std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
+  std::vector<UtilityVector> out;
+  const auto& vcs = map.void_clusters();
+  for (const auto& fv : map.frontier_voids()) {
+    const VoidCluster& v = vcs[fv.void_index];
+    std::vector<Eigen::Vector3d> corners{v.centroid};
+    for (int j = 0; j < 3; ++j)
+      for (int s = -1; s <= 1; s += 2) corners.push_back(v.centroid + s * v.semi_axes[j] * v.axes.col(j));
+    for (const Eigen::Vector3d& c : corners)
+      for (CellKey f : fv.frontier_cells) {
+        Eigen::Vector3d pf = map.center(f);
+        Eigen::Vector3d dir = pf - c;
+        if (dir.norm() < 1e-9) continue;
+        out.push_back({pf, dir.normalized(), fv.utility});
+      }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool SensorWorkspace::contains(const Eigen::Vector3d& p) const {
@@ -118,31 +144,16 @@ std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap&
                                                            std::size_t* vectors) {
   const auto& I = map.internals();
   const double res = map.resolution();
-  std::vector<FrontierVoid> fvs = map.frontier_voids();
-  const auto& vcs = map.void_clusters();
   std::unordered_map<CellKey, double> util;
-  std::size_t count = 0;
+  const std::vector<UtilityVector> vecs = utility_vectors(map);
   detail::GridReader g(I.grid);
-  for (const auto& fv : fvs) {
-    const VoidCluster& v = vcs[fv.void_index];
-    std::vector<Eigen::Vector3d> corners{v.centroid};
-    for (int j = 0; j < 3; ++j)
-      for (int s = -1; s <= 1; s += 2) corners.push_back(v.centroid + s * v.semi_axes[j] * v.axes.col(j));
-    for (const Eigen::Vector3d& c : corners)
-      for (CellKey f : fv.frontier_cells) {
-        Eigen::Vector3d pf = map.center(f);
-        Eigen::Vector3d dir = pf - c;
-        if (dir.norm() < 1e-9) continue;
-        dir.normalize();
-        ++count;
-        walk_cells(res, pf, dir, sensor_range, [&](CellKey k) {
-          if ((g.get(k) & detail::kStateMask) != std::uint8_t(CellState::Free)) return false;
-          util[k] += fv.utility;
-          return true;
-        });
-      }
-  }
-  if (vectors) *vectors = count;
+  for (const UtilityVector& v : vecs)
+    walk_cells(res, v.from, v.dir, sensor_range, [&](CellKey k) {
+      if ((g.get(k) & detail::kStateMask) != std::uint8_t(CellState::Free)) return false;
+      util[k] += v.u;
+      return true;
+    });
+  if (vectors) *vectors = vecs.size();
   std::vector<std::pair<CellKey, double>> out(util.begin(), util.end());
   std::sort(out.begin(), out.end());
   return out;
@@ -212,31 +223,11 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   const double res = map.resolution();
 
   // 1-2. utility vectors and per-cell accumulation, with the mean direction back to the voids
-  std::vector<FrontierVoid> fvs = map.frontier_voids();
-  const auto& vcs = map.void_clusters();
   using Acc = UtilityTable::Acc;
   const int threads = detail::default_threads(opt.threads);
   std::vector<std::pair<CellKey, Acc>> cells;
   {
-    // the utility vectors, in a fixed order
-    struct Vec {
-      Eigen::Vector3d from, dir;
-      double u;
-    };
-    std::vector<Vec> vecs;
-    for (const auto& fv : fvs) {
-      const VoidCluster& v = vcs[fv.void_index];
-      std::vector<Eigen::Vector3d> corners{v.centroid};
-      for (int j = 0; j < 3; ++j)
-        for (int s = -1; s <= 1; s += 2) corners.push_back(v.centroid + s * v.semi_axes[j] * v.axes.col(j));
-      for (const Eigen::Vector3d& c : corners)
-        for (CellKey f : fv.frontier_cells) {
-          Eigen::Vector3d pf = map.center(f);
-          Eigen::Vector3d dir = pf - c;
-          if (dir.norm() < 1e-9) continue;
-          vecs.push_back({pf, dir.normalized(), fv.utility});
-        }
-    }
+    const std::vector<UtilityVector> vecs = utility_vectors(map);
     r.utility_vectors = vecs.size();
     // A fixed number of slices, each summed into its own table and merged in slice order: the
     // sums do not depend on the number of threads or on scheduling.
@@ -247,7 +238,7 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
       UtilityTable& t = tables[sl];
       const std::size_t b = vecs.size() * sl / kSlices, e = vecs.size() * (sl + 1) / kSlices;
       for (std::size_t i = b; i < e; ++i) {
-        const Vec& v = vecs[i];
+        const UtilityVector& v = vecs[i];
         walk_cells(res, v.from, v.dir, cam.max_range, [&](CellKey k) {
           if ((g.get(k) & detail::kStateMask) != std::uint8_t(CellState::Free)) return false;
           Acc& a = t.at(k);
