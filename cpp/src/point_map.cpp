@@ -8,6 +8,7 @@
 
 #include "map_io.hpp"
 #include "parallel.hpp"
+#include "reach_extent.hpp"
 
 namespace octoreach {
 
@@ -113,14 +114,8 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
     m.map_.finalize();
     return m;
   }
-  double rxy = 0, wz_lo = 1e9, wz_hi = -1e9;
-  for (const auto& c : centres) {
-    Eigen::Vector3d w = m.reference_to_arm_ * c;
-    rxy = std::max(rxy, w.head<2>().norm());
-    wz_lo = std::min(wz_lo, w.z());
-    wz_hi = std::max(wz_hi, w.z());
-  }
-  rxy += cap.resolution() + res;
+  const detail::ReachExtent reach = detail::reach_extent(centres, m.reference_to_arm_);
+  const double rxy = reach.radius_xy + cap.resolution() + res, wz_lo = reach.z_lo, wz_hi = reach.z_hi;
   double z_lo = std::max(o.z_min, -wz_hi - cap.resolution() - res), z_hi = std::min(o.z_max, -wz_lo + cap.resolution() + res);
   const VoxelOcTree& tree = m.map_.tree();
   octomap::OcTreeKey kmin, kmax;

@@ -12,6 +12,7 @@
 #include "map_io.hpp"
 #include "octoreach/point_map.hpp"
 #include "parallel.hpp"
+#include "reach_extent.hpp"
 
 namespace octoreach {
 namespace {
@@ -150,14 +151,8 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
     m.map_.finalize();
     return m;
   }
-  double rxy = 0, wz_lo = 1e9, wz_hi = -1e9;
-  for (const auto& c : cc) {
-    Eigen::Vector3d w = ref_to_arm * c;
-    rxy = std::max(rxy, w.head<2>().norm());
-    wz_lo = std::min(wz_lo, w.z());
-    wz_hi = std::max(wz_hi, w.z());
-  }
-  rxy += cap.resolution() + res;
+  const detail::ReachExtent reach = detail::reach_extent(cc, ref_to_arm);
+  const double rxy = reach.radius_xy + cap.resolution() + res, wz_lo = reach.z_lo, wz_hi = reach.z_hi;
   Eigen::Vector3d tlo = targets[0], thi = targets[0];
   for (const auto& t : targets) {
     tlo = tlo.cwiseMin(t);
