@@ -2,9 +2,9 @@
 """IK and FK speed and success of octoreach against plain KDL, measured in the same process.
 
 Reference: orocos KDL (Debian's liborocos-kdl, 1.5) through the private bindings
-``octoreach._core._kdl_ik_batch`` (KDL::ChainIkSolverPos_NR_JL with ChainIkSolverVel_pinv and
-ChainFkSolverPos_recursive, or KDL::ChainIkSolverPos_LMA) and ``_kdl_fk_batch``
-(ChainFkSolverPos_recursive), run on ``Chain.to_kdl()`` of the very chain octoreach solves, with the
+``octoreach._bench.kdl_ik_batch`` (KDL::ChainIkSolverPos_NR_JL with ChainIkSolverVel_pinv and
+ChainFkSolverPos_recursive, or KDL::ChainIkSolverPos_LMA) and ``kdl_fk_batch``
+(ChainFkSolverPos_recursive), run on ``bench::to_kdl(chain)`` of the very chain octoreach solves, with the
 same random restarts (same count, drawn inside the same limits) and the same success test
 (position and orientation error by octoreach's Chain.fk, joints inside the limits).
 
@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 import octoreach
-from octoreach import _core, robots
+from octoreach import _bench, robots
 
 CHAINS = [
     ("pr2_right_arm_from_base_footprint", "pr2", "base_footprint", "r_wrist_roll_link"),
@@ -118,8 +118,8 @@ def bench_chain(label, robot_name, base, tip, n, repeats, seed, attempts, quick)
     solvers = {
         "octoreach_1_thread": lambda Ts: chain.ik_batch(Ts, attempts=attempts, rng_seed=seed, threads=1),
         "octoreach_all_cores": lambda Ts: chain.ik_batch(Ts, attempts=attempts, rng_seed=seed, threads=0),
-        "kdl_nr_jl": lambda Ts: _core._kdl_ik_batch(chain, Ts, "nr_jl", attempts=attempts, rng_seed=seed),
-        "kdl_lma": lambda Ts: _core._kdl_ik_batch(chain, Ts, "lma", attempts=attempts, rng_seed=seed),
+        "kdl_nr_jl": lambda Ts: _bench.kdl_ik_batch(chain, Ts, "nr_jl", attempts=attempts, rng_seed=seed),
+        "kdl_lma": lambda Ts: _bench.kdl_ik_batch(chain, Ts, "lma", attempts=attempts, rng_seed=seed),
     }
     for name, fn in solvers.items():
         # One call per target only makes sense single-threaded.
@@ -174,7 +174,7 @@ def bench_chain(label, robot_name, base, tip, n, repeats, seed, attempts, quick)
     nfk = 1000 if quick else 20000
     Qfk = random_configurations(chain, nfk, seed + 2)
     Tours, t_ours = timed(lambda: chain.fk_batch(Qfk), max(repeats, 5))
-    Tkdl, t_kdl = timed(lambda: _core._kdl_fk_batch(chain, Qfk), max(repeats, 5))
+    Tkdl, t_kdl = timed(lambda: _bench.kdl_fk_batch(chain, Qfk), max(repeats, 5))
     fk_ours = statistics.median(t_ours) / nfk * 1e6
     fk_kdl = statistics.median(t_kdl) / nfk * 1e6
     res["fk"] = {
@@ -203,7 +203,7 @@ def main(argv=None) -> int:
         "benchmark": "ik",
         "reference": "plain orocos KDL in the same process: ChainIkSolverPos_NR_JL (+ChainIkSolverVel_pinv, "
                      "ChainFkSolverPos_recursive, default 100 iterations) and ChainIkSolverPos_LMA (default 500 "
-                     "iterations, weights 1,1,1,0.25,0.25,0.25), eps 1e-5, on Chain.to_kdl(); FK reference "
+                     "iterations, weights 1,1,1,0.25,0.25,0.25), eps 1e-5, on bench::to_kdl(chain); FK reference "
                      "ChainFkSolverPos_recursive",
         "success_test": "tip position error < 1e-4 m and rotation error < 1e-3 rad by octoreach Chain.fk, joints "
                         "inside the limits, for every solver; random restarts drawn inside the same limits",

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "../cpp/src/parallel.hpp"
+#include "../cpp/src/common/thread_pool.hpp"
 #include "octoreach/types.hpp"
 
 namespace octoreach::py_bindings {
@@ -92,6 +92,27 @@ inline ProgressCallback progress_from(const py::object& cb) {
   };
 }
 
+/// The `progress` argument of a long call (True, False, None or a callable (done, total)) as a C++
+/// callback. True asks the factory that the Python package registered with set_progress_factory
+/// (octoreach.progress.make_progress draws a bar); the compiled module never imports the package,
+/// so without a factory True is silent. Defined in progress.cpp.
+ProgressCallback progress_arg(const py::object& progress, const char* label);
+
+/// An options struct bound as a class: a copy of `options` (None: the C++ defaults), then each keyword
+/// argument set as the attribute of that name, so defaults live once, in the C++ struct. An unknown
+/// keyword raises TypeError naming it and the call.
+template <class Options>
+Options options_from(const py::object& options, const py::kwargs& kwargs, const char* call) {
+  py::object o = options.is_none() ? py::cast(Options()) : py::cast(Options(options.cast<const Options&>()));
+  for (auto item : kwargs) {
+    std::string key = py::str(item.first);
+    if (key.empty() || key[0] == '_' || !py::hasattr(o, key.c_str()))
+      throw py::type_error(std::string(call) + "() got an unexpected keyword argument '" + key + "'");
+    o.attr(key.c_str()) = item.second;
+  }
+  return o.cast<Options>();
+}
+
 /// Values (N,) of f(x, y, z, theta) over pose rows (N, 4), computed without the GIL and on every core
 /// for large batches: the lookup path of pose and surface maps.
 template <class F>
@@ -129,9 +150,9 @@ inline void z_range_arg(const py::object& z_range, double& z_min, double& z_max)
   z_max = zr.second;
 }
 
+void wrap_progress(py::module_& m);
 void wrap_collision(py::module_& m);
 void wrap_robot(py::module_& m);
-void wrap_kdl_reference(py::module_& m);
 void wrap_maps(py::module_& m);
 void wrap_surface(py::module_& m);
 void wrap_exploration(py::module_& m);

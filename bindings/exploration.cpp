@@ -6,7 +6,7 @@
 
 #include "common.hpp"
 #include "octoreach/capability_map.hpp"
-#include "octoreach/depth_camera.hpp"
+#include "octoreach/simulation.hpp"
 #include "octoreach/exploration.hpp"
 #include "octoreach/next_best_view.hpp"
 #include "octoreach/robot.hpp"
@@ -144,6 +144,11 @@ py::dict view_dict(const ViewCandidate& v, double res) {
 }  // namespace
 
 void wrap_exploration(py::module_& m) {
+  m.def("look_at", [](const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll) {
+        return pose_to_array(look_at(eye, target, roll));
+      }, py::arg("eye"), py::arg("target"), py::arg("roll") = 0.0,
+      "Camera pose (4x4 camera -> world) at `eye` looking at `target` (world frame), rolled by `roll` radians\n"
+      "about the optical axis (+z); at roll 0 the image +y points down.");
   py::class_<VoidCluster>(m, "VoidCluster",
                           "Ellipsoidal cluster of void cells (map frame, metres): centroid, axes (columns e1..e3),\n"
                           "eigenvalues (m^2, decreasing), semi_axes sqrt(5 lambda), fit score of eq. (2), cells.")

@@ -7,11 +7,6 @@ namespace octoreach::py_bindings {
 
 namespace {
 
-ProgressCallback progress_arg(const py::object& progress, const char* label) {
-  py::object cb = py::module_::import("octoreach.progress").attr("make_progress")(progress, label);
-  return progress_from(cb);
-}
-
 // Runs f(i) for i in [0, n) without the GIL, on every core for large n.
 template <class F>
 void batch(std::size_t n, F&& f) {

@@ -13,9 +13,9 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(PyExc_OSError, e.what());
     }
   });
+  octoreach::py_bindings::wrap_progress(m);
   octoreach::py_bindings::wrap_collision(m);
   octoreach::py_bindings::wrap_robot(m);
-  octoreach::py_bindings::wrap_kdl_reference(m);
   octoreach::py_bindings::wrap_maps(m);
   octoreach::py_bindings::wrap_surface(m);
   octoreach::py_bindings::wrap_exploration(m);

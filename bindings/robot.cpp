@@ -1,5 +1,5 @@
 #include "common.hpp"
-#include "octoreach/ik.hpp"
+#include "octoreach/chain.hpp"
 #include "octoreach/robot.hpp"
 
 namespace octoreach::py_bindings {

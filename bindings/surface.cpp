@@ -75,8 +75,7 @@ void wrap_surface(py::module_& m) {
              o.check_arm = check_arm;
              o.grasp_height = grasp_height;
              o.threads = threads;
-             py::object cb_obj = py::module_::import("octoreach.progress").attr("make_progress")(progress, "surface map");
-             ProgressCallback cb = progress_from(cb_obj);
+             ProgressCallback cb = progress_arg(progress, "surface map");
              py::gil_scoped_release release;
              return std::make_shared<SurfaceMap>(SurfaceMap::build(robot, cap, surface, o, cb));
            }, py::arg("robot"), py::arg("capability_map"), py::arg("surface"), py::arg("reference_frame") = "",

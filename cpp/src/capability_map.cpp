@@ -12,18 +12,13 @@
 
 
 #include "map_io.hpp"
-#include "octoreach/ik.hpp"
-#include "parallel.hpp"
+#include "octoreach/chain.hpp"
+#include "common/random_mix.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach {
 namespace {
 
-std::uint64_t mix64(std::uint64_t seed, std::uint64_t i) {
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (i + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
 
 // Progress in stages: each stage owns a share of a fixed total of 1000 units.
 struct StagedProgress {
@@ -135,7 +130,7 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
     std::size_t c0 = round * chunks_per_round, c1 = std::min(nchunks, c0 + chunks_per_round);
     std::vector<std::vector<std::pair<std::uint32_t, Eigen::VectorXf>>> found(c1 - c0);
     detail::parallel_for(c1 - c0, o.threads, [&](std::size_t ci, int) {
-      std::mt19937_64 r(mix64(o.seed, c0 + ci));
+      std::mt19937_64 r(detail::mix64(o.seed, c0 + ci));
       std::size_t n = std::min(chunk, samples - (c0 + ci) * chunk);
       std::unordered_set<std::uint32_t> local;
       for (std::size_t s = 0; s < n; ++s) {
@@ -206,7 +201,7 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
       const Item& it = wave[i];
       IkOptions opt = base_ik;
       opt.attempts = attempts;
-      opt.seed = mix64(o.seed ^ 0xC0FFEEULL, it.cell);
+      opt.seed = detail::mix64(o.seed ^ 0xC0FFEEULL, it.cell);
       Pose target = Pose::Identity();
       target.linear() = rotations[it.cell % O];
       target.translation() = vox_centre(it.cell / O);

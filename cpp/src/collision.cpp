@@ -9,7 +9,7 @@
 #include <assimp/scene.h>
 
 #include "octoreach/robot.hpp"
-#include "parallel.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach {
 namespace {

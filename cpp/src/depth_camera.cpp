@@ -1,5 +1,5 @@
 // Simulated scenes and depth camera.
-#include "octoreach/depth_camera.hpp"
+#include "octoreach/simulation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include <octomap/OcTree.h>
 
-#include "parallel.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach {
 
@@ -345,6 +345,26 @@ std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose
   std::vector<Eigen::Vector3d> pts;
   for (auto& r : rows) pts.insert(pts.end(), r.begin(), r.end());
   return pts;
+}
+
+Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward, double roll) {
+  if (!position.allFinite() || !forward.allFinite() || !std::isfinite(roll) || forward.norm() < 1e-12)
+    throw std::invalid_argument("camera pose: need a finite position and roll and a non-zero finite direction");
+  Eigen::Vector3d z = forward.normalized();
+  Eigen::Vector3d up = std::abs(z.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d x = z.cross(up).normalized();
+  Eigen::Vector3d y = z.cross(x);
+  double c = std::cos(roll), s = std::sin(roll);
+  Pose T = Pose::Identity();
+  T.linear().col(0) = c * x + s * y;
+  T.linear().col(1) = -s * x + c * y;
+  T.linear().col(2) = z;
+  T.translation() = position;
+  return T;
+}
+
+Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll) {
+  return camera_pose(eye, target - eye, roll);
 }
 
 }  // namespace octoreach

@@ -23,7 +23,7 @@ extern "C" {
 }
 
 #include "exploration_impl.hpp"
-#include "parallel.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach {
 namespace detail {

@@ -11,7 +11,7 @@
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
-#include "parallel.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach {
 
@@ -51,19 +51,6 @@ void walk_cells(double res, const Eigen::Vector3d& o, const Eigen::Vector3d& d, 
   }
 }
 
-Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward, double roll) {
-  Eigen::Vector3d z = forward.normalized();
-  Eigen::Vector3d up = std::abs(z.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d x = z.cross(up).normalized();
-  Eigen::Vector3d y = z.cross(x);
-  double c = std::cos(roll), s = std::sin(roll);
-  Pose T = Pose::Identity();
-  T.linear().col(0) = c * x + s * y;
-  T.linear().col(1) = -s * x + c * y;
-  T.linear().col(2) = z;
-  T.translation() = position;
-  return T;
-}
 
 // Open-addressing table CellKey -> accumulated utility and direction (power-of-two capacity,
 // multiplicative hash): the accumulation touches a few hundred thousand cells millions of times.

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "map_io.hpp"
-#include "parallel.hpp"
+#include "common/thread_pool.hpp"
 #include "reach_extent.hpp"
 
 namespace octoreach {

@@ -11,7 +11,7 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
-#include "octoreach/ik.hpp"
+#include "octoreach/chain.hpp"
 
 namespace octoreach {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "map_io.hpp"
 #include "octoreach/point_map.hpp"
-#include "parallel.hpp"
+#include "common/thread_pool.hpp"
 #include "reach_extent.hpp"
 
 namespace octoreach {

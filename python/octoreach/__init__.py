@@ -20,6 +20,11 @@ from ._core import (  # noqa: F401
     SurfaceMap,
     __version__,
 )
+from . import progress as _progress
+from ._core import set_progress_factory as _set_progress_factory
+
+_set_progress_factory(_progress.make_progress)  # how progress=True is drawn by the compiled builds
+
 from . import robots  # noqa: F401
 from . import arms, surface_maps  # noqa: F401  (surface_maps adds SurfaceMap.build)
 from ._core import (  # noqa: F401

@@ -21,6 +21,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from . import _core
 from ._core import DepthCamera, ExplorationMap, Scene, next_best_view
 
 __all__ = [
@@ -42,20 +43,7 @@ __all__ = [
 
 def look_at(eye, target, roll: float = 0.0) -> np.ndarray:
     """Camera pose (4x4 camera -> world) at `eye` looking at `target`, image +y pointing down."""
-    eye = np.asarray(eye, float)
-    z = np.asarray(target, float) - eye
-    z /= np.linalg.norm(z)
-    up = np.array([1.0, 0, 0]) if abs(z[2]) > 0.99 else np.array([0, 0, 1.0])
-    x = np.cross(z, up)
-    x /= np.linalg.norm(x)
-    y = np.cross(z, x)
-    c, s = np.cos(roll), np.sin(roll)
-    T = np.eye(4)
-    T[:3, 0] = c * x + s * y
-    T[:3, 1] = -s * x + c * y
-    T[:3, 2] = z
-    T[:3, 3] = eye
-    return T
+    return _core.look_at(np.asarray(eye, float), np.asarray(target, float), float(roll))
 
 
 # ----------------------------------------------------------------------------------- scenes

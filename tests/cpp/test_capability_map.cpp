@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "octoreach/capability_map.hpp"
-#include "octoreach/ik.hpp"
+#include "octoreach/chain.hpp"
 #include "octoreach/orientation_set.hpp"
 #include "octoreach/robot.hpp"
 

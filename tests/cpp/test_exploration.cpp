@@ -6,7 +6,7 @@
 
 #include <octomap/OcTree.h>
 
-#include "octoreach/depth_camera.hpp"
+#include "octoreach/simulation.hpp"
 #include "octoreach/exploration.hpp"
 #include "octoreach/robot.hpp"
 
@@ -15,18 +15,6 @@ using namespace octoreach;
 namespace {
 
 // Camera pose (camera -> world) at `eye` looking at `target`, +z forward, image +y roughly down.
-Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
-  Eigen::Vector3d z = (target - eye).normalized();
-  Eigen::Vector3d up = std::abs(z.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d x = z.cross(up).normalized();  // right
-  Eigen::Vector3d y = z.cross(x);                // down
-  Pose T = Pose::Identity();
-  T.linear().col(0) = x;
-  T.linear().col(1) = y;
-  T.linear().col(2) = z;
-  T.translation() = eye;
-  return T;
-}
 
 Scene cluttered_scene() {
   Scene s;

@@ -6,7 +6,8 @@
 #include <kdl/chain.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
 
-#include "octoreach/ik.hpp"
+#include "kdl_chain.hpp"
+#include "octoreach/chain.hpp"
 #include "octoreach/robot.hpp"
 
 using namespace octoreach;
@@ -55,7 +56,7 @@ TEST(Robot, ForwardKinematicsByHand) {
 TEST(Robot, MatchesKdlForwardKinematics) {
   auto r = arm_robot();
   Chain c = r->chain("base_link", "tool0");
-  KDL::Chain kc = c.to_kdl();
+  KDL::Chain kc = bench::to_kdl(c);
   ASSERT_EQ(static_cast<int>(kc.getNrOfJoints()), c.dof());
   KDL::ChainFkSolverPos_recursive fk(kc);
   std::mt19937_64 rng(3);

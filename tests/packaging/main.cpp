@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include <octoreach/capability_map.hpp>
-#include <octoreach/ik.hpp>
+#include <octoreach/chain.hpp>
 #include <octoreach/robot.hpp>
 #include <octoreach/surface_map.hpp>
 

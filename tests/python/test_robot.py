@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from conftest import pose_error, random_configurations, reachable_targets, rot_z, translation
-from octoreach import Obstacles, Robot, _core, robots
+from octoreach import Obstacles, Robot, _bench, _core, robots
 
 POS_TOL, ROT_TOL = 1e-4, 1e-3  # the IK defaults
 
@@ -69,7 +69,7 @@ def test_fk_batch_equals_fk_rows(arm_chain, pr2):
 def test_fk_matches_plain_kdl(arm_chain, pr2):
     for chain in (arm_chain, pr2.chain("base_footprint", "r_wrist_roll_link")):
         Q = random_configurations(chain, 50, seed=4)
-        np.testing.assert_allclose(_core._kdl_fk_batch(chain, Q), chain.fk_batch(Q), atol=1e-12)
+        np.testing.assert_allclose(_bench.kdl_fk_batch(chain, Q), chain.fk_batch(Q), atol=1e-12)
 
 
 def test_link_poses_agree_with_chain_fk(arm):
@@ -304,7 +304,7 @@ MESH_URDF = textwrap.dedent("""\
         (lambda arm, c: c.ik(np.eye(4), mode="approach", approach_axis=np.zeros(3)), ValueError, "approach_axis"),
         (lambda arm, c: arm.configuration({"no_such_joint": 1.0}), ValueError, "no_such_joint"),
         (lambda arm, c: robots.load("nope"), ValueError, "nope"),
-        (lambda arm, c: _core._kdl_ik_batch(c, c.fk_batch(np.zeros((1, 6))), "bogus"), ValueError, "bogus"),
+        (lambda arm, c: _bench.kdl_ik_batch(c, c.fk_batch(np.zeros((1, 6))), "bogus"), ValueError, "bogus"),
     ],
 )
 def test_bad_input_raises(arm, arm_chain, call, exception, match):
@@ -330,12 +330,12 @@ def test_ik_of_a_fixed_chain_at_its_own_pose(arm):
 def test_kdl_reference_ik_meets_the_same_success_test(arm_chain):
     targets = reachable_targets(arm_chain, 10, seed=12)
     for solver in ("nr_jl", "lma"):
-        Q, ok = _core._kdl_ik_batch(arm_chain, targets, solver, rng_seed=1)
+        Q, ok = _bench.kdl_ik_batch(arm_chain, targets, solver, rng_seed=1)
         assert Q.shape == (10, 6) and ok.shape == (10,)
         assert ok.mean() >= 0.9
         for q, T in zip(Q[ok], targets[ok]):
             assert_solves(arm_chain, q, T)
-        Q2, ok2 = _core._kdl_ik_batch(arm_chain, targets, solver, rng_seed=1)
+        Q2, ok2 = _bench.kdl_ik_batch(arm_chain, targets, solver, rng_seed=1)
         np.testing.assert_array_equal(Q2, Q)
 
 

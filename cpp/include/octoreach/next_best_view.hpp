@@ -22,9 +22,9 @@
 
 #include <Eigen/Core>
 
-#include "octoreach/depth_camera.hpp"
+#include "octoreach/simulation.hpp"
 #include "octoreach/exploration.hpp"
-#include "octoreach/ik.hpp"
+#include "octoreach/chain.hpp"
 #include "octoreach/types.hpp"
 
 namespace octoreach {

@@ -28,7 +28,7 @@ struct CostMap {
 /// \brief Options of the sampler (the paper's defaults).
 struct PoseSamplerOptions {
   int candidates = 40;  ///< valid candidates drawn per sample; the best R_S x w wins
-  Eigen::Vector4d discount_sigma = Eigen::Vector4d(0.5, 0.5, 0.5, M_PI / 4);  ///< S of eq. (3)
+  Eigen::Vector4d discount_sigma = Eigen::Vector4d(0.5, 0.5, 0.5, kPi / 4);  ///< S of eq. (3)
   std::uint64_t seed = 0;
   std::size_t max_draws = 0;  ///< give up after this many draws per sample (0: 2000 x candidates)
 };

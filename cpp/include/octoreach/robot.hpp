@@ -1,29 +1,22 @@
 #pragma once
 /// \file robot.hpp
-/// \brief Robot model built from a URDF (urdfdom), kinematic chains, and collision checking.
+/// \brief Robot model built from a URDF (urdfdom): links, joints, SRDF groups and collision checking.
 
 #include <map>
 #include <memory>
-#include <cmath>
 #include <optional>
-#include <random>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "octoreach/chain.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/types.hpp"
 
-namespace KDL {
-class Chain;
-}
-
 namespace octoreach {
 
-/// \brief Joint kinds understood by octoreach (URDF planar and floating joints are kept fixed).
-enum class JointType { Fixed, Revolute, Continuous, Prismatic };
 
 /// \brief One URDF joint.
 struct Joint {
@@ -47,86 +40,6 @@ struct Link {
   int parent_joint = -1;          ///< index into Robot::joints(), -1 for the root
   std::vector<int> child_joints;  ///< indices into Robot::joints()
   std::vector<Shape> shapes;      ///< collision shapes (empty if the link has none)
-};
-
-class Robot;
-struct IkOptions;
-
-/// \brief A serial chain between two links of a robot, with FK, Jacobian and IK.
-///
-/// Immutable and cheap to copy; safe to share between threads.
-class Chain {
- public:
-  /// \brief One moving or fixed step of the chain.
-  struct Segment {
-    Pose origin = Pose::Identity();  ///< previous frame -> joint frame
-    JointType type = JointType::Fixed;
-    Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
-    int robot_joint = -1;  ///< index into Robot::joints()
-  };
-
-  const std::string& base_link() const { return base_link_; }
-  const std::string& tip_link() const { return tip_link_; }
-  /// \brief Number of moving joints.
-  int dof() const { return static_cast<int>(joint_names_.size()); }
-  const std::vector<std::string>& joint_names() const { return joint_names_; }
-  /// \brief Positions of the chain's joints in the robot configuration vector.
-  const std::vector<int>& robot_indices() const { return robot_indices_; }
-  const Eigen::VectorXd& lower() const { return lower_; }
-  const Eigen::VectorXd& upper() const { return upper_; }
-  /// \brief True for continuous (unbounded, wrapped) joints.
-  const std::vector<bool>& continuous() const { return continuous_; }
-  const std::vector<Segment>& segments() const { return segments_; }
-  const Robot& robot() const { return *robot_; }
-  std::shared_ptr<const Robot> robot_ptr() const { return robot_; }
-
-  /// \brief Pose of the tip link in the base link frame.
-  Pose fk(const Eigen::VectorXd& q) const;
-  /// \brief Pose of the tip and its 6 x dof geometric Jacobian (rows: linear, angular), base frame.
-  Pose fk_jacobian(const Eigen::VectorXd& q, Eigen::Matrix<double, 6, Eigen::Dynamic>& jacobian) const;
-  /// \brief True when q has dof entries, all finite and inside the limits (continuous joints excepted).
-  bool within_limits(const Eigen::VectorXd& q, double tolerance = 1e-9) const;
-  /// \brief Wraps continuous joints into [-pi, pi) and revolute joints by 2 pi into their limits where possible.
-  Eigen::VectorXd wrap(const Eigen::VectorXd& q) const;
-  /// \brief Uniform random configuration inside the limits (continuous joints in [-pi, pi)).
-  template <class Rng>
-  Eigen::VectorXd random_configuration(Rng& rng) const;
-
-  /// \brief Inverse kinematics of the tip pose `target` (base frame); returns q or nothing.
-  std::optional<Eigen::VectorXd> ik(const Pose& target, const IkOptions& options,
-                                    const Eigen::VectorXd* seed = nullptr) const;
-  /// \brief IK of many poses on every core; row i of the result solves targets[i] where ok[i].
-  void ik_batch(const std::vector<Pose>& targets, const IkOptions& options, Eigen::MatrixXd& solutions,
-                std::vector<bool>& ok, const Eigen::MatrixXd* seeds = nullptr, int threads = 0) const;
-
-  /// \brief Full robot configuration with this chain's joints set to q and the rest from `reference`.
-  Eigen::VectorXd to_robot_configuration(const Eigen::VectorXd& q, const Eigen::VectorXd& reference) const;
-
-  /// \brief The same chain as a KDL::Chain (built by octoreach, not by kdl_parser).
-  KDL::Chain to_kdl() const;
-
-  /// \brief Bit i set when chain joint i moves robot link `link` (0: the chain does not move it;
-  /// all dof bits: rigidly attached to the tip, e.g. a gripper).
-  std::uint64_t link_mask(int link) const { return link_masks_.at(link); }
-
-  /// \brief Splits the robot's checked self-collision pairs into those whose relative pose this
-  /// chain's joints change (`moving`) and those it never changes (`fixed`).
-  void split_collision_pairs(std::vector<std::pair<int, int>>& moving, std::vector<std::pair<int, int>>& fixed) const;
-
- private:
-  friend class Robot;
-  template <int MaxDof>
-  std::optional<Eigen::VectorXd> ik_impl_(const Pose& target, const IkOptions& options,
-                                          const Eigen::VectorXd* seed) const;
-  std::shared_ptr<const Robot> robot_;
-  std::string base_link_, tip_link_;
-  std::vector<Segment> segments_;
-  Pose tip_offset_ = Pose::Identity();
-  std::vector<std::string> joint_names_;
-  std::vector<int> robot_indices_;
-  Eigen::VectorXd lower_, upper_;
-  std::vector<bool> continuous_;
-  std::vector<std::uint64_t> link_masks_;  // per robot link: bit i set if chain joint i moves it
 };
 
 /// \brief A chain group declared in an SRDF (for example the PR2's "right_arm").
@@ -227,17 +140,5 @@ class Robot : public std::enable_shared_from_this<Robot> {
   std::vector<std::pair<int, int>> allowed_, checked_;
   std::vector<int> collision_links_;
 };
-
-template <class Rng>
-Eigen::VectorXd Chain::random_configuration(Rng& rng) const {
-  Eigen::VectorXd q(dof());
-  for (int i = 0; i < dof(); ++i) {
-    double lo = continuous_[i] ? -M_PI : lower_[i];
-    double hi = continuous_[i] ? M_PI : upper_[i];
-    std::uniform_real_distribution<double> u(lo, hi);
-    q[i] = u(rng);
-  }
-  return q;
-}
 
 }  // namespace octoreach

@@ -1,6 +1,6 @@
 #pragma once
 /// \file types.hpp
-/// \brief Common types of octoreach: poses, progress callbacks, errors.
+/// \brief Common types of octoreach: poses, boxes, progress callbacks, errors.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -12,6 +12,16 @@ namespace octoreach {
 
 /// \brief A rigid transform (metres, right-handed, z up).
 using Pose = Eigen::Isometry3d;
+
+/// \brief pi, without relying on the non-standard M_PI in public headers.
+inline constexpr double kPi = 3.14159265358979323846;
+
+/// \brief Axis-aligned box (metres).
+struct Aabb {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  bool contains(const Eigen::Vector3d& p) const { return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all(); }
+  double volume() const { return (hi - lo).prod(); }
+};
 
 /// \brief Progress callback: (done, total). Return false to cancel the work.
 using ProgressCallback = std::function<bool(std::size_t done, std::size_t total)>;

@@ -1,11 +1,10 @@
 #include <cmath>
 #include <random>
 
-#include <kdl/chain.hpp>
-
-#include "octoreach/ik.hpp"
+#include "octoreach/chain.hpp"
 #include "octoreach/robot.hpp"
-#include "parallel.hpp"
+#include "common/random_mix.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach {
 namespace {
@@ -28,12 +27,6 @@ Eigen::Vector3d log_so3(const Eigen::Matrix3d& R) {
   return aa.axis() * aa.angle();
 }
 
-std::uint64_t mix(std::uint64_t seed, std::uint64_t i) {
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (i + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
 
 }  // namespace
 
@@ -299,7 +292,7 @@ void Chain::ik_batch(const std::vector<Pose>& targets, const IkOptions& options,
   std::vector<char> flags(targets.size(), 0);
   detail::parallel_for(targets.size(), threads, [&](std::size_t i, int) {
     IkOptions o = options;
-    o.seed = mix(options.seed, i);  // per-item streams: the result does not depend on the thread count
+    o.seed = detail::mix64(options.seed, i);  // per-item streams: the result does not depend on the thread count
     Eigen::VectorXd s;
     if (seeds) s = seeds->row(i).transpose();
     auto q = ik(targets[i], o, seeds ? &s : nullptr);
@@ -317,27 +310,6 @@ void Chain::split_collision_pairs(std::vector<std::pair<int, int>>& moving,
   fixed.clear();
   for (const auto& p : robot_->checked_pairs())
     (link_masks_[p.first] != link_masks_[p.second] ? moving : fixed).push_back(p);
-}
-
-KDL::Chain Chain::to_kdl() const {
-  auto frame = [](const Pose& T) {
-    KDL::Rotation R(T(0, 0), T(0, 1), T(0, 2), T(1, 0), T(1, 1), T(1, 2), T(2, 0), T(2, 1), T(2, 2));
-    return KDL::Frame(R, KDL::Vector(T(0, 3), T(1, 3), T(2, 3)));
-  };
-  KDL::Chain chain;
-  for (std::size_t i = 0; i < segments_.size(); ++i) {
-    const Segment& s = segments_[i];
-    KDL::Frame F = frame(s.origin);
-    KDL::Vector axis = F.M * KDL::Vector(s.axis.x(), s.axis.y(), s.axis.z());
-    KDL::Joint::JointType type =
-        s.type == JointType::Prismatic ? KDL::Joint::TransAxis : KDL::Joint::RotAxis;
-    const std::string& name = robot_->joints()[s.robot_joint].name;
-    chain.addSegment(KDL::Segment(robot_->links()[robot_->joints()[s.robot_joint].child_link].name,
-                                  KDL::Joint(name, F.p, axis, type), F));
-  }
-  if (!tip_offset_.matrix().isIdentity(1e-12) || segments_.empty())
-    chain.addSegment(KDL::Segment(tip_link_ + "_fixed", KDL::Joint(KDL::Joint::None), frame(tip_offset_)));
-  return chain;
 }
 
 }  // namespace octoreach

@@ -15,7 +15,9 @@
 #include <kdl/frames.hpp>
 #include <kdl/jntarray.hpp>
 
-#include "common.hpp"
+#include "../common.hpp"
+#include "common/random_mix.hpp"
+#include "kdl_chain.hpp"
 #include "octoreach/robot.hpp"
 
 namespace octoreach::py_bindings {
@@ -37,12 +39,6 @@ KDL::Frame to_frame(const Pose& T) {
 }
 
 // Same stream splitter as Chain::ik_batch, so target i gets its own stream whatever the batch is.
-std::uint64_t mix(std::uint64_t seed, std::uint64_t i) {
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (i + 1);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
 
 // The acceptance test shared by both KDL solvers and identical to octoreach's own IK (Full mode): tip
 // position within pos_tol (m), rotation angle within rot_tol (rad), measured with octoreach's
@@ -62,7 +58,7 @@ void kdl_ik_batch(const Chain& c, const std::vector<Pose>& targets, KdlSolver wh
   Q = Eigen::MatrixXd::Constant(targets.size(), n, std::numeric_limits<double>::quiet_NaN());
   ok.assign(targets.size(), false);
   if (n == 0) return;
-  const KDL::Chain kc = c.to_kdl();
+  const KDL::Chain kc = bench::to_kdl(c);
 
   // NR_JL clamps to its limits after every step; continuous joints get limits wide enough never to
   // bind (a clamp at +-pi would stall the solver on the seam) and are wrapped afterwards.
@@ -88,7 +84,7 @@ void kdl_ik_batch(const Chain& c, const std::vector<Pose>& targets, KdlSolver wh
 
   KDL::JntArray q_init(n), q_out(n);
   for (std::size_t i = 0; i < targets.size(); ++i) {
-    std::mt19937_64 rng(mix(rng_seed, i));
+    std::mt19937_64 rng(detail::mix64(rng_seed, i));
     const KDL::Frame goal = to_frame(targets[i]);
     for (int a = 0; a < attempts; ++a) {
       q_init.data = c.random_configuration(rng);
@@ -108,7 +104,7 @@ void kdl_ik_batch(const Chain& c, const std::vector<Pose>& targets, KdlSolver wh
 }  // namespace
 
 void wrap_kdl_reference(py::module_& m) {
-  m.def("_kdl_ik_batch",
+  m.def("kdl_ik_batch",
         [](const Chain& c, const py::object& Ts, const std::string& solver, int attempts, const py::object& max_iter,
            double eps, double pos_tol, double rot_tol, std::uint64_t rng_seed) {
           KdlSolver which = parse_solver(solver);
@@ -132,7 +128,7 @@ void wrap_kdl_reference(py::module_& m) {
         py::arg("chain"), py::arg("Ts"), py::arg("solver") = "nr_jl", py::arg("attempts") = 20,
         py::arg("max_iterations") = py::none(), py::arg("eps") = 1e-5, py::arg("position_tolerance") = 1e-4,
         py::arg("orientation_tolerance") = 1e-3, py::arg("rng_seed") = 0,
-        "Reference IK with plain KDL on chain.to_kdl(), single-threaded: for benchmarks only.\n\n"
+        "Reference IK with plain KDL on bench::to_kdl(chain), single-threaded: for benchmarks only.\n\n"
         "Solves the tip poses Ts (N, 4, 4, base link frame) with KDL::ChainIkSolverPos_NR_JL (solver='nr_jl',\n"
         "ChainIkSolverVel_pinv + ChainFkSolverPos_recursive, clamped to the chain's limits; continuous joints\n"
         "unbounded) or KDL::ChainIkSolverPos_LMA (solver='lma', task weights 1,1,1,0.25,0.25,0.25; no limits).\n"
@@ -144,13 +140,13 @@ void wrap_kdl_reference(py::module_& m) {
         "within position_tolerance (m) and orientation_tolerance (rad) of the target; KDL's return code is\n"
         "ignored. Returns (Q (N, dof) with NaN rows where it failed, success mask (N,)). Releases the GIL.");
 
-  m.def("_kdl_fk_batch",
+  m.def("kdl_fk_batch",
         [](const Chain& c, const py::object& Qobj) {
           RowMatrixXd M = matrix_from(Qobj, c.dof(), "Q");
           std::vector<Pose> out(M.rows());
           {
             py::gil_scoped_release release;
-            const KDL::Chain kc = c.to_kdl();
+            const KDL::Chain kc = bench::to_kdl(c);
             KDL::ChainFkSolverPos_recursive fk(kc);
             KDL::JntArray q(c.dof());
             KDL::Frame F;
@@ -168,7 +164,7 @@ void wrap_kdl_reference(py::module_& m) {
           return poses_to_array(out);
         },
         py::arg("chain"), py::arg("Q"),
-        "Reference FK with plain KDL (ChainFkSolverPos_recursive on chain.to_kdl()), single-threaded: tip poses\n"
+        "Reference FK with plain KDL (ChainFkSolverPos_recursive on bench::to_kdl(chain)), single-threaded: tip poses\n"
         "(N, 4, 4) in the base link frame for joint rows Q (N, dof). For benchmarks only; releases the GIL.");
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file depth_camera.hpp
+/// \file simulation.hpp
 /// \brief Simulated scenes (boxes, crates, closed boxes with openings, boards, triangle meshes or an
 /// OctoMap .bt world) and a simulated depth camera that ray-casts them into point clouds.
 ///
@@ -20,13 +20,6 @@ class OcTree;
 }
 
 namespace octoreach {
-
-/// \brief Axis-aligned box (metres).
-struct Aabb {
-  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-  bool contains(const Eigen::Vector3d& p) const { return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all(); }
-  double volume() const { return (hi - lo).prod(); }
-};
 
 /// \brief A static world the depth camera can see.
 class Scene {
@@ -86,6 +79,15 @@ struct CameraIntrinsics {
   /// \brief Throws std::invalid_argument naming the bad value.
   void validate() const;
 };
+
+/// \brief Camera pose (camera -> world) at `position` looking along `forward` (need not be unit), rolled by
+/// `roll` radians about the optical axis; at roll 0 the image +y points down (towards -z of the world,
+/// or along +x of the world when looking straight up or down). \throws std::invalid_argument for a
+/// zero or non-finite direction.
+Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward, double roll = 0.0);
+
+/// \brief Camera pose at `eye` looking at `target` (camera_pose with forward = target - eye).
+Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll = 0.0);
 
 /// \brief A simulated depth camera: one ray per pixel, Gaussian depth noise growing with depth^2.
 class DepthCamera {
