@@ -12,6 +12,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "octoreach/chain.hpp"
+#include "common/random_mix.hpp"
 
 namespace octoreach {
 namespace {
@@ -488,6 +489,12 @@ Chain Robot::chain(const std::string& base_link, const std::string& tip_link) co
   c.lower_ = Eigen::Map<Eigen::VectorXd>(lo.data(), lo.size());
   c.upper_ = Eigen::Map<Eigen::VectorXd>(hi.data(), hi.size());
   return c;
+}
+
+std::uint64_t Robot::model_hash() const {
+  std::uint64_t h = urdf_hash_;
+  for (const auto& [a, b] : allowed_) h = detail::mix64(h, (std::uint64_t(a) << 32) | std::uint64_t(b));
+  return h;
 }
 
 }  // namespace octoreach

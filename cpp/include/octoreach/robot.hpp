@@ -63,6 +63,9 @@ class Robot : public std::enable_shared_from_this<Robot> {
   const std::string& name() const { return name_; }
   /// \brief SHA-256-free content hash (FNV-1a, 64 bit) of the URDF text, to tie maps to a robot.
   std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief Hash of the model as maps depend on it: the URDF text and the allowed-collision matrix
+  /// (two robots from one URDF with different allowed pairs have different model hashes).
+  std::uint64_t model_hash() const;
   const std::vector<Link>& links() const { return links_; }
   const std::vector<Joint>& joints() const { return joints_; }
   int root_link() const { return root_link_; }
