@@ -37,7 +37,7 @@ def test_incremental_equals_from_scratch_after_each_insert():
 
 
 def test_same_occupancy_as_stock_octomap():
-    from octoreach import _core
+    from octoreach import _bench
 
     scene = ex.cluttered_scene()
     cam = DepthCamera(160, 120, FOV, 4.0)
@@ -45,7 +45,7 @@ def test_same_occupancy_as_stock_octomap():
     pts = cam.capture(scene, T)
     emap = ExplorationMap(resolution=0.05)
     emap.insert(pts, T[:3, 3], 4.0)
-    ref = _core._stock_insert_point_cloud(pts, T[:3, 3], 4.0, 0.05)
+    ref = _bench.stock_insert_point_cloud(pts, T[:3, 3], 4.0, 0.05)
     mine = emap.occupancy_digest()
     assert mine["occupied"] > 100
     assert (mine["free"], mine["occupied"], mine["hash"]) == (ref["free"], ref["occupied"], ref["hash"])
@@ -147,7 +147,7 @@ def test_bad_inputs():
 
 
 def test_same_occupancy_as_stock_fine_resolution_noisy_clouds():
-    from octoreach import _core
+    from octoreach import _bench
 
     scene = ex.cluttered_scene()
     cam = DepthCamera(320, 240, FOV, 4.0, noise=0.003, seed=5)
@@ -156,7 +156,7 @@ def test_same_occupancy_as_stock_fine_resolution_noisy_clouds():
         pts = cam.capture(scene, T)
         emap = ExplorationMap(resolution=0.02)
         emap.insert(pts, T[:3, 3], rng)
-        ref = _core._stock_insert_point_cloud(pts, T[:3, 3], rng, 0.02)
+        ref = _bench.stock_insert_point_cloud(pts, T[:3, 3], rng, 0.02)
         mine = emap.occupancy_digest()
         assert (mine["free"], mine["occupied"], mine["hash"]) == (ref["free"], ref["occupied"], ref["hash"])
 
