@@ -1,12 +1,13 @@
 #pragma once
 // Internal: walking the cells of a ray through the key grid (Amanatides & Woo).
 //
-// Both walkers step along the axis whose next cell border is nearest (next_axis, the tie-breaks
-// of OctoMap's computeRayKeys). They differ in set-up and end test, on purpose:
-// - RayWalk reproduces computeRayKeys exactly (metric t, float direction, OctoMap's border
-//   arithmetic) so that insertion yields the very cells stock insertPointCloud updates;
-// - walk_cells works in key units from a double-precision origin and direction and stops where
-//   the visitor says (view scoring and utility rays, which have no OctoMap counterpart).
+// One ray (GridRay) steps along the axis whose next cell border is nearest (next_axis, the
+// tie-breaks of OctoMap's computeRayKeys). It has two set-ups, on purpose:
+// - octomap_ray reproduces computeRayKeys exactly (metric t, float direction, OctoMap's border
+//   arithmetic), so that insertion (RayWalk, the batched SSE form of the same walk) yields the
+//   very cells stock insertPointCloud updates;
+// - key_unit_ray works in key units from a double-precision origin and direction (walk_cells: view
+//   scoring and utility rays, which have no OctoMap counterpart).
 // Changing either set-up would change which cells a ray meets and so the maps or the views.
 #include <cmath>
 #include <cstdint>
@@ -26,37 +27,90 @@ namespace octoreach::detail {
 // computeRayKeys' choice: t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2).
 inline int next_axis(const double t[3]) { return t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2); }
 
-// Walks the cells of the segment o + t d, t in [0, length] (d unit), in order; `visit(key)`
-// returns false to stop. Amanatides & Woo in key units (cell k covers [k, k + 1)).
-template <class Visit>
-void walk_cells(double res, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double length, Visit&& visit) {
-  Eigen::Vector3d u = o / res + Eigen::Vector3d::Constant(32768.0);
-  if ((u.array() < 0).any() || (u.array() >= 65536).any()) return;
-  int k[3] = {int(std::floor(u[0])), int(std::floor(u[1])), int(std::floor(u[2]))};
-  int step[3];
-  double t_max[3], t_delta[3];
-  const double len = length / res;
-  for (int i = 0; i < 3; ++i) {
-    if (d[i] > 0) {
-      step[i] = 1;
-      t_max[i] = (k[i] + 1 - u[i]) / d[i];
-      t_delta[i] = 1.0 / d[i];
-    } else if (d[i] < 0) {
-      step[i] = -1;
-      t_max[i] = (k[i] - u[i]) / d[i];
-      t_delta[i] = -1.0 / d[i];
+// One ray through the key grid: the current cell, the step along each axis, the ray parameter t at
+// which it crosses the next cell border on each axis and the increment of t per cell.
+struct GridRay {
+  int key[3] = {0, 0, 0}, step[3] = {0, 0, 0};
+  double t[3], d[3];
+  double length = 0;  // in the units of t
+
+  int axis() const { return next_axis(t); }
+  // Steps to the next cell along `dim`; false when that leaves the key range.
+  bool advance(int dim) {
+    key[dim] += step[dim];
+    if (key[dim] < 0 || key[dim] > 0xffff) return false;
+    t[dim] += d[dim];
+    return true;
+  }
+  CellKey cell() const { return pack_key(key[0], key[1], key[2]); }
+};
+
+// computeRayKeys' set-up for the ray from `origin` (in the cell key_origin) to `end`: t in metres
+// along the float direction, borders computed as OctoMap does. Keys are left at zero: the batched
+// walk keeps bitmap indices instead.
+inline GridRay octomap_ray(const octomap::OcTree& tree, const octomap::point3d& origin,
+                           const octomap::OcTreeKey& key_origin, const octomap::point3d& end) {
+  GridRay r;
+  octomap::point3d direction = (end - origin);
+  float length = (float)direction.norm();
+  direction /= length;
+  const double res = tree.getResolution();
+  for (unsigned i = 0; i < 3; ++i) {
+    if (direction(i) > 0.0)
+      r.step[i] = 1;
+    else if (direction(i) < 0.0)
+      r.step[i] = -1;
+    else
+      r.step[i] = 0;
+    if (r.step[i] != 0) {
+      double border = tree.keyToCoord(key_origin[i]);
+      border += (float)(r.step[i] * res * 0.5);
+      r.t[i] = (border - origin(i)) / direction(i);
+      r.d[i] = res / std::fabs(direction(i));
     } else {
-      step[i] = 0;
-      t_max[i] = t_delta[i] = std::numeric_limits<double>::infinity();
+      r.t[i] = std::numeric_limits<double>::max();
+      r.d[i] = std::numeric_limits<double>::max();
     }
   }
+  r.length = length;
+  return r;
+}
+
+// The segment o + s dir, s in [0, length] metres (dir unit), in key units (cell k covers
+// [k, k + 1)); false when o is outside the key range.
+inline bool key_unit_ray(double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir, double length, GridRay& r) {
+  Eigen::Vector3d u = o / res + Eigen::Vector3d::Constant(32768.0);
+  if ((u.array() < 0).any() || (u.array() >= 65536).any()) return false;
+  for (int i = 0; i < 3; ++i) {
+    r.key[i] = int(std::floor(u[i]));
+    if (dir[i] > 0) {
+      r.step[i] = 1;
+      r.t[i] = (r.key[i] + 1 - u[i]) / dir[i];
+      r.d[i] = 1.0 / dir[i];
+    } else if (dir[i] < 0) {
+      r.step[i] = -1;
+      r.t[i] = (r.key[i] - u[i]) / dir[i];
+      r.d[i] = -1.0 / dir[i];
+    } else {
+      r.step[i] = 0;
+      r.t[i] = r.d[i] = std::numeric_limits<double>::infinity();
+    }
+  }
+  r.length = length / res;
+  return true;
+}
+
+// Visits the cells of the segment o + s dir, s in [0, length] (dir unit), in order; `visit(key)`
+// returns false to stop (view scoring and utility rays).
+template <class Visit>
+void walk_cells(double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir, double length, Visit&& visit) {
+  GridRay r;
+  if (!key_unit_ray(res, o, dir, length, r)) return;
   for (;;) {
-    if (!visit(pack_key(k[0], k[1], k[2]))) return;
-    const int dim = next_axis(t_max);
-    if (t_max[dim] > len) return;
-    k[dim] += step[dim];
-    if (k[dim] < 0 || k[dim] > 0xffff) return;
-    t_max[dim] += t_delta[dim];
+    if (!visit(r.cell())) return;
+    const int dim = r.axis();
+    if (r.t[dim] > r.length) return;
+    if (!r.advance(dim)) return;
   }
 }
 
@@ -80,29 +134,13 @@ struct RayWalk {
             const octomap::point3d& end, const octomap::OcTreeKey& key_end, Bitmap& bits) {
     if (key_origin == key_end) return false;
     bits.set(key_origin);
-    octomap::point3d direction = (end - origin);
-    float length = (float)direction.norm();
-    direction /= length;
-    int step[3];
-    const double res = tree.getResolution();
-    for (unsigned i = 0; i < 3; ++i) {
-      if (direction(i) > 0.0)
-        step[i] = 1;
-      else if (direction(i) < 0.0)
-        step[i] = -1;
-      else
-        step[i] = 0;
-      if (step[i] != 0) {
-        double border = tree.keyToCoord(key_origin[i]);
-        border += (float)(step[i] * res * 0.5);
-        t[i] = (border - origin(i)) / direction(i);
-        d[i] = res / std::fabs(direction(i));
-      } else {
-        t[i] = std::numeric_limits<double>::max();
-        d[i] = std::numeric_limits<double>::max();
-      }
+    const GridRay r = octomap_ray(tree, origin, key_origin, end);
+    for (int i = 0; i < 3; ++i) {
+      t[i] = r.t[i];
+      d[i] = r.d[i];
     }
-    len = length;
+    len = r.length;
+    const int* step = r.step;
     idx = bits.index(key_origin);
     target = bits.index(key_end);
     const std::int64_t nx = std::int64_t(bits.size(0)), nxy = nx * std::int64_t(bits.size(1));
