@@ -39,6 +39,7 @@ struct SensorWorkspace {
   double sphere_radius = 0;
   /// Batch filter: one bool per position (called once per search with all candidate cells).
   std::function<std::vector<bool>(const std::vector<Eigen::Vector3d>&)> filter;
+  /// \brief True when p (map frame) is inside the box and the sphere that are set (the filter is not asked).
   bool contains(const Eigen::Vector3d& p) const;
 };
 
