@@ -1,7 +1,7 @@
 """Frontier-void exploration benchmark; prints JSON.
 
 Reference: stock OctoMap OcTree::insertPointCloud of the same cloud into a fresh tree, measured in
-the same run (octoreach._core._stock_insert_point_cloud), and the paper's figures (3-4.5 s per
+the same run (octoreach._bench.stock_insert_point_cloud), and the paper's figures (3-4.5 s per
 integration, 14-100 s per next-best-view search). Cloud: one 640 x 480 depth image of a cluttered
 scene (12 crates and closed boxes, a wall, a floor), 2.5 cm cells, 4 m range.
 Explorations: the explorer robot with a coarse capability map (built once, timed separately), fixed
@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 
-from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _core, next_best_view
+from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, next_best_view
 from octoreach import exploration as ex
 
 
@@ -34,7 +34,7 @@ def main() -> int:
     stock, ours, ours_clusters, same = [], [], [], True
     parts = {}
     for _ in range(a.repeats):
-        ref = _core._stock_insert_point_cloud(pts, T[:3, 3], rng, res)
+        ref = _bench.stock_insert_point_cloud(pts, T[:3, 3], rng, res)
         stock.append(ref["seconds"])
         emap = ExplorationMap(resolution=res)
         t0 = time.perf_counter()

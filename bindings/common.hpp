@@ -155,6 +155,8 @@ void wrap_collision(py::module_& m);
 void wrap_robot(py::module_& m);
 void wrap_maps(py::module_& m);
 void wrap_surface(py::module_& m);
-void wrap_exploration(py::module_& m);
+void wrap_simulation(py::module_& m);
+void wrap_exploration_map(py::module_& m);
+void wrap_next_best_view(py::module_& m);
 
 }  // namespace octoreach::py_bindings

@@ -18,5 +18,7 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_robot(m);
   octoreach::py_bindings::wrap_maps(m);
   octoreach::py_bindings::wrap_surface(m);
-  octoreach::py_bindings::wrap_exploration(m);
+  octoreach::py_bindings::wrap_simulation(m);
+  octoreach::py_bindings::wrap_exploration_map(m);
+  octoreach::py_bindings::wrap_next_best_view(m);
 }

@@ -37,7 +37,7 @@ def test_incremental_equals_from_scratch_after_each_insert():
 
 
 def test_same_occupancy_as_stock_octomap():
-    from octoreach import _core
+    from octoreach import _bench
 
     scene = ex.cluttered_scene()
     cam = DepthCamera(160, 120, FOV, 4.0)
@@ -45,7 +45,7 @@ def test_same_occupancy_as_stock_octomap():
     pts = cam.capture(scene, T)
     emap = ExplorationMap(resolution=0.05)
     emap.insert(pts, T[:3, 3], 4.0)
-    ref = _core._stock_insert_point_cloud(pts, T[:3, 3], 4.0, 0.05)
+    ref = _bench.stock_insert_point_cloud(pts, T[:3, 3], 4.0, 0.05)
     mine = emap.occupancy_digest()
     assert mine["occupied"] > 100
     assert (mine["free"], mine["occupied"], mine["hash"]) == (ref["free"], ref["occupied"], ref["hash"])
@@ -147,7 +147,7 @@ def test_bad_inputs():
 
 
 def test_same_occupancy_as_stock_fine_resolution_noisy_clouds():
-    from octoreach import _core
+    from octoreach import _bench
 
     scene = ex.cluttered_scene()
     cam = DepthCamera(320, 240, FOV, 4.0, noise=0.003, seed=5)
@@ -156,7 +156,7 @@ def test_same_occupancy_as_stock_fine_resolution_noisy_clouds():
         pts = cam.capture(scene, T)
         emap = ExplorationMap(resolution=0.02)
         emap.insert(pts, T[:3, 3], rng)
-        ref = _core._stock_insert_point_cloud(pts, T[:3, 3], rng, 0.02)
+        ref = _bench.stock_insert_point_cloud(pts, T[:3, 3], rng, 0.02)
         mine = emap.occupancy_digest()
         assert (mine["free"], mine["occupied"], mine["hash"]) == (ref["free"], ref["occupied"], ref["hash"])
 
@@ -231,3 +231,27 @@ def test_views_whose_arm_touches_occupied_cells_are_rejected():
     assert loose["arm_collisions"] == 0 and colliding(loose) > 0  # the check is needed here
     assert free["arm_collisions"] > 0 and colliding(free) == 0
     assert free["best_pose"] is not None
+
+
+def test_nbv_options_object_and_keywords_are_one_thing():
+    from octoreach import _core
+
+    o = _core.NbvOptions()
+    assert (o.max_valid_poses, o.orientations_per_cell, o.max_candidate_cells, o.score_width, o.score_height) == (
+        50, 8, 400, 48, 36)
+    assert (o.ik_attempts, o.ik_position_tolerance, o.ik_orientation_tolerance) == (8, 1e-3, 1e-2)
+    assert o.workspace_sphere is None and o.chain is None and o.chain_base is None
+    scene = ex.paper_scene(2)
+    emap = ExplorationMap(resolution=0.08, search_space=ex.scene_region(scene))
+    cam = DepthCamera(80, 60, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.2, -0.5, 1.0)], (0.9, 0.0, 0.1)))
+    o.workspace_sphere = ((0.9, 0.0, 0.3), 1.2)
+    o.max_valid_poses = 5
+    a = next_best_view(emap, cam, options=o, seed=3)
+    b = next_best_view(emap, cam, workspace_sphere=((0.9, 0.0, 0.3), 1.2), max_valid_poses=5, seed=3)
+    assert a["void_cells"] == b["void_cells"] and a["poses_scored"] == b["poses_scored"]
+    assert o.seed == 0  # keywords change a copy, not the caller's options
+    with pytest.raises(TypeError, match="bogus"):
+        next_best_view(emap, cam, bogus=1)
+    with pytest.raises(ValueError, match="workspace_box"):
+        next_best_view(emap, cam, workspace_box=np.zeros((3, 3)))

@@ -33,6 +33,11 @@ class OcTree;
 
 namespace octoreach {
 
+namespace detail {
+struct ExplorationState;
+struct ExplorationAccess;
+}  // namespace detail
+
 /// \brief Occupancy class of one cell.
 enum class CellState : std::uint8_t { Unknown = 0, Free = 1, Occupied = 2 };
 
@@ -43,6 +48,7 @@ using CellKey = std::uint64_t;
 inline CellKey pack_key(std::uint32_t k0, std::uint32_t k1, std::uint32_t k2) {
   return CellKey(k0) | (CellKey(k1) << 16) | (CellKey(k2) << 32);
 }
+/// \brief Key components of a packed key.
 inline std::uint32_t key_x(CellKey k) { return std::uint32_t(k & 0xffff); }
 inline std::uint32_t key_y(CellKey k) { return std::uint32_t((k >> 16) & 0xffff); }
 inline std::uint32_t key_z(CellKey k) { return std::uint32_t((k >> 32) & 0xffff); }
@@ -107,6 +113,18 @@ struct ExplorationOptions {
   Eigen::Vector3d search_lo = Eigen::Vector3d::Constant(-1e9), search_hi = Eigen::Vector3d::Constant(1e9);
 };
 
+/// \brief Order-independent digest of an occupancy tree at the finest resolution: counts of free and
+/// occupied cells and a sum of mixed (key, class, log-odds) hashes. Equal digests: equal trees, leaf by leaf
+/// (up to hash collisions), however they are pruned.
+struct OccupancyDigest {
+  std::size_t free = 0, occupied = 0;
+  std::uint64_t hash = 0;
+  bool operator==(const OccupancyDigest& o) const { return free == o.free && occupied == o.occupied && hash == o.hash; }
+};
+
+/// \brief The digest of any OctoMap occupancy tree (compares ExplorationMap::octree() with a stock tree).
+OccupancyDigest occupancy_digest(const octomap::OcTree& tree);
+
 /// \brief Frontier clusters and void cells computed from the occupancy alone (tests compare these).
 struct ExplorationSnapshot {
   std::vector<CellKey> frontier_cells;                ///< sorted
@@ -139,13 +157,11 @@ class ExplorationMap {
   InsertStats insert(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& sensor_origin,
                      double max_range);
 
-  /// \brief Stock OctoMap insertPointCloud into this map's tree (reference for tests and
-  /// benchmarks; leaves frontiers and voids stale). Returns seconds spent.
-  double insert_stock(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& sensor_origin,
-                      double max_range);
-
+  /// \brief Cell edge, metres.
   double resolution() const { return resolution_; }
+  /// \brief The options the map was made with (resolution: that of the tree).
   const ExplorationOptions& options() const { return options_; }
+  /// \brief The occupancy tree.
   const octomap::OcTree& octree() const;
 
   /// \brief Class of the cell holding point p (map frame); Unknown outside the map bounds.
@@ -185,6 +201,11 @@ class ExplorationMap {
   /// \brief The same three things as maintained incrementally.
   ExplorationSnapshot snapshot() const;
 
+  /// \brief Keys of the free or occupied cells (finest resolution, sorted); `which` must not be Unknown.
+  std::vector<CellKey> known_cells(CellState which) const;
+  /// \brief occupancy_digest(octree()).
+  OccupancyDigest occupancy_digest() const;
+
   /// \brief Counts of known / unknown cells (at the finest resolution) in an axis-aligned box.
   std::pair<std::size_t, std::size_t> count_known(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
 
@@ -192,14 +213,11 @@ class ExplorationMap {
   /// \throws FileError on failure.
   void write_bt(const std::string& path) const;
 
-  struct Impl;
-  /// \brief The map's internal cell cache (for octoreach's own algorithms; opaque to users).
-  const Impl& internals() const { return *impl_; }
-
  private:
+  friend struct detail::ExplorationAccess;  // octoreach's own algorithms read the state (cpp/src only)
   ExplorationOptions options_;
   double resolution_;
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<detail::ExplorationState> state_;
   std::vector<CellChange> changed_;
 };
 

@@ -39,11 +39,20 @@ struct SensorWorkspace {
   double sphere_radius = 0;
   /// Batch filter: one bool per position (called once per search with all candidate cells).
   std::function<std::vector<bool>(const std::vector<Eigen::Vector3d>&)> filter;
+  /// \brief True when p (map frame) is inside the box and the sphere that are set (the filter is not asked).
   bool contains(const Eigen::Vector3d& p) const;
 };
 
 /// \brief Options of the next-best-view search.
 struct NbvOptions {
+  /// \brief The search's IK defaults: 8 restarts, 1 mm, 0.01 rad (a view need not be exact).
+  static IkOptions default_ik() {
+    IkOptions ik;
+    ik.attempts = 8;
+    ik.position_tolerance = 1e-3;
+    ik.orientation_tolerance = 1e-2;
+    return ik;
+  }
   int max_valid_poses = 50;          ///< N of the paper
   int orientations_per_cell = 8;     ///< sampled orientations per candidate cell
   double orientation_spread = 0.35;  ///< radians: cone around the mean utility direction
@@ -57,7 +66,9 @@ struct NbvOptions {
   /// (position and optical axis; the roll the arm reaches is scored).
   const Chain* chain = nullptr;
   Pose chain_base = Pose::Identity();  ///< chain base frame -> map frame
-  IkOptions ik;                        ///< mode and approach axis are set by the search
+  /// IK of each sampled pose (mode and approach axis are set by the search; restart seeds are
+  /// ik.seed + the pose's index).
+  IkOptions ik = default_ik();
   /// With a chain: reject IK solutions where a link of the chain's robot (its collision shapes, the
   /// rest of the robot at home, the robot placed so the chain base sits at chain_base) touches an
   /// occupied cell of the map. Unknown cells are not obstacles here.
@@ -77,6 +88,7 @@ struct ViewCandidate {
   Pose pose = Pose::Identity();  ///< camera -> map
   std::size_t void_cells = 0;    ///< distinct void cells seen before the first occupied cell
   std::size_t unknown_cells = 0; ///< distinct unknown cells seen (void cells included)
+  double utility_dm3 = 0;        ///< the void cells' volume, dm^3
   double cell_utility = 0;       ///< accumulated utility (m^3 summed over vectors) at its cell
   Eigen::VectorXd q;             ///< arm joints when a chain was given
 };
@@ -95,6 +107,8 @@ struct NbvResult {
   double seconds_vectors = 0, seconds_prune = 0, seconds_score = 0;  ///< parts: steps 1-2, 3, 4
   /// \brief Expected void cells of the best pose (0 when there is none).
   std::size_t best_void_cells() const { return ranked.empty() ? 0 : ranked.front().void_cells; }
+  /// \brief Volume of the best pose's expected void cells, dm^3 (0 when there is none).
+  double best_utility_dm3() const { return ranked.empty() ? 0.0 : ranked.front().utility_dm3; }
 };
 
 /// \brief Accumulated utility per free cell (steps 1-2), before pruning.

@@ -1,4 +1,4 @@
-// Simulated scenes and depth camera.
+// Simulated scenes: boxes, crates, closed boxes, meshes or an OctoMap world, and ray casting into them.
 #include "octoreach/simulation.hpp"
 
 #include <algorithm>
@@ -11,20 +11,14 @@
 
 #include <octomap/OcTree.h>
 
-#include "common/thread_pool.hpp"
+#include "common/format.hpp"
 
 namespace octoreach {
 
 namespace {
-std::string fmt(const Eigen::Vector3d& v) {
-  std::ostringstream s;
-  s << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
-  return s.str();
-}
-
 void check_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const char* what) {
   if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any())
-    throw std::invalid_argument(std::string(what) + ": need finite lo <= hi, got lo " + fmt(lo) + ", hi " + fmt(hi));
+    throw std::invalid_argument(std::string(what) + ": need finite lo <= hi, got lo " + detail::format_point(lo) + ", hi " + detail::format_point(hi));
 }
 
 // Slab test; t in [0, tmax].
@@ -294,77 +288,6 @@ bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double m
   }
   t = best;
   return hit;
-}
-
-Eigen::Vector3d CameraIntrinsics::ray(double u, double v) const {
-  double f = focal();
-  return Eigen::Vector3d((u - 0.5 * width) / f, (v - 0.5 * height) / f, 1.0).normalized();
-}
-double CameraIntrinsics::focal() const { return 0.5 * width / std::tan(0.5 * fov); }
-void CameraIntrinsics::validate() const {
-  if (width <= 0 || height <= 0)
-    throw std::invalid_argument("image size must be positive, got " + std::to_string(width) + " x " +
-                                std::to_string(height));
-  if (!(fov > 0 && fov < M_PI)) throw std::invalid_argument("fov must be in (0, pi) radians, got " + std::to_string(fov));
-  if (!(max_range > 0) || !std::isfinite(max_range))
-    throw std::invalid_argument("max_range must be a positive number of metres, got " + std::to_string(max_range));
-}
-
-DepthCamera::DepthCamera(int width, int height, double fov, double max_range, double noise, std::uint64_t seed)
-    : noise_(noise), seed_(seed) {
-  intr_.width = width;
-  intr_.height = height;
-  intr_.fov = fov;
-  intr_.max_range = max_range;
-  intr_.validate();
-  if (!(noise >= 0) || !std::isfinite(noise))
-    throw std::invalid_argument("noise must be a non-negative standard deviation in metres, got " + std::to_string(noise));
-}
-
-std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose& pose, int threads) {
-  const int W = intr_.width, H = intr_.height;
-  const std::uint64_t call = calls_++;
-  std::vector<std::vector<Eigen::Vector3d>> rows(H);
-  const Eigen::Matrix3d R = pose.linear();
-  const Eigen::Vector3d o = pose.translation();
-  detail::parallel_for(std::size_t(H), threads, [&](std::size_t v, int) {
-    std::mt19937_64 rng(seed_ * 0x9E3779B97F4A7C15ULL + call * 1000003ULL + v);
-    std::normal_distribution<double> gauss(0.0, 1.0);
-    auto& out = rows[v];
-    for (int u = 0; u < W; ++u) {
-      Eigen::Vector3d dc = intr_.ray(u + 0.5, v + 0.5);
-      Eigen::Vector3d d = R * dc;
-      double t;
-      if (!scene.raycast(o, d, intr_.max_range, t)) continue;
-      double z = t * dc.z();
-      if (noise_ > 0) z += noise_ * z * z * gauss(rng);
-      if (z <= 0) continue;
-      out.push_back(o + d * (z / dc.z()));
-    }
-  }, 4);
-  std::vector<Eigen::Vector3d> pts;
-  for (auto& r : rows) pts.insert(pts.end(), r.begin(), r.end());
-  return pts;
-}
-
-Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward, double roll) {
-  if (!position.allFinite() || !forward.allFinite() || !std::isfinite(roll) || forward.norm() < 1e-12)
-    throw std::invalid_argument("camera pose: need a finite position and roll and a non-zero finite direction");
-  Eigen::Vector3d z = forward.normalized();
-  Eigen::Vector3d up = std::abs(z.z()) > 0.99 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
-  Eigen::Vector3d x = z.cross(up).normalized();
-  Eigen::Vector3d y = z.cross(x);
-  double c = std::cos(roll), s = std::sin(roll);
-  Pose T = Pose::Identity();
-  T.linear().col(0) = c * x + s * y;
-  T.linear().col(1) = -s * x + c * y;
-  T.linear().col(2) = z;
-  T.translation() = position;
-  return T;
-}
-
-Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll) {
-  return camera_pose(eye, target - eye, roll);
 }
 
 }  // namespace octoreach

@@ -1,5 +1,7 @@
 #pragma once
-// Private parts of ExplorationMap shared by exploration.cpp and next_best_view.cpp.
+// Internal: the state behind an ExplorationMap (OcTree, finest-resolution cell cache, frontier
+// labels, void cells, hull), shared by the files of the exploration room and by next_best_view.
+// Nothing here is part of the public API.
 #include <array>
 #include <memory>
 #include <mutex>
@@ -9,10 +11,10 @@
 
 #include <octomap/OcTree.h>
 
+#include "hull.hpp"
 #include "octoreach/exploration.hpp"
 
-namespace octoreach {
-namespace detail {
+namespace octoreach::detail {
 
 // OcTree with access to its root, so batched updates can create it like updateNode does.
 class MapTree : public octomap::OcTree {
@@ -45,14 +47,7 @@ class StateGrid {
     auto it = blocks_.find(block_of(k));
     return it == blocks_.end() ? 0 : (*it->second)[offset(k)];
   }
-  std::uint8_t& at(CellKey k) {
-    auto& b = blocks_[block_of(k)];
-    if (!b) {
-      b = std::make_unique<Block>();
-      b->fill(0);
-    }
-    return (*b)[offset(k)];
-  }
+  std::uint8_t& at(CellKey k) { return block(block_of(k))[offset(k)]; }
   Block& block(CellKey block) {
     auto& b = blocks_[block];
     if (!b) {
@@ -64,11 +59,6 @@ class StateGrid {
   const Block* find_block(CellKey block) const {
     auto it = blocks_.find(block);
     return it == blocks_.end() ? nullptr : it->second.get();
-  }
-  void clear() { blocks_.clear(); }
-  template <class F>
-  void for_each_block(F&& f) const {
-    for (const auto& [k, b] : blocks_) f(k, *b);
   }
 
  private:
@@ -94,9 +84,9 @@ class GridReader {
   mutable const StateGrid::Block* last_ = nullptr;
 };
 
-// Read-write access to existing cells of a StateGrid with a one-block cache. Blocks are never
-// freed or moved while the grid lives (unique_ptr), so the cached pointer stays valid even when
-// other blocks are created.
+// Read-write access to cells of a StateGrid with a one-block cache. Blocks are never freed or
+// moved while the grid lives (unique_ptr), so the cached pointer stays valid even when other
+// blocks are created.
 class GridWriter {
  public:
   explicit GridWriter(StateGrid& g) : g_(g) {}
@@ -108,10 +98,8 @@ class GridWriter {
     }
     return (*last_)[StateGrid::offset(k)];
   }
-  std::uint8_t get(CellKey k) { return at_if(k); }
-
- private:
-  std::uint8_t at_if(CellKey k) {
+  // Reads without creating a block.
+  std::uint8_t get(CellKey k) {
     CellKey b = StateGrid::block_of(k);
     if (b == last_key_ && last_) return (*last_)[StateGrid::offset(k)];
     const StateGrid::Block* p = g_.find_block(b);
@@ -120,66 +108,47 @@ class GridWriter {
     last_key_ = b;
     return (*p)[StateGrid::offset(k)];
   }
+
+ private:
   StateGrid& g_;
   CellKey last_key_ = ~CellKey(0);
   StateGrid::Block* last_ = nullptr;
 };
 
-// Neighbour of k by (dx, dy, dz); false when it would leave the key range.
-inline bool neighbour(CellKey k, int dx, int dy, int dz, CellKey& out) {
-  int x = int(key_x(k)) + dx, y = int(key_y(k)) + dy, z = int(key_z(k)) + dz;
-  if (x < 0 || y < 0 || z < 0 || x > 0xffff || y > 0xffff || z > 0xffff) return false;
-  out = pack_key(x, y, z);
-  return true;
+inline CellKey to_cell(const octomap::OcTreeKey& k) { return pack_key(k[0], k[1], k[2]); }
+inline octomap::OcTreeKey to_octo(CellKey k) {
+  return octomap::OcTreeKey(octomap::key_type(key_x(k)), octomap::key_type(key_y(k)), octomap::key_type(key_z(k)));
 }
 
-constexpr int kN6[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-
-struct N26 {
-  int d[26][3];
-  N26() {
-    int n = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-          if (dx || dy || dz) {
-            d[n][0] = dx;
-            d[n][1] = dy;
-            d[n][2] = dz;
-            ++n;
-          }
+// The one leaf-to-cells expansion: calls f(cell, leaf iterator) for every finest-resolution cell
+// an octree leaf covers (a pruned leaf of depth d covers 8^(16 - d) cells starting at its key
+// rounded down to the leaf size), for every leaf of the tree.
+template <class F>
+void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
+  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
+    octomap::OcTreeKey k = it.getKey();
+    int size = 1 << (16 - it.getDepth());
+    int mask = ~(size - 1);
+    int x0 = k[0] & mask, y0 = k[1] & mask, z0 = k[2] & mask;
+    for (int z = 0; z < size; ++z)
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) f(pack_key(x0 + x, y0 + y, z0 + z), it);
   }
-};
-extern const N26 kN26;
+}
 
-// Hull facets and, per (x, y) column of cells, the key interval [lo, hi] of cells whose
-// centre is inside the hull (lo > hi: empty).
-struct HullColumns {
-  int x0 = 0, y0 = 0, nx = 0, ny = 0;
-  std::vector<std::int32_t> lo, hi;
-  bool column(int x, int y, int& l, int& h) const {
-    if (x < x0 || y < y0 || x >= x0 + nx || y >= y0 + ny) return false;
-    std::size_t i = std::size_t(y - y0) * nx + (x - x0);
-    l = lo[i];
-    h = hi[i];
-    return l <= h;
-  }
-};
-
-}  // namespace detail
-
-struct ExplorationMap::Impl {
-  explicit Impl(double res) : tree(res) {}
-  detail::MapTree tree;
-  detail::StateGrid grid;
+// Everything an ExplorationMap maintains. Writers: ExplorationMap's non-const methods (one at a
+// time, see the class comment); the caches below are rebuilt under cache_mutex by const methods.
+struct ExplorationState {
+  explicit ExplorationState(double res) : tree(res) {}
+  MapTree tree;
+  StateGrid grid;
   // frontier cell -> cluster label, label -> cells (cells may be stale; filter by the flag)
   std::unordered_map<CellKey, int> frontier_label;
   std::unordered_map<int, std::vector<CellKey>> frontier_members;
   int next_label = 0;
   std::unordered_set<CellKey> void_set;
-  std::vector<Eigen::Vector3d> hull_vertices;
-  std::vector<Eigen::Vector4d> hull_planes;
-  detail::HullColumns columns;
+  Hull hull;
+  HullColumns columns;
 
   // caches rebuilt on demand after an insert
   mutable std::mutex cache_mutex;
@@ -188,7 +157,19 @@ struct ExplorationMap::Impl {
   mutable std::unordered_map<int, int> label_to_cluster;
   mutable std::vector<VoidCluster> void_clusters;
 
-  CellState state(CellKey k) const { return CellState(grid.get(k) & detail::kStateMask); }
+  CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }
+  Eigen::Vector3d center(CellKey k) const {
+    return {tree.keyToCoord(octomap::key_type(key_x(k))), tree.keyToCoord(octomap::key_type(key_y(k))),
+            tree.keyToCoord(octomap::key_type(key_z(k)))};
+  }
 };
 
-}  // namespace octoreach
+// The only door from outside the class to its state (declared a friend in exploration.hpp).
+struct ExplorationAccess {
+  static const ExplorationState& state(const ExplorationMap& m) { return *m.state_; }
+};
+
+/// \brief The state behind `map`, for octoreach's own algorithms (next_best_view).
+inline const ExplorationState& state(const ExplorationMap& map) { return ExplorationAccess::state(map); }
+
+}  // namespace octoreach::detail

@@ -1,0 +1,194 @@
+// Next-best-view bindings: NbvOptions (defaults from the C++ struct), view_utility,
+// accumulate_utility and next_best_view.
+#include "exploration_convert.hpp"
+#include "octoreach/capability_map.hpp"
+#include "octoreach/next_best_view.hpp"
+#include "octoreach/simulation.hpp"
+
+namespace octoreach::py_bindings {
+
+namespace {
+
+CameraIntrinsics intrinsics_from(const py::object& camera) {
+  if (py::isinstance<DepthCamera>(camera)) return camera.cast<const DepthCamera&>().intrinsics();
+  if (py::isinstance<CameraIntrinsics>(camera)) return camera.cast<CameraIntrinsics>();
+  throw std::invalid_argument("camera must be a DepthCamera or CameraIntrinsics");
+}
+
+py::object optional_pose(const Pose& T) { return T.matrix().isIdentity(0) ? py::object(py::none()) : py::object(pose_to_array(T)); }
+
+// The Python keywords that are not plain fields: workspace_box, workspace_sphere, workspace (a
+// callable), 4x4 arrays for the base poses, ik_* for the IK options. None keeps the default.
+void def_workspace(py::class_<NbvOptions>& cls) {
+  cls.def_property("workspace_box", [](const NbvOptions& o) -> py::object {
+        if (!o.workspace.box) return py::none();
+        return py::make_tuple(o.workspace.box->lo, o.workspace.box->hi);
+      }, [](NbvOptions& o, const py::object& box) {
+        if (box.is_none()) return o.workspace.box.reset();
+        RowMatrixXd b = matrix_from(box, 3, "workspace_box");
+        if (b.rows() != 2) throw std::invalid_argument("workspace_box must have shape (2, 3): lo and hi rows");
+        o.workspace.box = Aabb{b.row(0).transpose(), b.row(1).transpose()};
+      }, "Sensor positions inside this box ((2, 3): lo, hi rows; map frame), or None.")
+      .def_property("workspace_sphere", [](const NbvOptions& o) -> py::object {
+        if (!o.workspace.sphere_center) return py::none();
+        return py::make_tuple(*o.workspace.sphere_center, o.workspace.sphere_radius);
+      }, [](NbvOptions& o, const py::object& sphere) {
+        if (sphere.is_none()) return o.workspace.sphere_center.reset();
+        auto t = sphere.cast<py::tuple>();
+        if (t.size() != 2) throw std::invalid_argument("workspace_sphere must be (center, radius)");
+        o.workspace.sphere_center = vec3_from(t[0], "workspace_sphere center");
+        o.workspace.sphere_radius = t[1].cast<double>();
+      }, "Sensor positions within (center, radius) of a point (map frame), or None.")
+      .def_property("workspace", [](const NbvOptions& o) -> py::object {
+        return o.workspace.filter ? py::cast(o.workspace.filter) : py::object(py::none());
+      }, [](NbvOptions& o, const py::object& fn) {
+        if (fn.is_none()) return void(o.workspace.filter = nullptr);
+        o.workspace.filter = [fn](const std::vector<Eigen::Vector3d>& pts) {
+          py::gil_scoped_acquire gil;
+          py::object r = fn(to_points(pts));
+          py::array_t<bool> a = py::array_t<bool>::ensure(r);
+          if (!a || a.size() != py::ssize_t(pts.size()))
+            throw std::invalid_argument("workspace callable must return one bool per row of its (N, 3) input");
+          return std::vector<bool>(a.data(), a.data() + a.size());
+        };
+      }, "Callable taking candidate cell centres (N, 3) and returning (N,) bools, or None.");
+}
+
+void def_arm(py::class_<NbvOptions>& cls) {
+  // The options keep the chain and the capability map alive (they hold plain pointers).
+  const auto ref = py::return_value_policy::reference;
+  cls.def_property("chain", py::cpp_function([](const NbvOptions& o) { return o.chain; }, ref),
+                   py::cpp_function([](NbvOptions& o, const Chain* c) { o.chain = c; }, py::keep_alive<1, 2>()),
+                   "Chain carrying the camera (its tip is the camera frame, +z forward), or None.")
+      .def_property("chain_base", [](const NbvOptions& o) { return optional_pose(o.chain_base); },
+                    [](NbvOptions& o, const py::object& T) {
+                      o.chain_base = T.is_none() ? Pose::Identity() : pose_from(T, "chain_base");
+                    }, "4x4 chain base -> map (None: identity).")
+      .def_property("capability_map", py::cpp_function([](const NbvOptions& o) { return o.capability_map; }, ref),
+                    py::cpp_function([](NbvOptions& o, const CapabilityMap* c) { o.capability_map = c; },
+                                     py::keep_alive<1, 2>()),
+                    "CapabilityMap of the arm carrying the camera, or None.")
+      .def_property("capability_base", [](const NbvOptions& o) { return optional_pose(o.capability_base); },
+                    [](NbvOptions& o, const py::object& T) {
+                      o.capability_base = T.is_none() ? Pose::Identity() : pose_from(T, "capability_base");
+                    }, "4x4 capability map base link -> map (None: identity).")
+      .def_property("ik_attempts", [](const NbvOptions& o) { return o.ik.attempts; },
+                    [](NbvOptions& o, int v) { o.ik.attempts = v; })
+      .def_property("ik_position_tolerance", [](const NbvOptions& o) { return o.ik.position_tolerance; },
+                    [](NbvOptions& o, double v) { o.ik.position_tolerance = v; })
+      .def_property("ik_orientation_tolerance", [](const NbvOptions& o) { return o.ik.orientation_tolerance; },
+                    [](NbvOptions& o, double v) { o.ik.orientation_tolerance = v; });
+}
+
+void wrap_nbv_options(py::module_& m) {
+  py::class_<NbvOptions> cls(m, "NbvOptions",
+                             "Options of next_best_view (defaults of the C++ struct); every attribute is also a\n"
+                             "keyword argument of next_best_view.");
+  cls.def(py::init<>())
+      .def_readwrite("max_valid_poses", &NbvOptions::max_valid_poses, "N of the paper: stop after this many valid poses")
+      .def_readwrite("orientations_per_cell", &NbvOptions::orientations_per_cell)
+      .def_readwrite("orientation_spread", &NbvOptions::orientation_spread, "radians around the mean utility direction")
+      .def_readwrite("max_candidate_cells", &NbvOptions::max_candidate_cells)
+      .def_readwrite("score_width", &NbvOptions::score_width)
+      .def_readwrite("score_height", &NbvOptions::score_height)
+      .def_readwrite("min_distance", &NbvOptions::min_distance, "metres from the camera to any occupied cell")
+      .def_readwrite("seed", &NbvOptions::seed, "seeds the orientation samples and the IK restarts")
+      .def_readwrite("threads", &NbvOptions::threads)
+      .def_readwrite("arm_collisions", &NbvOptions::arm_collisions)
+      .def_readwrite("min_reachability", &NbvOptions::min_reachability)
+      .def_readwrite("capability_orientations", &NbvOptions::capability_orientations);
+  def_workspace(cls);
+  def_arm(cls);
+}
+
+py::dict view_dict(const ViewCandidate& v) {
+  py::dict d;
+  d["pose"] = pose_to_array(v.pose);
+  d["void_cells"] = v.void_cells;
+  d["unknown_cells"] = v.unknown_cells;
+  d["utility_dm3"] = v.utility_dm3;
+  d["cell_utility"] = v.cell_utility;
+  d["q"] = v.q.size() ? py::object(py::cast(v.q)) : py::object(py::none());
+  return d;
+}
+
+py::dict result_dict(const NbvResult& r) {
+  py::dict d;
+  py::list ranked;
+  for (const auto& v : r.ranked) ranked.append(view_dict(v));
+  d["ranked"] = ranked;
+  d["best"] = r.ranked.empty() ? py::object(py::none()) : py::object(view_dict(r.ranked.front()));
+  d["best_pose"] = r.ranked.empty() ? py::object(py::none()) : py::object(pose_to_array(r.ranked.front().pose));
+  d["void_cells"] = r.best_void_cells();
+  d["utility_dm3"] = r.best_utility_dm3();
+  d["utility_vectors"] = r.utility_vectors;
+  d["utility_cells"] = r.utility_cells;
+  d["candidate_cells"] = r.candidate_cells;
+  d["poses_scored"] = r.poses_scored;
+  d["ik_failures"] = r.ik_failures;
+  d["capability_pruned"] = r.capability_pruned;
+  d["arm_collisions"] = r.arm_collisions;
+  d["capability_rejected"] = r.capability_rejected;
+  d["seconds"] = r.seconds;
+  d["seconds_vectors"] = r.seconds_vectors;
+  d["seconds_prune"] = r.seconds_prune;
+  d["seconds_score"] = r.seconds_score;
+  return d;
+}
+
+}  // namespace
+
+void wrap_next_best_view(py::module_& m) {
+  wrap_nbv_options(m);
+  m.def("view_utility", [](const ExplorationMap& map, const py::object& camera, const py::object& pose, int sw, int sh) {
+          CameraIntrinsics c = intrinsics_from(camera);
+          Pose T = pose_from(pose, "camera_pose");
+          py::gil_scoped_release release;
+          return view_utility(map, c, T, sw, sh);
+        }, py::arg("map"), py::arg("camera"), py::arg("camera_pose"), py::arg("score_width") = 48,
+        py::arg("score_height") = 36,
+        "(void cells, unknown cells) a camera at camera_pose (4x4) sees before the first occupied cell,\n"
+        "casting a score_width x score_height grid of rays.");
+
+  m.def("accumulate_utility", [](const ExplorationMap& map, double range) {
+          std::vector<std::pair<CellKey, double>> u;
+          {
+            py::gil_scoped_release release;
+            u = accumulate_utility(map, range);
+          }
+          std::vector<CellKey> keys;
+          py::array_t<double> val(static_cast<py::ssize_t>(u.size()));
+          for (std::size_t i = 0; i < u.size(); ++i) {
+            keys.push_back(u[i].first);
+            val.mutable_data()[i] = u[i].second;
+          }
+          return py::make_tuple(centers(map, keys), val);
+        }, py::arg("map"), py::arg("sensor_range"),
+        "Algorithm 1: (cell centres (N, 3), accumulated utility (N,), m^3) before workspace pruning.");
+
+  m.def("next_best_view", [](const ExplorationMap& map, const py::object& camera, const py::object& options,
+                             const py::kwargs& kwargs) {
+          CameraIntrinsics c = intrinsics_from(camera);
+          NbvOptions o = options_from<NbvOptions>(options, kwargs, "next_best_view");
+          o.ik.seed = o.seed;  // the Python API has one seed for the samples and the IK restarts
+          NbvResult r;
+          {
+            py::gil_scoped_release release;
+            r = next_best_view(map, c, o);
+          }
+          return result_dict(r);
+        }, py::arg("map"), py::arg("camera"), py::arg("options") = py::none(),
+        "Next best view (Algorithm 1 + frustum scoring). Options: an NbvOptions and/or its attributes as\n"
+        "keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None),\n"
+        "void_cells and utility_dm3 expected from it, ranked (valid poses, best first, each with pose,\n"
+        "void_cells, unknown_cells, utility_dm3, cell_utility, q), and search statistics. The workspace is\n"
+        "workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable\n"
+        "taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,\n"
+        "+z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.\n"
+        "capability_map (a CapabilityMap of that arm) with capability_base (4x4 map base link -> map) prunes\n"
+        "candidate cells whose voxel has reachability index <= min_reachability before any IK, and with\n"
+        "capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.\n"
+        "arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.");
+}
+
+}  // namespace octoreach::py_bindings

@@ -1,0 +1,259 @@
+// ExplorationMap: the public class. Insertion runs the steps of batch_insert.cpp and upkeep.hpp;
+// what the map holds lives in ExplorationState (exploration_state.hpp).
+#include "octoreach/exploration.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <unordered_map>
+
+#include "batch_insert.hpp"
+#include "cell_sets.hpp"
+#include "common/atomic_file.hpp"
+#include "common/format.hpp"
+#include "common/random_mix.hpp"
+#include "common/thread_pool.hpp"
+#include "exploration_state.hpp"
+#include "upkeep.hpp"
+
+namespace octoreach {
+
+using detail::kFrontierFlag;
+using detail::kStateMask;
+using detail::kVoidFlag;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+bool key_checked(const octomap::OcTree& tree, const Eigen::Vector3d& p, octomap::OcTreeKey& k) {
+  return p.allFinite() && tree.coordToKeyChecked(octomap::point3d(float(p.x()), float(p.y()), float(p.z())), k);
+}
+
+// Finite rows as OctoMap points; counts the others in stats.dropped.
+std::vector<octomap::point3d> finite_points(const std::vector<Eigen::Vector3d>& points, InsertStats& st) {
+  std::vector<octomap::point3d> pc;
+  pc.reserve(points.size());
+  for (const auto& p : points) {
+    if (p.allFinite())
+      pc.emplace_back(float(p.x()), float(p.y()), float(p.z()));
+    else
+      ++st.dropped;
+  }
+  st.points = pc.size();
+  return pc;
+}
+
+}  // namespace
+
+OccupancyDigest occupancy_digest(const octomap::OcTree& tree) {
+  OccupancyDigest d;
+  detail::for_each_leaf_cell(tree, [&](CellKey c, const auto& it) {
+    bool occ = tree.isNodeOccupied(*it);
+    float lo = it->getLogOdds();
+    std::uint32_t lo_bits;
+    std::memcpy(&lo_bits, &lo, 4);
+    d.hash += detail::mix64(c ^ (std::uint64_t(lo_bits) << 48) ^ (std::uint64_t(occ) << 47), 0);
+    (occ ? d.occupied : d.free)++;
+  });
+  return d;
+}
+
+ExplorationMap::ExplorationMap(const ExplorationOptions& options) : options_(options) {
+  if (!(options.resolution > 0) || !std::isfinite(options.resolution))
+    throw std::invalid_argument("resolution must be a positive number of metres, got " +
+                                std::to_string(options.resolution));
+  if (!(options.void_fit_threshold >= 0))
+    throw std::invalid_argument("void_fit_threshold must be >= 0, got " + std::to_string(options.void_fit_threshold));
+  resolution_ = options.resolution;
+  state_ = std::make_unique<detail::ExplorationState>(resolution_);
+}
+
+ExplorationMap::~ExplorationMap() = default;
+
+const octomap::OcTree& ExplorationMap::octree() const { return state_->tree; }
+
+CellKey ExplorationMap::key_of(const Eigen::Vector3d& p) const {
+  octomap::OcTreeKey k;
+  if (!key_checked(state_->tree, p, k))
+    throw std::invalid_argument("point " + detail::format_point(p) + " is outside the map bounds");
+  return detail::to_cell(k);
+}
+
+Eigen::Vector3d ExplorationMap::center(CellKey k) const { return state_->center(k); }
+
+CellState ExplorationMap::state(CellKey key) const { return state_->state(key); }
+CellState ExplorationMap::state(const Eigen::Vector3d& p) const {
+  octomap::OcTreeKey k;
+  return key_checked(state_->tree, p, k) ? state_->state(detail::to_cell(k)) : CellState::Unknown;
+}
+bool ExplorationMap::is_frontier(CellKey key) const { return (state_->grid.get(key) & kFrontierFlag) != 0; }
+bool ExplorationMap::is_void(CellKey key) const { return (state_->grid.get(key) & kVoidFlag) != 0; }
+
+InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
+                                   double max_range) {
+  auto t_start = Clock::now();
+  InsertStats st;
+  if (!origin.allFinite())
+    throw std::invalid_argument("sensor_origin must be finite, got " + detail::format_point(origin));
+  if (std::isnan(max_range)) throw std::invalid_argument("max_range must be a number (<= 0 or inf: unlimited), got nan");
+  auto& S = *state_;
+  octomap::OcTreeKey okey;
+  if (!key_checked(S.tree, origin, okey))
+    throw std::invalid_argument("sensor_origin " + detail::format_point(origin) +
+                                " is outside the map bounds (|coordinate| < " + std::to_string(resolution_ * 32768) +
+                                " m)");
+  changed_.clear();
+  const std::vector<octomap::point3d> pc = finite_points(points, st);
+  if (pc.empty()) {
+    st.seconds_total = seconds_since(t_start);
+    return st;
+  }
+  const int threads = detail::default_threads(options_.threads);
+  const octomap::point3d o(float(origin.x()), float(origin.y()), float(origin.z()));
+
+  // 1-2. ray ends, the ray walk, the sorted cell updates
+  auto t0 = Clock::now();
+  detail::CloudUpdates up = detail::cloud_updates(S.tree, pc, o, max_range, threads, st);
+  st.seconds_rays = seconds_since(t0);
+
+  // 3. one batched descent of the tree; the cell cache follows the changed cells
+  t0 = Clock::now();
+  detail::apply_updates(S.tree, up.updates, changed_);
+  detail::GridWriter gw(S.grid);
+  for (const auto& c : changed_) {
+    std::uint8_t& cell = gw.at(c.key);
+    cell = std::uint8_t((cell & ~kStateMask) | std::uint8_t(c.after));
+  }
+  st.changed_cells = changed_.size();
+  st.seconds_tree = seconds_since(t0);
+
+  // 4. frontiers
+  t0 = Clock::now();
+  detail::update_frontiers(S, changed_, threads, st);
+  st.seconds_frontiers = seconds_since(t0);
+
+  // 5. hull and voids
+  if (options_.track_voids) detail::update_voids(S, changed_, up.occupied, options_, threads, st);
+  st.seconds_total = seconds_since(t_start);
+  return st;
+}
+
+std::vector<CellKey> ExplorationMap::known_cells(CellState which) const {
+  if (which == CellState::Unknown) throw std::invalid_argument("known_cells: which must be Free or Occupied");
+  const auto& tree = state_->tree;
+  const bool want = which == CellState::Occupied;
+  std::vector<CellKey> keys;
+  detail::for_each_leaf_cell(tree, [&](CellKey c, const auto& it) {
+    if (tree.isNodeOccupied(*it) == want) keys.push_back(c);
+  });
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+OccupancyDigest ExplorationMap::occupancy_digest() const { return octoreach::occupancy_digest(state_->tree); }
+
+ExplorationSnapshot ExplorationMap::snapshot() const {
+  ExplorationSnapshot s;
+  s.frontier_cells = frontier_cells();
+  s.frontier_clusters = frontier_clusters();
+  s.void_cells = void_cells();
+  return s;
+}
+
+ExplorationSnapshot ExplorationMap::recompute_from_scratch() const {
+  ExplorationSnapshot s;
+  const auto& S = *state_;
+  // Every known leaf of the tree, expanded to the finest resolution, classified by the tree itself.
+  std::unordered_map<CellKey, std::uint8_t> cls;
+  detail::for_each_leaf_cell(S.tree, [&](CellKey cell, const auto& it) {
+    cls[cell] = std::uint8_t(S.tree.isNodeOccupied(*it) ? CellState::Occupied : CellState::Free);
+  });
+  auto state_of = [&](CellKey k) {
+    auto it = cls.find(k);
+    return it == cls.end() ? std::uint8_t(0) : it->second;
+  };
+  for (const auto& [k, c] : cls) {
+    if (c != std::uint8_t(CellState::Free)) continue;
+    for (const auto& d : detail::kN6) {
+      CellKey n;
+      if (detail::neighbour(k, d[0], d[1], d[2], n) && state_of(n) == 0) {
+        s.frontier_cells.push_back(k);
+        break;
+      }
+    }
+  }
+  std::sort(s.frontier_cells.begin(), s.frontier_cells.end());
+  s.frontier_clusters = detail::components26(s.frontier_cells);
+  if (!S.hull.empty()) {
+    detail::HullColumns c = detail::hull_columns(S.tree, S.hull, options_.threads, options_.search_lo, options_.search_hi);
+    for (int y = 0; y < c.ny; ++y)
+      for (int x = 0; x < c.nx; ++x) {
+        int l, h;
+        if (!c.column(c.x0 + x, c.y0 + y, l, h)) continue;
+        for (int z = l; z <= h; ++z) {
+          CellKey k = pack_key(c.x0 + x, c.y0 + y, z);
+          if (state_of(k) == 0) s.void_cells.push_back(k);
+        }
+      }
+  }
+  std::sort(s.void_cells.begin(), s.void_cells.end());
+  return s;
+}
+
+std::pair<std::size_t, std::size_t> ExplorationMap::count_known(const Eigen::Vector3d& lo,
+                                                                const Eigen::Vector3d& hi) const {
+  CellKey a = key_of(lo), b = key_of(hi);
+  std::size_t known = 0, unknown = 0;
+  detail::GridReader g(state_->grid);
+  for (std::uint32_t z = key_z(a); z <= key_z(b); ++z)
+    for (std::uint32_t y = key_y(a); y <= key_y(b); ++y)
+      for (std::uint32_t x = key_x(a); x <= key_x(b); ++x) {
+        if (g.get(pack_key(x, y, z)) & kStateMask)
+          ++known;
+        else
+          ++unknown;
+      }
+  return {known, unknown};
+}
+
+void ExplorationMap::write_bt(const std::string& path) const {
+  detail::write_file_atomically(path, [&](std::ostream& out) {
+    if (!state_->tree.writeBinaryConst(out)) throw FileError("cannot write OctoMap file '" + path + "'");
+  }, "OctoMap file");
+}
+
+std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& path, const ExplorationOptions& options) {
+  {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) throw FileError("cannot open OctoMap file '" + path + "'");
+  }
+  auto m = std::make_unique<ExplorationMap>(options);
+  auto& S = *m->state_;
+  if (!S.tree.readBinary(path)) throw FileError("'" + path + "' is not a readable OctoMap binary (.bt) file");
+  m->resolution_ = S.tree.getResolution();
+  m->options_.resolution = m->resolution_;
+  std::vector<Eigen::Vector3d> occupied;
+  detail::for_each_leaf_cell(S.tree, [&](CellKey c, const auto& it) {
+    bool occ = S.tree.isNodeOccupied(*it);
+    S.grid.at(c) = std::uint8_t(occ ? CellState::Occupied : CellState::Free);
+    if (occ) occupied.push_back(S.center(c));
+  });
+  ExplorationSnapshot s = m->recompute_from_scratch();  // frontiers only: no hull yet
+  for (CellKey k : s.frontier_cells) S.grid.at(k) |= kFrontierFlag;
+  detail::label_frontier_clusters(S, std::move(s.frontier_clusters));
+  if (options.track_voids && detail::convex_hull(occupied, S.hull)) {
+    S.columns = detail::hull_columns(S.tree, S.hull, options.threads, options.search_lo, options.search_hi);
+    ExplorationSnapshot v = m->recompute_from_scratch();
+    for (CellKey k : v.void_cells) {
+      S.grid.at(k) |= kVoidFlag;
+      S.void_set.insert(k);
+    }
+  }
+  return m;
+}
+
+}  // namespace octoreach

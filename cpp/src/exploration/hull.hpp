@@ -1,0 +1,44 @@
+#pragma once
+// Internal: the convex hull of the occupied cells (Qhull) and the cells whose centre it contains.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace octomap {
+class OcTree;
+}
+
+namespace octoreach::detail {
+
+// Facet planes (outward unit normal n, offset d; inside n.x + d <= 0) and vertices, both sorted.
+struct Hull {
+  std::vector<Eigen::Vector4d> planes;
+  std::vector<Eigen::Vector3d> vertices;
+  bool empty() const { return planes.empty(); }
+};
+
+// Convex hull with libqhull_r. Returns false (and leaves `hull` alone) when the points are
+// degenerate (fewer than 4, coplanar ...).
+bool convex_hull(const std::vector<Eigen::Vector3d>& points, Hull& hull);
+
+// Per (x, y) column of cells, the key interval [lo, hi] of cells whose centre is inside the hull
+// (lo > hi: empty).
+struct HullColumns {
+  int x0 = 0, y0 = 0, nx = 0, ny = 0;
+  std::vector<std::int32_t> lo, hi;
+  bool column(int x, int y, int& l, int& h) const {
+    if (x < x0 || y < y0 || x >= x0 + nx || y >= y0 + ny) return false;
+    std::size_t i = std::size_t(y - y0) * nx + (x - x0);
+    l = lo[i];
+    h = hi[i];
+    return l <= h;
+  }
+};
+
+// Column intervals of the cells of `tree`'s grid whose centres are inside `hull` and inside the
+// search space [search_lo, search_hi].
+HullColumns hull_columns(const octomap::OcTree& tree, const Hull& hull, int threads, const Eigen::Vector3d& search_lo,
+                         const Eigen::Vector3d& search_hi);
+
+}  // namespace octoreach::detail
