@@ -1,0 +1,4 @@
+"""``python -m octoreach.exploration --scene 2 --out DIR``: the exploration demo."""
+from .demo import main
+
+raise SystemExit(main())
