@@ -51,7 +51,9 @@ struct IkOptions {
 
 /// \brief A serial chain between two links of a robot, with FK, Jacobian and IK.
 ///
-/// Immutable and cheap to copy; safe to share between threads.
+/// Immutable and cheap to copy; safe to share between threads. Holds its robot as a
+/// shared_ptr<const Robot>, so the robot lives as long as any of its chains. Each IK call owns its
+/// scratch (the solver is a per-call workspace), so concurrent calls need no lock.
 class Chain {
  public:
   /// \brief One moving or fixed step of the chain.
@@ -111,10 +113,7 @@ class Chain {
   void split_collision_pairs(std::vector<std::pair<int, int>>& moving, std::vector<std::pair<int, int>>& fixed) const;
 
  private:
-  friend class Robot;
-  template <int MaxDof>
-  std::optional<Eigen::VectorXd> ik_impl_(const Pose& target, const IkOptions& options,
-                                          const Eigen::VectorXd* seed) const;
+  friend class Robot;  // Robot::chain cuts chains out of its tree
   std::shared_ptr<const Robot> robot_;
   std::string base_link_, tip_link_;
   std::vector<Segment> segments_;
