@@ -50,11 +50,18 @@ Eigen::VectorXd q_from(const Chain& c, const py::handle& q, const char* what = "
   return Eigen::Map<const Eigen::VectorXd>(a.data(), c.dof());
 }
 
-#define IK_ARGS                                                                                                \
-  py::arg("mode") = "full", py::arg("position_tolerance") = 1e-4, py::arg("orientation_tolerance") = 1e-3,    \
-  py::arg("attempts") = 20, py::arg("max_iterations") = 100, py::arg("rng_seed") = 0,                          \
-  py::arg("approach_axis") = Eigen::Vector3d::UnitZ(), py::arg("self_collision") = false,                     \
-  py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none(),     \
+const char* mode_name(IkMode mode) {
+  return mode == IkMode::Full ? "full" : mode == IkMode::Position ? "position" : "approach";
+}
+
+// The keyword arguments of ik and ik_batch; their defaults are IkOptions' (defined once, in C++).
+const IkOptions kIkDefaults;
+#define IK_ARGS                                                                                               \
+  py::arg("mode") = mode_name(kIkDefaults.mode), py::arg("position_tolerance") = kIkDefaults.position_tolerance, \
+  py::arg("orientation_tolerance") = kIkDefaults.orientation_tolerance, py::arg("attempts") = kIkDefaults.attempts, \
+  py::arg("max_iterations") = kIkDefaults.max_iterations, py::arg("rng_seed") = kIkDefaults.seed,             \
+  py::arg("approach_axis") = kIkDefaults.approach_axis, py::arg("self_collision") = kIkDefaults.check_self_collision, \
+  py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none(),      \
   py::arg("obstacle_links") = py::none()
 
 }  // namespace
@@ -73,11 +80,11 @@ void wrap_chain(py::module_& m) {
       .def("fk", [](const Chain& c, const py::object& q) { return pose_to_array(c.fk(q_from(c, q))); }, py::arg("q"),
            "Pose (4x4) of the tip link in the base link frame.")
       .def("fk_batch", [](const Chain& c, const py::object& Q) {
-             RowMatrixXd M = matrix_from(Q, c.dof(), "Q");
-             std::vector<Pose> out(M.rows());
+             Eigen::MatrixXd M = matrix_from(Q, c.dof(), "Q");
+             std::vector<Pose> out;
              {
                py::gil_scoped_release release;
-               for (Eigen::Index i = 0; i < M.rows(); ++i) out[i] = c.fk(M.row(i).transpose());
+               out = c.fk_batch(M);
              }
              return poses_to_array(out);
            }, py::arg("Q"), "Tip poses (N, 4, 4) in the base link frame for joint rows Q (N, dof).")

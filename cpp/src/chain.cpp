@@ -94,6 +94,15 @@ Pose Chain::fk(const Eigen::VectorXd& q) const {
   return T * tip_offset_;
 }
 
+std::vector<Pose> Chain::fk_batch(const Eigen::MatrixXd& q_rows) const {
+  if (q_rows.cols() != dof())
+    throw std::invalid_argument("joint rows have " + std::to_string(q_rows.cols()) + " columns, chain '" +
+                                base_link_ + "' -> '" + tip_link_ + "' has " + std::to_string(dof()) + " joints");
+  std::vector<Pose> out(q_rows.rows());
+  for (Eigen::Index i = 0; i < q_rows.rows(); ++i) out[i] = fk(q_rows.row(i).transpose());
+  return out;
+}
+
 Pose Chain::fk_jacobian(const Eigen::VectorXd& q, Eigen::Matrix<double, 6, Eigen::Dynamic>& J) const {
   check_joint_vector(*this, q);
   const int n = dof();

@@ -81,6 +81,8 @@ class Chain {
 
   /// \brief Pose of the tip link in the base link frame.
   Pose fk(const Eigen::VectorXd& q) const;
+  /// \brief Tip poses (base frame) for joint rows `q_rows` (N x dof), in row order.
+  std::vector<Pose> fk_batch(const Eigen::MatrixXd& q_rows) const;
   /// \brief Pose of the tip and its 6 x dof geometric Jacobian (rows: linear, angular), base frame.
   Pose fk_jacobian(const Eigen::VectorXd& q, Eigen::Matrix<double, 6, Eigen::Dynamic>& jacobian) const;
   /// \brief True when q has dof entries, all finite and inside the limits (continuous joints excepted).
