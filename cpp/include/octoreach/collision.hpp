@@ -31,6 +31,7 @@ namespace octoreach {
 
 /// \brief One collision shape of a link, with its pose in the link frame.
 struct Shape {
+  /// \brief Kind of shape (URDF box, cylinder, sphere or mesh).
   enum class Type { Box, Cylinder, Sphere, Mesh };
   Type type = Type::Box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box extents (x, y, z)
@@ -39,7 +40,7 @@ struct Shape {
   std::string mesh_path;                           ///< resolved mesh file
   Eigen::Vector3d scale = Eigen::Vector3d::Ones(); ///< mesh scale
   Pose origin = Pose::Identity();                  ///< pose in the link frame
-  std::shared_ptr<fcl::CollisionGeometryd> geometry;
+  std::shared_ptr<fcl::CollisionGeometryd> geometry;  ///< FCL geometry, local AABB computed; shared, never changed
 };
 
 /// \brief Loads a triangle mesh (STL, DAE, OBJ ... through assimp) as an FCL BVH model.
@@ -80,8 +81,11 @@ class Obstacles {
   void add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points, double resolution,
                   const std::string& name = "");
 
+  /// \brief Number of obstacles.
   std::size_t size() const { return objects_.size(); }
+  /// \brief True when there is no obstacle.
   bool empty() const { return objects_.empty(); }
+  /// \brief Obstacle names, in the order they were added ("obstacle_<i>" when none was given).
   const std::vector<std::string>& names() const { return names_; }
   /// \brief The FCL objects (world frame, AABBs computed).
   const std::vector<std::shared_ptr<fcl::CollisionObjectd>>& objects() const { return objects_; }

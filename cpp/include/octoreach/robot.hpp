@@ -119,7 +119,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
   /// root sits at `base_pose` (world frame). `check_self` also checks the robot against itself.
   bool in_collision(const Eigen::VectorXd& q, const Obstacles& obstacles, const Pose& base_pose = Pose::Identity(),
                     bool check_self = false, const std::vector<int>* only_links = nullptr) const;
-  /// \brief Same as in_collision, restricted to the given links (by index).
+  /// \brief True when a link (the `only_links` indices, or every collision link) at the given link
+  /// poses (root link frame) touches an obstacle, with the root at `base_pose` (world frame).
   bool links_in_collision(const std::vector<Pose>& link_poses, const Obstacles& obstacles,
                           const Pose& base_pose, const std::vector<int>* only_links = nullptr) const;
   /// \brief Self-collision of the checked pairs at the given link poses (root link frame).
