@@ -151,7 +151,8 @@ inline void z_range_arg(const py::object& z_range, double& z_min, double& z_max)
 }
 
 void wrap_progress(py::module_& m);
-void wrap_collision(py::module_& m);
+void wrap_obstacles(py::module_& m);
+void wrap_chain(py::module_& m);
 void wrap_robot(py::module_& m);
 void wrap_maps(py::module_& m);
 void wrap_surface(py::module_& m);

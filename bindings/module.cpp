@@ -14,7 +14,8 @@ PYBIND11_MODULE(_core, m) {
     }
   });
   octoreach::py_bindings::wrap_progress(m);
-  octoreach::py_bindings::wrap_collision(m);
+  octoreach::py_bindings::wrap_obstacles(m);
+  octoreach::py_bindings::wrap_chain(m);
   octoreach::py_bindings::wrap_robot(m);
   octoreach::py_bindings::wrap_maps(m);
   octoreach::py_bindings::wrap_surface(m);

@@ -1,177 +1,43 @@
+// Python binding of Robot: the model's queries, collision checks and allowed-collision pairs.
+// A Robot never changes: with_allowed_collisions returns a new one.
 #include "common.hpp"
 #include "octoreach/chain.hpp"
+#include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
+#include "robot_args.hpp"
 
 namespace octoreach::py_bindings {
 
 namespace {
 
-IkMode parse_mode(const std::string& mode) {
-  if (mode == "full") return IkMode::Full;
-  if (mode == "position") return IkMode::Position;
-  if (mode == "approach") return IkMode::Approach;
-  throw std::invalid_argument("IK mode must be 'full', 'position' or 'approach', got '" + mode + "'");
+using NamePairs = std::vector<std::pair<std::string, std::string>>;
+
+NamePairs pair_names(const Robot& r, const std::vector<std::pair<int, int>>& pairs) {
+  NamePairs out;
+  for (auto [a, b] : pairs) out.emplace_back(r.links()[a].name, r.links()[b].name);
+  return out;
 }
 
-IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, double rot_tol, int attempts,
-                       int max_iterations, std::uint64_t seed, const Eigen::Vector3d& approach_axis,
-                       bool self_collision, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
-                       const py::object& reference, const py::object& obstacle_links) {
-  IkOptions o;
-  if (!obstacle_links.is_none())
-    for (const auto& name : obstacle_links.cast<std::vector<std::string>>())
-      o.obstacle_links.push_back(c.robot().link_index(name));
-  o.mode = parse_mode(mode);
-  o.position_tolerance = pos_tol;
-  o.orientation_tolerance = rot_tol;
-  o.attempts = attempts;
-  o.max_iterations = max_iterations;
-  o.seed = seed;
-  if (approach_axis.norm() < 1e-9) throw std::invalid_argument("approach_axis must be a non-zero vector");
-  o.approach_axis = approach_axis;
-  o.check_self_collision = self_collision;
-  o.obstacles = obstacles;
-  if (!base_pose.is_none()) o.base_pose = pose_from(base_pose, "base_pose");
-  if (!reference.is_none()) {
-    o.reference = reference.cast<Eigen::VectorXd>();
-    if (o.reference.size() != c.robot().dof())
-      throw std::invalid_argument("reference must have " + std::to_string(c.robot().dof()) + " entries (the robot's dof)");
-  }
-  return o;
+std::vector<std::string> link_names(const Robot& r, const std::vector<int>& links) {
+  std::vector<std::string> out;
+  for (int l : links) out.push_back(r.links()[l].name);
+  return out;
 }
 
-Eigen::VectorXd q_from(const Chain& c, const py::handle& q, const char* what = "q") {
-  Array a = Array::ensure(q);
-  if (!a || a.ndim() != 1 || a.shape(0) != c.dof())
-    throw std::invalid_argument(std::string(what) + " must be a vector of " + std::to_string(c.dof()) + " joint values");
-  return Eigen::Map<const Eigen::VectorXd>(a.data(), c.dof());
-}
-
-Eigen::VectorXd robot_q(const Robot& r, const py::handle& q) {
-  Array a = Array::ensure(q);
-  if (!a || a.ndim() != 1 || a.shape(0) != r.dof())
-    throw std::invalid_argument("q must be a vector of " + std::to_string(r.dof()) + " joint values (robot.joint_names)");
-  Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(a.data(), r.dof());
-  if (!v.allFinite()) throw std::invalid_argument("q must be finite");
-  return v;
-}
-
-#define IK_ARGS                                                                                                \
-  py::arg("mode") = "full", py::arg("position_tolerance") = 1e-4, py::arg("orientation_tolerance") = 1e-3,    \
-  py::arg("attempts") = 20, py::arg("max_iterations") = 100, py::arg("rng_seed") = 0,                          \
-  py::arg("approach_axis") = Eigen::Vector3d::UnitZ(), py::arg("self_collision") = false,                     \
-  py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none(),     \
-  py::arg("obstacle_links") = py::none()
-
-}  // namespace
-
-void wrap_robot(py::module_& m) {
-  py::class_<Chain>(m, "Chain", "Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).")
-      .def_property_readonly("base_link", &Chain::base_link)
-      .def_property_readonly("tip_link", &Chain::tip_link)
-      .def_property_readonly("dof", &Chain::dof)
-      .def_property_readonly("joint_names", &Chain::joint_names)
-      .def_property_readonly("lower", &Chain::lower, "Lower joint limits (-inf for continuous joints).")
-      .def_property_readonly("upper", &Chain::upper, "Upper joint limits (+inf for continuous joints).")
-      .def_property_readonly("continuous", &Chain::continuous)
-      .def_property_readonly("robot_indices", &Chain::robot_indices,
-                             "Positions of this chain's joints in the robot configuration vector.")
-      .def("fk", [](const Chain& c, const py::object& q) { return pose_to_array(c.fk(q_from(c, q))); }, py::arg("q"),
-           "Pose (4x4) of the tip link in the base link frame.")
-      .def("fk_batch", [](const Chain& c, const py::object& Q) {
-             RowMatrixXd M = matrix_from(Q, c.dof(), "Q");
-             std::vector<Pose> out(M.rows());
-             {
-               py::gil_scoped_release release;
-               for (Eigen::Index i = 0; i < M.rows(); ++i) out[i] = c.fk(M.row(i).transpose());
-             }
-             return poses_to_array(out);
-           }, py::arg("Q"), "Tip poses (N, 4, 4) in the base link frame for joint rows Q (N, dof).")
-      .def("jacobian", [](const Chain& c, const py::object& q) {
-             Eigen::Matrix<double, 6, Eigen::Dynamic> J;
-             c.fk_jacobian(q_from(c, q), J);
-             return Eigen::MatrixXd(J);
-           }, py::arg("q"), "Geometric Jacobian (6, dof), rows vx vy vz wx wy wz, in the base link frame.")
-      .def("link_mask", [](const Chain& c, const std::string& link) { return c.link_mask(c.robot().link_index(link)); },
-           py::arg("link"),
-           "Bit i set when chain joint i moves `link`: 0 for links the chain does not move, all bits for links\n"
-           "rigid with the tip (a gripper).")
-      .def("within_limits", [](const Chain& c, const py::object& q) { return c.within_limits(q_from(c, q)); })
-      .def("wrap", [](const Chain& c, const py::object& q) { return c.wrap(q_from(c, q)); },
-           "Continuous joints wrapped into [-pi, pi), revolute joints shifted by 2 pi into their limits where possible.")
-      .def("random_configuration", [](const Chain& c, std::uint64_t seed) {
-             std::mt19937_64 rng(seed);
-             return c.random_configuration(rng);
-           }, py::arg("seed") = 0)
-      .def("to_robot_configuration", [](const Chain& c, const py::object& q, const py::object& reference) {
-             Eigen::VectorXd ref = reference.is_none() ? Eigen::VectorXd() : robot_q(c.robot(), reference);
-             return c.to_robot_configuration(q_from(c, q), ref);
-           }, py::arg("q"), py::arg("reference") = py::none(),
-           "Full robot configuration with this chain's joints set to q, the rest from `reference` (default home).")
-      .def("ik", [](const Chain& c, const py::object& T, const py::object& seed, const std::string& mode, double pt,
-                    double rt, int attempts, int iters, std::uint64_t rng_seed, const Eigen::Vector3d& axis,
-                    bool self_col, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
-                    const py::object& reference, const py::object& obstacle_links) -> py::object {
-             Pose target = pose_from(T, "target");
-             IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
-                                        base_pose, reference, obstacle_links);
-             Eigen::VectorXd s;
-             if (!seed.is_none()) s = q_from(c, seed, "seed");
-             std::optional<Eigen::VectorXd> q;
-             {
-               py::gil_scoped_release release;
-               q = c.ik(target, o, seed.is_none() ? nullptr : &s);
-             }
-             if (!q) return py::none();
-             return py::cast(*q);
-           }, py::arg("T"), py::arg("seed") = py::none(), IK_ARGS,
-           "Joint vector reaching the 4x4 tip pose T (base link frame), or None.\n\n"
-           "mode: 'full' (position and orientation), 'position', or 'approach' (position and the tip's\n"
-           "approach_axis, any roll about it). Restarts from random configurations inside the limits;\n"
-           "deterministic for rng_seed. self_collision / obstacles reject colliding solutions (obstacles in the\n"
-           "world frame, the robot's root at base_pose; obstacle_links restricts that check to the named links);\n"
-           "joints outside the chain take their values from `reference` (default robot.home()).")
-      .def("ik_batch", [](const Chain& c, const py::object& Ts, const py::object& seeds, const std::string& mode,
-                          double pt, double rt, int attempts, int iters, std::uint64_t rng_seed,
-                          const Eigen::Vector3d& axis, bool self_col, std::shared_ptr<Obstacles> obstacles,
-                          const py::object& base_pose, const py::object& reference, const py::object& obstacle_links,
-                          int threads) {
-             std::vector<Pose> targets = poses_from(Ts, "Ts");
-             IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
-                                        base_pose, reference, obstacle_links);
-             Eigen::MatrixXd S;
-             bool has_seeds = !seeds.is_none();
-             if (has_seeds) {
-               S = matrix_from(seeds, c.dof(), "seeds");
-               if (S.rows() != static_cast<Eigen::Index>(targets.size()))
-                 throw std::invalid_argument("seeds must have one row per target");
-             }
-             Eigen::MatrixXd Q;
-             std::vector<bool> ok;
-             {
-               py::gil_scoped_release release;
-               c.ik_batch(targets, o, Q, ok, has_seeds ? &S : nullptr, threads);
-             }
-             py::array_t<bool> mask(static_cast<py::ssize_t>(ok.size()));
-             auto w = mask.mutable_unchecked<1>();
-             for (std::size_t i = 0; i < ok.size(); ++i) w(i) = ok[i];
-             return py::make_tuple(Q, mask);
-           }, py::arg("Ts"), py::arg("seeds") = py::none(), IK_ARGS, py::arg("threads") = 0,
-           "IK of poses Ts (N, 4, 4) on every core. Returns (Q of shape (N, dof) with NaN rows where it failed,\n"
-           "success mask (N,)). Item i uses a random stream derived from rng_seed and i.")
-      .def("__repr__", [](const Chain& c) {
-        return "<octoreach.Chain '" + c.base_link() + "' -> '" + c.tip_link() + "', " + std::to_string(c.dof()) + " dof>";
-      });
-
-  py::class_<Robot, std::shared_ptr<Robot>>(m, "Robot", "Robot model from a URDF: links, joints, collision shapes.")
-      .def_static("from_urdf", [](const std::string& urdf, const std::vector<std::string>& package_dirs,
-                                  const py::object& srdf) {
-             return Robot::from_urdf(urdf, package_dirs, srdf.is_none() ? "" : srdf.cast<std::string>());
-           }, py::arg("urdf"), py::arg("package_dirs") = std::vector<std::string>{}, py::arg("srdf") = py::none(),
-           "Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through\n"
-           "package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs.")
+// Model queries: names, limits, configurations, chains, link poses.
+void wrap_robot_model(py::class_<Robot, std::shared_ptr<Robot>>& c) {
+  c.def_static("from_urdf", [](const std::string& urdf, const std::vector<std::string>& package_dirs,
+                               const py::object& srdf) {
+          return Robot::from_urdf(urdf, package_dirs, srdf.is_none() ? "" : srdf.cast<std::string>());
+        }, py::arg("urdf"), py::arg("package_dirs") = std::vector<std::string>{}, py::arg("srdf") = py::none(),
+        "Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through\n"
+        "package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs.")
       .def_property_readonly("name", &Robot::name)
-      .def_property_readonly("urdf_hash", &Robot::urdf_hash, "64-bit FNV-1a hash of the URDF text.")
+      .def_property_readonly("urdf_hash", &Robot::urdf_hash,
+                             "64-bit FNV-1a hash of the URDF text (the same for robots that differ only in their\n"
+                             "allowed collisions; see model_hash).")
+      .def_property_readonly("model_hash", &Robot::model_hash,
+                             "64-bit hash of the URDF text and the allowed-collision pairs: what maps depend on.")
       .def_property_readonly("dof", &Robot::dof)
       .def_property_readonly("joint_names", &Robot::joint_names, "Joints of the configuration vector, in order.")
       .def_property_readonly("lower", &Robot::lower)
@@ -183,11 +49,7 @@ void wrap_robot(py::module_& m) {
         for (const auto& l : r.links()) out.push_back(l.name);
         return out;
       })
-      .def_property_readonly("collision_links", [](const Robot& r) {
-        std::vector<std::string> out;
-        for (int l : r.collision_links()) out.push_back(r.links()[l].name);
-        return out;
-      })
+      .def_property_readonly("collision_links", [](const Robot& r) { return link_names(r, r.collision_links()); })
       .def_property_readonly("groups", [](const Robot& r) {
         py::dict d;
         for (const auto& g : r.groups()) d[py::str(g.name)] = py::make_tuple(g.base_link, g.tip_link);
@@ -206,11 +68,19 @@ void wrap_robot(py::module_& m) {
              for (std::size_t i = 0; i < poses.size(); ++i) d[py::str(r.links()[i].name)] = pose_to_array(poses[i]);
              return d;
            }, py::arg("q"), "{link name: 4x4 pose in the root link frame}.")
-      .def("in_self_collision", [](const Robot& r, const py::object& q) {
-             Eigen::VectorXd v = robot_q(r, q);
-             py::gil_scoped_release release;
-             return r.in_self_collision(v);
-           }, py::arg("q"), "True when two links that are not allowed to touch collide at q.")
+      .def("__repr__", [](const Robot& r) {
+        return "<octoreach.Robot '" + r.name() + "', " + std::to_string(r.links().size()) + " links, " +
+               std::to_string(r.dof()) + " dof>";
+      });
+}
+
+// Collision checks and the allowed-collision matrix.
+void wrap_robot_collision(py::class_<Robot, std::shared_ptr<Robot>>& c) {
+  c.def("in_self_collision", [](const Robot& r, const py::object& q) {
+         Eigen::VectorXd v = robot_q(r, q);
+         py::gil_scoped_release release;
+         return r.in_self_collision(v);
+       }, py::arg("q"), "True when two links that are not allowed to touch collide at q.")
       .def("in_collision", [](const Robot& r, const py::object& q, const Obstacles& obstacles,
                               const py::object& base_pose, bool self, const py::object& links) {
              Eigen::VectorXd v = robot_q(r, q);
@@ -219,34 +89,40 @@ void wrap_robot(py::module_& m) {
              if (!links.is_none())
                for (const auto& name : links.cast<std::vector<std::string>>()) only.push_back(r.link_index(name));
              py::gil_scoped_release release;
-             if (!links.is_none()) {
-               std::vector<Pose> poses = r.link_poses(v);
-               if (r.links_in_collision(poses, obstacles, base, &only)) return true;
-               return self && r.in_self_collision_poses(poses);
-             }
-             return r.in_collision(v, obstacles, base, self);
+             return r.in_collision(v, obstacles, base, self, links.is_none() ? nullptr : &only);
            }, py::arg("q"), py::arg("obstacles"), py::arg("base_pose") = py::none(), py::arg("self_collision") = false,
            py::arg("links") = py::none(),
            "True when a link (all, or the named `links`) touches an obstacle (world frame) with the root link at\n"
            "base_pose (4x4); self_collision also checks the robot against itself.")
-      .def_property_readonly("allowed_collisions", [](const Robot& r) {
-        std::vector<std::pair<std::string, std::string>> out;
-        for (auto [a, b] : r.allowed_pairs()) out.emplace_back(r.links()[a].name, r.links()[b].name);
-        return out;
-      }, "Link pairs whose contacts are ignored (adjacent, SRDF, sampled).")
+      .def_property_readonly("allowed_collisions", [](const Robot& r) { return pair_names(r, r.allowed_pairs()); },
+                             "Link pairs whose contacts are ignored (adjacent, SRDF, sampled).")
       .def_property_readonly("checked_pairs", [](const Robot& r) { return r.checked_pairs().size(); },
                              "Number of link pairs checked for self-collision.")
-      .def("allow_collision", &Robot::allow_collision, py::arg("link_a"), py::arg("link_b"))
-      .def("compute_allowed_collisions", [](Robot& r, int samples, std::uint64_t seed, const py::object& progress) {
+      .def("with_allowed_collisions", py::overload_cast<const NamePairs&>(&Robot::with_allowed_collisions, py::const_),
+           py::arg("pairs"),
+           "A new Robot, this one with the (link_a, link_b) pairs added to its allowed collisions (its own\n"
+           "model_hash); this robot is left as it is.")
+      .def("compute_allowed_collisions", [](const Robot& r, int samples, std::uint64_t seed, const py::object& progress) {
              auto cb = progress_from(progress);
-             py::gil_scoped_release release;
-             return r.compute_allowed_collisions(samples, seed, cb);
+             std::vector<std::pair<int, int>> pairs;
+             {
+               py::gil_scoped_release release;
+               pairs = r.compute_allowed_collisions(samples, seed, cb);
+             }
+             return pair_names(r, pairs);
            }, py::arg("samples") = 2000, py::arg("seed") = 0, py::arg("progress") = py::none(),
-           "Allows the link pairs never or always in collision over random configurations; returns how many.")
-      .def("__repr__", [](const Robot& r) {
-        return "<octoreach.Robot '" + r.name() + "', " + std::to_string(r.links().size()) + " links, " +
-               std::to_string(r.dof()) + " dof>";
-      });
+           "Link pairs (link_a, link_b) never or always in collision over `samples` random configurations\n"
+           "(deterministic for seed), among the pairs checked now: pass them to with_allowed_collisions.\n"
+           "Empty when there is nothing to add.");
+}
+
+}  // namespace
+
+void wrap_robot(py::module_& m) {
+  py::class_<Robot, std::shared_ptr<Robot>> c(m, "Robot",
+      "Robot model from a URDF: links, joints, collision shapes. Never changes once built.");
+  wrap_robot_model(c);
+  wrap_robot_collision(c);
 }
 
 }  // namespace octoreach::py_bindings

@@ -1,5 +1,5 @@
 // Plain-KDL reference solvers, bound for benchmarks/ik.py: the yardstick octoreach's own IK and FK are
-// measured against in the same process, on the same chain (Chain::to_kdl) and the same targets.
+// measured against in the same process, on the same chain (bench::to_kdl, cpp/bench/kdl_chain) and the same targets.
 //
 // Private API (leading underscore): nothing in the library depends on it.
 #include <cmath>
@@ -37,8 +37,6 @@ KDL::Frame to_frame(const Pose& T) {
   return KDL::Frame(KDL::Rotation(m(0, 0), m(0, 1), m(0, 2), m(1, 0), m(1, 1), m(1, 2), m(2, 0), m(2, 1), m(2, 2)),
                     KDL::Vector(m(0, 3), m(1, 3), m(2, 3)));
 }
-
-// Same stream splitter as Chain::ik_batch, so target i gets its own stream whatever the batch is.
 
 // The acceptance test shared by both KDL solvers and identical to octoreach's own IK (Full mode): tip
 // position within pos_tol (m), rotation angle within rot_tol (rad), measured with octoreach's
@@ -84,6 +82,7 @@ void kdl_ik_batch(const Chain& c, const std::vector<Pose>& targets, KdlSolver wh
 
   KDL::JntArray q_init(n), q_out(n);
   for (std::size_t i = 0; i < targets.size(); ++i) {
+    // Same stream splitter as Chain::ik_batch: target i gets its own stream whatever the batch is.
     std::mt19937_64 rng(detail::mix64(rng_seed, i));
     const KDL::Frame goal = to_frame(targets[i]);
     for (int a = 0; a < attempts; ++a) {

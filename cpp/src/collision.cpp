@@ -1,18 +1,20 @@
 #include "octoreach/collision.hpp"
 
-#include <algorithm>
-#include <random>
-#include <set>
+#include <fstream>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <fcl/fcl.h>
+#include <octomap/OcTree.h>
 
-#include "octoreach/robot.hpp"
-#include "common/thread_pool.hpp"
+#include "collision_detail.hpp"
 
 namespace octoreach {
 namespace {
+
+using detail::geometry_collide;
+using detail::world_aabb;
 
 using BVH = fcl::BVHModel<fcl::OBBRSSd>;
 
@@ -47,21 +49,20 @@ std::shared_ptr<fcl::CollisionGeometryd> bvh_from(const std::vector<fcl::Vector3
   return model;
 }
 
-// World-frame AABB of a geometry at a pose, from its local AABB (cheap and conservative).
-fcl::AABBd world_aabb(const fcl::CollisionGeometryd& g, const Pose& T) {
-  const fcl::AABBd& local = g.aabb_local;
-  Eigen::Vector3d c = T * local.center();
-  Eigen::Vector3d h = 0.5 * (local.max_ - local.min_);
-  Eigen::Vector3d e = T.linear().cwiseAbs() * h;
-  return fcl::AABBd(c - e, c + e);
-}
-
-bool geometry_collide(const fcl::CollisionGeometryd* a, const Pose& ta, const fcl::CollisionGeometryd* b,
-                      const Pose& tb) {
-  fcl::CollisionRequestd request;
-  fcl::CollisionResultd result;
-  fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
-  return fcl::collide(a, fa, b, fb, request, result) > 0;
+// An OctoMap file: .ot holds any AbstractOcTree (it must be an OcTree), anything else is read as .bt.
+std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw FileError("cannot read octree file '" + path + "'");
+  if (path.size() >= 3 && path.substr(path.size() - 3) == ".ot") {
+    std::unique_ptr<octomap::AbstractOcTree> t(octomap::AbstractOcTree::read(f));
+    auto* tree = dynamic_cast<octomap::OcTree*>(t.get());
+    if (!tree) throw FileError("'" + path + "' is not an OcTree .ot file");
+    t.release();
+    return std::shared_ptr<octomap::OcTree>(tree);
+  }
+  auto tree = std::make_shared<octomap::OcTree>(0.1);
+  if (!tree->readBinary(f)) throw FileError("'" + path + "' is not a valid OctoMap .bt file");
+  return tree;
 }
 
 }  // namespace
@@ -138,6 +139,28 @@ void Obstacles::add_octree(std::shared_ptr<const octomap::OcTree> tree, const Po
   add_geometry(std::make_shared<fcl::OcTreed>(tree), pose, name);
 }
 
+void Obstacles::add_octree_file(const std::string& path, const Pose& pose, const std::string& name) {
+  add_octree(read_octree(path), pose, name.empty() ? path : name);
+}
+
+void Obstacles::add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
+                           double resolution, const std::string& name) {
+  if (!(resolution > 0)) throw std::invalid_argument("resolution must be positive");
+  auto tree = std::make_shared<octomap::OcTree>(resolution);
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    if (!points.row(i).allFinite()) throw std::invalid_argument("point " + std::to_string(i) + " is not finite");
+    tree->updateNode(octomap::point3d(points(i, 0), points(i, 1), points(i, 2)), true);
+  }
+  tree->updateInnerOccupancy();
+  add_octree(tree, Pose::Identity(), name);
+}
+
+bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) const {
+  fcl::Boxd box(size);
+  box.computeLocalAABB();
+  return collides(box, pose);
+}
+
 bool Obstacles::collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const {
   fcl::AABBd box = world_aabb(geometry, pose);
   for (const auto& o : objects_) {
@@ -156,107 +179,6 @@ bool Obstacles::collides(const fcl::CollisionObjectd& object) const {
     if (fcl::collide(&object, o.get(), request, result) > 0) return true;
   }
   return false;
-}
-
-// ---------------------------------------------------------------- robot collisions
-
-bool Robot::in_self_collision_poses(const std::vector<Pose>& poses) const {
-  return in_self_collision_poses(poses, checked_);
-}
-
-bool Robot::in_self_collision_poses(const std::vector<Pose>& poses, const std::vector<std::pair<int, int>>& pairs) const {
-  // AABBs of every shape first, so most pairs are rejected without FCL.
-  thread_local std::vector<std::vector<fcl::AABBd>> boxes;
-  thread_local std::vector<std::vector<Pose>> shape_poses;
-  boxes.resize(links_.size());
-  shape_poses.resize(links_.size());
-  // Only the links named by `pairs` need their boxes.
-  thread_local std::vector<char> needed;
-  needed.assign(links_.size(), 0);
-  for (const auto& [a, b] : pairs) needed[a] = needed[b] = 1;
-  for (int li : collision_links_) {
-    if (!needed[li]) continue;
-    const auto& shapes = links_[li].shapes;
-    boxes[li].resize(shapes.size());
-    shape_poses[li].resize(shapes.size());
-    for (std::size_t s = 0; s < shapes.size(); ++s) {
-      shape_poses[li][s] = poses[li] * shapes[s].origin;
-      boxes[li][s] = world_aabb(*shapes[s].geometry, shape_poses[li][s]);
-    }
-  }
-  for (const auto& [a, b] : pairs) {
-    const auto& sa = links_[a].shapes;
-    const auto& sb = links_[b].shapes;
-    for (std::size_t i = 0; i < sa.size(); ++i)
-      for (std::size_t k = 0; k < sb.size(); ++k) {
-        if (!boxes[a][i].overlap(boxes[b][k])) continue;
-        if (geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb[k].geometry.get(), shape_poses[b][k]))
-          return true;
-      }
-  }
-  return false;
-}
-
-bool Robot::in_self_collision(const Eigen::VectorXd& q) const {
-  thread_local std::vector<Pose> poses;
-  link_poses(q, poses);
-  return in_self_collision_poses(poses);
-}
-
-bool Robot::links_in_collision(const std::vector<Pose>& poses, const Obstacles& obstacles, const Pose& base_pose,
-                               const std::vector<int>* only_links) const {
-  const std::vector<int>& links = only_links ? *only_links : collision_links_;
-  for (int li : links) {
-    for (const auto& s : links_[li].shapes)
-      if (obstacles.collides(*s.geometry, base_pose * poses[li] * s.origin)) return true;
-  }
-  return false;
-}
-
-bool Robot::in_collision(const Eigen::VectorXd& q, const Obstacles& obstacles, const Pose& base_pose,
-                         bool check_self) const {
-  thread_local std::vector<Pose> poses;
-  link_poses(q, poses);
-  if (links_in_collision(poses, obstacles, base_pose)) return true;
-  return check_self && in_self_collision_poses(poses);
-}
-
-std::size_t Robot::compute_allowed_collisions(int samples, std::uint64_t seed, const ProgressCallback& progress) {
-  if (samples < 1) throw std::invalid_argument("samples must be at least 1, got " + std::to_string(samples));
-  const auto pairs = checked_;
-  std::vector<int> hits(pairs.size(), 0);
-  Eigen::VectorXd lo = lower(), hi = upper();
-  std::mt19937_64 rng(seed);
-  std::vector<Pose> poses;
-  for (int s = 0; s < samples; ++s) {
-    Eigen::VectorXd q(dof());
-    for (int i = 0; i < dof(); ++i) {
-      double a = std::isfinite(lo[i]) ? lo[i] : -M_PI, b = std::isfinite(hi[i]) ? hi[i] : M_PI;
-      q[i] = std::uniform_real_distribution<double>(a, b)(rng);
-    }
-    link_poses(q, poses);
-    for (std::size_t p = 0; p < pairs.size(); ++p) {
-      auto [a, b] = pairs[p];
-      bool hit = false;
-      for (const auto& sa : links_[a].shapes) {
-        for (const auto& sb : links_[b].shapes)
-          if (geometry_collide(sa.geometry.get(), poses[a] * sa.origin, sb.geometry.get(), poses[b] * sb.origin)) {
-            hit = true;
-            break;
-          }
-        if (hit) break;
-      }
-      hits[p] += hit;
-    }
-    if (progress && !progress(s + 1, samples)) throw Cancelled("allowed-collision sampling cancelled");
-  }
-  std::set<std::pair<int, int>> allowed(allowed_.begin(), allowed_.end());
-  std::size_t before = allowed.size();
-  for (std::size_t p = 0; p < pairs.size(); ++p)
-    if (hits[p] == 0 || hits[p] == samples) allowed.insert(pairs[p]);
-  allowed_.assign(allowed.begin(), allowed.end());
-  rebuild_checked_();
-  return allowed.size() - before;
 }
 
 }  // namespace octoreach

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include <fcl/fcl.h>
+
 namespace octoreach {
 namespace {
 

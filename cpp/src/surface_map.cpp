@@ -9,6 +9,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include <fcl/fcl.h>
+
 #include "map_io.hpp"
 #include "octoreach/point_map.hpp"
 #include "common/thread_pool.hpp"

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -170,6 +171,44 @@ TEST(Robot, SelfCollision) {
   // (tool0 ends at x = 0.076 m, z = -0.02 m, inside the base cylinder of radius 0.08 m).
   Eigen::VectorXd q = r->configuration({{"shoulder_lift", 1.3}, {"elbow", 2.6}});
   EXPECT_TRUE(r->in_self_collision(q));
+}
+
+TEST(Robot, AllowedCollisionsMakeANewRobot) {
+  auto r = arm_robot();
+  const auto allowed = r->allowed_pairs();
+  const auto checked = r->checked_pairs();
+  const std::uint64_t hash = r->model_hash();
+  Eigen::VectorXd folded = r->configuration({{"shoulder_lift", 1.3}, {"elbow", 2.6}});
+  std::vector<std::pair<int, int>> sampled = r->compute_allowed_collisions(500, 1);
+  ASSERT_FALSE(sampled.empty());
+  EXPECT_TRUE(std::is_sorted(sampled.begin(), sampled.end()));
+  // Sampling is a query: the robot keeps its pairs.
+  EXPECT_EQ(r->allowed_pairs(), allowed);
+  EXPECT_EQ(r->compute_allowed_collisions(500, 1), sampled);
+  std::shared_ptr<const Robot> wider = r->with_allowed_collisions(sampled);
+  EXPECT_EQ(wider->allowed_pairs().size(), allowed.size() + sampled.size());
+  EXPECT_EQ(wider->checked_pairs().size(), checked.size() - sampled.size());
+  EXPECT_NE(wider->model_hash(), hash);
+  EXPECT_EQ(wider->urdf_hash(), r->urdf_hash());
+  EXPECT_EQ(r->model_hash(), hash);
+  EXPECT_TRUE(wider->compute_allowed_collisions(500, 1).empty());
+  EXPECT_TRUE(wider->in_self_collision(folded));  // the wrist on the base collides somewhere: still checked
+  // Allowing every checked pair silences self-collision on the new robot only.
+  auto silent = r->with_allowed_collisions(r->checked_pairs());
+  EXPECT_FALSE(silent->in_self_collision(folded));
+  EXPECT_TRUE(r->in_self_collision(folded));
+  // By name, either order; a pair already allowed or of one link changes nothing.
+  auto by_name = r->with_allowed_collisions(
+      std::vector<std::pair<std::string, std::string>>{{"tool0", "tool0"}});
+  EXPECT_EQ(by_name->model_hash(), hash);
+  EXPECT_THROW(r->with_allowed_collisions(std::vector<std::pair<std::string, std::string>>{{"base_link", "nope"}}),
+               std::invalid_argument);
+  EXPECT_THROW(r->with_allowed_collisions(std::vector<std::pair<int, int>>{{0, 1000}}), std::invalid_argument);
+  EXPECT_THROW(r->compute_allowed_collisions(0, 1), std::invalid_argument);
+  // Chains keep the robot they were cut from alive.
+  Chain c = wider->chain("base_link", "tool0");
+  wider.reset();
+  EXPECT_EQ(c.robot().model_hash(), r->with_allowed_collisions(sampled)->model_hash());
 }
 
 TEST(Robot, Obstacles) {

@@ -225,12 +225,11 @@ def test_pr2_forearm_folded_into_torso_is_in_self_collision(pr2, fresh_pr2):
     assert wrist[0] < -0.1 and wrist[2] < 0.7  # behind and below the shoulder (0.791 m high)
     # It is the forearm in the torso, not some other contact: with every other pair involving a
     # right-arm link allowed, the single pair (r_forearm_link, torso_lift_link) still collides.
-    only = fresh_pr2()
-    arm_links = [name for name in only.collision_links if name.startswith("r_")]
-    for a in arm_links:
-        for b in only.collision_links:
-            if a != b and {a, b} != {"r_forearm_link", "torso_lift_link"}:
-                only.allow_collision(a, b)
+    robot = fresh_pr2()
+    arm_links = [name for name in robot.collision_links if name.startswith("r_")]
+    pairs = [(a, b) for a in arm_links for b in robot.collision_links
+             if a != b and {a, b} != {"r_forearm_link", "torso_lift_link"}]
+    only = robot.with_allowed_collisions(pairs)
     assert only.in_self_collision(q)
     assert not only.in_self_collision(only.home())
 
@@ -255,17 +254,21 @@ def test_compute_allowed_collisions(fresh_pr2):
     def run(seed):
         arm = robots.test_arm()
         before = set(arm.allowed_collisions)
-        added = arm.compute_allowed_collisions(samples=2000, seed=seed)
-        return arm, before, added
+        pairs = arm.compute_allowed_collisions(samples=2000, seed=seed)
+        # Robots never change: the sampled pairs make a new robot, the old one keeps its pairs.
+        assert set(arm.allowed_collisions) == before
+        return arm.with_allowed_collisions(pairs), before, len(pairs), arm
 
-    arm, before, added = run(0)
+    arm, before, added, original = run(0)
     after = set(arm.allowed_collisions)
     assert isinstance(added, int) and added > 0
     assert before < after and len(after) - len(before) == added
+    assert arm.model_hash != original.model_hash and arm.urdf_hash == original.urdf_hash
     # Deterministic for a seed; a second pass finds nothing new to allow.
-    arm2, _, added2 = run(0)
+    arm2, _, added2, _ = run(0)
     assert added2 == added and arm2.allowed_collisions == arm.allowed_collisions
-    assert arm.compute_allowed_collisions(samples=2000, seed=0) == 0
+    assert arm2.model_hash == arm.model_hash
+    assert len(arm.compute_allowed_collisions(samples=2000, seed=0)) == 0
     # Pairs that do collide somewhere (the wrist on the base when folded) stay checked.
     assert arm.in_self_collision(arm.configuration(ARM_FOLDED))
 

@@ -51,7 +51,9 @@ struct IkOptions {
 
 /// \brief A serial chain between two links of a robot, with FK, Jacobian and IK.
 ///
-/// Immutable and cheap to copy; safe to share between threads.
+/// Immutable and cheap to copy; safe to share between threads. Holds its robot as a
+/// shared_ptr<const Robot>, so the robot lives as long as any of its chains. Each IK call owns its
+/// scratch (the solver is a per-call workspace), so concurrent calls need no lock.
 class Chain {
  public:
   /// \brief One moving or fixed step of the chain.
@@ -79,6 +81,8 @@ class Chain {
 
   /// \brief Pose of the tip link in the base link frame.
   Pose fk(const Eigen::VectorXd& q) const;
+  /// \brief Tip poses (base frame) for joint rows `q_rows` (N x dof), in row order.
+  std::vector<Pose> fk_batch(const Eigen::MatrixXd& q_rows) const;
   /// \brief Pose of the tip and its 6 x dof geometric Jacobian (rows: linear, angular), base frame.
   Pose fk_jacobian(const Eigen::VectorXd& q, Eigen::Matrix<double, 6, Eigen::Dynamic>& jacobian) const;
   /// \brief True when q has dof entries, all finite and inside the limits (continuous joints excepted).
@@ -111,10 +115,7 @@ class Chain {
   void split_collision_pairs(std::vector<std::pair<int, int>>& moving, std::vector<std::pair<int, int>>& fixed) const;
 
  private:
-  friend class Robot;
-  template <int MaxDof>
-  std::optional<Eigen::VectorXd> ik_impl_(const Pose& target, const IkOptions& options,
-                                          const Eigen::VectorXd* seed) const;
+  friend class Robot;  // Robot::chain cuts chains out of its tree
   std::shared_ptr<const Robot> robot_;
   std::string base_link_, tip_link_;
   std::vector<Segment> segments_;

@@ -1,20 +1,37 @@
 #pragma once
 /// \file collision.hpp
-/// \brief Collision geometry, environment obstacles and per-thread collision workspaces.
+/// \brief Collision geometry (link shapes, meshes) and environment obstacles.
+///
+/// FCL and OctoMap types appear only as forward declarations, so this header (and robot.hpp,
+/// chain.hpp) compiles with Eigen alone; code that builds or inspects FCL geometry includes
+/// <fcl/fcl.h> itself.
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <fcl/fcl.h>
-#include <octomap/OcTree.h>
+#include <Eigen/Core>
 
 #include "octoreach/types.hpp"
+
+namespace fcl {
+template <typename S>
+class CollisionGeometry;
+template <typename S>
+class CollisionObject;
+using CollisionGeometryd = CollisionGeometry<double>;
+using CollisionObjectd = CollisionObject<double>;
+}  // namespace fcl
+
+namespace octomap {
+class OcTree;
+}  // namespace octomap
 
 namespace octoreach {
 
 /// \brief One collision shape of a link, with its pose in the link frame.
 struct Shape {
+  /// \brief Kind of shape (URDF box, cylinder, sphere or mesh).
   enum class Type { Box, Cylinder, Sphere, Mesh };
   Type type = Type::Box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box extents (x, y, z)
@@ -23,7 +40,7 @@ struct Shape {
   std::string mesh_path;                           ///< resolved mesh file
   Eigen::Vector3d scale = Eigen::Vector3d::Ones(); ///< mesh scale
   Pose origin = Pose::Identity();                  ///< pose in the link frame
-  std::shared_ptr<fcl::CollisionGeometryd> geometry;
+  std::shared_ptr<fcl::CollisionGeometryd> geometry;  ///< FCL geometry, local AABB computed; shared, never changed
 };
 
 /// \brief Loads a triangle mesh (STL, DAE, OBJ ... through assimp) as an FCL BVH model.
@@ -38,7 +55,8 @@ std::shared_ptr<fcl::CollisionGeometryd> make_mesh(const Eigen::Matrix<double, E
 
 /// \brief A set of environment objects in the world frame: boxes, meshes and OctoMap octrees.
 ///
-/// Immutable once built; shared between threads (each check copies the objects it moves).
+/// Built by the add_* calls, then only read: the const checks may run from many threads at once
+/// (they move no shared object); adding while another thread checks is not safe.
 class Obstacles {
  public:
   /// \brief Adds an axis-aligned (in its own frame) box of extents `size` at `pose`.
@@ -55,16 +73,28 @@ class Obstacles {
   /// \brief Adds an OctoMap: its occupied cells are obstacles.
   void add_octree(std::shared_ptr<const octomap::OcTree> tree, const Pose& pose = Pose::Identity(),
                   const std::string& name = "");
+  /// \brief Adds the occupied cells of an OctoMap file (.ot: any OcTree; otherwise a binary .bt).
+  /// \throws FileError when the file cannot be read or is not an OcTree
+  void add_octree_file(const std::string& path, const Pose& pose = Pose::Identity(), const std::string& name = "");
+  /// \brief Adds occupied cells at the given points (N x 3, world frame) as an OctoMap of `resolution` metres.
+  /// \throws std::invalid_argument for a non-positive resolution or a non-finite point
+  void add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points, double resolution,
+                  const std::string& name = "");
 
+  /// \brief Number of obstacles.
   std::size_t size() const { return objects_.size(); }
+  /// \brief True when there is no obstacle.
   bool empty() const { return objects_.empty(); }
+  /// \brief Obstacle names, in the order they were added ("obstacle_<i>" when none was given).
   const std::vector<std::string>& names() const { return names_; }
   /// \brief The FCL objects (world frame, AABBs computed).
   const std::vector<std::shared_ptr<fcl::CollisionObjectd>>& objects() const { return objects_; }
   /// \brief True when `geometry` at `pose` (world frame) touches any obstacle.
   bool collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
-  /// \brief Signed-free check with an AABB given first (fast reject).
+  /// \brief True when `object` (world frame, AABB computed) touches any obstacle; AABBs reject first.
   bool collides(const fcl::CollisionObjectd& object) const;
+  /// \brief True when a box of extents `size` at `pose` (world frame) touches any obstacle.
+  bool collides_box(const Eigen::Vector3d& size, const Pose& pose) const;
 
  private:
   std::vector<std::shared_ptr<fcl::CollisionObjectd>> objects_;

@@ -17,6 +17,9 @@
 
 namespace octoreach {
 
+namespace detail {
+struct RobotBuilder;  // fills a Robot while from_urdf builds it (urdf.cpp, srdf.cpp)
+}  // namespace detail
 
 /// \brief One URDF joint.
 struct Joint {
@@ -49,8 +52,9 @@ struct ChainGroup {
 
 /// \brief Robot model: links, joints, collision shapes, allowed-collision pairs.
 ///
-/// Build it with Robot::from_urdf. The model is immutable except for the
-/// allowed-collision matrix, which may be extended once after construction.
+/// Build it with Robot::from_urdf. A Robot never changes once built (every member function is
+/// const), so one robot serves any number of threads and chains at once. A different
+/// allowed-collision matrix makes a new robot (with_allowed_collisions), with its own model_hash().
 class Robot : public std::enable_shared_from_this<Robot> {
  public:
   /// \brief Parses a URDF (file path or XML string); resolves package:// and file:// mesh URIs
@@ -60,26 +64,34 @@ class Robot : public std::enable_shared_from_this<Robot> {
   static std::shared_ptr<Robot> from_urdf(const std::string& urdf, const std::vector<std::string>& package_dirs = {},
                                           const std::string& srdf = "");
 
+  /// \brief The URDF's robot name.
   const std::string& name() const { return name_; }
-  /// \brief SHA-256-free content hash (FNV-1a, 64 bit) of the URDF text, to tie maps to a robot.
+  /// \brief 64-bit FNV-1a hash of the URDF text (the same for robots that differ only in their
+  /// allowed-collision matrix; see model_hash()).
   std::uint64_t urdf_hash() const { return urdf_hash_; }
   /// \brief Hash of the model as maps depend on it: the URDF text and the allowed-collision matrix
   /// (two robots from one URDF with different allowed pairs have different model hashes).
   std::uint64_t model_hash() const;
+  /// \brief Links, parents before children (breadth-first from the root).
   const std::vector<Link>& links() const { return links_; }
+  /// \brief Joints, in the order of their child links.
   const std::vector<Joint>& joints() const { return joints_; }
+  /// \brief Index of the root link (0).
   int root_link() const { return root_link_; }
   /// \brief Index of a link by name; throws std::invalid_argument naming the link if absent.
   int link_index(const std::string& name) const;
   /// \brief Index of a joint by name; throws std::invalid_argument if absent.
   int joint_index(const std::string& name) const;
+  /// \brief True when the robot has a link of that name.
   bool has_link(const std::string& name) const { return link_by_name_.count(name) > 0; }
 
   /// \brief Number of entries of a configuration vector (moving, non-mimic joints).
   int dof() const { return static_cast<int>(active_joints_.size()); }
   /// \brief Names of the configuration vector's joints, in order.
   std::vector<std::string> joint_names() const;
+  /// \brief Lower limits of the configuration vector (-inf for continuous joints).
   Eigen::VectorXd lower() const;
+  /// \brief Upper limits of the configuration vector (+inf for continuous joints).
   Eigen::VectorXd upper() const;
   /// \brief Zero configuration moved into the joint limits.
   Eigen::VectorXd home() const;
@@ -98,16 +110,20 @@ class Robot : public std::enable_shared_from_this<Robot> {
 
   /// \brief Poses of every link in the root link frame, indexed like links().
   std::vector<Pose> link_poses(const Eigen::VectorXd& q) const;
+  /// \brief Same as link_poses(q), into `out` (reused storage).
   void link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out) const;
 
   /// \brief True when two links not allowed to touch are in collision at q.
   bool in_self_collision(const Eigen::VectorXd& q) const;
-  /// \brief True when any link touches an obstacle; the robot's root sits at `base_pose` (world frame).
+  /// \brief True when any link (or any of `only_links`, by index) touches an obstacle; the robot's
+  /// root sits at `base_pose` (world frame). `check_self` also checks the robot against itself.
   bool in_collision(const Eigen::VectorXd& q, const Obstacles& obstacles, const Pose& base_pose = Pose::Identity(),
-                    bool check_self = false) const;
-  /// \brief Same as in_collision, restricted to the given links (by index).
+                    bool check_self = false, const std::vector<int>* only_links = nullptr) const;
+  /// \brief True when a link (the `only_links` indices, or every collision link) at the given link
+  /// poses (root link frame) touches an obstacle, with the root at `base_pose` (world frame).
   bool links_in_collision(const std::vector<Pose>& link_poses, const Obstacles& obstacles,
                           const Pose& base_pose, const std::vector<int>* only_links = nullptr) const;
+  /// \brief Self-collision of the checked pairs at the given link poses (root link frame).
   bool in_self_collision_poses(const std::vector<Pose>& link_poses) const;
   /// \brief Self-collision over the given link pairs only.
   bool in_self_collision_poses(const std::vector<Pose>& link_poses, const std::vector<std::pair<int, int>>& pairs) const;
@@ -116,26 +132,35 @@ class Robot : public std::enable_shared_from_this<Robot> {
   const std::vector<std::pair<int, int>>& allowed_pairs() const { return allowed_; }
   /// \brief Pairs of links checked for self-collision.
   const std::vector<std::pair<int, int>>& checked_pairs() const { return checked_; }
-  /// \brief Adds a pair of links to the allowed-collision matrix.
-  void allow_collision(const std::string& link_a, const std::string& link_b);
-  /// \brief Samples random configurations and allows the pairs never or always in collision
-  /// (as MoveIt's setup assistant does); returns the number of pairs added.
-  std::size_t compute_allowed_collisions(int samples = 2000, std::uint64_t seed = 0,
-                                         const ProgressCallback& progress = nullptr);
+  /// \brief A new robot, the same as this one with `pairs` (link indices, either order) added to
+  /// the allowed-collision matrix; pairs of a link with itself and pairs already allowed change
+  /// nothing. This robot is left as it is.
+  /// \throws std::invalid_argument for a link index outside links()
+  std::shared_ptr<Robot> with_allowed_collisions(const std::vector<std::pair<int, int>>& pairs) const;
+  /// \brief Same as with_allowed_collisions, with links by name.
+  /// \throws std::invalid_argument naming a link the robot does not have
+  std::shared_ptr<Robot> with_allowed_collisions(const std::vector<std::pair<std::string, std::string>>& pairs) const;
+  /// \brief Samples `samples` random configurations (deterministic for `seed`) and returns the
+  /// checked pairs never or always in collision over them (as MoveIt's setup assistant finds them),
+  /// sorted: the pairs to pass to with_allowed_collisions. Empty when there is nothing to add.
+  /// \throws std::invalid_argument if samples < 1, Cancelled when `progress` returns false
+  std::vector<std::pair<int, int>> compute_allowed_collisions(int samples = 2000, std::uint64_t seed = 0,
+                                                              const ProgressCallback& progress = nullptr) const;
 
   /// \brief Links with collision geometry.
   const std::vector<int>& collision_links() const { return collision_links_; }
 
  private:
+  friend struct detail::RobotBuilder;
   Robot() = default;
-  void finalize_();
-  void rebuild_checked_();
+  Robot(const Robot&) = default;
+  /// Sets the allowed pairs (sorted, unique, i < j) and derives the checked pairs from them.
+  void set_allowed_pairs_(std::vector<std::pair<int, int>> allowed);
   std::string name_;
   std::uint64_t urdf_hash_ = 0;
   std::vector<Link> links_;
   std::vector<Joint> joints_;
   std::vector<int> active_joints_;  // joint indices, in configuration order
-  std::vector<int> joint_order_;    // joints in topological order
   int root_link_ = 0;
   std::map<std::string, int> link_by_name_, joint_by_name_;
   std::vector<ChainGroup> groups_;

@@ -1,4 +1,4 @@
-#include <fstream>
+// Python binding of Obstacles: environment objects in the world frame.
 #include <memory>
 
 #include "common.hpp"
@@ -6,24 +6,7 @@
 
 namespace octoreach::py_bindings {
 
-namespace {
-std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw FileError("cannot read octree file '" + path + "'");
-  if (path.size() >= 3 && path.substr(path.size() - 3) == ".ot") {
-    std::unique_ptr<octomap::AbstractOcTree> t(octomap::AbstractOcTree::read(f));
-    auto* tree = dynamic_cast<octomap::OcTree*>(t.get());
-    if (!tree) throw FileError("'" + path + "' is not an OcTree .ot file");
-    t.release();
-    return std::shared_ptr<octomap::OcTree>(tree);
-  }
-  auto tree = std::make_shared<octomap::OcTree>(0.1);
-  if (!tree->readBinary(f)) throw FileError("'" + path + "' is not a valid OctoMap .bt file");
-  return tree;
-}
-}  // namespace
-
-void wrap_collision(py::module_& m) {
+void wrap_obstacles(py::module_& m) {
   py::class_<Obstacles, std::shared_ptr<Obstacles>>(m, "Obstacles",
       "Environment objects in the world frame (boxes, spheres, cylinders, meshes, OctoMaps).")
       .def(py::init<>())
@@ -54,27 +37,17 @@ void wrap_collision(py::module_& m) {
            }, py::arg("vertices"), py::arg("triangles"), py::arg("pose") = py::none(), py::arg("name") = "",
            "Adds a triangle mesh from arrays: vertices (N, 3) and triangles (M, 3) of vertex indices.")
       .def("add_octree_file", [](Obstacles& o, const std::string& path, const py::object& pose, const std::string& name) {
-             o.add_octree(read_octree(path), pose.is_none() ? Pose::Identity() : pose_from(pose), name.empty() ? path : name);
+             o.add_octree_file(path, pose.is_none() ? Pose::Identity() : pose_from(pose), name);
            }, py::arg("path"), py::arg("pose") = py::none(), py::arg("name") = "",
            "Adds the occupied cells of an OctoMap file (.bt or .ot).")
       .def("add_points", [](Obstacles& o, const py::object& points, double resolution, const std::string& name) {
-             Points p = matrix_from(points, 3, "points");
-             if (!(resolution > 0)) throw std::invalid_argument("resolution must be positive");
-             auto tree = std::make_shared<octomap::OcTree>(resolution);
-             for (Eigen::Index i = 0; i < p.rows(); ++i) {
-               if (!p.row(i).allFinite()) throw std::invalid_argument("point " + std::to_string(i) + " is not finite");
-               tree->updateNode(octomap::point3d(p(i, 0), p(i, 1), p(i, 2)), true);
-             }
-             tree->updateInnerOccupancy();
-             o.add_octree(tree, Pose::Identity(), name);
+             o.add_points(matrix_from(points, 3, "points"), resolution, name);
            }, py::arg("points"), py::arg("resolution"), py::arg("name") = "",
            "Adds occupied cells at the given points (N, 3) as an OctoMap of the given resolution.")
       .def("__len__", &Obstacles::size)
       .def_property_readonly("names", &Obstacles::names)
       .def("collides_box", [](const Obstacles& o, const Eigen::Vector3d& size, const py::object& pose) {
-             fcl::Boxd box(size);
-             box.computeLocalAABB();
-             return o.collides(box, pose_from(pose));
+             return o.collides_box(size, pose_from(pose));
            }, py::arg("size"), py::arg("pose"), "True when a box of extents `size` at `pose` touches an obstacle.");
 }
 

@@ -1,0 +1,29 @@
+#pragma once
+// Internal: the two FCL steps shared by obstacle checks (collision.cpp) and the robot's own
+// collision checks (robot_collision.cpp).
+
+#include <fcl/fcl.h>
+
+#include "octoreach/types.hpp"
+
+namespace octoreach::detail {
+
+/// World-frame AABB of a geometry at a pose, from its local AABB (cheap and conservative).
+inline fcl::AABBd world_aabb(const fcl::CollisionGeometryd& g, const Pose& T) {
+  const fcl::AABBd& local = g.aabb_local;
+  Eigen::Vector3d c = T * local.center();
+  Eigen::Vector3d h = 0.5 * (local.max_ - local.min_);
+  Eigen::Vector3d e = T.linear().cwiseAbs() * h;
+  return fcl::AABBd(c - e, c + e);
+}
+
+/// True when two geometries at their world poses touch (FCL narrow phase, no AABB test).
+inline bool geometry_collide(const fcl::CollisionGeometryd* a, const Pose& ta, const fcl::CollisionGeometryd* b,
+                             const Pose& tb) {
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
+  return fcl::collide(a, fa, b, fb, request, result) > 0;
+}
+
+}  // namespace octoreach::detail

@@ -1,0 +1,175 @@
+// The robot's collision model: which link pairs are checked (adjacent and SRDF pairs allowed,
+// sampled pairs added through a new robot) and the checks themselves, against itself and against
+// Obstacles.
+#include <algorithm>
+#include <random>
+
+#include <fcl/fcl.h>
+
+#include "collision_detail.hpp"
+#include "octoreach/robot.hpp"
+#include "robot_builder.hpp"
+
+namespace octoreach {
+
+using detail::geometry_collide;
+using detail::world_aabb;
+
+namespace detail {
+
+void RobotBuilder::finish_collision_model(PairSet allowed) {
+  for (std::size_t i = 0; i < r.links_.size(); ++i)
+    if (!r.links_[i].shapes.empty()) r.collision_links_.push_back(static_cast<int>(i));
+  // Adjacent links: a link and its nearest ancestor that has geometry (fixed joints and
+  // geometry-less links in between do not separate them).
+  for (int li : r.collision_links_) {
+    int cur = li;
+    while (r.links_[cur].parent_joint >= 0) {
+      int parent = r.joints_[r.links_[cur].parent_joint].parent_link;
+      add_pair(allowed, li, parent);
+      if (!r.links_[parent].shapes.empty()) break;
+      cur = parent;
+    }
+  }
+  r.set_allowed_pairs_({allowed.begin(), allowed.end()});
+}
+
+}  // namespace detail
+
+void Robot::set_allowed_pairs_(std::vector<std::pair<int, int>> allowed) {
+  allowed_ = std::move(allowed);
+  checked_.clear();
+  for (std::size_t a = 0; a < collision_links_.size(); ++a)
+    for (std::size_t b = a + 1; b < collision_links_.size(); ++b) {
+      std::pair<int, int> p{std::min(collision_links_[a], collision_links_[b]),
+                            std::max(collision_links_[a], collision_links_[b])};
+      if (!std::binary_search(allowed_.begin(), allowed_.end(), p)) checked_.push_back(p);
+    }
+}
+
+std::shared_ptr<Robot> Robot::with_allowed_collisions(const std::vector<std::pair<int, int>>& pairs) const {
+  detail::PairSet allowed(allowed_.begin(), allowed_.end());
+  const int n = static_cast<int>(links_.size());
+  for (const auto& [a, b] : pairs) {
+    if (a < 0 || a >= n || b < 0 || b >= n)
+      throw std::invalid_argument("allowed-collision pair (" + std::to_string(a) + ", " + std::to_string(b) +
+                                  ") names a link index outside [0, " + std::to_string(n) + ")");
+    detail::add_pair(allowed, a, b);
+  }
+  std::shared_ptr<Robot> robot(new Robot(*this));
+  robot->set_allowed_pairs_({allowed.begin(), allowed.end()});
+  return robot;
+}
+
+std::shared_ptr<Robot> Robot::with_allowed_collisions(
+    const std::vector<std::pair<std::string, std::string>>& pairs) const {
+  std::vector<std::pair<int, int>> indices;
+  indices.reserve(pairs.size());
+  for (const auto& [a, b] : pairs) indices.emplace_back(link_index(a), link_index(b));
+  return with_allowed_collisions(indices);
+}
+
+bool Robot::in_self_collision_poses(const std::vector<Pose>& poses) const {
+  return in_self_collision_poses(poses, checked_);
+}
+
+bool Robot::in_self_collision_poses(const std::vector<Pose>& poses, const std::vector<std::pair<int, int>>& pairs) const {
+  // AABBs of every shape first, so most pairs are rejected without FCL. The scratch is per thread:
+  // the robot itself is shared and never written.
+  thread_local std::vector<std::vector<fcl::AABBd>> boxes;
+  thread_local std::vector<std::vector<Pose>> shape_poses;
+  boxes.resize(links_.size());
+  shape_poses.resize(links_.size());
+  // Only the links named by `pairs` need their boxes.
+  thread_local std::vector<char> needed;
+  needed.assign(links_.size(), 0);
+  for (const auto& [a, b] : pairs) needed[a] = needed[b] = 1;
+  for (int li : collision_links_) {
+    if (!needed[li]) continue;
+    const auto& shapes = links_[li].shapes;
+    boxes[li].resize(shapes.size());
+    shape_poses[li].resize(shapes.size());
+    for (std::size_t s = 0; s < shapes.size(); ++s) {
+      shape_poses[li][s] = poses[li] * shapes[s].origin;
+      boxes[li][s] = world_aabb(*shapes[s].geometry, shape_poses[li][s]);
+    }
+  }
+  for (const auto& [a, b] : pairs) {
+    const auto& sa = links_[a].shapes;
+    const auto& sb = links_[b].shapes;
+    for (std::size_t i = 0; i < sa.size(); ++i)
+      for (std::size_t k = 0; k < sb.size(); ++k) {
+        if (!boxes[a][i].overlap(boxes[b][k])) continue;
+        if (geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb[k].geometry.get(), shape_poses[b][k]))
+          return true;
+      }
+  }
+  return false;
+}
+
+bool Robot::in_self_collision(const Eigen::VectorXd& q) const {
+  thread_local std::vector<Pose> poses;
+  link_poses(q, poses);
+  return in_self_collision_poses(poses);
+}
+
+bool Robot::links_in_collision(const std::vector<Pose>& poses, const Obstacles& obstacles, const Pose& base_pose,
+                               const std::vector<int>* only_links) const {
+  const std::vector<int>& links = only_links ? *only_links : collision_links_;
+  for (int li : links) {
+    for (const auto& s : links_[li].shapes)
+      if (obstacles.collides(*s.geometry, base_pose * poses[li] * s.origin)) return true;
+  }
+  return false;
+}
+
+bool Robot::in_collision(const Eigen::VectorXd& q, const Obstacles& obstacles, const Pose& base_pose,
+                         bool check_self, const std::vector<int>* only_links) const {
+  thread_local std::vector<Pose> poses;
+  link_poses(q, poses);
+  if (links_in_collision(poses, obstacles, base_pose, only_links)) return true;
+  return check_self && in_self_collision_poses(poses);
+}
+
+namespace {
+
+// True when any shape of link a touches any shape of link b (no AABB test: sampling wants the
+// exact answer for every pair).
+bool links_touch(const Link& a, const Pose& pa, const Link& b, const Pose& pb) {
+  for (const auto& sa : a.shapes)
+    for (const auto& sb : b.shapes)
+      if (geometry_collide(sa.geometry.get(), pa * sa.origin, sb.geometry.get(), pb * sb.origin)) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> Robot::compute_allowed_collisions(int samples, std::uint64_t seed,
+                                                                   const ProgressCallback& progress) const {
+  if (samples < 1) throw std::invalid_argument("samples must be at least 1, got " + std::to_string(samples));
+  const auto& pairs = checked_;
+  std::vector<int> hits(pairs.size(), 0);
+  Eigen::VectorXd lo = lower(), hi = upper();
+  std::mt19937_64 rng(seed);
+  std::vector<Pose> poses;
+  for (int s = 0; s < samples; ++s) {
+    Eigen::VectorXd q(dof());
+    for (int i = 0; i < dof(); ++i) {
+      double a = std::isfinite(lo[i]) ? lo[i] : -kPi, b = std::isfinite(hi[i]) ? hi[i] : kPi;
+      q[i] = std::uniform_real_distribution<double>(a, b)(rng);
+    }
+    link_poses(q, poses);
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+      auto [a, b] = pairs[p];
+      hits[p] += links_touch(links_[a], poses[a], links_[b], poses[b]);
+    }
+    if (progress && !progress(s + 1, samples)) throw Cancelled("allowed-collision sampling cancelled");
+  }
+  // checked_ is sorted, so the result is too.
+  std::vector<std::pair<int, int>> never_or_always;
+  for (std::size_t p = 0; p < pairs.size(); ++p)
+    if (hits[p] == 0 || hits[p] == samples) never_or_always.push_back(pairs[p]);
+  return never_or_always;
+}
+
+}  // namespace octoreach
