@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/pose_map.hpp"
 #include "octoreach/robot.hpp"
@@ -20,7 +21,7 @@ struct PointMapOptions {
   std::string grasp_subset = "upper_hemisphere";
   int theta_bins = 16;
   double resolution = 0;       ///< voxel edge (m); 0: the capability map's resolution
-  Eigen::VectorXd reference;   ///< robot configuration for the joints between reference frame and arm (empty: home)
+  Eigen::VectorXd reference;   ///< robot configuration for the joints between reference frame and arm (empty: default_reference)
   double z_min = -1e9, z_max = 1e9;  ///< base z range relative to the target (clipped to what can reach)
   bool use_symmetry = true;    ///< derive theta bins by rotating the grid where the grasp set allows it
   int threads = 0;
@@ -67,8 +68,5 @@ class InversePointMap {
   bool used_symmetry_ = false;
   double seconds_ = 0;
 };
-
-/// \brief Orientation indices of a capability map's set for direction indices (all rolls of each).
-std::vector<int> grasp_orientations(const OrientationSet& set, const std::vector<int>& directions);
 
 }  // namespace octoreach

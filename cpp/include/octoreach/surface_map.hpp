@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/pose_map.hpp"
 #include "octoreach/robot.hpp"
@@ -24,7 +25,7 @@ struct SurfaceMapOptions {
   int theta_bins = 16;
   double resolution = 0;            ///< 0: the capability map's resolution
   double z_min = -1e9, z_max = 1e9; ///< base z range (world frame); a wheeled robot on the floor: (0, 0)
-  Eigen::VectorXd reference;        ///< robot configuration off the arm (torso, other arm); empty: home
+  Eigen::VectorXd reference;        ///< robot configuration off the arm (torso, other arm); empty: default_reference
   bool check_body = true;           ///< reject base poses where the robot body touches the surface or boxes
   bool check_arm = true;            ///< reject grasps whose arm passes below the surface inside its outline
   /// Grasp points lie this far above the surface along its normal (the tool frame holds an object,
