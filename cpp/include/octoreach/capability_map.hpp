@@ -22,7 +22,7 @@ struct CapabilityMapOptions {
   int symmetry = 4;                                          ///< z symmetry of the direction set
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tool axis that approaches the object
   bool self_collision = true;                                ///< solutions must be free of self-collision
-  Eigen::VectorXd reference;                                 ///< robot configuration off the chain (empty: home)
+  Eigen::VectorXd reference;  ///< robot configuration off the chain (empty: default_reference(robot, chain))
   std::uint64_t seed = 0;
   std::size_t fk_samples = 0;         ///< forward-kinematics samples (0: 40 per voxel of the bounding box)
   bool exhaustive = false;            ///< also run random-restart IK on every cell the sampling did not reach
