@@ -12,6 +12,7 @@
 
 
 #include "map_io.hpp"
+#include "maps/batch.hpp"
 #include "maps/capability_build.hpp"
 #include "octoreach/arm.hpp"
 #include "octoreach/chain.hpp"
@@ -107,6 +108,13 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   return m;
 }
 
+CapabilityMap CapabilityMap::build(const Robot& robot, const Arm& arm, const CapabilityMapOptions& options,
+                                   const ProgressCallback& progress) {
+  CapabilityMapOptions o = options;
+  o.approach_axis = arm.approach_axis;
+  return build(robot.chain(arm.base_link, arm.tip_link), o, progress);
+}
+
 void CapabilityMap::finish_() {
   d_.assign(sol_offset_.size(), 0.0f);
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it)
@@ -130,6 +138,21 @@ bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation) const {
 bool CapabilityMap::reachable(const Pose& T) const {
   std::uint32_t r = record(T.translation());
   return r != DenseIndex::kNone && bit(r, orientations_.nearest(T.linear(), approach_axis_));
+}
+
+void CapabilityMap::reachability(const double* points, std::size_t n, double* out) const {
+  detail::batch_lookup(n, [&](std::size_t i) {
+    const double* p = points + 3 * i;
+    out[i] = reachability(Eigen::Vector3d(p[0], p[1], p[2]));
+  });
+}
+
+void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out) const {
+  detail::batch_lookup(n, [&](std::size_t i) {
+    Pose T;
+    T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
+    out[i] = T.matrix().allFinite() && reachable(T);
+  });
 }
 
 std::optional<Eigen::VectorXd> CapabilityMap::solution(const Eigen::Vector3d& p, int orientation) const {

@@ -1,5 +1,7 @@
 #include "octoreach/pose_map.hpp"
 
+#include "maps/batch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -42,6 +44,13 @@ double PoseMap::value(double x, double y, double z, double theta) const {
   return v ? v[theta_bin(theta)] : 0.0;
 }
 
+void PoseMap::values(const double* rows, std::size_t n, double* out) const {
+  detail::batch_lookup(n, [&](std::size_t i) {
+    const double* r = rows + 4 * i;
+    out[i] = value(r[0], r[1], r[2], r[3]);
+  });
+}
+
 void PoseMap::set_voxel(const octomap::OcTreeKey& key, const float* values) {
   index_ = DenseIndex();  // stale once the tree changes; finalize() rebuilds it
   VoxelNode* n = tree_->touch(key);
@@ -79,6 +88,13 @@ void PoseMap::voxels(std::vector<Eigen::Vector3d>& centres, std::vector<float>& 
     const float* v = values_.data() + static_cast<std::size_t>(it->payload) * theta_bins_;
     values.insert(values.end(), v, v + theta_bins_);
   }
+}
+
+std::size_t PoseMap::pose_count() const {
+  std::vector<Eigen::Vector3d> c;
+  std::vector<float> v;
+  voxels(c, v);
+  return static_cast<std::size_t>(std::count_if(v.begin(), v.end(), [](float x) { return x > 0; }));
 }
 
 std::pair<Eigen::Vector3d, Eigen::Vector3d> PoseMap::bounds() const {

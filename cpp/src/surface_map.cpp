@@ -10,6 +10,7 @@
 #include "common/thread_pool.hpp"
 #include "map_io.hpp"
 #include "maps/arm_clearance.hpp"
+#include "maps/batch.hpp"
 #include "reach_extent.hpp"
 
 namespace octoreach {
@@ -303,6 +304,13 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   if (m.map_.voxel_count() == 0) m.empty_reason_ = "no base pose reaches the surface (out of the arm's reach)";
   if (progress) progress(T, T);
   return m;
+}
+
+void SurfaceMap::reachability(const double* rows, std::size_t n, double* out) const {
+  detail::batch_lookup(n, [&](std::size_t i) {
+    const double* r = rows + 4 * i;
+    out[i] = reachability(r[0], r[1], r[2], r[3]);
+  });
 }
 
 SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const std::string& mode) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "octoreach/arm.hpp"
 #include "octoreach/orientation_set.hpp"
 #include "octoreach/robot.hpp"
 #include "octoreach/types.hpp"
@@ -55,6 +56,10 @@ class CapabilityMap {
   /// the voxel centres settles them, and a flood fill over neighbouring cells finds the rest.
   static CapabilityMap build(const Chain& chain, const CapabilityMapOptions& options = {},
                              const ProgressCallback& progress = nullptr);
+  /// \brief Builds the map of a robot's arm: the chain between the arm's links, with the arm's
+  /// approach axis in place of options.approach_axis.
+  static CapabilityMap build(const Robot& robot, const Arm& arm, const CapabilityMapOptions& options = {},
+                             const ProgressCallback& progress = nullptr);
   /// \brief Reads a map saved by save(); throws FileError on a damaged, truncated or foreign file.
   static CapabilityMap load(const std::string& path);
   /// \brief Writes the map atomically (temporary file, then rename).
@@ -64,6 +69,11 @@ class CapabilityMap {
 
   /// \brief Reachability index D of the voxel holding p (0 outside the map).
   double reachability(const Eigen::Vector3d& p) const;
+  /// \brief reachability() of n points (3 n doubles) into `out` (n doubles); large batches run on every core.
+  void reachability(const double* points, std::size_t n, double* out) const;
+  /// \brief reachable() of n tool poses, each a row-major 4x4 matrix (16 n doubles), into `out`;
+  /// a pose with a non-finite entry is not reachable.
+  void reachable(const double* poses, std::size_t n, bool* out) const;
   /// \brief True when the cell of the tool pose T (base link frame) is reachable.
   bool reachable(const Pose& T) const;
   /// \brief True when orientation o is reachable in the voxel holding p.

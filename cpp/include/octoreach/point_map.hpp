@@ -40,6 +40,8 @@ class InversePointMap {
 
   /// \brief R_P of base pose (x, y, z, theta) relative to the target; 0 outside the map.
   double reachability(double x, double y, double z, double theta) const { return map_.value(x, y, z, theta); }
+  /// \brief reachability() of n base poses given as rows x, y, z, theta (4 n doubles) into `out`.
+  void reachability(const double* rows, std::size_t n, double* out) const { map_.values(rows, n, out); }
   /// \brief R_P computed directly from the capability map (no grid), for checks.
   static double direct_reachability(const CapabilityMap& capability, const Pose& reference_to_arm,
                                     const std::vector<int>& orientations, double x, double y, double z, double theta);

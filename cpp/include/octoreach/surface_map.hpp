@@ -61,6 +61,9 @@ class SurfaceMap {
   double reachability(double x, double y, double z, double theta) const {
     return map_.value(x, y, std::min(std::max(z, z_min_), z_max_), theta);
   }
+  /// \brief reachability() of n base poses given as rows x, y, z, theta (4 n doubles) into `out`
+  /// (n doubles); large batches run on every core.
+  void reachability(const double* rows, std::size_t n, double* out) const;
   const PoseMap& map() const { return map_; }
   const SurfaceMapStats& stats() const { return stats_; }
   const std::string& robot_name() const { return robot_name_; }
