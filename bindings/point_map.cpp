@@ -66,6 +66,8 @@ void wrap_point_map(py::module_& m) {
                              "Number of (voxel, theta) poses with R_P > 0.")
       .def_property_readonly("robot_name", &InversePointMap::robot_name)
       .def_property_readonly("urdf_hash", &InversePointMap::urdf_hash)
+      .def_property_readonly("model_hash", &InversePointMap::model_hash,
+                             "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.")
       .def_property_readonly("reference_frame", &InversePointMap::reference_frame)
       .def_property_readonly("arm_base_link", &InversePointMap::arm_base_link)
       .def_property_readonly("arm_tip_link", &InversePointMap::arm_tip_link)

@@ -105,6 +105,8 @@ void wrap_surface_map(py::module_& m) {
       .def_property_readonly("max_reachability", [](const SurfaceMap& sm) { return sm.map().max_value(); })
       .def_property_readonly("robot_name", &SurfaceMap::robot_name)
       .def_property_readonly("urdf_hash", &SurfaceMap::urdf_hash)
+      .def_property_readonly("model_hash", &SurfaceMap::model_hash,
+                             "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.")
       .def_property_readonly("reference_frame", &SurfaceMap::reference_frame)
       .def_property_readonly("arms", &SurfaceMap::arms)
       .def_property_readonly("z_range", &SurfaceMap::z_range)

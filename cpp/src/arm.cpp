@@ -122,6 +122,10 @@ void check_map_robot(const Robot& robot, const CapabilityMap& capability) {
   if (capability.robot_name() != robot.name() || capability.urdf_hash() != robot.urdf_hash())
     throw std::invalid_argument("the capability map was built for robot '" + capability.robot_name() +
                                 "' (another URDF), not for '" + robot.name() + "'");
+  // Self-collision decided which cells are reachable: the allowed-collision matrix must match too.
+  if (capability.model_hash() != 0 && capability.model_hash() != robot.model_hash())
+    throw std::invalid_argument("the capability map was built for robot '" + capability.robot_name() +
+                                "' with another allowed-collision matrix (model_hash differs)");
 }
 
 ArmPlacement ArmPlacement::make(const Robot& robot, const CapabilityMap& cap, const std::string& reference_frame,

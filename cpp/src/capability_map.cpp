@@ -33,7 +33,7 @@ namespace {
 
 void check_options(const Chain& chain, const CapabilityMapOptions& o) {
   if (!(o.resolution > 0) || !std::isfinite(o.resolution))
-    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_double(o.resolution));
+    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_number(o.resolution));
   if (o.resolution < 0.001) throw std::invalid_argument("resolution below 1 mm is not supported");
   if (!o.approach_axis.allFinite() || o.approach_axis.norm() < 1e-9)
     throw std::invalid_argument("approach_axis must be a non-zero vector");
@@ -54,6 +54,7 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   m.orientations_ = OrientationSet::sphere(o.directions, o.rolls, o.symmetry);
   m.robot_name_ = robot.name();
   m.urdf_hash_ = robot.urdf_hash();
+  m.model_hash_ = robot.model_hash();
   m.base_link_ = chain.base_link();
   m.tip_link_ = chain.tip_link();
   m.dof_ = chain.dof();
@@ -208,26 +209,26 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> CapabilityMap::bounds() const {
 }
 
 std::vector<std::pair<std::string, std::string>> CapabilityMap::parameters() const {
-  using detail::format_double;
+  using detail::format_number;
   return {{"robot", robot_name_},
           {"urdf_hash", std::to_string(urdf_hash_)},
+          {"model_hash", std::to_string(model_hash_)},
           {"base_link", base_link_},
           {"tip_link", tip_link_},
           {"dof", std::to_string(dof_)},
-          {"resolution", format_double(resolution_)},
+          {"resolution", format_number(resolution_)},
           {"directions", std::to_string(orientations_.directions())},
           {"rolls", std::to_string(orientations_.rolls())},
           {"symmetry", std::to_string(orientations_.symmetry())},
-          {"approach_axis", format_double(approach_axis_.x()) + " " + format_double(approach_axis_.y()) + " " +
-                                format_double(approach_axis_.z())},
+          {"approach_axis", detail::format_vector(approach_axis_)},
           {"self_collision", self_collision_ ? "1" : "0"},
           {"seed", std::to_string(seed_)},
           {"fk_samples", std::to_string(fk_samples_)},
           {"exhaustive", exhaustive_ ? "1" : "0"},
-          {"position_tolerance", format_double(position_tolerance_)},
-          {"orientation_tolerance", format_double(orientation_tolerance_)},
+          {"position_tolerance", format_number(position_tolerance_)},
+          {"orientation_tolerance", format_number(orientation_tolerance_)},
           {"voxels", std::to_string(voxel_count())},
-          {"build_seconds", format_double(stats_.seconds)},
+          {"build_seconds", format_number(stats_.seconds)},
           {"octoreach_version", version()}};
 }
 
@@ -265,6 +266,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   using detail::header_string;
   m.robot_name_ = header_string(h, "robot", path);
   m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
+  m.model_hash_ = detail::header_model_hash(h, path);
   m.base_link_ = header_string(h, "base_link", path);
   m.tip_link_ = header_string(h, "tip_link", path);
   m.dof_ = static_cast<int>(header_int(h, "dof", path));

@@ -156,7 +156,7 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
     throw std::invalid_argument("theta_bins must be in [1, 360], got " + std::to_string(o.theta_bins));
   double res = o.resolution == 0 ? cap.resolution() : o.resolution;
   if (!(res > 0) || !std::isfinite(res))
-    throw std::invalid_argument("resolution must be positive, got " + detail::format_double(res));
+    throw std::invalid_argument("resolution must be positive, got " + detail::format_number(res));
   // Strict, unlike the surface map: heights here are a grid range relative to the target, not a
   // range poses are clipped into, so an empty range holds no pose.
   if (!(o.z_min < o.z_max)) throw std::invalid_argument("z_min must be below z_max");
@@ -164,6 +164,7 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
   InversePointMap m;
   m.robot_name_ = robot.name();
   m.urdf_hash_ = robot.urdf_hash();
+  m.model_hash_ = robot.model_hash();
   m.reference_frame_ = place.reference_frame;
   m.arm_base_ = cap.base_link();
   m.arm_tip_ = cap.tip_link();
@@ -199,22 +200,21 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
 }
 
 std::map<std::string, std::string> InversePointMap::parameters() const {
-  using detail::format_double;
-  std::ostringstream T, g;
-  T.precision(17);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) T << reference_to_arm_.matrix()(i, j) << (i == 3 && j == 3 ? "" : " ");
+  using detail::format_number;
+  const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> T = reference_to_arm_.matrix();  // row by row
+  std::ostringstream g;
   for (std::size_t i = 0; i < grasp_orientations_.size(); ++i) g << (i ? " " : "") << grasp_orientations_[i];
   return {{"robot", robot_name_},
           {"urdf_hash", std::to_string(urdf_hash_)},
+          {"model_hash", std::to_string(model_hash_)},
           {"reference_frame", reference_frame_},
           {"arm_base_link", arm_base_},
           {"arm_tip_link", arm_tip_},
-          {"reference_to_arm", T.str()},
+          {"reference_to_arm", detail::format_vector(T.reshaped<Eigen::RowMajor>())},
           {"grasp_set", grasp_name_},
           {"grasp_orientations", g.str()},
           {"used_symmetry", used_symmetry_ ? "1" : "0"},
-          {"build_seconds", format_double(seconds_)}};
+          {"build_seconds", format_number(seconds_)}};
 }
 
 void InversePointMap::save(const std::string& path) const { map_.save(path, "point", parameters()); }
@@ -226,6 +226,7 @@ InversePointMap InversePointMap::load(const std::string& path) {
   using detail::header_string;
   m.robot_name_ = header_string(h, "robot", path);
   m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
+  m.model_hash_ = detail::header_model_hash(h, path);
   m.reference_frame_ = header_string(h, "reference_frame", path);
   m.arm_base_ = header_string(h, "arm_base_link", path);
   m.arm_tip_ = header_string(h, "arm_tip_link", path);

@@ -13,7 +13,7 @@ namespace octoreach {
 
 PoseMap::PoseMap(double resolution, int theta_bins) : resolution_(resolution), theta_bins_(theta_bins) {
   if (!(resolution > 0) || !std::isfinite(resolution))
-    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_double(resolution));
+    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_number(resolution));
   if (theta_bins < 1 || theta_bins > 360)
     throw std::invalid_argument("theta_bins must be in [1, 360], got " + std::to_string(theta_bins));
   tree_ = std::make_shared<VoxelOcTree>(resolution);
@@ -115,7 +115,7 @@ double PoseMap::max_value() const { return values_.empty() ? 0.0 : *std::max_ele
 
 void PoseMap::save(const std::string& path, const std::string& kind, const std::map<std::string, std::string>& header) const {
   detail::Header h(header.begin(), header.end());
-  h["resolution"] = detail::format_double(resolution_);
+  h["resolution"] = detail::format_number(resolution_);
   h["theta_bins"] = std::to_string(theta_bins_);
   h["voxels"] = std::to_string(voxel_count());
   h["octoreach_version"] = version();

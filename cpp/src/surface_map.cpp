@@ -242,6 +242,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   SurfaceMap m;
   m.robot_name_ = robot.name();
   m.urdf_hash_ = robot.urdf_hash();
+  m.model_hash_ = robot.model_hash();
   m.reference_frame_ = place.reference_frame;
   m.arms_ = cap.base_link() + "->" + cap.tip_link();
   m.polygon_ = surface.vertices();
@@ -318,7 +319,7 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
   if (mode != "max" && mode != "min") throw std::invalid_argument("mode must be 'max' or 'min', got '" + mode + "'");
   const SurfaceMap& first = *maps[0];
   for (const SurfaceMap* m : maps) {
-    if (m->robot_name_ != first.robot_name_ || m->urdf_hash_ != first.urdf_hash_)
+    if (m->robot_name_ != first.robot_name_ || m->urdf_hash_ != first.urdf_hash_ || m->model_hash_ != first.model_hash_)
       throw std::invalid_argument("cannot combine maps of different robots ('" + first.robot_name_ + "' and '" +
                                   m->robot_name_ + "')");
     if (m->reference_frame_ != first.reference_frame_)
@@ -341,6 +342,7 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
   SurfaceMap out;
   out.robot_name_ = first.robot_name_;
   out.urdf_hash_ = first.urdf_hash_;
+  out.model_hash_ = first.model_hash_;
   out.reference_frame_ = first.reference_frame_;
   out.polygon_ = first.polygon_;
   out.z_min_ = first.z_min_;
@@ -390,20 +392,21 @@ std::map<std::string, std::string> SurfaceMap::parameters() const {
   for (std::size_t i = 0; i < polygon_.size(); ++i) flat.segment<3>(3 * i) = polygon_[i];
   return {{"robot", robot_name_},
           {"urdf_hash", std::to_string(urdf_hash_)},
+          {"model_hash", std::to_string(model_hash_)},
           {"reference_frame", reference_frame_},
           {"arms", arms_},
           {"grasp_set", grasp_name_},
           {"polygon", detail::format_vector(flat)},
           {"surface_points", std::to_string(stats_.surface_points)},
-          {"z_min", detail::format_double(z_min_)},
-          {"grasp_height", detail::format_double(grasp_height_)},
+          {"z_min", detail::format_number(z_min_)},
+          {"grasp_height", detail::format_number(grasp_height_)},
           {"checks", checks_},
           {"body_collisions", std::to_string(stats_.body_collisions)},
           {"arm_rejections", std::to_string(stats_.arm_rejections)},
-          {"z_max", detail::format_double(z_max_)},
+          {"z_max", detail::format_number(z_max_)},
           {"candidate_poses", std::to_string(stats_.candidate_poses)},
           {"valid_poses", std::to_string(stats_.valid_poses)},
-          {"build_seconds", detail::format_double(stats_.seconds)}};
+          {"build_seconds", detail::format_number(stats_.seconds)}};
 }
 
 void SurfaceMap::save(const std::string& path) const { map_.save(path, "surface", parameters()); }
@@ -415,6 +418,7 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   using detail::header_string;
   m.robot_name_ = header_string(h, "robot", path);
   m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
+  m.model_hash_ = detail::header_model_hash(h, path);
   m.stats_.surface_points = detail::header_u64(h, "surface_points", path);
   m.stats_.candidate_poses = detail::header_u64(h, "candidate_poses", path);
   m.stats_.valid_poses = detail::header_u64(h, "valid_poses", path);

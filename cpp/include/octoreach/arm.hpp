@@ -68,7 +68,8 @@ struct GraspSet {
   static GraspSet make(const OrientationSet& set, const std::vector<int>& directions, const std::string& subset);
 };
 
-/// \brief Throws std::invalid_argument unless `capability` was built for `robot` (name and URDF).
+/// \brief Throws std::invalid_argument unless `capability` was built for `robot`: name, URDF and (when the
+/// map records it) Robot::model_hash(), which covers the allowed-collision matrix.
 void check_map_robot(const Robot& robot, const CapabilityMap& capability);
 
 /// \brief Where an arm sits on the robot for a map build: the robot check, the reference posture,

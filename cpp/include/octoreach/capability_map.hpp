@@ -99,6 +99,9 @@ class CapabilityMap {
   const Eigen::Vector3d& approach_axis() const { return approach_axis_; }
   const std::string& robot_name() const { return robot_name_; }
   std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief Robot::model_hash() of the robot built for (URDF and allowed-collision matrix); 0 when
+  /// unknown (a file written before maps recorded it).
+  std::uint64_t model_hash() const { return model_hash_; }
   const std::string& base_link() const { return base_link_; }
   const std::string& tip_link() const { return tip_link_; }
   int dof() const { return dof_; }
@@ -133,7 +136,7 @@ class CapabilityMap {
   std::vector<float> d_;                 // per record: reachability index D
   DenseIndex index_;
   std::string robot_name_, base_link_, tip_link_;
-  std::uint64_t urdf_hash_ = 0;
+  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   int dof_ = 0;
   bool self_collision_ = true;
   std::uint64_t seed_ = 0;

@@ -49,6 +49,8 @@ class InversePointMap {
   const PoseMap& map() const { return map_; }
   const std::string& robot_name() const { return robot_name_; }
   std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief Robot::model_hash() of the robot built for; 0 when unknown (older files).
+  std::uint64_t model_hash() const { return model_hash_; }
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arm_base_link() const { return arm_base_; }
   const std::string& arm_tip_link() const { return arm_tip_; }
@@ -64,7 +66,7 @@ class InversePointMap {
  private:
   PoseMap map_;
   std::string robot_name_, reference_frame_, arm_base_, arm_tip_, grasp_name_;
-  std::uint64_t urdf_hash_ = 0;
+  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   Pose reference_to_arm_ = Pose::Identity();
   std::vector<int> grasp_orientations_;
   bool used_symmetry_ = false;

@@ -68,6 +68,8 @@ class SurfaceMap {
   const SurfaceMapStats& stats() const { return stats_; }
   const std::string& robot_name() const { return robot_name_; }
   std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief Robot::model_hash() of the robot built for; 0 when unknown (older files).
+  std::uint64_t model_hash() const { return model_hash_; }
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arms() const { return arms_; }
   /// \brief Surface outline (world frame) the map was built for.
@@ -83,7 +85,7 @@ class SurfaceMap {
   PoseMap map_;
   SurfaceMapStats stats_;
   std::string robot_name_, reference_frame_, arms_, empty_reason_, grasp_name_;
-  std::uint64_t urdf_hash_ = 0;
+  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   std::vector<Eigen::Vector3d> polygon_;
   double z_min_ = -1e9, z_max_ = 1e9;
   double grasp_height_ = 0.05;

@@ -35,7 +35,7 @@ CellBox CellBox::around_workspace(const Chain& chain, const VoxelOcTree& tree, i
   b.voxels = static_cast<std::size_t>(b.nx) * b.ny * b.nz;
   b.cells = b.voxels * orientations;
   if (b.cells > (1ull << 31))
-    throw std::invalid_argument("resolution " + format_double(res) + " with " + std::to_string(orientations) +
+    throw std::invalid_argument("resolution " + format_number(res) + " with " + std::to_string(orientations) +
                                 " orientations gives " + std::to_string(b.cells) + " cells: too many");
   return b;
 }
