@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import CapabilityMap, Robot, Surface, base_pose, default_reference, grasp_orientations
+from ._core import CapabilityMap, Robot, Surface, SurfaceMapOptions, base_pose, default_reference, grasp_orientations
 from ._core import link_roles as _link_roles
 
 
@@ -19,7 +19,8 @@ def link_roles(robot: Robot, chain) -> dict:
 
 def direct_reachability(robot: Robot, capability_map: CapabilityMap, surface: Surface, poses, reference=None,
                         reference_frame: str = "", grasps="upper_hemisphere", resolution: float = None,
-                        grasp_height: float = 0.05, attempts: int = 20, seed: int = 0) -> np.ndarray:
+                        grasp_height: float = SurfaceMapOptions().grasp_height, attempts: int = 20,
+                        seed: int = 0) -> np.ndarray:
     """R_S of base poses (N, 4) computed by brute force, without any map: for every surface point and every
     grasp direction, IK (approach mode, random restarts) of the arm from that base pose, keeping only
     solutions free of self-collision whose arm links do not touch the surface slab, and poses whose body

@@ -126,7 +126,7 @@ class CapabilityMap {
   void set_parameters_(const CapabilityMapOptions& o);
 
   std::shared_ptr<VoxelOcTree> tree_;
-  double resolution_ = 0.05;
+  double resolution_ = 0;  // set by build() or load()
   OrientationSet orientations_ = OrientationSet::sphere(200);
   Eigen::Vector3d approach_axis_ = Eigen::Vector3d::UnitZ();
   int words_ = 4;                        // uint64 words per voxel record

@@ -58,7 +58,7 @@ class PoseMap {
   void export_octovis(const std::string& path) const;
 
  private:
-  double resolution_ = 0.05;
+  double resolution_ = 0;  // set by the constructor or load()
   int theta_bins_ = 16;
   std::shared_ptr<VoxelOcTree> tree_;
   std::vector<float> values_;  // voxel record r: values_[r * theta_bins_ + k]
