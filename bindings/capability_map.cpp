@@ -94,6 +94,8 @@ void wrap_capability_map(py::module_& m) {
       "progress: True draws a bar, False is silent, or a callable (done, total).")
       .def_static("build_for_arm", [](const Robot& robot, const py::object& arm, const py::object& options,
                                       const py::object& progress, const py::kwargs& kw) {
+        if (kw.contains("approach_axis"))
+          throw py::type_error("CapabilityMap.build_for_arm() takes the approach axis from the arm, not a keyword");
         CapabilityMapOptions o = options_from<CapabilityMapOptions>(options, kw, "CapabilityMap.build_for_arm");
         Arm a = arm_from(robot, arm);
         ProgressCallback cb = progress_arg(progress, "capability map");
