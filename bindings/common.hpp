@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "../cpp/src/common/thread_pool.hpp"
 #include "octoreach/types.hpp"
 
 namespace octoreach::py_bindings {
@@ -113,25 +112,6 @@ Options options_from(const py::object& options, const py::kwargs& kwargs, const 
   return o.cast<Options>();
 }
 
-/// Values (N,) of f(x, y, z, theta) over pose rows (N, 4), computed without the GIL and on every core
-/// for large batches: the lookup path of pose and surface maps.
-template <class F>
-py::array_t<double> pose_rows_lookup(const py::object& poses, F&& f) {
-  Array a = Array::ensure(poses);
-  if (!a || a.ndim() != 2 || a.shape(1) != 4) throw std::invalid_argument("poses must have shape (N, 4): x, y, z, theta");
-  std::size_t n = a.shape(0);
-  py::array_t<double> out(n);
-  const double* p = a.data();
-  double* o = out.mutable_data();
-  {
-    py::gil_scoped_release release;
-    detail::parallel_for(n, n > 20000 ? 0 : 1, [&](std::size_t i, int) {
-      o[i] = f(p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]);
-    }, 4096);
-  }
-  return out;
-}
-
 /// A grasp-set argument: a subset name (into `subset`) or a list of direction indices (into `grasps`).
 inline void grasps_arg(const py::object& grasps, std::vector<int>& indices, std::string& subset) {
   if (py::isinstance<py::str>(grasps)) {
@@ -154,8 +134,13 @@ void wrap_progress(py::module_& m);
 void wrap_obstacles(py::module_& m);
 void wrap_chain(py::module_& m);
 void wrap_robot(py::module_& m);
-void wrap_maps(py::module_& m);
+void wrap_orientation_set(py::module_& m);
+void wrap_arm(py::module_& m);
+void wrap_capability_map(py::module_& m);
+void wrap_point_map(py::module_& m);
 void wrap_surface(py::module_& m);
+void wrap_surface_map(py::module_& m);
+void wrap_pose_sampler(py::module_& m);
 void wrap_simulation(py::module_& m);
 void wrap_exploration_map(py::module_& m);
 void wrap_next_best_view(py::module_& m);

@@ -17,8 +17,13 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_obstacles(m);
   octoreach::py_bindings::wrap_chain(m);
   octoreach::py_bindings::wrap_robot(m);
-  octoreach::py_bindings::wrap_maps(m);
+  octoreach::py_bindings::wrap_orientation_set(m);
+  octoreach::py_bindings::wrap_arm(m);
+  octoreach::py_bindings::wrap_capability_map(m);
+  octoreach::py_bindings::wrap_point_map(m);
   octoreach::py_bindings::wrap_surface(m);
+  octoreach::py_bindings::wrap_surface_map(m);
+  octoreach::py_bindings::wrap_pose_sampler(m);
   octoreach::py_bindings::wrap_simulation(m);
   octoreach::py_bindings::wrap_exploration_map(m);
   octoreach::py_bindings::wrap_next_best_view(m);

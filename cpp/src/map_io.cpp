@@ -1,5 +1,7 @@
 #include "map_io.hpp"
 
+#include "common/atomic_file.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -7,7 +9,6 @@
 #include <cmath>
 
 #include <octomap/ColorOcTree.h>
-#include <unistd.h>
 #include <zlib.h>
 
 namespace octoreach::detail {
@@ -24,12 +25,6 @@ bool get(std::istream& s, T& v) {
   return static_cast<bool>(s.read(reinterpret_cast<char*>(&v), sizeof(T)));
 }
 }  // namespace
-
-std::string format_double(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "%.17g", v);
-  return buf;
-}
 
 void write_map_file(const std::string& path, const std::string& kind, const Header& header,
                     const std::vector<char>& payload) {
@@ -49,10 +44,7 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
   crc = crc32(crc, reinterpret_cast<const Bytef*>(text.data()), text.size());
   crc = crc32(crc, compressed.data(), compressed.size());
 
-  std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw FileError("cannot write map file '" + path + "' (cannot create '" + tmp + "')");
+  write_file_atomically(path, [&](std::ostream& f) {
     f.write(kMagic, kMagicLen);
     put(f, kFormatVersion);
     put(f, static_cast<std::uint32_t>(kind.size()));
@@ -63,16 +55,7 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
     put(f, static_cast<std::uint64_t>(compressed.size()));
     put(f, crc);
     f.write(reinterpret_cast<const char*>(compressed.data()), compressed.size());
-    f.flush();
-    if (!f) {
-      std::remove(tmp.c_str());
-      throw FileError("cannot write map file '" + path + "' (disk full or not writable?)");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw FileError("cannot write map file '" + path + "' (rename failed)");
-  }
+  }, "map file");
 }
 
 void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload) {
@@ -160,6 +143,10 @@ std::uint64_t header_u64(const Header& h, const std::string& key, const std::str
   }
 }
 
+std::uint64_t header_model_hash(const Header& h, const std::string& path) {
+  return h.count("model_hash") ? header_u64(h, "model_hash", path) : 0;
+}
+
 std::string header_string(const Header& h, const std::string& key, const std::string& path) {
   auto it = h.find(key);
   if (it == h.end()) throw FileError("'" + path + "' lacks header entry '" + key + "'");
@@ -176,15 +163,9 @@ void write_color_octree(const VoxelOcTree& tree, double top, const std::string& 
                 static_cast<std::uint8_t>(255 * v));
   }
   color.updateInnerOccupancy();
-  std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  if (!color.write(tmp)) {
-    std::remove(tmp.c_str());
-    throw FileError("cannot write '" + path + "'");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw FileError("cannot write '" + path + "' (rename failed)");
-  }
+  write_file_atomically(path, [&](std::ostream& f) {
+    if (!color.write(f)) f.setstate(std::ios::failbit);
+  }, "octovis file");
 }
 
 }  // namespace octoreach::detail

@@ -1,14 +1,15 @@
 #pragma once
 // Private: the octoreach map file container and bounds-checked byte streams.
 //
-// File layout (little endian):
+// File layout (numbers in the machine's byte order: little endian on x86-64 and ARM64, where every
+// map so far was written; a big-endian machine would read them as damaged, never silently):
 //   "OCTOREACH-MAP\n"      14-byte magic
 //   uint32 format version  (kFormatVersion)
 //   uint32 kind length, kind text ("capability", "point", "surface")
 //   uint32 header length, header text: "key=value\n" lines (build parameters, robot)
 //   uint64 raw payload size, uint64 compressed size, uint32 CRC-32 of kind, header and compressed bytes
 //   compressed payload (zlib)
-// Saves write a temporary file beside the target and rename it over the target.
+// Saves go through detail::write_file_atomically (temporary file, fsync, rename).
 #include <cstdint>
 #include <cstring>
 #include <map>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "octoreach/types.hpp"
+#include "common/format.hpp"
 #include "octoreach/voxel_octree.hpp"
 
 namespace octoreach::detail {
@@ -78,7 +80,8 @@ double header_double(const Header& h, const std::string& key, const std::string&
 long long header_int(const Header& h, const std::string& key, const std::string& path);
 std::string header_string(const Header& h, const std::string& key, const std::string& path);
 std::uint64_t header_u64(const Header& h, const std::string& key, const std::string& path);
-std::string format_double(double v);
+/// The robot model hash of a map header; 0 (unknown) in files written before maps recorded it.
+std::uint64_t header_model_hash(const Header& h, const std::string& path);
 
 /// Octree structure of a voxel tree: per inner node a child mask; at the finest depth `leaf(node)`
 /// writes the voxel's record.

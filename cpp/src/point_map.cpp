@@ -12,19 +12,6 @@
 
 namespace octoreach {
 
-std::vector<int> grasp_orientations(const OrientationSet& set, const std::vector<int>& directions) {
-  std::vector<int> out;
-  for (int d : directions) {
-    if (d < 0 || d >= set.directions())
-      throw std::invalid_argument("grasp direction index " + std::to_string(d) + " out of range [0, " +
-                                  std::to_string(set.directions()) + ")");
-    for (int r = 0; r < set.rolls(); ++r) out.push_back(d * set.rolls() + r);
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
 namespace {
 
 // Orientation index, in the arm frame, of grasp orientation g for a base yawed by theta.
@@ -39,10 +26,8 @@ int mapped_orientation(const CapabilityMap& cap, const Pose& reference_to_arm, i
 // Target (origin) position in the arm frame for a base at (x, y, z, theta).
 Eigen::Vector3d target_in_arm(const Pose& reference_to_arm, double x, double y, double z, double theta) {
   Eigen::Vector3d in_ref = Eigen::AngleAxisd(-theta, Eigen::Vector3d::UnitZ()) * Eigen::Vector3d(-x, -y, -z);
-  // A target exactly on a capability-voxel boundary (common: rotated grid centres land on them)
-  // would be assigned by rounding noise; a fixed offset far below the resolution makes the
-  // assignment the same however the pose was computed, so derived theta bins equal direct ones.
-  return reference_to_arm.inverse() * in_ref + Eigen::Vector3d(1.3e-7, 0.7e-7, 0.3e-7);
+  // The fixed offset also makes derived theta bins equal direct ones.
+  return reference_to_arm.inverse() * in_ref + target_offset();
 }
 
 }  // namespace
@@ -57,137 +42,156 @@ double InversePointMap::direct_reachability(const CapabilityMap& cap, const Pose
   return static_cast<double>(count) / orientations.size();
 }
 
-InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& cap, const PointMapOptions& o,
-                                       const ProgressCallback& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (cap.robot_name() != robot.name() || cap.urdf_hash() != robot.urdf_hash())
-    throw std::invalid_argument("the capability map was built for robot '" + cap.robot_name() +
-                                "' (another URDF), not for '" + robot.name() + "'");
-  if (o.theta_bins < 1 || o.theta_bins > 360)
-    throw std::invalid_argument("theta_bins must be in [1, 360], got " + std::to_string(o.theta_bins));
-  double res = o.resolution == 0 ? cap.resolution() : o.resolution;
-  if (!(res > 0) || !std::isfinite(res))
-    throw std::invalid_argument("resolution must be positive, got " + detail::format_double(res));
-  if (!(o.z_min < o.z_max)) throw std::invalid_argument("z_min must be below z_max");
-  InversePointMap m;
-  m.robot_name_ = robot.name();
-  m.urdf_hash_ = robot.urdf_hash();
-  m.reference_frame_ = o.reference_frame.empty() ? robot.links()[robot.root_link()].name : o.reference_frame;
-  m.arm_base_ = cap.base_link();
-  m.arm_tip_ = cap.tip_link();
-  const OrientationSet& set = cap.orientations();
-  std::vector<int> dirs = o.grasps.empty() ? set.subset(o.grasp_subset) : o.grasps;
-  m.grasp_name_ = o.grasps.empty() ? o.grasp_subset : "custom";
-  if (dirs.empty()) throw std::invalid_argument("the grasp set is empty");
-  m.grasp_orientations_ = octoreach::grasp_orientations(set, dirs);
-  // Reference frame -> arm base link at the reference posture.
-  Eigen::VectorXd q = o.reference.size() ? o.reference : robot.home();
-  if (q.size() != robot.dof())
-    throw std::invalid_argument("reference configuration has " + std::to_string(q.size()) + " entries, the robot has " +
-                                std::to_string(robot.dof()));
-  std::vector<Pose> poses = robot.link_poses(q);
-  m.reference_to_arm_ = poses[robot.link_index(m.reference_frame_)].inverse() * poses[robot.link_index(cap.base_link())];
+namespace {
 
-  // Symmetry: the grasp set must map onto itself under the orientation set's z rotations,
-  // the theta bins must contain those rotations, and the arm frame must not be tilted.
+// Symmetry: the grasp set must map onto itself under the orientation set's z rotations, the theta
+// bins must contain those rotations, and only 90 and 180 degree rotations map grid cells onto grid
+// cells. With several rolls per direction a rotated roll need not be a roll of the set: no symmetry then.
+bool grasps_symmetric(const OrientationSet& set, const std::vector<int>& grasps, const PointMapOptions& o) {
   const int sym = set.symmetry();
-  // Only 90 and 180 degree rotations map grid cells onto grid cells.
-  // With several rolls per direction a rotated roll need not be a roll of the set: no symmetry then.
   bool symmetric = o.use_symmetry && (sym == 2 || sym == 4) && o.theta_bins % sym == 0 && set.rolls() == 1;
-  if (symmetric) {
-    std::vector<char> in(set.size(), 0);
-    for (int g : m.grasp_orientations_) in[g] = 1;
-    for (int g : m.grasp_orientations_)
-      for (int k = 1; k < sym && symmetric; ++k) {
-        int rd = set.rotated(g / set.rolls(), k);
-        if (!in[rd * set.rolls() + g % set.rolls()]) symmetric = false;
-      }
-  }
-  m.used_symmetry_ = symmetric;
+  if (!symmetric) return false;
+  std::vector<char> in(set.size(), 0);
+  for (int g : grasps) in[g] = 1;
+  for (int g : grasps)
+    for (int k = 1; k < sym; ++k)
+      if (!in[set.rotated(g / set.rolls(), k) * set.rolls() + g % set.rolls()]) return false;
+  return true;
+}
 
-  // Grid: base positions whose target lies in the capability map.
+// The point map's base-position grid: a square xy key range symmetric about the target (needed
+// for exact 90 degree rotations of the grid) times the z layers; values [(ix * nxy + iy) * nz + iz] * T + k.
+struct PointGrid {
+  static constexpr int kC0 = 32768;  // key of the cell whose lower corner is 0
+  int half = 0, nxy = 0, nz = 0, kz0 = 0, T = 0;
+  std::vector<float> values;
+  std::size_t columns() const { return static_cast<std::size_t>(nxy) * nxy; }
+  octomap::OcTreeKey key(int ix, int iy, int iz) const { return octomap::OcTreeKey(kC0 - half + ix, kC0 - half + iy, kz0 + iz); }
+  float& at(std::size_t col, int iz, int k) { return values[(col * nz + iz) * T + k]; }
+};
+
+// The grid around the target that covers every base position from which the arm reaches it;
+// false when the z range leaves no layer.
+bool make_grid(const CapabilityMap& cap, const Pose& reference_to_arm, const PointMapOptions& o, double res,
+               const VoxelOcTree& tree, PointGrid& g) {
   std::vector<Eigen::Vector3d> centres;
   std::vector<double> dvals;
   cap.voxels(centres, dvals);
-  m.map_ = PoseMap(res, o.theta_bins);
-  if (centres.empty()) {
-    m.map_.finalize();
-    return m;
-  }
-  const detail::ReachExtent reach = detail::reach_extent(centres, m.reference_to_arm_);
-  const double rxy = reach.radius_xy + cap.resolution() + res, wz_lo = reach.z_lo, wz_hi = reach.z_hi;
-  double z_lo = std::max(o.z_min, -wz_hi - cap.resolution() - res), z_hi = std::min(o.z_max, -wz_lo + cap.resolution() + res);
-  const VoxelOcTree& tree = m.map_.tree();
+  if (centres.empty()) return false;
+  const detail::ReachExtent reach = detail::reach_extent(centres, reference_to_arm);
+  const double rxy = reach.radius_xy + cap.resolution() + res;
+  double z_lo = std::max(o.z_min, -reach.z_hi - cap.resolution() - res);
+  double z_hi = std::min(o.z_max, -reach.z_lo + cap.resolution() + res);
   octomap::OcTreeKey kmin, kmax;
   if (!tree.coordToKeyChecked(-rxy, -rxy, z_lo, kmin) || !tree.coordToKeyChecked(rxy, rxy, z_hi, kmax))
     throw std::invalid_argument("the point map does not fit an octree at this resolution");
-  // Symmetric xy key range about the target (needed for exact 90 degree rotations of the grid).
-  const int c0 = 32768;  // key of the cell whose lower corner is 0
-  int half = std::max(c0 - kmin[0], kmax[0] - c0 + 1);
-  half = std::max(half, std::max(c0 - kmin[1], kmax[1] - c0 + 1));
-  const int nxy = 2 * half, nz = kmax[2] - kmin[2] + 1;
-  if (z_lo > z_hi) {
-    m.map_.finalize();
-    return m;
-  }
-  const int T = o.theta_bins;
-  const int direct_bins = symmetric ? T / sym : T;
+  const int c0 = PointGrid::kC0;
+  g.half = std::max(c0 - kmin[0], kmax[0] - c0 + 1);
+  g.half = std::max(g.half, std::max(c0 - kmin[1], kmax[1] - c0 + 1));
+  g.nxy = 2 * g.half;
+  g.nz = kmax[2] - kmin[2] + 1;
+  g.kz0 = kmin[2];
+  g.T = o.theta_bins;
+  if (z_lo > z_hi) return false;
+  g.values.assign(g.columns() * g.nz * g.T, 0.0f);
+  return true;
+}
+
+// R_P of every grid pose of the first `direct_bins` theta bins, straight from the capability map.
+void fill_direct_bins(const CapabilityMap& cap, const Pose& reference_to_arm, const std::vector<int>& grasps,
+                      int direct_bins, int threads, const VoxelOcTree& tree, PointGrid& g,
+                      const ProgressCallback& progress) {
+  const int T = g.T;
   // Per theta bin, the arm-frame orientation of each grasp (independent of position).
   std::vector<std::vector<int>> mapped(direct_bins);
   for (int k = 0; k < direct_bins; ++k)
-    for (int g : m.grasp_orientations_)
-      mapped[k].push_back(mapped_orientation(cap, m.reference_to_arm_, g, 2.0 * M_PI * k / T));
-
-  const std::size_t ncols = static_cast<std::size_t>(nxy) * nxy;
-  std::vector<float> grid(ncols * nz * T, 0.0f);  // [(ix * nxy + iy) * nz + iz] * T + k
-  auto centre_of = [&](int ix, int iy, int iz) {
-    octomap::point3d c = tree.keyToCoord(octomap::OcTreeKey(c0 - half + ix, c0 - half + iy, kmin[2] + iz));
-    return Eigen::Vector3d(c.x(), c.y(), c.z());
-  };
-  const double inv = 1.0 / m.grasp_orientations_.size();
+    for (int o : grasps) mapped[k].push_back(mapped_orientation(cap, reference_to_arm, o, 2.0 * M_PI * k / T));
+  const double inv = 1.0 / grasps.size();
+  const std::size_t ncols = g.columns();
   std::atomic<std::size_t> done{0};
-  detail::parallel_for(ncols, o.threads, [&](std::size_t col, int tid) {
-    int ix = static_cast<int>(col / nxy), iy = static_cast<int>(col % nxy);
-    for (int iz = 0; iz < nz; ++iz) {
-      Eigen::Vector3d c = centre_of(ix, iy, iz);
+  detail::parallel_for(ncols, threads, [&](std::size_t col, int tid) {
+    int ix = static_cast<int>(col / g.nxy), iy = static_cast<int>(col % g.nxy);
+    for (int iz = 0; iz < g.nz; ++iz) {
+      octomap::point3d c = tree.keyToCoord(g.key(ix, iy, iz));
       for (int k = 0; k < direct_bins; ++k) {
-        Eigen::Vector3d p = target_in_arm(m.reference_to_arm_, c.x(), c.y(), c.z(), 2.0 * M_PI * k / T);
+        Eigen::Vector3d p = target_in_arm(reference_to_arm, c.x(), c.y(), c.z(), 2.0 * M_PI * k / T);
         if (cap.reachability(p) <= 0) continue;
         int count = 0;
         for (int mo : mapped[k]) count += cap.reachable(p, mo);
-        grid[(col * nz + iz) * T + k] = static_cast<float>(count * inv);
+        g.at(col, iz, k) = static_cast<float>(count * inv);
       }
     }
     std::size_t d = ++done;
     if (progress && tid == 0 && !progress(d, ncols)) throw Cancelled("point map build cancelled");
   }, 8);
-  if (symmetric) {
-    // R_P(x, y, z, theta + 2 pi m / sym) = R_P(Rz(-2 pi m / sym) (x, y), z, theta): a grid rotation.
-    const int step = T / sym;
-    for (int ix = 0; ix < nxy; ++ix)
-      for (int iy = 0; iy < nxy; ++iy)
-        for (int mrot = 1; mrot < sym; ++mrot) {
-          // Rotate cell (ix, iy) by -mrot * 90 degrees about the target (sym == 4) or in general by angle.
-          double a = -2.0 * M_PI * mrot / sym;
-          double cx = ix - half + 0.5, cy = iy - half + 0.5;
-          double rx = std::cos(a) * cx - std::sin(a) * cy, ry = std::sin(a) * cx + std::cos(a) * cy;
-          long jx = std::lround(rx - 0.5 + half), jy = std::lround(ry - 0.5 + half);
-          bool inside = jx >= 0 && jy >= 0 && jx < nxy && jy < nxy &&
-                        std::abs(rx - (jx - half + 0.5)) < 1e-6 && std::abs(ry - (jy - half + 0.5)) < 1e-6;
-          for (int iz = 0; iz < nz; ++iz)
-            for (int k = 0; k < step; ++k) {
-              float v = 0.0f;
-              if (inside) v = grid[((static_cast<std::size_t>(jx) * nxy + jy) * nz + iz) * T + k];
-              grid[((static_cast<std::size_t>(ix) * nxy + iy) * nz + iz) * T + mrot * step + k] = v;
-            }
-        }
+}
+
+// The other theta bins by rotating the grid: R_P(x, y, z, theta + 2 pi m / sym) =
+// R_P(Rz(-2 pi m / sym) (x, y), z, theta).
+void derive_rotated_bins(int sym, PointGrid& g) {
+  const int T = g.T, step = T / sym, nxy = g.nxy, half = g.half;
+  for (int ix = 0; ix < nxy; ++ix)
+    for (int iy = 0; iy < nxy; ++iy)
+      for (int mrot = 1; mrot < sym; ++mrot) {
+        double a = -2.0 * M_PI * mrot / sym;
+        double cx = ix - half + 0.5, cy = iy - half + 0.5;
+        double rx = std::cos(a) * cx - std::sin(a) * cy, ry = std::sin(a) * cx + std::cos(a) * cy;
+        long jx = std::lround(rx - 0.5 + half), jy = std::lround(ry - 0.5 + half);
+        bool inside = jx >= 0 && jy >= 0 && jx < nxy && jy < nxy && std::abs(rx - (jx - half + 0.5)) < 1e-6 &&
+                      std::abs(ry - (jy - half + 0.5)) < 1e-6;
+        const std::size_t col = static_cast<std::size_t>(ix) * nxy + iy;
+        const std::size_t src = inside ? static_cast<std::size_t>(jx) * nxy + jy : 0;
+        for (int iz = 0; iz < g.nz; ++iz)
+          for (int k = 0; k < step; ++k) g.at(col, iz, mrot * step + k) = inside ? g.at(src, iz, k) : 0.0f;
+      }
+}
+
+}  // namespace
+
+InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& cap, const PointMapOptions& o,
+                                       const ProgressCallback& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  check_map_robot(robot, cap);
+  if (o.theta_bins < 1 || o.theta_bins > 360)
+    throw std::invalid_argument("theta_bins must be in [1, 360], got " + std::to_string(o.theta_bins));
+  double res = o.resolution == 0 ? cap.resolution() : o.resolution;
+  if (!(res > 0) || !std::isfinite(res))
+    throw std::invalid_argument("resolution must be positive, got " + detail::format_number(res));
+  // Strict, unlike the surface map: heights here are a grid range relative to the target, not a
+  // range poses are clipped into, so an empty range holds no pose.
+  if (!(o.z_min < o.z_max)) throw std::invalid_argument("z_min must be below z_max");
+  const ArmPlacement place = ArmPlacement::make(robot, cap, o.reference_frame, o.reference, o.grasps, o.grasp_subset);
+  InversePointMap m;
+  m.robot_name_ = robot.name();
+  m.urdf_hash_ = robot.urdf_hash();
+  m.model_hash_ = robot.model_hash();
+  m.reference_frame_ = place.reference_frame;
+  m.arm_base_ = cap.base_link();
+  m.arm_tip_ = cap.tip_link();
+  m.grasp_name_ = place.grasps.name;
+  m.grasp_orientations_ = place.grasps.orientations;
+  m.reference_to_arm_ = place.reference_to_arm;
+  const OrientationSet& set = cap.orientations();
+  const bool symmetric = grasps_symmetric(set, m.grasp_orientations_, o);
+  m.used_symmetry_ = symmetric;
+
+  m.map_ = PoseMap(res, o.theta_bins);
+  const VoxelOcTree& tree = m.map_.tree();
+  PointGrid g;
+  if (!make_grid(cap, m.reference_to_arm_, o, res, tree, g)) {
+    m.map_.finalize();
+    return m;
   }
+  const int sym = set.symmetry();
+  fill_direct_bins(cap, m.reference_to_arm_, m.grasp_orientations_, symmetric ? g.T / sym : g.T, o.threads, tree, g,
+                   progress);
+  if (symmetric) derive_rotated_bins(sym, g);
+  const std::size_t ncols = g.columns();
   for (std::size_t col = 0; col < ncols; ++col)
-    for (int iz = 0; iz < nz; ++iz) {
-      const float* v = grid.data() + (col * nz + iz) * T;
-      if (*std::max_element(v, v + T) <= 0) continue;
-      int ix = static_cast<int>(col / nxy), iy = static_cast<int>(col % nxy);
-      m.map_.set_voxel(octomap::OcTreeKey(c0 - half + ix, c0 - half + iy, kmin[2] + iz), v);
+    for (int iz = 0; iz < g.nz; ++iz) {
+      const float* v = &g.at(col, iz, 0);
+      if (*std::max_element(v, v + g.T) <= 0) continue;
+      m.map_.set_voxel(g.key(static_cast<int>(col / g.nxy), static_cast<int>(col % g.nxy), iz), v);
     }
   m.map_.finalize();
   m.seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -196,22 +200,21 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
 }
 
 std::map<std::string, std::string> InversePointMap::parameters() const {
-  using detail::format_double;
-  std::ostringstream T, g;
-  T.precision(17);
-  for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) T << reference_to_arm_.matrix()(i, j) << (i == 3 && j == 3 ? "" : " ");
+  using detail::format_number;
+  const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> T = reference_to_arm_.matrix();  // row by row
+  std::ostringstream g;
   for (std::size_t i = 0; i < grasp_orientations_.size(); ++i) g << (i ? " " : "") << grasp_orientations_[i];
   return {{"robot", robot_name_},
           {"urdf_hash", std::to_string(urdf_hash_)},
+          {"model_hash", std::to_string(model_hash_)},
           {"reference_frame", reference_frame_},
           {"arm_base_link", arm_base_},
           {"arm_tip_link", arm_tip_},
-          {"reference_to_arm", T.str()},
+          {"reference_to_arm", detail::format_vector(T.reshaped<Eigen::RowMajor>())},
           {"grasp_set", grasp_name_},
           {"grasp_orientations", g.str()},
           {"used_symmetry", used_symmetry_ ? "1" : "0"},
-          {"build_seconds", format_double(seconds_)}};
+          {"build_seconds", format_number(seconds_)}};
 }
 
 void InversePointMap::save(const std::string& path) const { map_.save(path, "point", parameters()); }
@@ -223,6 +226,7 @@ InversePointMap InversePointMap::load(const std::string& path) {
   using detail::header_string;
   m.robot_name_ = header_string(h, "robot", path);
   m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
+  m.model_hash_ = detail::header_model_hash(h, path);
   m.reference_frame_ = header_string(h, "reference_frame", path);
   m.arm_base_ = header_string(h, "arm_base_link", path);
   m.arm_tip_ = header_string(h, "arm_tip_link", path);

@@ -1,5 +1,7 @@
 #include "octoreach/pose_map.hpp"
 
+#include "maps/batch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,7 +13,7 @@ namespace octoreach {
 
 PoseMap::PoseMap(double resolution, int theta_bins) : resolution_(resolution), theta_bins_(theta_bins) {
   if (!(resolution > 0) || !std::isfinite(resolution))
-    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_double(resolution));
+    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_number(resolution));
   if (theta_bins < 1 || theta_bins > 360)
     throw std::invalid_argument("theta_bins must be in [1, 360], got " + std::to_string(theta_bins));
   tree_ = std::make_shared<VoxelOcTree>(resolution);
@@ -40,6 +42,13 @@ double PoseMap::value(double x, double y, double z, double theta) const {
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(theta)) return 0.0;
   const float* v = voxel_values(x, y, z);
   return v ? v[theta_bin(theta)] : 0.0;
+}
+
+void PoseMap::values(const double* rows, std::size_t n, double* out) const {
+  detail::batch_lookup(n, [&](std::size_t i) {
+    const double* r = rows + 4 * i;
+    out[i] = value(r[0], r[1], r[2], r[3]);
+  });
 }
 
 void PoseMap::set_voxel(const octomap::OcTreeKey& key, const float* values) {
@@ -81,6 +90,13 @@ void PoseMap::voxels(std::vector<Eigen::Vector3d>& centres, std::vector<float>& 
   }
 }
 
+std::size_t PoseMap::pose_count() const {
+  std::vector<Eigen::Vector3d> c;
+  std::vector<float> v;
+  voxels(c, v);
+  return static_cast<std::size_t>(std::count_if(v.begin(), v.end(), [](float x) { return x > 0; }));
+}
+
 std::pair<Eigen::Vector3d, Eigen::Vector3d> PoseMap::bounds() const {
   std::vector<Eigen::Vector3d> c;
   std::vector<float> v;
@@ -99,7 +115,7 @@ double PoseMap::max_value() const { return values_.empty() ? 0.0 : *std::max_ele
 
 void PoseMap::save(const std::string& path, const std::string& kind, const std::map<std::string, std::string>& header) const {
   detail::Header h(header.begin(), header.end());
-  h["resolution"] = detail::format_double(resolution_);
+  h["resolution"] = detail::format_number(resolution_);
   h["theta_bins"] = std::to_string(theta_bins_);
   h["voxels"] = std::to_string(voxel_count());
   h["octoreach_version"] = version();

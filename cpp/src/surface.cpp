@@ -36,19 +36,10 @@ std::string vec(const Eigen::Vector3d& v) {
   return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
 }
 
-}  // namespace
-
-Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness) : thickness_(thickness) {
-  if (vertices.size() < 3)
-    throw std::invalid_argument("a surface needs at least three vertices, got " + std::to_string(vertices.size()));
-  if (!(thickness > 0) || !std::isfinite(thickness))
-    throw std::invalid_argument("surface thickness must be positive, got " + std::to_string(thickness));
-  for (const auto& v : vertices)
-    if (!v.allFinite()) throw std::invalid_argument("surface vertices must be finite");
-  vertices_ = vertices;
-  // Newell's normal, robust for non-convex polygons.
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+// Unit normal of a planar polygon, z >= 0: Newell's normal, robust for non-convex polygons.
+Eigen::Vector3d plane_normal(const std::vector<Eigen::Vector3d>& vertices) {
   const std::size_t N = vertices.size();
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < N; ++i) {
     const auto& a = vertices[i];
     const auto& b = vertices[(i + 1) % N];
@@ -70,6 +61,71 @@ Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness)
   }
   n.normalize();
   if (n.z() < -1e-9) n = -n;
+  return n;
+}
+
+// Throws unless the 2D polygon is simple: no spike of zero width, no edges crossing or touching.
+void check_simple(const std::vector<Eigen::Vector2d>& polygon, double eps) {
+  const std::size_t N = polygon.size();
+  for (std::size_t i = 0; i < N; ++i) {
+    // Adjacent edges folding back onto each other make a spike of zero width.
+    Eigen::Vector2d e0 = polygon[(i + 1) % N] - polygon[i], e1 = polygon[(i + 2) % N] - polygon[(i + 1) % N];
+    if (std::abs(cross2(e0, e1)) <= eps * e0.norm() && e0.dot(e1) < 0)
+      throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
+                                  std::to_string((i + 1) % N) + " fold back onto each other");
+    for (std::size_t j = i + 1; j < N; ++j) {
+      if (j == i + 1 || (i == 0 && j == N - 1)) continue;
+      if (segments_intersect(polygon[i], polygon[(i + 1) % N], polygon[j], polygon[(j + 1) % N], eps))
+        throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
+                                    std::to_string(j) + " cross or touch");
+    }
+  }
+}
+
+// Triangles (vertex indices) of a simple 2D polygon by ear clipping; `clockwise` polygons are
+// walked backwards so that ears are convex corners.
+std::vector<std::array<int, 3>> ear_clip(const std::vector<Eigen::Vector2d>& polygon, bool clockwise) {
+  const std::size_t N = polygon.size();
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> idx(N);
+  for (std::size_t i = 0; i < N; ++i) idx[i] = static_cast<int>(i);
+  if (clockwise) std::reverse(idx.begin(), idx.end());
+  while (idx.size() > 3) {
+    bool clipped = false;
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      int ia = idx[(k + idx.size() - 1) % idx.size()], ib = idx[k], ic = idx[(k + 1) % idx.size()];
+      const auto &a = polygon[ia], &b = polygon[ib], &c = polygon[ic];
+      if (cross2(b - a, c - b) <= 1e-15) continue;  // reflex or flat corner
+      bool ear = true;
+      for (int other : idx)
+        if (other != ia && other != ib && other != ic && point_in_triangle(polygon[other], a, b, c)) {
+          ear = false;
+          break;
+        }
+      if (!ear) continue;
+      triangles.push_back({ia, ib, ic});
+      idx.erase(idx.begin() + k);
+      clipped = true;
+      break;
+    }
+    if (!clipped) throw std::invalid_argument("surface polygon could not be triangulated (degenerate shape)");
+  }
+  triangles.push_back({idx[0], idx[1], idx[2]});
+  return triangles;
+}
+
+}  // namespace
+
+Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness) : thickness_(thickness) {
+  if (vertices.size() < 3)
+    throw std::invalid_argument("a surface needs at least three vertices, got " + std::to_string(vertices.size()));
+  if (!(thickness > 0) || !std::isfinite(thickness))
+    throw std::invalid_argument("surface thickness must be positive, got " + std::to_string(thickness));
+  for (const auto& v : vertices)
+    if (!v.allFinite()) throw std::invalid_argument("surface vertices must be finite");
+  vertices_ = vertices;
+  const std::size_t N = vertices.size();
+  const Eigen::Vector3d n = plane_normal(vertices);
   normal_ = n;
   origin_ = Eigen::Vector3d::Zero();
   for (const auto& v : vertices) origin_ += v;
@@ -96,50 +152,13 @@ Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness)
   for (std::size_t i = 0; i < N; ++i)
     if ((polygon_[i] - polygon_[(i + 1) % N]).norm() < 1e-9)
       throw std::invalid_argument("surface polygon has repeated vertex " + vec(vertices[i]));
-  const double eps = 1e-9 * std::max(1.0, scale);
-  for (std::size_t i = 0; i < N; ++i) {
-    // Adjacent edges folding back onto each other make a spike of zero width.
-    Eigen::Vector2d e0 = polygon_[(i + 1) % N] - polygon_[i], e1 = polygon_[(i + 2) % N] - polygon_[(i + 1) % N];
-    if (std::abs(cross2(e0, e1)) <= eps * e0.norm() && e0.dot(e1) < 0)
-      throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
-                                  std::to_string((i + 1) % N) + " fold back onto each other");
-    for (std::size_t j = i + 1; j < N; ++j) {
-      if (j == i + 1 || (i == 0 && j == N - 1)) continue;
-      if (segments_intersect(polygon_[i], polygon_[(i + 1) % N], polygon_[j], polygon_[(j + 1) % N], eps))
-        throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
-                                    std::to_string(j) + " cross or touch");
-    }
-  }
+  check_simple(polygon_, 1e-9 * std::max(1.0, scale));
   // Signed area; orient the 2D polygon counter-clockwise for ear clipping.
   double a2 = 0;
   for (std::size_t i = 0; i < N; ++i) a2 += cross2(polygon_[i], polygon_[(i + 1) % N]);
   area_ = std::abs(a2) / 2;
   if (area_ < 1e-9) throw std::invalid_argument("degenerate surface polygon: zero area");
-  std::vector<int> idx(N);
-  for (std::size_t i = 0; i < N; ++i) idx[i] = static_cast<int>(i);
-  if (a2 < 0) std::reverse(idx.begin(), idx.end());
-  // Ear clipping.
-  while (idx.size() > 3) {
-    bool clipped = false;
-    for (std::size_t k = 0; k < idx.size(); ++k) {
-      int ia = idx[(k + idx.size() - 1) % idx.size()], ib = idx[k], ic = idx[(k + 1) % idx.size()];
-      const auto &a = polygon_[ia], &b = polygon_[ib], &c = polygon_[ic];
-      if (cross2(b - a, c - b) <= 1e-15) continue;  // reflex or flat corner
-      bool ear = true;
-      for (int other : idx)
-        if (other != ia && other != ib && other != ic && point_in_triangle(polygon_[other], a, b, c)) {
-          ear = false;
-          break;
-        }
-      if (!ear) continue;
-      triangles_.push_back({ia, ib, ic});
-      idx.erase(idx.begin() + k);
-      clipped = true;
-      break;
-    }
-    if (!clipped) throw std::invalid_argument("surface polygon could not be triangulated (degenerate shape)");
-  }
-  triangles_.push_back({idx[0], idx[1], idx[2]});
+  triangles_ = ear_clip(polygon_, a2 < 0);
   // Convex polygons get a half-plane test (the hot loop of surface-map builds).
   std::vector<Eigen::Vector2d> ccw;
   for (std::size_t i = 0; i < N; ++i) ccw.push_back(polygon_[a2 < 0 ? N - 1 - i : i]);

@@ -7,18 +7,27 @@ Poses are 4x4 numpy arrays (homogeneous transforms) unless a docstring says
 (x, y, z, theta) rows. Units: metres and radians; frames are right-handed, z up.
 """
 from ._core import (  # noqa: F401
+    Arm,
     Cancelled,
     CapabilityMap,
+    CapabilityMapOptions,
     Chain,
     CostMap,
     InversePointMap,
     Obstacles,
     OrientationSet,
+    PointMapOptions,
     PoseSampler,
     Robot,
     Surface,
     SurfaceMap,
+    SurfaceMapOptions,
     __version__,
+    arm_names,
+    base_pose,
+    default_reference,
+    grasp_orientations,
+    link_roles,
 )
 from . import progress as _progress
 from ._core import set_progress_factory as _set_progress_factory
@@ -26,7 +35,7 @@ from ._core import set_progress_factory as _set_progress_factory
 _set_progress_factory(_progress.make_progress)  # how progress=True is drawn by the compiled builds
 
 from . import robots  # noqa: F401
-from . import arms, surface_maps  # noqa: F401  (surface_maps adds SurfaceMap.build)
+from . import arms, surface_maps  # noqa: F401
 from ._core import (  # noqa: F401
     CameraIntrinsics,
     DepthCamera,
@@ -39,7 +48,9 @@ from ._core import (  # noqa: F401
 from . import exploration  # noqa: F401
 from .exploration import explore  # noqa: F401
 
-__all__ = ["Cancelled", "CapabilityMap", "Chain", "CostMap", "InversePointMap", "PoseSampler", "Surface",
-           "SurfaceMap", "arms", "OrientationSet", "Obstacles", "Robot", "robots", "__version__"]
+__all__ = ["Arm", "Cancelled", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
+           "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
+           "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
+           "grasp_orientations", "link_roles"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore"]

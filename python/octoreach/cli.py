@@ -220,6 +220,10 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--seed", type=int, default=0)
     sp.set_defaults(func=_cmd_ik)
 
+    from ._core import CapabilityMapOptions
+
+    defaults = CapabilityMapOptions()  # the build defaults, defined once in C++
+
     def arm_args(sp, many=False):
         if many:
             sp.add_argument("--arms", nargs="+", default=["right_arm"],
@@ -231,8 +235,10 @@ def build_parser() -> argparse.ArgumentParser:
             sp.add_argument("--tip", help="chain tip (tool) link (instead of --arm)")
             sp.add_argument("--approach-axis", type=float, nargs=3, default=[0, 0, 1],
                             help="tool axis that approaches the object, tip frame (default 0 0 1)")
-        sp.add_argument("--resolution", type=float, default=0.05, help="voxel edge in m (default 0.05)")
-        sp.add_argument("--directions", type=int, default=200, help="approach directions (default 200)")
+        sp.add_argument("--resolution", type=float, default=defaults.resolution,
+                        help=f"voxel edge in m (default {defaults.resolution})")
+        sp.add_argument("--directions", type=int, default=defaults.directions,
+                        help=f"approach directions (default {defaults.directions})")
         sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
         sp.add_argument("--quiet", action="store_true", help="no progress bar")
         sp.add_argument("--octovis", help="also write a colour octree (.ot) for octovis")

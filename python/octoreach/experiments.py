@@ -37,8 +37,8 @@ import numpy as np
 
 from . import arms as _arms
 from . import robots as _robots
-from ._core import PoseSampler, Robot, Surface, SurfaceMap
-from .surface_maps import link_roles
+from ._core import OrientationSet, PoseSampler, Robot, Surface, SurfaceMap, grasp_orientations, link_roles
+from ._core import base_pose as _base_pose
 
 __all__ = ["World", "build_world", "condition", "ground", "reachable", "predefined_poses", "place_objects",
            "tidy_up", "format_tidy_up", "exploration_tables"]
@@ -53,12 +53,7 @@ STANDOFF = 0.5  # predefined poses: base centre this far from the table edge
 
 def base_transform(pose) -> np.ndarray:
     """4x4 pose of the robot's root link (base_footprint) from (x, y, z, theta)."""
-    x, y, z, th = np.asarray(pose, float)
-    c, s = np.cos(th), np.sin(th)
-    B = np.eye(4)
-    B[:3, :3] = [[c, -s, 0], [s, c, 0], [0, 0, 1]]
-    B[:3, 3] = [x, y, z]
-    return B
+    return _base_pose(np.asarray(pose, float))
 
 
 # ------------------------------------------------------------------------------------ the world
@@ -95,14 +90,13 @@ class _Arm:
     grasps: np.ndarray  # (G, 3, 3) tool orientations of top grasps, in the world frame
 
 
-def _arm_data(robot: Robot, arm: str, cap) -> _Arm:
+def _arm_data(robot: Robot, arm: str, orientations: OrientationSet) -> _Arm:
     base, tip, axis = _arms.resolve(robot, arm)
     chain = robot.chain(base, tip)
     reference = _arms.default_reference(robot, arm)
     roles = link_roles(robot, chain)
-    ids = cap.orientations.subset("upper_hemisphere")
-    rolls = cap.orientations.rolls
-    grasps = np.array([cap.orientations.rotation(d * rolls + r, axis) for d in ids for r in range(rolls)])
+    ids = grasp_orientations(orientations, orientations.subset("upper_hemisphere"))
+    grasps = np.array([orientations.rotation(i, axis) for i in ids])
     return _Arm(chain=chain, axis=axis, reference=reference,
                 root_to_armbase=robot.link_poses(reference)[base], arm_links=roles["arm"],
                 body_links=roles["body"], grasps=grasps)
@@ -119,7 +113,7 @@ def build_world(tables: int = 1, resolution: float = 0.1, directions: int = 100,
     caps = {arm: _arms.capability_map(robot, arm, resolution=resolution, directions=directions, seed=seed,
                                       progress=False) for arm in ARMS}
     world = World(robot=robot, tables=[], resolution=resolution,
-                  arm_data={arm: _arm_data(robot, arm, caps[arm]) for arm in ARMS})
+                  arm_data={arm: _arm_data(robot, arm, caps[arm].orientations) for arm in ARMS})
     sx, sy, h = TABLE_SIZE
     for x, y, yaw in TABLE_POSES[:tables]:
         surface = Surface.rectangle(sx, sy, h, x, y, yaw)
@@ -177,14 +171,8 @@ _STANDALONE: dict = {}
 def _arm_data_standalone(robot: Robot, arm: str) -> _Arm:
     key = (id(robot), arm)
     if key not in _STANDALONE:
-        from ._core import CapabilityMap
-
-        base, tip, axis = _arms.resolve(robot, arm)
-        # a tiny map only for its orientation set (upper-hemisphere grasp directions)
-        cap = CapabilityMap.build(robot.chain(base, tip), resolution=1.0, directions=100, approach_axis=axis,
-                                  reference=_arms.default_reference(robot, arm), progress=False,
-                                  keep_solutions=False)
-        _STANDALONE[key] = _arm_data(robot, arm, cap)
+        # the orientation set of a 100-direction capability map (its default rolls and symmetry)
+        _STANDALONE[key] = _arm_data(robot, arm, OrientationSet.sphere(100))
     return _STANDALONE[key]
 
 

@@ -103,3 +103,74 @@ TEST(SurfaceMap, BuildsSavesLoadsAndSamples) {
   }
   EXPECT_EQ(sampler.history().size(), 5u);
 }
+
+TEST(ArmPlacement, ArmsAndReferencePosture) {
+  auto& f = fixture();
+  EXPECT_THROW(Arm::named(*f.robot, "no_such_arm"), std::invalid_argument);
+  EXPECT_THROW(Arm::from_links(*f.robot, "base_link", "no_such_link"), std::invalid_argument);
+  Arm a = Arm::from_links(*f.robot, "base_link", "tool0");
+  EXPECT_EQ(a.approach_axis, Eigen::Vector3d::UnitZ());
+  // No SRDF tuck states on the test arm: the default reference is home.
+  EXPECT_TRUE(default_reference(*f.robot, f.chain).isApprox(f.robot->home(), 0.0));
+  EXPECT_THROW(reference_or_default(*f.robot, f.chain, Eigen::VectorXd::Zero(f.robot->dof() + 1)), std::invalid_argument);
+}
+
+TEST(ArmPlacement, LinkRolesPartitionTheCollisionLinks) {
+  auto& f = fixture();
+  LinkRoles r = link_roles(*f.robot, f.chain);
+  EXPECT_EQ(r.body.size() + r.arm.size() + r.tool.size(), f.robot->collision_links().size());
+  for (int l : r.body) EXPECT_EQ(f.chain.link_mask(l), 0u);
+  for (int l : r.arm) EXPECT_NE(f.chain.link_mask(l), 0u);
+}
+
+TEST(ArmPlacement, GraspsPlacementAndBasePose) {
+  auto& f = fixture();
+  const OrientationSet& set = f.cap.orientations();
+  EXPECT_THROW(GraspSet::make(set, {set.directions()}, ""), std::invalid_argument);
+  GraspSet g = GraspSet::make(set, {}, "upper_hemisphere");
+  EXPECT_EQ(g.name, "upper_hemisphere");
+  EXPECT_EQ(g.orientations, grasp_orientations(set, set.subset("upper_hemisphere")));
+  ArmPlacement p = ArmPlacement::make(*f.robot, f.cap, "", Eigen::VectorXd(), {}, "upper_hemisphere");
+  EXPECT_EQ(p.reference_frame, f.robot->links()[f.robot->root_link()].name);
+  Pose B = base_pose(1, 2, 3, M_PI / 2);
+  EXPECT_TRUE(B.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  EXPECT_TRUE((B.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY(), 1e-12));
+  EXPECT_TRUE(p.root_pose(1, 2, 3, M_PI / 2).isApprox(B * p.root_in_reference));
+}
+
+TEST(ArmPlacement, MapsTieToTheModelHash) {
+  auto& f = fixture();
+  EXPECT_EQ(f.cap.model_hash(), f.robot->model_hash());
+  EXPECT_NO_THROW(check_map_robot(*f.robot, f.cap));
+  // Another allowed-collision matrix is another model: the map does not belong to it.
+  auto other = Robot::from_urdf(kArm);
+  const auto& links = other->links();
+  bool added = false;
+  for (std::size_t i = 0; i < links.size() && !added; ++i)
+    for (std::size_t j = i + 1; j < links.size() && !added; ++j)
+      if (!links[i].shapes.empty() && !links[j].shapes.empty()) {
+        std::size_t before = other->allowed_pairs().size();
+        other->allow_collision(links[i].name, links[j].name);
+        added = other->allowed_pairs().size() > before;
+      }
+  ASSERT_TRUE(added);
+  EXPECT_THROW(check_map_robot(*other, f.cap), std::invalid_argument);
+}
+
+TEST(Maps, BatchedLookupsEqualSingleOnes) {
+  auto& f = fixture();
+  InversePointMap pm = InversePointMap::build(*f.robot, f.cap, PointMapOptions());
+  std::vector<double> rows, points;
+  for (int i = 0; i < 500; ++i) {
+    double t = i * 0.37;
+    rows.insert(rows.end(), {std::sin(t), std::cos(1.3 * t), 0.2 * std::sin(2.1 * t), t});
+    points.insert(points.end(), {0.5 * std::sin(t), 0.5 * std::cos(t), 0.3 * std::sin(0.7 * t)});
+  }
+  std::vector<double> out(500), cap_out(500);
+  pm.reachability(rows.data(), 500, out.data());
+  f.cap.reachability(points.data(), 500, cap_out.data());
+  for (int i = 0; i < 500; ++i) {
+    EXPECT_EQ(out[i], pm.reachability(rows[4 * i], rows[4 * i + 1], rows[4 * i + 2], rows[4 * i + 3]));
+    EXPECT_EQ(cap_out[i], f.cap.reachability(Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2])));
+  }
+}

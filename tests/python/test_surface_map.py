@@ -252,3 +252,51 @@ def test_sampler_respects_the_floor_height(pr2_setup):
     _, _, _, sm, _ = pr2_setup
     poses = octoreach.PoseSampler(sm, seed=0).sample(5)
     assert np.all(poses[:, 2] == 0.0)
+
+
+# ----------------------------------------------------------------- arm placement, options, one source of truth
+
+
+def test_named_arms_and_default_reference_come_from_cpp(pr2):
+    base, tip, axis = octoreach.arms.resolve(pr2, "right_arm")
+    assert (base, tip) == ("torso_lift_link", "r_gripper_tool_frame") and np.allclose(axis, [1, 0, 0])
+    with pytest.raises(ValueError, match="has no arm"):
+        octoreach.arms.resolve(pr2, "third_arm")
+    with pytest.raises(ValueError, match="has no link"):
+        octoreach.arms.resolve(pr2, ("torso_lift_link", "no_such_link"))
+    # The reference posture rule: home with every SRDF tuck* state applied that does not move the arm.
+    chain = pr2.chain(base, tip)
+    values = {}
+    for name, joints in sorted(pr2.named_states.items()):
+        if name.startswith("tuck") and not set(joints) & set(chain.joint_names):
+            values.update(joints)
+    expected = pr2.configuration(values)
+    assert np.array_equal(octoreach.default_reference(pr2, chain), expected)
+    assert np.array_equal(octoreach.arms.default_reference(pr2, "right_arm"), expected)
+
+
+def test_link_roles_and_grasp_orientations(pr2):
+    chain = pr2.chain(*octoreach.arms.resolve(pr2, "left_arm")[:2])
+    roles = octoreach.link_roles(pr2, chain)
+    assert sorted(roles["body"] + roles["arm"] + roles["tool"]) == sorted(pr2.collision_links)
+    assert "l_gripper_palm_link" in roles["tool"] and "base_link" in roles["body"]
+    s = octoreach.OrientationSet.sphere(30, rolls=3)
+    assert octoreach.grasp_orientations(s, [4, 1]) == [3, 4, 5, 12, 13, 14]
+    B = octoreach.base_pose([1.0, 2.0, 0.5, np.pi / 2])
+    assert np.allclose(B[:3, 3], [1, 2, 0.5]) and np.allclose(B[:3, 0], [0, 1, 0])
+
+
+def test_options_objects_equal_keywords(arm_setup):
+    robot, cap, table, sm = arm_setup
+    o = octoreach.SurfaceMapOptions()
+    assert o.resolution == 0 and o.grasps == "upper_hemisphere" and o.reference is None
+    o.resolution, o.z_range = 0.1, (0, 0)
+    again = octoreach.SurfaceMap.build(robot, cap, table, options=o, progress=False)
+    assert np.array_equal(again.voxels()[1], sm.voxels()[1])
+    assert octoreach.CapabilityMapOptions().resolution == 0.05
+    with pytest.raises(TypeError, match="unexpected keyword argument 'grasp_heigth'"):
+        octoreach.SurfaceMap.build(robot, cap, table, grasp_heigth=0.1, progress=False)
+    by_tuple = octoreach.SurfaceMap.build(robot, ("base_link", "tool0"), table, resolution=0.3, directions=12,
+                                          z_range=(0, 0), progress=False)
+    assert by_tuple.arms == "base_link->tool0"
+    assert sm.model_hash != 0 and cap.model_hash == sm.model_hash

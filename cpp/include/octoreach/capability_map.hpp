@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "octoreach/arm.hpp"
 #include "octoreach/orientation_set.hpp"
 #include "octoreach/robot.hpp"
 #include "octoreach/types.hpp"
@@ -22,7 +23,7 @@ struct CapabilityMapOptions {
   int symmetry = 4;                                          ///< z symmetry of the direction set
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tool axis that approaches the object
   bool self_collision = true;                                ///< solutions must be free of self-collision
-  Eigen::VectorXd reference;                                 ///< robot configuration off the chain (empty: home)
+  Eigen::VectorXd reference;  ///< robot configuration off the chain (empty: default_reference(robot, chain))
   std::uint64_t seed = 0;
   std::size_t fk_samples = 0;         ///< forward-kinematics samples (0: 40 per voxel of the bounding box)
   bool exhaustive = false;            ///< also run random-restart IK on every cell the sampling did not reach
@@ -55,6 +56,10 @@ class CapabilityMap {
   /// the voxel centres settles them, and a flood fill over neighbouring cells finds the rest.
   static CapabilityMap build(const Chain& chain, const CapabilityMapOptions& options = {},
                              const ProgressCallback& progress = nullptr);
+  /// \brief Builds the map of a robot's arm: the chain between the arm's links, with the arm's
+  /// approach axis in place of options.approach_axis.
+  static CapabilityMap build(const Robot& robot, const Arm& arm, const CapabilityMapOptions& options = {},
+                             const ProgressCallback& progress = nullptr);
   /// \brief Reads a map saved by save(); throws FileError on a damaged, truncated or foreign file.
   static CapabilityMap load(const std::string& path);
   /// \brief Writes the map atomically (temporary file, then rename).
@@ -64,6 +69,11 @@ class CapabilityMap {
 
   /// \brief Reachability index D of the voxel holding p (0 outside the map).
   double reachability(const Eigen::Vector3d& p) const;
+  /// \brief reachability() of n points (3 n doubles) into `out` (n doubles); large batches run on every core.
+  void reachability(const double* points, std::size_t n, double* out) const;
+  /// \brief reachable() of n tool poses, each a row-major 4x4 matrix (16 n doubles), into `out`;
+  /// a pose with a non-finite entry is not reachable.
+  void reachable(const double* poses, std::size_t n, bool* out) const;
   /// \brief True when the cell of the tool pose T (base link frame) is reachable.
   bool reachable(const Pose& T) const;
   /// \brief True when orientation o is reachable in the voxel holding p.
@@ -89,6 +99,9 @@ class CapabilityMap {
   const Eigen::Vector3d& approach_axis() const { return approach_axis_; }
   const std::string& robot_name() const { return robot_name_; }
   std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief Robot::model_hash() of the robot built for (URDF and allowed-collision matrix); 0 when
+  /// unknown (a file written before maps recorded it).
+  std::uint64_t model_hash() const { return model_hash_; }
   const std::string& base_link() const { return base_link_; }
   const std::string& tip_link() const { return tip_link_; }
   int dof() const { return dof_; }
@@ -113,7 +126,7 @@ class CapabilityMap {
   void set_parameters_(const CapabilityMapOptions& o);
 
   std::shared_ptr<VoxelOcTree> tree_;
-  double resolution_ = 0.05;
+  double resolution_ = 0;  // set by build() or load()
   OrientationSet orientations_ = OrientationSet::sphere(200);
   Eigen::Vector3d approach_axis_ = Eigen::Vector3d::UnitZ();
   int words_ = 4;                        // uint64 words per voxel record
@@ -123,7 +136,7 @@ class CapabilityMap {
   std::vector<float> d_;                 // per record: reachability index D
   DenseIndex index_;
   std::string robot_name_, base_link_, tip_link_;
-  std::uint64_t urdf_hash_ = 0;
+  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   int dof_ = 0;
   bool self_collision_ = true;
   std::uint64_t seed_ = 0;

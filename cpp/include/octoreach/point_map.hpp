@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/pose_map.hpp"
 #include "octoreach/robot.hpp"
@@ -20,7 +21,7 @@ struct PointMapOptions {
   std::string grasp_subset = "upper_hemisphere";
   int theta_bins = 16;
   double resolution = 0;       ///< voxel edge (m); 0: the capability map's resolution
-  Eigen::VectorXd reference;   ///< robot configuration for the joints between reference frame and arm (empty: home)
+  Eigen::VectorXd reference;   ///< robot configuration for the joints between reference frame and arm (empty: default_reference)
   double z_min = -1e9, z_max = 1e9;  ///< base z range relative to the target (clipped to what can reach)
   bool use_symmetry = true;    ///< derive theta bins by rotating the grid where the grasp set allows it
   int threads = 0;
@@ -39,6 +40,8 @@ class InversePointMap {
 
   /// \brief R_P of base pose (x, y, z, theta) relative to the target; 0 outside the map.
   double reachability(double x, double y, double z, double theta) const { return map_.value(x, y, z, theta); }
+  /// \brief reachability() of n base poses given as rows x, y, z, theta (4 n doubles) into `out`.
+  void reachability(const double* rows, std::size_t n, double* out) const { map_.values(rows, n, out); }
   /// \brief R_P computed directly from the capability map (no grid), for checks.
   static double direct_reachability(const CapabilityMap& capability, const Pose& reference_to_arm,
                                     const std::vector<int>& orientations, double x, double y, double z, double theta);
@@ -46,6 +49,8 @@ class InversePointMap {
   const PoseMap& map() const { return map_; }
   const std::string& robot_name() const { return robot_name_; }
   std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief Robot::model_hash() of the robot built for; 0 when unknown (older files).
+  std::uint64_t model_hash() const { return model_hash_; }
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arm_base_link() const { return arm_base_; }
   const std::string& arm_tip_link() const { return arm_tip_; }
@@ -61,14 +66,11 @@ class InversePointMap {
  private:
   PoseMap map_;
   std::string robot_name_, reference_frame_, arm_base_, arm_tip_, grasp_name_;
-  std::uint64_t urdf_hash_ = 0;
+  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   Pose reference_to_arm_ = Pose::Identity();
   std::vector<int> grasp_orientations_;
   bool used_symmetry_ = false;
   double seconds_ = 0;
 };
-
-/// \brief Orientation indices of a capability map's set for direction indices (all rolls of each).
-std::vector<int> grasp_orientations(const OrientationSet& set, const std::vector<int>& directions);
 
 }  // namespace octoreach

@@ -28,6 +28,9 @@ class PoseMap {
   std::size_t voxel_count() const { return values_.size() / std::max(1, theta_bins_); }
   /// \brief Value of pose (x, y, z, theta); 0 where the map has no voxel.
   double value(double x, double y, double z, double theta) const;
+  /// \brief Values of n poses given as rows x, y, z, theta (`rows` holds 4 n doubles) into `out`
+  /// (n doubles); large batches run on every core. Thread-safe.
+  void values(const double* rows, std::size_t n, double* out) const;
   /// \brief The theta bin of an angle (any real angle).
   int theta_bin(double theta) const;
   /// \brief The theta_bins values of the voxel holding (x, y, z), or nullptr.
@@ -36,6 +39,8 @@ class PoseMap {
   void voxels(std::vector<Eigen::Vector3d>& centres, std::vector<float>& values) const;
   /// \brief (min, max) corners of the voxels with a non-zero value.
   std::pair<Eigen::Vector3d, Eigen::Vector3d> bounds() const;
+  /// \brief Number of (voxel, theta bin) poses with a value above 0.
+  std::size_t pose_count() const;
   /// \brief Largest value in the map.
   double max_value() const;
 
@@ -53,7 +58,7 @@ class PoseMap {
   void export_octovis(const std::string& path) const;
 
  private:
-  double resolution_ = 0.05;
+  double resolution_ = 0;  // set by the constructor or load()
   int theta_bins_ = 16;
   std::shared_ptr<VoxelOcTree> tree_;
   std::vector<float> values_;  // voxel record r: values_[r * theta_bins_ + k]

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/pose_map.hpp"
 #include "octoreach/robot.hpp"
@@ -24,7 +25,7 @@ struct SurfaceMapOptions {
   int theta_bins = 16;
   double resolution = 0;            ///< 0: the capability map's resolution
   double z_min = -1e9, z_max = 1e9; ///< base z range (world frame); a wheeled robot on the floor: (0, 0)
-  Eigen::VectorXd reference;        ///< robot configuration off the arm (torso, other arm); empty: home
+  Eigen::VectorXd reference;        ///< robot configuration off the arm (torso, other arm); empty: default_reference
   bool check_body = true;           ///< reject base poses where the robot body touches the surface or boxes
   bool check_arm = true;            ///< reject grasps whose arm passes below the surface inside its outline
   /// Grasp points lie this far above the surface along its normal (the tool frame holds an object,
@@ -60,10 +61,15 @@ class SurfaceMap {
   double reachability(double x, double y, double z, double theta) const {
     return map_.value(x, y, std::min(std::max(z, z_min_), z_max_), theta);
   }
+  /// \brief reachability() of n base poses given as rows x, y, z, theta (4 n doubles) into `out`
+  /// (n doubles); large batches run on every core.
+  void reachability(const double* rows, std::size_t n, double* out) const;
   const PoseMap& map() const { return map_; }
   const SurfaceMapStats& stats() const { return stats_; }
   const std::string& robot_name() const { return robot_name_; }
   std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief Robot::model_hash() of the robot built for; 0 when unknown (older files).
+  std::uint64_t model_hash() const { return model_hash_; }
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arms() const { return arms_; }
   /// \brief Surface outline (world frame) the map was built for.
@@ -79,7 +85,7 @@ class SurfaceMap {
   PoseMap map_;
   SurfaceMapStats stats_;
   std::string robot_name_, reference_frame_, arms_, empty_reason_, grasp_name_;
-  std::uint64_t urdf_hash_ = 0;
+  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   std::vector<Eigen::Vector3d> polygon_;
   double z_min_ = -1e9, z_max_ = 1e9;
   double grasp_height_ = 0.05;

@@ -1,0 +1,133 @@
+#include "arm_clearance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+#include "../common/thread_pool.hpp"
+
+namespace octoreach::detail {
+namespace {
+
+// Points on a shape's surface (link frame) that stand for the shape when testing whether an arm
+// passes under a surface: box faces on a 3 x 3 grid, cylinder rims, sphere extremes, mesh vertices.
+void witness_points(const Shape& s, std::vector<Eigen::Vector3d>& out) {
+  std::vector<Eigen::Vector3d> local;
+  switch (s.type) {
+    case Shape::Type::Box: {
+      Eigen::Vector3d h = s.size / 2;
+      for (int a = -1; a <= 1; ++a)
+        for (int b = -1; b <= 1; ++b)
+          for (int c = -1; c <= 1; ++c)
+            if (a || b || c) local.emplace_back(a * h.x(), b * h.y(), c * h.z());
+      break;
+    }
+    case Shape::Type::Cylinder:
+      for (int k = 0; k < 12; ++k) {
+        double t = 2 * M_PI * k / 12;
+        for (double z : {-s.length / 2, 0.0, s.length / 2})
+          local.emplace_back(s.radius * std::cos(t), s.radius * std::sin(t), z);
+      }
+      break;
+    case Shape::Type::Sphere:
+      for (int a = -1; a <= 1; ++a)
+        for (int b = -1; b <= 1; ++b)
+          for (int c = -1; c <= 1; ++c)
+            if (a || b || c) local.push_back(Eigen::Vector3d(a, b, c).normalized() * s.radius);
+      break;
+    case Shape::Type::Mesh: {
+      auto* bvh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(s.geometry.get());
+      if (!bvh || bvh->num_vertices == 0) break;
+      int stride = std::max(1, bvh->num_vertices / 48);
+      for (int i = 0; i < bvh->num_vertices; i += stride) local.push_back(bvh->vertices[i]);
+      break;
+    }
+  }
+  for (const auto& p : local) out.push_back(s.origin * p);
+}
+
+}  // namespace
+
+void LowSet::summarise() {
+  r_max = 0;
+  for (const auto& w : points) r_max = std::max(r_max, w.head<2>().norm());
+  for (int k = 0; k < kDirs; ++k) {
+    float c = static_cast<float>(std::cos(2 * M_PI * k / kDirs)), s = static_cast<float>(std::sin(2 * M_PI * k / kDirs));
+    float m = std::numeric_limits<float>::infinity();
+    for (const auto& w : points) m = std::min(m, c * w.x() + s * w.y());
+    min_proj[k] = m;
+  }
+}
+
+ArmClearance::ArmClearance(const Robot& robot, const CapabilityMap& cap, const ArmPlacement& place, double grasp_height)
+    : robot_(robot),
+      cap_(cap),
+      arm_(robot.chain(cap.base_link(), cap.tip_link())),
+      reference_(place.reference),
+      arm_links_(place.roles.arm),  // links rigid with the tip (the gripper) touch the object
+      link_witness_(robot.links().size()),
+      root_from_arm_base_(place.link_poses[robot.link_index(cap.base_link())].inverse()),
+      grasp_height_(grasp_height),
+      orientations_(cap.orientations().size()) {
+  for (int li : arm_links_)
+    for (const auto& s : robot.links()[li].shapes) witness_points(s, link_witness_[li]);
+}
+
+void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d& centre, const Eigen::Vector3d& n_arm,
+                           std::vector<Pose>& poses, LowSet& low) const {
+  std::vector<Eigen::Vector3f>& out = low.points;
+  const float* qf = cap_.record_solution(rec, orient);
+  Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
+  robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
+  for (int li : arm_links_) {
+    Pose in_arm = root_from_arm_base_ * poses[li];
+    for (const auto& w : link_witness_[li]) {
+      Eigen::Vector3d rel = in_arm * w - centre;  // relative to the reached point
+      // Below the surface top, which lies grasp_height under the reached point.
+      if (n_arm.dot(rel) < -grasp_height_ - 1e-3) out.push_back(rel.cast<float>());
+    }
+  }
+  // Nearest to the target first: those fall inside the outline soonest, ending the test early.
+  std::sort(out.begin(), out.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+    return a.head<2>().squaredNorm() < b.head<2>().squaredNorm();
+  });
+  low.summarise();
+}
+
+void ArmClearance::compute_shared(double za_lo, double za_hi, int threads) {
+  std::vector<Eigen::Vector3d> cc;
+  std::vector<double> cv;
+  cap_.voxels(cc, cv);
+  std::vector<std::pair<std::uint32_t, Eigen::Vector3d>> records;
+  for (std::size_t i = 0; i < cc.size(); ++i)
+    if (cc[i].z() >= za_lo - cap_.resolution() && cc[i].z() <= za_hi + cap_.resolution()) {
+      Eigen::Vector3d centre;
+      std::int64_t rec = cap_.record_at(cc[i], &centre);
+      if (rec >= 0) records.emplace_back(static_cast<std::uint32_t>(rec), centre);
+    }
+  std::vector<std::vector<std::pair<std::uint64_t, LowSet>>> parts(records.size());
+  detail::parallel_for(records.size(), threads, [&](std::size_t i, int) {
+    thread_local std::vector<Pose> poses;
+    auto [rec, centre] = records[i];
+    for (int orient = 0; orient < orientations_; ++orient) {
+      if (!cap_.record_has(rec, orient)) continue;
+      LowSet pts;
+      compute(rec, orient, centre, Eigen::Vector3d::UnitZ(), poses, pts);
+      parts[i].emplace_back(key(rec, orient), std::move(pts));
+    }
+  }, 4);
+  for (auto& part : parts)
+    for (auto& [k, pts] : part) shared_.emplace(k, std::move(pts));
+}
+
+const LowSet& ArmClearance::shared(std::uint32_t rec, int orient) const {
+  auto it = shared_.find(key(rec, orient));
+  if (it == shared_.end()) throw std::logic_error("surface map: capability cell outside the precomputed layers");
+  return it->second;
+}
+
+}  // namespace octoreach::detail

@@ -1,0 +1,55 @@
+#pragma once
+// Private: does an arm pass below a working surface? Witness points of the arm links (at the joint
+// solutions a capability map stored) that lie below the surface, per capability cell, for the
+// surface map's arm check.
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "octoreach/arm.hpp"
+#include "octoreach/capability_map.hpp"
+
+namespace octoreach::detail {
+
+/// The arm's witness points below the surface for one capability cell (relative to the reached
+/// voxel centre, arm frame), nearest to the target first, with a summary for a quick "all outside
+/// one edge" test: for kDirs horizontal directions phi_k the smallest projection of the points on
+/// (cos phi_k, sin phi_k), and the largest horizontal radius.
+struct LowSet {
+  static constexpr int kDirs = 32;
+  std::vector<Eigen::Vector3f> points;
+  std::array<float, kDirs> min_proj{};
+  float r_max = 0;
+  void summarise();
+};
+
+/// Low sets of capability cells. Thread-safe for const use once the shared layers are computed.
+class ArmClearance {
+ public:
+  ArmClearance(const Robot& robot, const CapabilityMap& capability, const ArmPlacement& place, double grasp_height);
+  /// Low set of cell (record, orientation) reached at `centre` for a surface with normal `n_arm` (arm frame).
+  void compute(std::uint32_t rec, int orient, const Eigen::Vector3d& centre, const Eigen::Vector3d& n_arm,
+               std::vector<Pose>& poses, LowSet& low) const;
+  /// For an upright arm frame and a horizontal surface the normal in the arm frame is z whatever
+  /// the yaw: computes the low sets once for every cell whose voxel centre height (arm frame) lies
+  /// in [za_lo, za_hi] widened by one capability voxel.
+  void compute_shared(double za_lo, double za_hi, int threads);
+  /// The shared low set of a cell; throws std::logic_error when compute_shared did not cover it.
+  const LowSet& shared(std::uint32_t rec, int orient) const;
+  std::uint64_t key(std::uint32_t rec, int orient) const { return static_cast<std::uint64_t>(rec) * orientations_ + orient; }
+
+ private:
+  const Robot& robot_;
+  const CapabilityMap& cap_;
+  Chain arm_;
+  Eigen::VectorXd reference_;
+  std::vector<int> arm_links_;
+  std::vector<std::vector<Eigen::Vector3d>> link_witness_;
+  Pose root_from_arm_base_;
+  double grasp_height_;
+  int orientations_;
+  std::unordered_map<std::uint64_t, LowSet> shared_;
+};
+
+}  // namespace octoreach::detail

@@ -1,0 +1,80 @@
+#pragma once
+// Private: the steps of CapabilityMap::build. A dense box of cells (voxel x orientation) around the
+// arm's workspace; forward-kinematics sampling proposes cells and IK seeds; IK at the voxel centres
+// settles them in waves, flooding from reachable cells to their neighbours.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "octoreach/capability_map.hpp"
+#include "octoreach/chain.hpp"
+
+namespace octoreach::detail {
+
+/// The cells of the build: voxels of the workspace's bounding box times the orientations.
+/// Cell index = voxel * O + orientation; voxel = (ix * ny + iy) * nz + iz.
+struct CellBox {
+  const VoxelOcTree* tree = nullptr;
+  octomap::OcTreeKey kmin;
+  int nx = 0, ny = 0, nz = 0, O = 0;
+  std::size_t voxels = 0, cells = 0;
+
+  /// Box around `samples` forward-kinematics positions of `chain`, 1.5 voxels of margin.
+  static CellBox around_workspace(const Chain& chain, const VoxelOcTree& tree, int orientations, std::uint64_t seed);
+  bool voxel_of(const Eigen::Vector3d& p, std::size_t& v) const;
+  octomap::OcTreeKey key(std::size_t v) const;
+  Eigen::Vector3d centre(std::size_t v) const;
+  /// The 6 spatial neighbours with the same orientation, the neighbouring directions with the same
+  /// roll, and (several rolls) the neighbouring rolls.
+  void neighbours(std::uint32_t cell, const OrientationSet& set, std::vector<std::uint32_t>& out) const;
+};
+
+/// Runs the sampling and IK stages; the result is a status and (if reachable) a solution per cell.
+class CapabilityBuilder {
+ public:
+  enum : std::uint8_t { kUntried = 0, kQueued = 1, kFailed = 2, kReachable = 3 };
+  CapabilityBuilder(const Chain& chain, const CapabilityMapOptions& options, const OrientationSet& set,
+                    const Eigen::Vector3d& approach_axis, const Eigen::VectorXd& reference, const CellBox& box,
+                    const ProgressCallback& progress);
+  /// Stage 1: forward-kinematics samples (deterministic: fixed chunks merged in order) give each
+  /// cell they hit a seed configuration. Returns the number of samples.
+  std::size_t sample();
+  /// Stage 2: seeded IK at the voxel centres, a flood fill over neighbours, one retry pass with
+  /// several neighbours' seeds, and (exhaustive) random restarts on every untried cell.
+  void solve();
+
+  bool reachable(std::size_t cell) const { return status_[cell] == kReachable; }
+  /// The solution (dof floats) of a reachable cell.
+  const float* solution(std::size_t cell) const { return sol_pool_.data() + static_cast<std::size_t>(sol_row_[cell]) * dof_; }
+  std::size_t ik_calls() const { return ik_calls_; }
+  /// Reports progress: this stage starts at `start` (fraction of the build) and owns `share` of it.
+  void report(double start, double share, double fraction) const;
+
+ private:
+  struct Item {
+    std::uint32_t cell;
+    std::int32_t seed;  // row in seed_pool_ (wave 0) or sol_pool_ (flood); -1 none
+    std::array<std::int32_t, 3> more{{-1, -1, -1}};  // further seeds from sol_pool_ (retry pass)
+  };
+  void run_wave(const std::vector<Item>& wave, const std::vector<float>& pool, int attempts,
+                std::vector<std::uint32_t>& newly);
+  void flood(std::vector<std::uint32_t> frontier);
+  std::vector<Item> retry_items() const;
+
+  const Chain& chain_;
+  const CapabilityMapOptions& o_;
+  const OrientationSet& set_;
+  const CellBox& box_;
+  const ProgressCallback& progress_;
+  const int dof_;
+  IkOptions base_ik_;
+  std::vector<Eigen::Matrix3d> rotations_;  // tool rotation per orientation
+  std::vector<std::int32_t> seed_row_;
+  std::vector<float> seed_pool_;
+  std::vector<std::uint8_t> status_;
+  std::vector<std::int32_t> sol_row_;
+  std::vector<float> sol_pool_;
+  std::size_t ik_calls_ = 0;
+};
+
+}  // namespace octoreach::detail
