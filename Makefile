@@ -56,8 +56,7 @@ benchmarks: install
 	$(PY) benchmarks/surface_map.py
 	$(PY) benchmarks/exploration.py
 
-# Regenerates the type stubs of the compiled module (python/octoreach/_core.pyi); review the diff:
-# SurfaceMap.build, which Python adds, is declared by hand after the generated class docstring.
+# Regenerates the type stubs of the compiled module (python/octoreach/_core.pyi); review the diff.
 stubs: install
 	$(PIP) install -q pybind11-stubgen
 	$(VENV)/bin/pybind11-stubgen octoreach._core -o build/stubs

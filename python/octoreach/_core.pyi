@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['CameraIntrinsics', 'Cancelled', 'CapabilityMap', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'Obstacles', 'OrientationSet', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'VoidCluster', 'accumulate_utility', 'next_best_view', 'view_utility']
+__all__: list[str] = ['Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'grasp_orientations', 'link_roles', 'look_at', 'next_best_view', 'set_progress_factory', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
 class Obstacles:
@@ -132,7 +132,7 @@ class Chain:
         """
 class Robot:
     """
-    Robot model from a URDF: links, joints, collision shapes.
+    Robot model from a URDF: links, joints, collision shapes. Never changes once built.
     """
     @staticmethod
     def from_urdf(urdf: str, package_dirs: collections.abc.Sequence[str] = [], srdf: typing.Any = None) -> Robot:
@@ -142,13 +142,13 @@ class Robot:
         """
     def __repr__(self) -> str:
         ...
-    def allow_collision(self, link_a: str, link_b: str) -> None:
-        ...
     def chain(self, base_link: str, tip_link: str) -> Chain:
         ...
-    def compute_allowed_collisions(self, samples: typing.SupportsInt | typing.SupportsIndex = 2000, seed: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None) -> int:
+    def compute_allowed_collisions(self, samples: typing.SupportsInt | typing.SupportsIndex = 2000, seed: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = None) -> list[tuple[str, str]]:
         """
-        Allows the link pairs never or always in collision over random configurations; returns how many.
+        Link pairs (link_a, link_b) never or always in collision over `samples` random configurations
+        (deterministic for seed), among the pairs checked now: pass them to with_allowed_collisions.
+        Empty when there is nothing to add.
         """
     def configuration(self, values: collections.abc.Mapping[str, typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
@@ -172,6 +172,11 @@ class Robot:
     def link_poses(self, q: typing.Any) -> dict:
         """
         {link name: 4x4 pose in the root link frame}.
+        """
+    def with_allowed_collisions(self, pairs: collections.abc.Sequence[tuple[str, str]]) -> Robot:
+        """
+        A new Robot, this one with the (link_a, link_b) pairs added to its allowed collisions (its own
+        model_hash); this robot is left as it is.
         """
     @property
     def allowed_collisions(self) -> list[tuple[str, str]]:
@@ -209,6 +214,11 @@ class Robot:
     def mimic_joints(self) -> list[str]:
         ...
     @property
+    def model_hash(self) -> int:
+        """
+        64-bit hash of the URDF text and the allowed-collision pairs: what maps depend on.
+        """
+    @property
     def name(self) -> str:
         ...
     @property
@@ -225,7 +235,8 @@ class Robot:
     @property
     def urdf_hash(self) -> int:
         """
-        64-bit FNV-1a hash of the URDF text.
+        64-bit FNV-1a hash of the URDF text (the same for robots that differ only in their
+        allowed collisions; see model_hash).
         """
 class OrientationSet:
     """
@@ -257,18 +268,170 @@ class OrientationSet:
     @property
     def symmetry(self) -> int:
         ...
+class Arm:
+    """
+    An arm as capability maps see it: base link, tip (tool) link and the tool's approach axis.
+    """
+    @staticmethod
+    def resolve(robot: Robot, arm: typing.Any) -> Arm:
+        """
+        The arm of a name (the known-arm table, then SRDF chain groups) or of a (base_link, tip_link[,
+        approach_axis]) tuple; ValueError naming the known arms or a missing link.
+        """
+    def __init__(self, base_link: str, tip_link: str, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    @property
+    def approach_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def base_link(self) -> str:
+        ...
+    @property
+    def tip_link(self) -> str:
+        ...
+class CapabilityMapOptions:
+    """
+    Build parameters of a capability map (defaults defined once, in C++).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def approach_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Tool axis that approaches the object (tool frame).
+        """
+    @approach_axis.setter
+    def approach_axis(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
+        ...
+    @property
+    def directions(self) -> int:
+        """
+        Approach directions on the sphere.
+        """
+    @directions.setter
+    def directions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def exhaustive(self) -> bool:
+        """
+        Also run random-restart IK on every cell sampling did not reach.
+        """
+    @exhaustive.setter
+    def exhaustive(self, arg0: bool) -> None:
+        ...
+    @property
+    def exhaustive_attempts(self) -> int:
+        ...
+    @exhaustive_attempts.setter
+    def exhaustive_attempts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def fk_samples(self) -> int:
+        """
+        Forward-kinematics samples (0: 40 per voxel of the bounding box).
+        """
+    @fk_samples.setter
+    def fk_samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def keep_solutions(self) -> bool:
+        """
+        Keep one joint solution per reachable cell.
+        """
+    @keep_solutions.setter
+    def keep_solutions(self, arg0: bool) -> None:
+        ...
+    @property
+    def orientation_tolerance(self) -> float:
+        """
+        IK tolerance (rad).
+        """
+    @orientation_tolerance.setter
+    def orientation_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def position_tolerance(self) -> float:
+        """
+        IK tolerance at the voxel centre (m).
+        """
+    @position_tolerance.setter
+    def position_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def reference(self) -> typing.Any:
+        """
+        Robot configuration off the chain; None: default_reference(robot, chain).
+        """
+    @reference.setter
+    def reference(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def resolution(self) -> float:
+        """
+        Voxel edge (m).
+        """
+    @resolution.setter
+    def resolution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rolls(self) -> int:
+        """
+        Rolls per direction (1: any roll).
+        """
+    @rolls.setter
+    def rolls(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def self_collision(self) -> bool:
+        """
+        Solutions must be free of self-collision.
+        """
+    @self_collision.setter
+    def self_collision(self, arg0: bool) -> None:
+        ...
+    @property
+    def symmetry(self) -> int:
+        """
+        z symmetry of the direction set.
+        """
+    @symmetry.setter
+    def symmetry(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def threads(self) -> int:
+        """
+        0: every core.
+        """
+    @threads.setter
+    def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
 class CapabilityMap:
     """
     Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.
     """
     @staticmethod
-    def build(chain: Chain, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.05, directions: typing.SupportsInt | typing.SupportsIndex = 200, rolls: typing.SupportsInt | typing.SupportsIndex = 1, symmetry: typing.SupportsInt | typing.SupportsIndex = 4, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ..., self_collision: bool = True, reference: typing.Any = None, seed: typing.SupportsInt | typing.SupportsIndex = 0, fk_samples: typing.SupportsInt | typing.SupportsIndex = 0, exhaustive: bool = False, exhaustive_attempts: typing.SupportsInt | typing.SupportsIndex = 10, position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.01, keep_solutions: bool = True, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = True) -> CapabilityMap:
+    def build(chain: Chain, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> CapabilityMap:
         """
-        Builds the map of `chain` (positions in its base link frame). A cell (voxel, orientation) is reachable
-        when IK finds a solution inside the limits, free of self-collision (joints off the chain at `reference`,
-        default robot.home()), for the voxel centre. Forward-kinematics sampling proposes cells and IK seeds;
-        a flood fill over neighbouring cells settles the rest; exhaustive=True also tries every other cell.
+        Builds the map of `chain` (positions in its base link frame); keyword arguments set CapabilityMapOptions
+        fields. A cell (voxel, orientation) is reachable when IK finds a solution inside the limits, free of
+        self-collision (joints off the chain at `reference`, default default_reference(robot, chain)), for the voxel
+        centre. Forward-kinematics sampling proposes cells and IK seeds; a flood fill over neighbouring cells
+        settles the rest; exhaustive=True also tries every other cell.
         progress: True draws a bar, False is silent, or a callable (done, total).
+        """
+    @staticmethod
+    def build_for_arm(robot: Robot, arm: typing.Any, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> CapabilityMap:
+        """
+        Builds the map of an arm (a name or a (base_link, tip_link[, approach_axis]) tuple) with the arm's
+        approach axis; keyword arguments set CapabilityMapOptions fields.
         """
     @staticmethod
     def load(path: str) -> CapabilityMap:
@@ -308,13 +471,18 @@ class CapabilityMap:
     def base_link(self) -> str:
         ...
     @property
-    def bounds(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
+    def bounds(self) -> tuple:
         """
         (min corner, max corner) of the reachable voxels.
         """
     @property
     def has_solutions(self) -> bool:
         ...
+    @property
+    def model_hash(self) -> int:
+        """
+        Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.
+        """
     @property
     def orientations(self) -> OrientationSet:
         ...
@@ -339,19 +507,99 @@ class CapabilityMap:
     @property
     def voxel_count(self) -> int:
         ...
+class PointMapOptions:
+    """
+    Build parameters of an inverse point map (defaults defined once, in C++).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def grasps(self) -> typing.Any:
+        """
+        Grasp set: a subset name ('upper_hemisphere', 'top', 'side', 'all') or a list of direction indices.
+        """
+    @grasps.setter
+    def grasps(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def reference(self) -> typing.Any:
+        """
+        Robot configuration fixing the joints between reference frame and arm; None: the default.
+        """
+    @reference.setter
+    def reference(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def reference_frame(self) -> str:
+        """
+        Link whose pose is mapped ('': the root link).
+        """
+    @reference_frame.setter
+    def reference_frame(self, arg0: str) -> None:
+        ...
+    @property
+    def resolution(self) -> float:
+        """
+        Voxel edge (m); 0 or None: the capability map's resolution.
+        """
+    @resolution.setter
+    def resolution(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def theta_bins(self) -> int:
+        ...
+    @theta_bins.setter
+    def theta_bins(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def threads(self) -> int:
+        """
+        0: every core.
+        """
+    @threads.setter
+    def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def use_symmetry(self) -> bool:
+        """
+        Derive the theta bins the grasp set's z symmetry determines by rotating the grid.
+        """
+    @use_symmetry.setter
+    def use_symmetry(self, arg0: bool) -> None:
+        ...
+    @property
+    def z_max(self) -> float:
+        ...
+    @z_max.setter
+    def z_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_min(self) -> float:
+        ...
+    @z_min.setter
+    def z_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_range(self) -> tuple[float, float]:
+        """
+        (min, max) base heights in metres; None: unbounded.
+        """
+    @z_range.setter
+    def z_range(self, arg1: typing.Any) -> None:
+        ...
 class InversePointMap:
     """
     Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.
     """
     @staticmethod
-    def build(robot: Robot, capability_map: CapabilityMap, reference_frame: str = '', grasps: typing.Any = 'upper_hemisphere', theta_bins: typing.SupportsInt | typing.SupportsIndex = 16, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.0, reference: typing.Any = None, z_range: typing.Any = None, use_symmetry: bool = True, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = True) -> InversePointMap:
+    def build(robot: Robot, capability_map: CapabilityMap, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> InversePointMap:
         """
-        Inverts a capability map. reference_frame: the link whose pose is mapped (default the root link, e.g.
-        base_footprint). grasps: a subset name ('upper_hemisphere', 'top', 'side', 'all') or a list of direction
-        indices; a direction d means the tool approaches the target along d (world frame). reference: robot
-        configuration fixing the joints between reference frame and arm (e.g. the torso). z_range: (min, max)
-        base z relative to the target. theta bins that the grasp set's z symmetry determines are derived by
-        rotating the grid instead of being recomputed.
+        Inverts a capability map; keyword arguments set PointMapOptions fields. reference_frame: the link whose
+        pose is mapped (default the root link, e.g. base_footprint). grasps: a subset name ('upper_hemisphere',
+        'top', 'side', 'all') or a list of direction indices; a direction d means the tool approaches the target
+        along d (world frame). reference: robot configuration fixing the joints between reference frame and arm
+        (e.g. the torso). z_range: (min, max) base z relative to the target. theta bins that the grasp set's z
+        symmetry determines are derived by rotating the grid instead of being recomputed.
         """
     @staticmethod
     def direct_reachability(capability_map: CapabilityMap, reference_to_arm: typing.Any, orientations: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex], poses: typing.Any) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
@@ -390,6 +638,11 @@ class InversePointMap:
     @property
     def grasp_orientations(self) -> list[int]:
         ...
+    @property
+    def model_hash(self) -> int:
+        """
+        Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.
+        """
     @property
     def parameters(self) -> dict:
         ...
@@ -466,35 +719,115 @@ class Surface:
     @property
     def vertices(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         ...
+class SurfaceMapOptions:
+    """
+    Build parameters of a surface map (defaults defined once, in C++).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def check_arm(self) -> bool:
+        """
+        Reject grasps whose arm passes below the surface inside its outline.
+        """
+    @check_arm.setter
+    def check_arm(self, arg0: bool) -> None:
+        ...
+    @property
+    def check_body(self) -> bool:
+        """
+        Reject base poses where the body touches the surface or boxes.
+        """
+    @check_body.setter
+    def check_body(self, arg0: bool) -> None:
+        ...
+    @property
+    def grasp_height(self) -> float:
+        """
+        Grasp points lie this far above the surface (m).
+        """
+    @grasp_height.setter
+    def grasp_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def grasps(self) -> typing.Any:
+        """
+        Grasp set: a subset name ('upper_hemisphere', 'top', 'side', 'all') or a list of direction indices.
+        """
+    @grasps.setter
+    def grasps(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def reference(self) -> typing.Any:
+        """
+        Robot configuration off the arm (torso, other arm); None: default_reference of the arm.
+        """
+    @reference.setter
+    def reference(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def reference_frame(self) -> str:
+        """
+        Link whose pose is mapped ('': the root link).
+        """
+    @reference_frame.setter
+    def reference_frame(self, arg0: str) -> None:
+        ...
+    @property
+    def resolution(self) -> float:
+        """
+        Voxel edge (m); 0 or None: the capability map's resolution.
+        """
+    @resolution.setter
+    def resolution(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def theta_bins(self) -> int:
+        ...
+    @theta_bins.setter
+    def theta_bins(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def threads(self) -> int:
+        """
+        0: every core.
+        """
+    @threads.setter
+    def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_max(self) -> float:
+        ...
+    @z_max.setter
+    def z_max(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_min(self) -> float:
+        ...
+    @z_min.setter
+    def z_min(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def z_range(self) -> tuple[float, float]:
+        """
+        (min, max) base heights in metres; None: unbounded.
+        """
+    @z_range.setter
+    def z_range(self, arg1: typing.Any) -> None:
+        ...
 class SurfaceMap:
     """
     Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.
     """
     @staticmethod
-    def build(robot: Robot, arm: typing.Any, surface: Surface, resolution: float | None = None, theta_bins: int = 16,
-              z_range: tuple[float, float] | None = None, reference: typing.Any = None, grasps: typing.Any = "upper_hemisphere",
-              reference_frame: str = "", directions: int = 200, seed: int = 0, check_body: bool = True,
-              check_arm: bool = True, grasp_height: float = 0.05, threads: int = 0,
-              progress: typing.Any = True) -> SurfaceMap:
+    def build(robot: Robot, arm: typing.Any, surface: Surface, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> SurfaceMap:
         """
-        Surface map of `arm` (name, (base, tip[, approach]) tuple, or a CapabilityMap with solutions);
-        defined in octoreach.surface_maps.
-        """
-    @staticmethod
-    def _build(robot: Robot, capability_map: CapabilityMap, surface: Surface, reference_frame: str = '', grasps: typing.Any = 'upper_hemisphere', theta_bins: typing.SupportsInt | typing.SupportsIndex = 16, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.0, z_range: typing.Any = None, reference: typing.Any = None, check_body: bool = True, check_arm: bool = True, grasp_height: typing.SupportsFloat | typing.SupportsIndex = 0.05, threads: typing.SupportsInt | typing.SupportsIndex = 0, progress: typing.Any = True) -> SurfaceMap:
-        ...
-    @staticmethod
-    def build(robot: Robot, arm, surface: Surface, resolution: float = None, theta_bins: int = 16, z_range = None, reference = None, grasps = 'upper_hemisphere', reference_frame: str = '', directions: int = 200, seed: int = 0, check_body: bool = True, check_arm: bool = True, grasp_height: float = 0.05, threads: int = 0, progress = True) -> SurfaceMap:
-        """
-        Surface map of `arm` (name, (base, tip[, approach]) tuple, or a CapabilityMap with solutions).
-        
-            Base poses (x, y, z, theta) are of `reference_frame` (default: the robot's root link, e.g.
-            base_footprint) in the world frame. z_range=(0, 0) evaluates a robot standing on the floor.
-            `reference` fixes the joints off the arm (default: home with the other arm tucked, whether the arm is
-            given by name or as a CapabilityMap). resolution defaults to the capability map's (0.05 m when the map
-            is built here). Grasp points
-            lie `grasp_height` above the surface (the tool holds an object standing on it).
-            
+        Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])
+        tuple whose capability map is built first (keywords directions and seed; at `resolution`, default
+        CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,
+        theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.
+        z_range=(0, 0) evaluates a robot standing on the floor. `reference` fixes the joints off the arm
+        (default: default_reference, the other arm tucked). Grasp points lie `grasp_height` above the surface.
         """
     @staticmethod
     def combine(maps: collections.abc.Sequence[SurfaceMap], mode: str = 'max') -> SurfaceMap:
@@ -519,7 +852,7 @@ class SurfaceMap:
         """
         Writes the map atomically.
         """
-    def voxels(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], typing.Annotated[numpy.typing.NDArray[numpy.float32], "[m, n]"]]:
+    def voxels(self) -> tuple:
         """
         (centres (M, 3), R_S (M, theta_bins)) of the voxels with R_S > 0.
         """
@@ -527,7 +860,7 @@ class SurfaceMap:
     def arms(self) -> str:
         ...
     @property
-    def bounds(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
+    def bounds(self) -> tuple:
         """
         (min corner, max corner) of the voxels with R_S > 0.
         """
@@ -537,6 +870,11 @@ class SurfaceMap:
     @property
     def max_reachability(self) -> float:
         ...
+    @property
+    def model_hash(self) -> int:
+        """
+        Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.
+        """
     @property
     def parameters(self) -> dict:
         ...
@@ -605,134 +943,6 @@ class PoseSampler:
         """
     @property
     def last_counts(self) -> dict:
-        ...
-class VoidCluster:
-    """
-    Ellipsoidal cluster of void cells (map frame, metres): centroid, axes (columns e1..e3),
-    eigenvalues (m^2, decreasing), semi_axes sqrt(5 lambda), fit score of eq. (2), cells.
-    """
-    def __repr__(self) -> str:
-        ...
-    @property
-    def axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
-        ...
-    @property
-    def centroid(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        ...
-    @property
-    def eigenvalues(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        ...
-    @property
-    def keys(self) -> numpy.typing.NDArray[numpy.uint64]:
-        ...
-    @property
-    def score(self) -> float:
-        ...
-    @property
-    def semi_axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        ...
-    @property
-    def size(self) -> int:
-        ...
-class ExplorationMap:
-    """
-    OctoMap occupancy map with incremental frontiers (free cells with an unknown 6-neighbour,
-    clustered by 26-connectivity) and voids (unknown cells inside the convex hull of the
-    occupied cells), clustered into ellipsoids. Map frame, metres.
-    """
-    @staticmethod
-    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> ExplorationMap:
-        """
-        Map from an OctoMap .bt file (OSError if it cannot be read).
-        """
-    def __init__(self, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.025, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, track_voids: bool = True, search_space: typing.Any = None) -> None:
-        """
-        search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.
-        """
-    def cells(self, which: str) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        Centres (N, 3) of the frontier, void, occupied or free cells.
-        """
-    def center(self, key: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
-        """
-        Centre (metres) of a cell key.
-        """
-    def centers(self, keys: typing.Annotated[numpy.typing.ArrayLike, numpy.uint64]) -> numpy.typing.NDArray[numpy.float64]:
-        ...
-    def changed_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
-        """
-        Keys of the cells whose class the last insert changed.
-        """
-    def count_known(self, lo: typing.Any, hi: typing.Any) -> tuple[int, int]:
-        """
-        (known, unknown) cell counts in an axis-aligned box.
-        """
-    def frontier_clusters(self) -> list:
-        """
-        Frontier clusters as a list of (N, 3) cell centres.
-        """
-    def frontier_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
-        ...
-    def frontier_voids(self) -> list:
-        """
-        Void clusters with the frontier clusters touching them: dicts with void_index, frontier_clusters,
-        frontier_cells (touching frontier cells, (K, 3)) and utility (void volume, m^3).
-        """
-    def hull_vertices(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
-    def insert(self, points: typing.Any, sensor_origin: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = -1.0) -> dict:
-        """
-        Integrates points (N, 3) seen from sensor_origin (map frame); returns statistics and timings.
-        Same occupancy as OctoMap insertPointCloud. Rows with NaN/inf are dropped; an empty cloud is a
-        no-op; max_range <= 0 means unlimited. ValueError for a wrong shape, a non-finite origin or an
-        origin outside the map bounds.
-        """
-    def insert_stock(self, points: typing.Any, sensor_origin: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = -1.0) -> float:
-        """
-        Stock OctoMap insertPointCloud into this map's tree (reference; frontiers and voids go stale).
-        """
-    def inside_hull(self, arg0: typing.Any) -> bool:
-        ...
-    def key_of(self, arg0: typing.Any) -> int:
-        ...
-    def occupancy_digest(self) -> dict:
-        """
-        Counts and an order-independent hash of the finest-resolution occupancy (to compare trees).
-        """
-    def recompute_from_scratch(self) -> dict:
-        """
-        The same, recomputed from the occupancy and hull alone.
-        """
-    def snapshot(self) -> dict:
-        """
-        Incrementally maintained frontier cells, clusters and void cells (keys).
-        """
-    def state(self, points: typing.Any) -> numpy.typing.NDArray[numpy.uint8]:
-        """
-        Class of the cell of each point (N, 3): 0 unknown, 1 free, 2 occupied.
-        """
-    def void_cluster_cells(self, cluster: VoidCluster) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        Centres (N, 3) of a void cluster's cells.
-        """
-    def void_clusters(self) -> list[VoidCluster]:
-        """
-        Void clusters (ellipsoid region growing, deterministic for the map's seed).
-        """
-    def void_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
-        ...
-    def write_bt(self, path: str) -> None:
-        """
-        Writes an OctoMap .bt file (octovis can open it).
-        """
-    @property
-    def frontier_cell_count(self) -> int:
-        ...
-    @property
-    def resolution(self) -> float:
-        ...
-    @property
-    def void_cell_count(self) -> int:
         ...
 class Scene:
     """
@@ -836,38 +1046,315 @@ class DepthCamera:
     @property
     def width(self) -> int:
         ...
-def _kdl_fk_batch(chain: Chain, Q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+class VoidCluster:
     """
-    Reference FK with plain KDL (ChainFkSolverPos_recursive on chain.to_kdl()), single-threaded: tip poses
-    (N, 4, 4) in the base link frame for joint rows Q (N, dof). For benchmarks only; releases the GIL.
+    Ellipsoidal cluster of void cells (map frame, metres): centroid, axes (columns e1..e3),
+    eigenvalues (m^2, decreasing), semi_axes sqrt(5 lambda), fit score of eq. (2), cells.
     """
-def _kdl_ik_batch(chain: Chain, Ts: typing.Any, solver: str = 'nr_jl', attempts: typing.SupportsInt | typing.SupportsIndex = 20, max_iterations: typing.Any = None, eps: typing.SupportsFloat | typing.SupportsIndex = 1e-05, position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, rng_seed: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], numpy.typing.NDArray[numpy.bool]]:
+    def __repr__(self) -> str:
+        ...
+    @property
+    def axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 3]"]:
+        ...
+    @property
+    def centroid(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def eigenvalues(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        ...
+    @property
+    def score(self) -> float:
+        ...
+    @property
+    def semi_axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        ...
+    @property
+    def size(self) -> int:
+        ...
+class ExplorationMap:
     """
-    Reference IK with plain KDL on chain.to_kdl(), single-threaded: for benchmarks only.
-    
-    Solves the tip poses Ts (N, 4, 4, base link frame) with KDL::ChainIkSolverPos_NR_JL (solver='nr_jl',
-    ChainIkSolverVel_pinv + ChainFkSolverPos_recursive, clamped to the chain's limits; continuous joints
-    unbounded) or KDL::ChainIkSolverPos_LMA (solver='lma', task weights 1,1,1,0.25,0.25,0.25; no limits).
-    Each target gets up to `attempts` starts drawn uniformly inside the chain's limits (continuous joints
-    in [-pi, pi)) from a stream derived from rng_seed and the target's index, like Chain.ik_batch.
-    max_iterations is per start (default: KDL's own, 100 for NR_JL and 500 for LMA); eps is KDL's stopping
-    tolerance. Success is judged afterwards exactly as octoreach's own IK judges it (mode 'full'): the
-    result, continuous joints wrapped, must be inside the limits and its tip pose by octoreach's Chain.fk
-    within position_tolerance (m) and orientation_tolerance (rad) of the target; KDL's return code is
-    ignored. Returns (Q (N, dof) with NaN rows where it failed, success mask (N,)). Releases the GIL.
+    OctoMap occupancy map with incremental frontiers (free cells with an unknown 6-neighbour,
+    clustered by 26-connectivity) and voids (unknown cells inside the convex hull of the
+    occupied cells), clustered into ellipsoids. Map frame, metres.
     """
-def _stock_insert_point_cloud(points: typing.Any, sensor_origin: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex, resolution: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+    @staticmethod
+    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> ExplorationMap:
+        """
+        Map from an OctoMap .bt file (OSError if it cannot be read).
+        """
+    def __init__(self, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.025, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, track_voids: bool = True, search_space: typing.Any = None) -> None:
+        """
+        search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.
+        """
+    def cells(self, which: str) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Centres (N, 3) of the frontier, void, occupied or free cells.
+        """
+    def center(self, key: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Centre (metres) of a cell key.
+        """
+    def centers(self, keys: typing.Annotated[numpy.typing.ArrayLike, numpy.uint64]) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def changed_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        """
+        Keys of the cells whose class the last insert changed.
+        """
+    def count_known(self, lo: typing.Any, hi: typing.Any) -> tuple[int, int]:
+        """
+        (known, unknown) cell counts in an axis-aligned box.
+        """
+    def frontier_clusters(self) -> list:
+        """
+        Frontier clusters as a list of (N, 3) cell centres.
+        """
+    def frontier_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        ...
+    def frontier_voids(self) -> list:
+        """
+        Void clusters with the frontier clusters touching them: dicts with void_index, frontier_clusters,
+        frontier_cells (touching frontier cells, (K, 3)) and utility (void volume, m^3).
+        """
+    def hull_vertices(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def insert(self, points: typing.Any, sensor_origin: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = -1.0) -> dict:
+        """
+        Integrates points (N, 3) seen from sensor_origin (map frame); returns statistics and timings.
+        Same occupancy as OctoMap insertPointCloud. Rows with NaN/inf are dropped; an empty cloud is a
+        no-op; max_range <= 0 means unlimited. ValueError for a wrong shape, a non-finite origin or an
+        origin outside the map bounds.
+        """
+    def inside_hull(self, arg0: typing.Any) -> bool:
+        ...
+    def key_of(self, arg0: typing.Any) -> int:
+        ...
+    def occupancy_digest(self) -> dict:
+        """
+        Counts and an order-independent hash of the finest-resolution occupancy (to compare trees).
+        """
+    def recompute_from_scratch(self) -> dict:
+        """
+        The same, recomputed from the occupancy and hull alone.
+        """
+    def snapshot(self) -> dict:
+        """
+        Incrementally maintained frontier cells, clusters and void cells (keys).
+        """
+    def state(self, points: typing.Any) -> numpy.typing.NDArray[numpy.uint8]:
+        """
+        Class of the cell of each point (N, 3): 0 unknown, 1 free, 2 occupied.
+        """
+    def void_cluster_cells(self, cluster: VoidCluster) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Centres (N, 3) of a void cluster's cells.
+        """
+    def void_clusters(self) -> list[VoidCluster]:
+        """
+        Void clusters (ellipsoid region growing, deterministic for the map's seed).
+        """
+    def void_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
+        ...
+    def write_bt(self, path: str) -> None:
+        """
+        Writes an OctoMap .bt file (octovis can open it).
+        """
+    @property
+    def frontier_cell_count(self) -> int:
+        ...
+    @property
+    def resolution(self) -> float:
+        ...
+    @property
+    def void_cell_count(self) -> int:
+        ...
+class NbvOptions:
     """
-    Reference: stock OctoMap OcTree::insertPointCloud into a fresh tree; returns seconds and the
-    occupancy digest (compare with ExplorationMap.occupancy_digest()).
+    Options of next_best_view (defaults of the C++ struct); every attribute is also a
+    keyword argument of next_best_view.
     """
+    arm_collisions: bool
+    capability_orientations: bool
+    def __init__(self) -> None:
+        ...
+    @property
+    def capability_base(self) -> typing.Any:
+        """
+        4x4 capability map base link -> map (None: identity).
+        """
+    @capability_base.setter
+    def capability_base(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def capability_map(self) -> CapabilityMap:
+        """
+        CapabilityMap of the arm carrying the camera, or None.
+        """
+    @capability_map.setter
+    def capability_map(self, arg1: CapabilityMap) -> None:
+        ...
+    @property
+    def chain(self) -> Chain:
+        """
+        Chain carrying the camera (its tip is the camera frame, +z forward), or None.
+        """
+    @chain.setter
+    def chain(self, arg1: Chain) -> None:
+        ...
+    @property
+    def chain_base(self) -> typing.Any:
+        """
+        4x4 chain base -> map (None: identity).
+        """
+    @chain_base.setter
+    def chain_base(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def ik_attempts(self) -> int:
+        ...
+    @ik_attempts.setter
+    def ik_attempts(self, arg1: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ik_orientation_tolerance(self) -> float:
+        ...
+    @ik_orientation_tolerance.setter
+    def ik_orientation_tolerance(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def ik_position_tolerance(self) -> float:
+        ...
+    @ik_position_tolerance.setter
+    def ik_position_tolerance(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_candidate_cells(self) -> int:
+        ...
+    @max_candidate_cells.setter
+    def max_candidate_cells(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_valid_poses(self) -> int:
+        """
+        N of the paper: stop after this many valid poses
+        """
+    @max_valid_poses.setter
+    def max_valid_poses(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_distance(self) -> float:
+        """
+        metres from the camera to any occupied cell
+        """
+    @min_distance.setter
+    def min_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_reachability(self) -> float:
+        ...
+    @min_reachability.setter
+    def min_reachability(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def orientation_spread(self) -> float:
+        """
+        radians around the mean utility direction
+        """
+    @orientation_spread.setter
+    def orientation_spread(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def orientations_per_cell(self) -> int:
+        ...
+    @orientations_per_cell.setter
+    def orientations_per_cell(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def score_height(self) -> int:
+        ...
+    @score_height.setter
+    def score_height(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def score_width(self) -> int:
+        ...
+    @score_width.setter
+    def score_width(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        """
+        seeds the orientation samples and the IK restarts
+        """
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def threads(self) -> int:
+        ...
+    @threads.setter
+    def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def workspace(self) -> typing.Any:
+        """
+        Callable taking candidate cell centres (N, 3) and returning (N,) bools, or None.
+        """
+    @workspace.setter
+    def workspace(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def workspace_box(self) -> typing.Any:
+        """
+        Sensor positions inside this box ((2, 3): lo, hi rows; map frame), or None.
+        """
+    @workspace_box.setter
+    def workspace_box(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def workspace_sphere(self) -> typing.Any:
+        """
+        Sensor positions within (center, radius) of a point (map frame), or None.
+        """
+    @workspace_sphere.setter
+    def workspace_sphere(self, arg1: typing.Any) -> None:
+        ...
 def accumulate_utility(map: ExplorationMap, sensor_range: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     """
     Algorithm 1: (cell centres (N, 3), accumulated utility (N,), m^3) before workspace pruning.
     """
-def next_best_view(map: ExplorationMap, camera: typing.Any, max_valid_poses: typing.SupportsInt | typing.SupportsIndex = 50, orientations_per_cell: typing.SupportsInt | typing.SupportsIndex = 8, orientation_spread: typing.SupportsFloat | typing.SupportsIndex = 0.35, max_candidate_cells: typing.SupportsInt | typing.SupportsIndex = 400, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, min_distance: typing.SupportsFloat | typing.SupportsIndex = 0.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, workspace_box: typing.Any = None, workspace_sphere: typing.Any = None, workspace: typing.Any = None, chain: Chain = None, chain_base: typing.Any = None, ik_attempts: typing.SupportsInt | typing.SupportsIndex = 8, ik_position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, ik_orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.01, capability_map: CapabilityMap = None, capability_base: typing.Any = None, min_reachability: typing.SupportsFloat | typing.SupportsIndex = 0.0, arm_collisions: bool = True, capability_orientations: bool = True) -> dict:
+def arm_names(robot: Robot) -> list[str]:
     """
-    Next best view (Algorithm 1 + frustum scoring). Returns a dict: best_pose (4x4 camera -> map, or None),
+    Arm names the robot resolves (known table and SRDF groups), sorted.
+    """
+def base_pose(pose: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"]) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    4x4 pose (world frame) of a frame at base pose (x, y, z, theta): yaw about z, then translation.
+    """
+def default_reference(robot: Robot, chain: Chain) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+    """
+    Reference posture (robot configuration) for the joints off `chain`: home with every SRDF 'tuck*' state
+    applied that does not move the chain (the other arm tucked). Builds use it when given no reference.
+    """
+def grasp_orientations(orientations: OrientationSet, directions: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> list[int]:
+    """
+    Orientation indices (d * rolls + r, sorted) of an OrientationSet for direction indices, all rolls of each.
+    """
+def link_roles(robot: Robot, chain: Chain) -> dict:
+    """
+    Collision links by role: 'body' (not moved by the chain), 'arm' (moved by it), 'tool' (rigid with the tip).
+    """
+def look_at(eye: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], target: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], roll: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> numpy.typing.NDArray[numpy.float64]:
+    """
+    Camera pose (4x4 camera -> world) at `eye` looking at `target` (world frame), rolled by `roll` radians
+    about the optical axis (+z); at roll 0 the image +y points down.
+    """
+def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any = None, **kwargs) -> dict:
+    """
+    Next best view (Algorithm 1 + frustum scoring). Options: an NbvOptions and/or its attributes as
+    keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None),
     void_cells and utility_dm3 expected from it, ranked (valid poses, best first, each with pose,
     void_cells, unknown_cells, utility_dm3, cell_utility, q), and search statistics. The workspace is
     workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable
@@ -877,6 +1364,11 @@ def next_best_view(map: ExplorationMap, camera: typing.Any, max_valid_poses: typ
     candidate cells whose voxel has reachability index <= min_reachability before any IK, and with
     capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.
     arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.
+    """
+def set_progress_factory(factory: typing.Any) -> None:
+    """
+    Registers factory(progress, label) -> callable (done, total) or None, used for progress=True and
+    callables; octoreach/__init__.py registers octoreach.progress.make_progress. None unregisters.
     """
 def view_utility(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36) -> tuple[int, int]:
     """
