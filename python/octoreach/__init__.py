@@ -40,6 +40,7 @@ from ._core import (  # noqa: F401
     CameraIntrinsics,
     DepthCamera,
     ExplorationMap,
+    NbvOptions,
     Scene,
     VoidCluster,
     next_best_view,
@@ -52,5 +53,5 @@ __all__ = ["Arm", "Cancelled", "CapabilityMap", "CapabilityMapOptions", "Chain",
            "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
            "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
            "grasp_orientations", "link_roles"]
-__all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "Scene", "VoidCluster", "next_best_view", "view_utility",
+__all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore"]
