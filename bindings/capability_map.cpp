@@ -94,16 +94,16 @@ void wrap_capability_map(py::module_& m) {
       "progress: True draws a bar, False is silent, or a callable (done, total).")
       .def_static("build_for_arm", [](const Robot& robot, const py::object& arm, const py::object& options,
                                       const py::object& progress, const py::kwargs& kw) {
-        if (kw.contains("approach_axis"))
-          throw py::type_error("CapabilityMap.build_for_arm() takes the approach axis from the arm, not a keyword");
+        py::object axis = kw.contains("approach_axis") ? kw.attr("pop")("approach_axis") : py::none();
         CapabilityMapOptions o = options_from<CapabilityMapOptions>(options, kw, "CapabilityMap.build_for_arm");
-        Arm a = arm_from(robot, arm);
+        Arm a = arm_from(robot, arm, axis);
         ProgressCallback cb = progress_arg(progress, "capability map");
         py::gil_scoped_release release;
         return CapabilityMap::build(robot, a, o, cb);
       }, py::arg("robot"), py::arg("arm"), py::arg("options") = py::none(), py::arg("progress") = true,
-      "Builds the map of an arm (a name or a (base_link, tip_link[, approach_axis]) tuple) with the arm's\n"
-      "approach axis; keyword arguments set CapabilityMapOptions fields.")
+      "Builds the map of an arm (a name, an Arm or a (base_link, tip_link[, approach_axis]) tuple) with the arm's\n"
+      "approach axis (inferred from the gripper unless given; approach_axis=(x, y, z) overrides it); other\n"
+      "keyword arguments set CapabilityMapOptions fields.")
       .def_static("load", &CapabilityMap::load, py::arg("path"))
       .def("save", &CapabilityMap::save, py::arg("path"), py::arg("with_solutions") = false,
            "Writes the map atomically; with_solutions also stores one joint solution per reachable cell.")

@@ -11,16 +11,25 @@
 
 namespace octoreach::py_bindings {
 
-/// An arm argument: an arm name or a (base_link, tip_link[, approach_axis]) tuple or list.
+/// An arm argument: an arm name or a (base_link, tip_link[, approach_axis]) tuple or list; the
+/// approach axis is inferred unless the tuple gives it.
 inline Arm arm_from(const Robot& robot, const py::handle& arm) {
   if (py::isinstance<py::str>(arm)) return Arm::named(robot, arm.cast<std::string>());
+  if (py::isinstance<Arm>(arm)) return arm.cast<Arm>();
   if ((py::isinstance<py::tuple>(arm) || py::isinstance<py::list>(arm)) && (py::len(arm) == 2 || py::len(arm) == 3)) {
     py::sequence s = py::reinterpret_borrow<py::sequence>(arm);
-    Eigen::Vector3d axis = py::len(s) == 3 ? s[2].cast<Eigen::Vector3d>() : Eigen::Vector3d::UnitZ();
-    return Arm::from_links(robot, s[0].cast<std::string>(), s[1].cast<std::string>(), axis);
+    if (py::len(s) == 3 && !s[2].is_none())
+      return Arm::from_links(robot, s[0].cast<std::string>(), s[1].cast<std::string>(), s[2].cast<Eigen::Vector3d>());
+    return Arm::from_links(robot, s[0].cast<std::string>(), s[1].cast<std::string>());
   }
-  throw std::invalid_argument("arm must be a name, a (base_link, tip_link[, approach_axis]) tuple or a CapabilityMap, got " +
-                              std::string(py::repr(arm)));
+  throw py::type_error("arm must be a name, an Arm, a (base_link, tip_link[, approach_axis]) tuple or a CapabilityMap, got " +
+                       std::string(py::repr(arm)));
+}
+
+/// arm_from with an optional approach-axis override (None keeps the arm's).
+inline Arm arm_from(const Robot& robot, const py::handle& arm, const py::object& approach_axis) {
+  Arm a = arm_from(robot, arm);
+  return approach_axis.is_none() ? a : a.with_approach_axis(approach_axis.cast<Eigen::Vector3d>());
 }
 
 /// Rows (N, cols) of a float64 array as a C-contiguous array; ValueError naming the shape otherwise.

@@ -71,6 +71,7 @@ void wrap_point_map(py::module_& m) {
       .def_property_readonly("reference_frame", &InversePointMap::reference_frame)
       .def_property_readonly("arm_base_link", &InversePointMap::arm_base_link)
       .def_property_readonly("arm_tip_link", &InversePointMap::arm_tip_link)
+      .def_property_readonly("approach_axis", &InversePointMap::approach_axis, "Approach axis of the arm's tool frame.")
       .def_property_readonly("reference_to_arm", [](const InversePointMap& pm) { return pose_to_array(pm.reference_to_arm()); })
       .def_property_readonly("grasp_orientations", &InversePointMap::grasp_orientations)
       .def_property_readonly("used_symmetry", &InversePointMap::used_symmetry)

@@ -55,6 +55,35 @@ void wrap_robot_model(py::class_<Robot, std::shared_ptr<Robot>>& c) {
         for (const auto& g : r.groups()) d[py::str(g.name)] = py::make_tuple(g.base_link, g.tip_link);
         return d;
       }, "SRDF chain groups: name -> (base_link, tip_link).")
+      .def_property_readonly("srdf_groups", [](const Robot& r) {
+        py::dict d;
+        for (const auto& g : r.srdf_groups()) {
+          py::dict e;
+          e["chains"] = g.chains;
+          e["joints"] = g.joints;
+          e["links"] = g.links;
+          e["subgroups"] = g.subgroups;
+          d[py::str(g.name)] = e;
+        }
+        return d;
+      }, "Every SRDF group: name -> {'chains': [(base, tip)], 'joints': [...], 'links': [...], 'subgroups': [...]}.")
+      .def_property_readonly("end_effectors", [](const Robot& r) {
+        py::list out;
+        for (const auto& e : r.end_effectors()) {
+          py::dict d;
+          d["name"] = e.name;
+          d["parent_link"] = e.parent_link;
+          d["group"] = e.group;
+          d["parent_group"] = e.parent_group;
+          out.append(d);
+        }
+        return out;
+      }, "SRDF end effectors: [{'name', 'parent_link', 'group', 'parent_group'}].")
+      .def("group_joints", [](const Robot& r, const std::string& group) {
+             std::vector<std::string> out;
+             for (int j : r.group_joints(group)) out.push_back(r.joints()[j].name);
+             return out;
+           }, py::arg("group"), "Moving joints of an SRDF group (chains, joints, links' parent joints, subgroups).")
       .def_property_readonly("named_states", &Robot::named_states,
                              "SRDF group states: name -> {joint: value} (for example 'tuck_left_arm').")
       .def("has_link", &Robot::has_link)
@@ -113,12 +142,58 @@ void wrap_robot_collision(py::class_<Robot, std::shared_ptr<Robot>>& c) {
            }, py::arg("samples") = 2000, py::arg("seed") = 0, py::arg("progress") = py::none(),
            "Link pairs (link_a, link_b) never or always in collision over `samples` random configurations\n"
            "(deterministic for seed), among the pairs checked now: pass them to with_allowed_collisions.\n"
-           "Empty when there is nothing to add.");
+           "Empty when there is nothing to add. with_sampled_collisions() does it all (and caches).")
+      .def("sample_allowed_collisions", [](const Robot& r, const py::object& options, const py::object& progress,
+                                            const py::kwargs& kw) {
+             AllowedCollisionOptions o = options_from<AllowedCollisionOptions>(options, kw, "Robot.sample_allowed_collisions");
+             auto cb = progress_arg(progress, "allowed collisions");
+             SampledCollisions s;
+             {
+               py::gil_scoped_release release;
+               s = r.sample_allowed_collisions(o, cb);
+             }
+             py::dict d;
+             d["never"] = pair_names(r, s.never);
+             d["always"] = pair_names(r, s.always);
+             d["default"] = pair_names(r, s.default_posture);
+             d["from_cache"] = s.from_cache;
+             d["cache_file"] = s.cache_file;
+             return d;
+           }, py::arg("options") = py::none(), py::arg("progress") = false,
+           "MoveIt setup-assistant pairs among the checked ones: {'never', 'always', 'default': [(a, b)], 'from_cache',\n"
+           "'cache_file'}; keywords set AllowedCollisionOptions fields (samples, seed, threads, default_posture, cache_dir).")
+      .def("with_sampled_collisions", [](const Robot& r, const py::object& options, const py::object& progress,
+                                          const py::kwargs& kw) {
+             AllowedCollisionOptions o = options_from<AllowedCollisionOptions>(options, kw, "Robot.with_sampled_collisions");
+             auto cb = progress_arg(progress, "allowed collisions");
+             py::gil_scoped_release release;
+             return r.with_sampled_collisions(o, cb);
+           }, py::arg("options") = py::none(), py::arg("progress") = false,
+           "A new Robot with the sampled allowed-collision pairs added (cached on disk by model hash); keywords set\n"
+           "AllowedCollisionOptions fields.")
+      .def("self_collisions", [](const Robot& r, const py::object& q) {
+             std::vector<Pose> poses = r.link_poses(robot_q(r, q));
+             return pair_names(r, r.colliding_pairs(poses, r.checked_pairs(), r.checked_pairs().size()));
+           }, py::arg("q"), "Checked link pairs (link_a, link_b) in collision at q.")
+      .def("srdf_text", &Robot::srdf_text, "SRDF of the model: groups, end effectors, group states, every allowed pair.")
+      .def("write_srdf", &Robot::write_srdf, py::arg("path"), "Writes srdf_text() atomically to path.");
 }
 
 }  // namespace
 
 void wrap_robot(py::module_& m) {
+  {
+    using O = AllowedCollisionOptions;
+    py::class_<O>(m, "AllowedCollisionOptions",
+                  "How the allowed-collision matrix is sampled (MoveIt setup assistant's method; defaults defined once, in C++).")
+        .def(py::init<>())
+        .def_readwrite("samples", &O::samples, "Random configurations (MoveIt's default: 10,000).")
+        .def_readwrite("seed", &O::seed)
+        .def_readwrite("threads", &O::threads, "0: every core.")
+        .def_readwrite("default_posture", &O::default_posture, "Also allow pairs in collision at home().")
+        .def_readwrite("cache_dir", &O::cache_dir,
+                       "'' = $OCTOREACH_CACHE_DIR, else $XDG_CACHE_HOME/octoreach, else ~/.cache/octoreach; 'none' = no cache.");
+  }
   py::class_<Robot, std::shared_ptr<Robot>> c(m, "Robot",
       "Robot model from a URDF: links, joints, collision shapes. Never changes once built.");
   wrap_robot_model(c);

@@ -7,58 +7,6 @@
 #include "octoreach/orientation_set.hpp"
 
 namespace octoreach {
-namespace {
-
-struct KnownArm {
-  const char* robot;
-  const char* name;
-  const char* base_link;
-  const char* tip_link;
-  Eigen::Vector3d approach_axis;
-};
-
-// The arms whose SRDF groups end where a capability map should not: the PR2's SRDF arm groups end
-// at the wrist, its gripper tool frames approach along +x. Kept small on purpose: the one place
-// named arms are defined until they are inferred from the model.
-const std::vector<KnownArm>& known_arms() {
-  static const std::vector<KnownArm> table = {
-      {"pr2", "right_arm", "torso_lift_link", "r_gripper_tool_frame", Eigen::Vector3d::UnitX()},
-      {"pr2", "left_arm", "torso_lift_link", "l_gripper_tool_frame", Eigen::Vector3d::UnitX()},
-  };
-  return table;
-}
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-}  // namespace
-
-Arm Arm::named(const Robot& robot, const std::string& name) {
-  for (const KnownArm& k : known_arms())
-    if (robot.name() == k.robot && name == k.name) return Arm{k.base_link, k.tip_link, k.approach_axis};
-  for (const ChainGroup& g : robot.groups())
-    if (g.name == name) return Arm{g.base_link, g.tip_link, Eigen::Vector3d::UnitZ()};
-  std::string known;
-  for (const std::string& n : arm_names(robot)) known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("robot " + quoted(robot.name()) + " has no arm " + quoted(name) + "; known: " +
-                              (known.empty() ? "none (pass (base, tip))" : known));
-}
-
-Arm Arm::from_links(const Robot& robot, const std::string& base_link, const std::string& tip_link,
-                    const Eigen::Vector3d& approach_axis) {
-  for (const std::string* link : {&base_link, &tip_link})
-    if (!robot.has_link(*link))
-      throw std::invalid_argument("robot " + quoted(robot.name()) + " has no link named " + quoted(*link));
-  return Arm{base_link, tip_link, approach_axis};
-}
-
-std::vector<std::string> arm_names(const Robot& robot) {
-  std::set<std::string> names;
-  for (const KnownArm& k : known_arms())
-    if (robot.name() == k.robot) names.insert(k.name);
-  for (const ChainGroup& g : robot.groups()) names.insert(g.name);
-  return {names.begin(), names.end()};
-}
-
 Eigen::VectorXd default_reference(const Robot& robot, const Chain& chain) {
   const std::vector<std::string>& moved = chain.joint_names();
   std::map<std::string, double> values;

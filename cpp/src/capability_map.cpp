@@ -66,8 +66,18 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   if (o.self_collision) {
     std::vector<std::pair<int, int>> moving, fixed;
     chain.split_collision_pairs(moving, fixed);
-    if (robot.in_self_collision_poses(robot.link_poses(reference), fixed))
-      throw std::invalid_argument("the reference posture is in self-collision among links the chain does not move");
+    const std::vector<Pose> poses = robot.link_poses(reference);
+    if (robot.in_self_collision_poses(poses, fixed)) {
+      std::string names;
+      for (auto [a, b] : robot.colliding_pairs(poses, fixed))
+        names += (names.empty() ? "" : ", ") + robot.links()[a].name + "/" + robot.links()[b].name;
+      throw std::invalid_argument(
+          "the reference posture is in self-collision among links the chain does not move (" + names +
+          "): allow these pairs (robot.with_sampled_collisions() samples the allowed-collision matrix as MoveIt's "
+          "setup assistant does; robots.load() does it for robots without a complete SRDF; or "
+          "robot.with_allowed_collisions([...]), or an SRDF with <disable_collisions>), or pass another reference "
+          "posture (reference=...)");
+    }
   }
   const detail::CellBox box = detail::CellBox::around_workspace(chain, *m.tree_, O, o.seed);
   detail::CapabilityBuilder builder(chain, o, m.orientations_, m.approach_axis_, reference, box, progress);

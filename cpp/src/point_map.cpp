@@ -168,6 +168,7 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
   m.reference_frame_ = place.reference_frame;
   m.arm_base_ = cap.base_link();
   m.arm_tip_ = cap.tip_link();
+  m.approach_axis_ = cap.approach_axis();
   m.grasp_name_ = place.grasps.name;
   m.grasp_orientations_ = place.grasps.orientations;
   m.reference_to_arm_ = place.reference_to_arm;
@@ -210,6 +211,7 @@ std::map<std::string, std::string> InversePointMap::parameters() const {
           {"reference_frame", reference_frame_},
           {"arm_base_link", arm_base_},
           {"arm_tip_link", arm_tip_},
+          {"approach_axis", detail::format_vector(approach_axis_)},
           {"reference_to_arm", detail::format_vector(T.reshaped<Eigen::RowMajor>())},
           {"grasp_set", grasp_name_},
           {"grasp_orientations", g.str()},
@@ -230,6 +232,11 @@ InversePointMap InversePointMap::load(const std::string& path) {
   m.reference_frame_ = header_string(h, "reference_frame", path);
   m.arm_base_ = header_string(h, "arm_base_link", path);
   m.arm_tip_ = header_string(h, "arm_tip_link", path);
+  if (h.count("approach_axis")) {  // files written before point maps recorded it: +z
+    std::istringstream axis(h.at("approach_axis"));
+    if (!(axis >> m.approach_axis_.x() >> m.approach_axis_.y() >> m.approach_axis_.z()))
+      throw FileError("'" + path + "' has a malformed approach_axis");
+  }
   m.grasp_name_ = header_string(h, "grasp_set", path);
   {
     std::istringstream s(header_string(h, "reference_to_arm", path));

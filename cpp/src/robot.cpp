@@ -2,8 +2,10 @@
 // Building is in urdf.cpp and srdf.cpp, collision checks in robot_collision.cpp, chains in chain.cpp.
 #include "octoreach/robot.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "common/nearest_names.hpp"
 #include "common/random_mix.hpp"
 
 namespace octoreach {
@@ -11,14 +13,22 @@ namespace octoreach {
 int Robot::link_index(const std::string& name) const {
   auto it = link_by_name_.find(name);
   if (it == link_by_name_.end())
-    throw std::invalid_argument("robot '" + name_ + "' has no link named '" + name + "'");
+  {
+    std::vector<std::string> names;
+    for (const Link& l : links_) names.push_back(l.name);
+    throw std::invalid_argument("robot '" + name_ + "' has no link named '" + name + "'" + detail::did_you_mean(name, names));
+  }
   return it->second;
 }
 
 int Robot::joint_index(const std::string& name) const {
   auto it = joint_by_name_.find(name);
   if (it == joint_by_name_.end())
-    throw std::invalid_argument("robot '" + name_ + "' has no joint named '" + name + "'");
+  {
+    std::vector<std::string> names;
+    for (const Joint& j : joints_) names.push_back(j.name);
+    throw std::invalid_argument("robot '" + name_ + "' has no joint named '" + name + "'" + detail::did_you_mean(name, names));
+  }
   return it->second;
 }
 
@@ -98,6 +108,36 @@ void Robot::link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out) const {
 std::vector<Pose> Robot::link_poses(const Eigen::VectorXd& q) const {
   std::vector<Pose> out;
   link_poses(q, out);
+  return out;
+}
+
+std::vector<int> Robot::group_joints(const std::string& group) const {
+  std::vector<char> in(joints_.size(), 0);
+  std::vector<std::string> stack{group}, seen;
+  while (!stack.empty()) {
+    std::string name = stack.back();
+    stack.pop_back();
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) continue;  // subgroup cycles
+    seen.push_back(name);
+    auto it = std::find_if(srdf_groups_.begin(), srdf_groups_.end(), [&](const SrdfGroup& g) { return g.name == name; });
+    if (it == srdf_groups_.end()) {
+      std::vector<std::string> names;
+      for (const SrdfGroup& g : srdf_groups_) names.push_back(g.name);
+      throw std::invalid_argument("robot '" + name_ + "' has no SRDF group '" + name + "'" + detail::did_you_mean(name, names));
+    }
+    for (const auto& [base, tip] : it->chains) {
+      const int b = link_index(base);
+      for (int l = link_index(tip); l != b && links_[l].parent_joint >= 0; l = joints_[links_[l].parent_joint].parent_link)
+        in[links_[l].parent_joint] = 1;
+    }
+    for (const std::string& j : it->joints) in[joint_index(j)] = 1;
+    for (const std::string& l : it->links)
+      if (links_[link_index(l)].parent_joint >= 0) in[links_[link_index(l)].parent_joint] = 1;
+    for (const std::string& g : it->subgroups) stack.push_back(g);
+  }
+  std::vector<int> out;
+  for (std::size_t j = 0; j < joints_.size(); ++j)
+    if (in[j] && joints_[j].type != JointType::Fixed) out.push_back(static_cast<int>(j));
   return out;
 }
 

@@ -2,7 +2,6 @@
 // sampled pairs added through a new robot) and the checks themselves, against itself and against
 // Obstacles.
 #include <algorithm>
-#include <random>
 
 #include <fcl/fcl.h>
 
@@ -129,47 +128,6 @@ bool Robot::in_collision(const Eigen::VectorXd& q, const Obstacles& obstacles, c
   link_poses(q, poses);
   if (links_in_collision(poses, obstacles, base_pose, only_links)) return true;
   return check_self && in_self_collision_poses(poses);
-}
-
-namespace {
-
-// True when any shape of link a touches any shape of link b (no AABB test: sampling wants the
-// exact answer for every pair).
-bool links_touch(const Link& a, const Pose& pa, const Link& b, const Pose& pb) {
-  for (const auto& sa : a.shapes)
-    for (const auto& sb : b.shapes)
-      if (geometry_collide(sa.geometry.get(), pa * sa.origin, sb.geometry.get(), pb * sb.origin)) return true;
-  return false;
-}
-
-}  // namespace
-
-std::vector<std::pair<int, int>> Robot::compute_allowed_collisions(int samples, std::uint64_t seed,
-                                                                   const ProgressCallback& progress) const {
-  if (samples < 1) throw std::invalid_argument("samples must be at least 1, got " + std::to_string(samples));
-  const auto& pairs = checked_;
-  std::vector<int> hits(pairs.size(), 0);
-  Eigen::VectorXd lo = lower(), hi = upper();
-  std::mt19937_64 rng(seed);
-  std::vector<Pose> poses;
-  for (int s = 0; s < samples; ++s) {
-    Eigen::VectorXd q(dof());
-    for (int i = 0; i < dof(); ++i) {
-      double a = std::isfinite(lo[i]) ? lo[i] : -kPi, b = std::isfinite(hi[i]) ? hi[i] : kPi;
-      q[i] = std::uniform_real_distribution<double>(a, b)(rng);
-    }
-    link_poses(q, poses);
-    for (std::size_t p = 0; p < pairs.size(); ++p) {
-      auto [a, b] = pairs[p];
-      hits[p] += links_touch(links_[a], poses[a], links_[b], poses[b]);
-    }
-    if (progress && !progress(s + 1, samples)) throw Cancelled("allowed-collision sampling cancelled");
-  }
-  // checked_ is sorted, so the result is too.
-  std::vector<std::pair<int, int>> never_or_always;
-  for (std::size_t p = 0; p < pairs.size(); ++p)
-    if (hits[p] == 0 || hits[p] == samples) never_or_always.push_back(pairs[p]);
-  return never_or_always;
 }
 
 }  // namespace octoreach

@@ -1,9 +1,14 @@
-// The SRDF part of Robot::from_urdf: chain groups, group states and disabled collision pairs.
+// The SRDF part of Robot::from_urdf: groups (chains, joint lists, link lists, subgroups), end
+// effectors, group states and disabled collision pairs. Names the URDF lacks are an error that
+// says which (and the nearest names), except in <disable_collisions>, which MoveIt also lets name
+// links of other variants of the robot.
+#include <algorithm>
 #include <map>
 
 #include <tinyxml.h>
 
 #include "octoreach/robot.hpp"
+#include "common/nearest_names.hpp"
 #include "robot_builder.hpp"
 
 namespace octoreach::detail {
@@ -11,15 +16,100 @@ namespace {
 
 using NamedStates = std::map<std::string, std::map<std::string, double>>;
 
-// <group><chain base_link tip_link/></group>; groups of other kinds (joints, links) are skipped.
-std::vector<ChainGroup> read_groups(TiXmlElement* root) {
-  std::vector<ChainGroup> groups;
+std::string attribute(TiXmlElement* e, const char* name, const std::string& where) {
+  const char* v = e->Attribute(name);
+  if (!v) throw std::invalid_argument("malformed SRDF: " + where + " needs the attribute '" + name + "'");
+  return v;
+}
+
+// Every <group> as written.
+std::vector<SrdfGroup> read_all_groups(TiXmlElement* root) {
+  std::vector<SrdfGroup> groups;
   for (TiXmlElement* g = root->FirstChildElement("group"); g; g = g->NextSiblingElement("group")) {
-    TiXmlElement* c = g->FirstChildElement("chain");
-    if (!c || !g->Attribute("name") || !c->Attribute("base_link") || !c->Attribute("tip_link")) continue;
-    groups.push_back({g->Attribute("name"), c->Attribute("base_link"), c->Attribute("tip_link")});
+    SrdfGroup group;
+    group.name = attribute(g, "name", "<group>");
+    const std::string where = "group '" + group.name + "'";
+    for (TiXmlElement* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string kind = c->Value();
+      if (kind == "chain")
+        group.chains.emplace_back(attribute(c, "base_link", "<chain> of " + where), attribute(c, "tip_link", "<chain> of " + where));
+      else if (kind == "joint") group.joints.push_back(attribute(c, "name", "<joint> of " + where));
+      else if (kind == "link") group.links.push_back(attribute(c, "name", "<link> of " + where));
+      else if (kind == "group") group.subgroups.push_back(attribute(c, "name", "<group> of " + where));
+    }
+    groups.push_back(std::move(group));
   }
   return groups;
+}
+
+std::vector<EndEffector> read_end_effectors(TiXmlElement* root) {
+  std::vector<EndEffector> out;
+  for (TiXmlElement* e = root->FirstChildElement("end_effector"); e; e = e->NextSiblingElement("end_effector")) {
+    EndEffector ee;
+    ee.name = attribute(e, "name", "<end_effector>");
+    ee.parent_link = attribute(e, "parent_link", "end_effector '" + ee.name + "'");
+    ee.group = e->Attribute("group") ? e->Attribute("group") : "";
+    ee.parent_group = e->Attribute("parent_group") ? e->Attribute("parent_group") : "";
+    out.push_back(std::move(ee));
+  }
+  return out;
+}
+
+// Names an SRDF uses that the URDF lacks, as "link 'x' (in group 'g'; did you mean ...)".
+struct Disagreements {
+  const Robot& robot;
+  std::vector<std::string> problems;
+  std::vector<std::string> link_names, joint_names, group_names;
+  void link(const std::string& name, const std::string& where) {
+    if (!robot.has_link(name)) problems.push_back("link '" + name + "' (" + where + detail::did_you_mean(name, link_names) + ")");
+  }
+  void joint(const std::string& name, const std::string& where) {
+    if (std::find(joint_names.begin(), joint_names.end(), name) == joint_names.end())
+      problems.push_back("joint '" + name + "' (" + where + detail::did_you_mean(name, joint_names) + ")");
+  }
+  void group(const std::string& name, const std::string& where) {
+    if (std::find(group_names.begin(), group_names.end(), name) == group_names.end())
+      problems.push_back("group '" + name + "' (" + where + detail::did_you_mean(name, group_names) + ")");
+  }
+};
+
+void check_against_urdf(const Robot& robot, const std::vector<SrdfGroup>& groups, const std::vector<EndEffector>& ees,
+                        TiXmlElement* root) {
+  Disagreements d{robot, {}, {}, {}, {}};
+  for (const Link& l : robot.links()) d.link_names.push_back(l.name);
+  for (const Joint& j : robot.joints()) d.joint_names.push_back(j.name);
+  for (const SrdfGroup& g : groups) d.group_names.push_back(g.name);
+  for (const SrdfGroup& g : groups) {
+    const std::string where = "group '" + g.name + "'";
+    for (const auto& [base, tip] : g.chains) d.link(base, where), d.link(tip, where);
+    for (const std::string& j : g.joints) d.joint(j, where);
+    for (const std::string& l : g.links) d.link(l, where);
+    for (const std::string& s : g.subgroups) d.group(s, where);
+  }
+  for (const EndEffector& e : ees) {
+    const std::string where = "end_effector '" + e.name + "'";
+    d.link(e.parent_link, where);
+    if (!e.group.empty()) d.group(e.group, where);
+    if (!e.parent_group.empty()) d.group(e.parent_group, where);
+  }
+  for (TiXmlElement* g = root->FirstChildElement("group_state"); g; g = g->NextSiblingElement("group_state"))
+    for (TiXmlElement* j = g->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint"))
+      if (j->Attribute("name") && g->Attribute("name"))
+        d.joint(j->Attribute("name"), std::string("group_state '") + g->Attribute("name") + "'");
+  if (d.problems.empty()) return;
+  std::string msg = "the SRDF does not match the URDF of robot '" + robot.name() + "': it names " +
+                    std::to_string(d.problems.size()) + " thing(s) the URDF does not have: ";
+  for (std::size_t i = 0; i < d.problems.size() && i < 6; ++i) msg += (i ? "; " : "") + d.problems[i];
+  if (d.problems.size() > 6) msg += "; ...";
+  throw std::invalid_argument(msg + " (is it the SRDF of another variant of the robot?)");
+}
+
+// The groups declared by a chain, as ChainGroup (their first chain).
+std::vector<ChainGroup> chain_groups(const std::vector<SrdfGroup>& groups) {
+  std::vector<ChainGroup> out;
+  for (const SrdfGroup& g : groups)
+    if (!g.chains.empty()) out.push_back({g.name, g.chains[0].first, g.chains[0].second});
+  return out;
 }
 
 // <group_state name><joint name value/></group_state>; joints that are not in the configuration
@@ -66,7 +156,10 @@ void RobotBuilder::read_srdf(const std::string& srdf, PairSet& allowed) {
   TiXmlElement* root = doc.RootElement();
   if (!root || std::string(root->Value()) != "robot")
     throw std::invalid_argument("malformed SRDF: the root element must be <robot>");
-  r.groups_ = read_groups(root);
+  r.srdf_groups_ = read_all_groups(root);
+  r.end_effectors_ = read_end_effectors(root);
+  check_against_urdf(r, r.srdf_groups_, r.end_effectors_, root);
+  r.groups_ = chain_groups(r.srdf_groups_);
   r.named_states_ = read_group_states(root, r);
   read_disabled_pairs(root, r, allowed);
 }

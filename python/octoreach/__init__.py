@@ -7,6 +7,7 @@ Poses are 4x4 numpy arrays (homogeneous transforms) unless a docstring says
 (x, y, z, theta) rows. Units: metres and radians; frames are right-handed, z up.
 """
 from ._core import (  # noqa: F401
+    AllowedCollisionOptions,
     Arm,
     Cancelled,
     CapabilityMap,
@@ -26,7 +27,9 @@ from ._core import (  # noqa: F401
     arm_names,
     base_pose,
     default_reference,
+    find_arms,
     grasp_orientations,
+    infer_approach_axis,
     link_roles,
 )
 from . import progress as _progress
@@ -52,6 +55,6 @@ from .exploration import explore  # noqa: F401
 __all__ = ["Arm", "Cancelled", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
            "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
            "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
-           "grasp_orientations", "link_roles"]
+           "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore"]

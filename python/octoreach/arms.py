@@ -1,21 +1,23 @@
 """Arms of a robot as capability-map chains: base link, tool link, approach axis, reference posture.
 
-An arm is named (the compiled core's small table of known arms, e.g. the PR2's gripper tool frames
-with +x approach axis, then the SRDF chain groups), given as a tuple (base_link, tip_link[,
-approach_axis]), or passed as a ready CapabilityMap. The rules live in C++ (``octoreach.Arm``,
-``octoreach.default_reference``); these functions are the Python spelling of them.
+An arm is named (``find_arms(robot)``: SRDF groups with their tips moved to the tool frame, else the
+branches of the kinematic tree that end in a gripper), given as a tuple (base_link, tip_link[,
+approach_axis]), or passed as a ready CapabilityMap. The approach axis is inferred from the gripper
+(``arm.reason`` says how) unless given; ``approach_axis=`` overrides it. The rules live in C++
+(``octoreach.Arm``, ``octoreach.find_arms``, ``octoreach.default_reference``); these functions are
+the Python spelling of them.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ._core import Arm, CapabilityMap, Robot
+from ._core import Arm, CapabilityMap, Robot, find_arms  # noqa: F401  (find_arms: the package's spelling)
 from ._core import default_reference as _default_reference
 
 
-def resolve(robot: Robot, arm) -> tuple[str, str, np.ndarray]:
-    """(base_link, tip_link, approach_axis) of an arm name or tuple."""
-    a = Arm.resolve(robot, arm)
+def resolve(robot: Robot, arm, approach_axis=None) -> tuple[str, str, np.ndarray]:
+    """(base_link, tip_link, approach_axis) of an arm name or tuple (approach_axis overrides the inferred one)."""
+    a = Arm.resolve(robot, arm, approach_axis=approach_axis)
     return a.base_link, a.tip_link, np.array(a.approach_axis, float)
 
 
@@ -25,7 +27,10 @@ def default_reference(robot: Robot, arm) -> np.ndarray:
     return _default_reference(robot, robot.chain(a.base_link, a.tip_link))
 
 
-def capability_map(robot: Robot, arm, progress=True, **kwargs) -> CapabilityMap:
-    """Builds the capability map of an arm (name or tuple) with its approach axis, keeping joint solutions
-    for surface maps; keywords set CapabilityMapOptions fields (resolution, directions, seed, reference...)."""
+def capability_map(robot: Robot, arm, progress=True, approach_axis=None, **kwargs) -> CapabilityMap:
+    """Builds the capability map of an arm (name, Arm or tuple) with its approach axis (inferred from the gripper
+    unless approach_axis=(x, y, z) is given), keeping joint solutions for surface maps; keywords set
+    CapabilityMapOptions fields (resolution, directions, seed, reference...)."""
+    if approach_axis is not None:
+        kwargs["approach_axis"] = approach_axis
     return CapabilityMap.build_for_arm(robot, arm, progress=progress, **kwargs)

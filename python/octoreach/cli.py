@@ -9,20 +9,47 @@ import numpy as np
 
 def _load_robot(args):
     from . import robots
-    from ._core import Robot
 
+    how = getattr(args, "allowed_collisions", "auto")
     if args.urdf:
-        return Robot.from_urdf(args.urdf, package_dirs=args.package_dir or [], srdf=args.srdf)
-    return robots.load(args.robot)
+        return robots.from_urdf(args.urdf, args.package_dir or [], args.srdf, allowed_collisions=how)
+    return robots.load(getattr(args, "name", None) or args.robot, allowed_collisions=how)
 
 
 def _cmd_robot(args) -> int:
+    from ._core import find_arms
+
     robot = _load_robot(args)
-    print(f"{robot.name}: {len(robot.link_names)} links, {robot.dof} dof, root {robot.root_link}")
-    for name, (base, tip) in robot.groups.items():
-        print(f"  group {name}: {base} -> {tip}")
+    print(f"{robot.name}: {len(robot.link_names)} links ({len(robot.collision_links)} with collision geometry), "
+          f"{robot.dof} dof, root {robot.root_link}, {len(robot.allowed_collisions)} allowed-collision pairs")
+    print("links:")
+    for name in robot.link_names:
+        print(f"  {name}")
+    print("joints (configuration order, limits in rad or m):")
     for name, lo, hi in zip(robot.joint_names, robot.lower, robot.upper):
-        print(f"  joint {name}: [{lo:.3f}, {hi:.3f}]")
+        print(f"  {name}: [{lo:.4g}, {hi:.4g}]")
+    for name in robot.mimic_joints:
+        print(f"  {name}: mimic")
+    if robot.srdf_groups:
+        print("SRDF groups:")
+    for name, g in robot.srdf_groups.items():
+        parts = [f"chain {b} -> {t}" for b, t in g["chains"]]
+        parts += [f"joints {', '.join(g['joints'])}"] if g["joints"] else []
+        parts += [f"links {', '.join(g['links'])}"] if g["links"] else []
+        parts += [f"subgroups {', '.join(g['subgroups'])}"] if g["subgroups"] else []
+        print(f"  {name}: {'; '.join(parts) or 'empty'}")
+    for e in robot.end_effectors:
+        print(f"end effector {e['name']}: parent link {e['parent_link']}, group {e['group'] or '-'}"
+              f"{', parent group ' + e['parent_group'] if e['parent_group'] else ''}")
+    arms = find_arms(robot)
+    print("arms (what --arm NAME uses; tool frame, approach axis and why):" if arms else
+          "arms: none found (give one by its links: --base LINK --tip LINK --approach-axis X Y Z)")
+    for a in arms:
+        print(f"  {a.name}: {a.base_link} -> {a.tip_link}, approach axis {tuple(round(float(v), 3) for v in a.approach_axis)}"
+              f" ({a.reason}); from {a.source}")
+    if args.write_srdf:
+        robot.write_srdf(args.write_srdf)
+        print(f"wrote {args.write_srdf}")
     return 0
 
 
@@ -39,13 +66,22 @@ def _cmd_ik(args) -> int:
     return 0
 
 
-def _arm_arg(args):
-    """An arm name (SRDF group or known arm) or BASE,TIP[,AX,AY,AZ]."""
+def _arm_arg(args, robot):
+    """The Arm of --arm NAME or --base/--tip, with --approach-axis overriding the inferred axis."""
+    from ._core import Arm
+
+    axis = None if args.approach_axis is None else tuple(args.approach_axis)
     if args.arm is None:
         if not (args.base and args.tip):
             raise ValueError("give --arm NAME, or --base LINK --tip LINK")
-        return (args.base, args.tip, tuple(args.approach_axis))
-    return args.arm
+        return Arm.resolve(robot, (args.base, args.tip), approach_axis=axis)
+    return Arm.resolve(robot, args.arm, approach_axis=axis)
+
+
+def _named_arm(args, robot, name):
+    from ._core import Arm
+
+    return Arm.resolve(robot, name, approach_axis=None if args.approach_axis is None else tuple(args.approach_axis))
 
 
 def _surface(args):
@@ -84,7 +120,10 @@ def _cmd_capability(args) -> int:
     from . import arms
 
     robot = _load_robot(args)
-    cap = arms.capability_map(robot, _arm_arg(args), resolution=args.resolution, directions=args.directions,
+    arm = _arm_arg(args, robot)
+    if not args.quiet:
+        print(f"arm {arm.base_link} -> {arm.tip_link}: approach axis {arm.reason}", file=sys.stderr)
+    cap = arms.capability_map(robot, arm, resolution=args.resolution, directions=args.directions,
                               seed=args.seed, progress=not args.quiet)
     cap.save(args.out, with_solutions=args.with_solutions)
     if args.octovis:
@@ -100,7 +139,7 @@ def _cmd_surface(args) -> int:
     surface = _surface(args)
     maps = []
     for arm in args.arms:
-        source = CapabilityMap.load(arm) if arm.endswith(".orcm") else arm
+        source = CapabilityMap.load(arm) if arm.endswith(".orcm") else _named_arm(args, robot, arm)
         if isinstance(source, CapabilityMap) and not source.has_solutions:
             raise ValueError(f"{arm}: the capability map was saved without joint solutions (--with-solutions)")
         maps.append(SurfaceMap.build(robot, source, surface, resolution=args.resolution, theta_bins=args.theta_bins,
@@ -205,9 +244,14 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--urdf", help="URDF file of your own robot (overrides --robot)")
         sp.add_argument("--srdf", help="SRDF file for --urdf (groups and disabled collision pairs)")
         sp.add_argument("--package-dir", action="append", help="folder to resolve package:// URIs (repeatable)")
+        sp.add_argument("--allowed-collisions", choices=["auto", "sample", "srdf"], default="auto",
+                        help="auto (default): sample the allowed-collision matrix (cached) when the SRDF is missing or "
+                             "incomplete; sample: always; srdf: only what the URDF/SRDF say")
 
-    sp = sub.add_parser("robot", help="print a robot's links, groups and joint limits")
+    sp = sub.add_parser("robot", help="print a robot's links, joints with limits, SRDF groups, end effectors and arms")
+    sp.add_argument("name", nargs="?", help="robot of example-robot-data by name (same as --robot)")
     robot_args(sp)
+    sp.add_argument("--write-srdf", metavar="PATH", help="write the robot's SRDF (groups, allowed-collision pairs) to PATH")
     sp.set_defaults(func=_cmd_robot)
 
     sp = sub.add_parser("ik", help="solve inverse kinematics for a position")
@@ -230,11 +274,11 @@ def build_parser() -> argparse.ArgumentParser:
                             help="arm names (SRDF groups, e.g. right_arm left_arm) or saved capability maps (.orcm "
                                  "with solutions); several are combined (default: right_arm)")
         else:
-            sp.add_argument("--arm", help="arm name (SRDF group or known arm, e.g. right_arm)")
+            sp.add_argument("--arm", help="arm name (see `octoreach robot NAME`, e.g. right_arm)")
             sp.add_argument("--base", help="chain base link (instead of --arm)")
             sp.add_argument("--tip", help="chain tip (tool) link (instead of --arm)")
-            sp.add_argument("--approach-axis", type=float, nargs=3, default=[0, 0, 1],
-                            help="tool axis that approaches the object, tip frame (default 0 0 1)")
+        sp.add_argument("--approach-axis", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                        help="tool axis that approaches the object, tip frame (default: inferred from the gripper)")
         sp.add_argument("--resolution", type=float, default=defaults.resolution,
                         help=f"voxel edge in m (default {defaults.resolution})")
         sp.add_argument("--directions", type=int, default=defaults.directions,

@@ -1,13 +1,15 @@
 """Robots shipped by the PyPI package example-robot-data (URDF, SRDF and meshes).
 
 ``octoreach.robots.pr2()`` returns the PR2; ``octoreach.robots.load(name)`` any robot
-of that package by name (for example "panda", "ur5", "z1"), ``available()`` lists them.
+of that package by name (for example "panda", "tiago", "talos", "kinova"), ``available()`` lists them.
+Robots without a complete SRDF get their allowed-collision matrix sampled (cached on disk).
 The project's own robots (``urdf/`` in the source tree) are found by ``project_urdf(name)``.
 """
 from __future__ import annotations
 
-import glob
+import difflib
 import os
+import warnings
 import site
 import sys
 import sysconfig
@@ -50,15 +52,41 @@ def data_dir() -> Path:
     )
 
 
+def _index() -> dict[str, tuple[Path, Path | None]]:
+    """name -> (URDF, SRDF or None) for every URDF of example-robot-data and the known aliases.
+
+    URDFs sit in robots/<description>/urdf/ or robots/<description>/robots/. A URDF's name is its file
+    stem; a stem two descriptions share (anymal) is named "<description without _description>/<stem>"
+    for each. Its SRDF is robots/<description>/srdf/<stem>.srdf, else the longest SRDF stem that starts
+    the URDF stem (talos_reduced -> talos.srdf).
+    """
+    root = data_dir()
+    found: dict[str, list[Path]] = {}
+    for path in sorted((root / "robots").glob("*/*/*.urdf")):
+        if path.parent.name in ("urdf", "robots"):
+            found.setdefault(path.stem, []).append(path)
+    index: dict[str, tuple[Path, Path | None]] = {}
+    for stem, paths in found.items():
+        for path in paths:
+            srdfs = sorted((path.parent.parent / "srdf").glob("*.srdf"))
+            exact = [p for p in srdfs if p.stem == stem]
+            prefix = sorted((p for p in srdfs if stem.startswith(p.stem)), key=lambda p: -len(p.stem))
+            srdf = (exact or prefix or [None])[0]
+            name = stem if len(paths) == 1 else f"{path.parent.parent.name.removesuffix('_description')}/{stem}"
+            index[name] = (path, srdf)
+    for alias, (folder, urdf, srdf_file) in _KNOWN.items():
+        urdf_path = root / "robots" / folder / "urdf" / urdf
+        if urdf_path.is_file():
+            index[alias] = (urdf_path, root / "robots" / folder / "srdf" / srdf_file if srdf_file else None)
+    return index
+
+
 def available() -> list[str]:
-    """Names accepted by load(): the known aliases plus every URDF of example-robot-data."""
-    names = set(_KNOWN)
+    """Names accepted by load(): every URDF of example-robot-data (and the aliases pr2, ur5, ...)."""
     try:
-        for path in glob.glob(str(data_dir() / "robots" / "*" / "urdf" / "*.urdf")):
-            names.add(Path(path).stem)
+        return sorted(_index())
     except FileNotFoundError:
-        pass
-    return sorted(names)
+        return []
 
 
 def _package_dirs(root: Path) -> list[str]:
@@ -67,25 +95,52 @@ def _package_dirs(root: Path) -> list[str]:
     return [str(root.parent), str(root / "robots")]
 
 
-def load(name: str, srdf: bool = True) -> Robot:
-    """Robot `name` from example-robot-data, with its SRDF (groups, disabled collisions) when it has one."""
+def complete_allowed_collisions(robot: Robot, srdf_given: bool = True, options=None, progress=False, **kwargs) -> Robot:
+    """The robot with the sampled allowed-collision matrix (MoveIt setup assistant's method, cached on disk by
+    model hash) added when no SRDF was given or its list is incomplete (the home posture is in self-collision);
+    else the robot itself. Keywords set AllowedCollisionOptions fields (samples, seed, cache_dir, ...)."""
+    if srdf_given and not robot.self_collisions(robot.home()):
+        return robot
+    return robot.with_sampled_collisions(options, progress=progress, **kwargs)
+
+
+def from_urdf(urdf, package_dirs=(), srdf=None, allowed_collisions: str = "auto") -> Robot:
+    """Robot from a URDF (path or XML) with its SRDF; allowed_collisions: "auto" samples the allowed-collision
+    matrix when the SRDF is missing or incomplete (complete_allowed_collisions), "sample" always adds the
+    sampled pairs, "srdf" keeps what the URDF and SRDF say."""
+    robot = Robot.from_urdf(str(urdf), package_dirs=[str(p) for p in package_dirs], srdf=None if srdf is None else str(srdf))
+    if allowed_collisions == "auto":
+        return complete_allowed_collisions(robot, srdf_given=srdf is not None)
+    if allowed_collisions == "sample":
+        return robot.with_sampled_collisions()
+    if allowed_collisions != "srdf":
+        raise ValueError(f"allowed_collisions must be 'auto', 'sample' or 'srdf', got {allowed_collisions!r}")
+    return robot
+
+
+def load(name: str, srdf: bool = True, allowed_collisions: str = "auto") -> Robot:
+    """Robot `name` of example-robot-data (see available()) with its SRDF when it has one (groups, end
+    effectors, disabled collisions); allowed_collisions as in from_urdf ("auto" samples the allowed-collision
+    matrix, cached, when the SRDF is missing or incomplete)."""
     root = data_dir()
-    if name in _KNOWN:
-        folder, urdf, srdf_file = _KNOWN[name]
-        urdf_path = root / "robots" / folder / "urdf" / urdf
-        srdf_path = root / "robots" / folder / "srdf" / srdf_file if srdf_file else None
-    else:
-        matches = glob.glob(str(root / "robots" / "*" / "urdf" / f"{name}.urdf"))
-        if not matches:
-            raise ValueError(f"unknown robot {name!r}; available: {', '.join(available())}")
-        urdf_path = Path(matches[0])
-        srdf_candidates = glob.glob(str(urdf_path.parent.parent / "srdf" / f"{name}.srdf"))
-        srdf_path = Path(srdf_candidates[0]) if srdf_candidates else None
-    return Robot.from_urdf(
-        str(urdf_path),
-        package_dirs=_package_dirs(root),
-        srdf=str(srdf_path) if (srdf and srdf_path is not None) else None,
-    )
+    index = _index()
+    if name not in index:
+        qualified = [n for n in index if n.endswith("/" + name)]
+        if qualified:
+            raise ValueError(f"robot name {name!r} is ambiguous: {', '.join(qualified)}")
+        close = difflib.get_close_matches(name, list(index), n=3, cutoff=0.5)
+        hint = f"; did you mean {', '.join(map(repr, close))}?" if close else ""
+        raise ValueError(f"unknown robot {name!r}{hint} Available: {', '.join(sorted(index))}")
+    urdf_path, srdf_path = index[name]
+    if not srdf:
+        srdf_path = None
+    try:
+        return from_urdf(urdf_path, _package_dirs(root), srdf_path, allowed_collisions)
+    except ValueError as e:
+        if srdf_path is None or "does not match the URDF" not in str(e):
+            raise
+        warnings.warn(f"{name}: {srdf_path.name} left out: {e}", stacklevel=2)
+        return from_urdf(urdf_path, _package_dirs(root), None, allowed_collisions)
 
 
 def pr2(srdf: bool = True) -> Robot:

@@ -54,6 +54,8 @@ class InversePointMap {
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arm_base_link() const { return arm_base_; }
   const std::string& arm_tip_link() const { return arm_tip_; }
+  /// \brief Approach axis of the capability map's tool frame (+z in files written before maps recorded it).
+  const Eigen::Vector3d& approach_axis() const { return approach_axis_; }
   /// \brief Pose of the capability map's base link in the reference frame (at the reference posture).
   const Pose& reference_to_arm() const { return reference_to_arm_; }
   /// \brief Orientation indices (of the capability map's set) in the grasp set.
@@ -66,6 +68,7 @@ class InversePointMap {
  private:
   PoseMap map_;
   std::string robot_name_, reference_frame_, arm_base_, arm_tip_, grasp_name_;
+  Eigen::Vector3d approach_axis_ = Eigen::Vector3d::UnitZ();
   std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   Pose reference_to_arm_ = Pose::Identity();
   std::vector<int> grasp_orientations_;

@@ -50,6 +50,40 @@ struct ChainGroup {
   std::string name, base_link, tip_link;
 };
 
+/// \brief Any SRDF group as written: chains, joint lists, link lists and subgroups (names checked
+/// against the URDF when the robot is built).
+struct SrdfGroup {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> chains;  ///< (base_link, tip_link)
+  std::vector<std::string> joints, links, subgroups;
+};
+
+/// \brief An SRDF end effector: the gripper group `group` attached at `parent_link` (of the arm
+/// group `parent_group`, which may be empty).
+struct EndEffector {
+  std::string name, parent_link, group, parent_group;
+};
+
+/// \brief How the allowed-collision matrix is sampled (MoveIt setup assistant's method): pairs never
+/// in collision over `samples` random configurations, pairs always in collision, and pairs in
+/// collision at the home posture are allowed; adjacent pairs always are.
+struct AllowedCollisionOptions {
+  int samples = 4000;       ///< random configurations (MoveIt's default is 10,000)
+  std::uint64_t seed = 0;   ///< sample i uses the stream mix64(seed, i): the result never depends on threads
+  int threads = 0;          ///< 0 = every core
+  bool default_posture = true;  ///< also allow pairs in collision at home() (MoveIt's "Default")
+  /// Folder of the on-disk cache (keyed by model_hash, samples and seed); "" = $OCTOREACH_CACHE_DIR,
+  /// else $XDG_CACHE_HOME/octoreach, else ~/.cache/octoreach; "none" = no cache.
+  std::string cache_dir;
+};
+
+/// \brief Pairs added by sampling, by the reason MoveIt's setup assistant gives them.
+struct SampledCollisions {
+  std::vector<std::pair<int, int>> never, always, default_posture;
+  bool from_cache = false;  ///< read from the on-disk cache instead of sampled
+  std::string cache_file;   ///< the cache file read or written ("" without cache)
+};
+
 /// \brief Robot model: links, joints, collision shapes, allowed-collision pairs.
 ///
 /// Build it with Robot::from_urdf. A Robot never changes once built (every member function is
@@ -78,7 +112,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
   const std::vector<Joint>& joints() const { return joints_; }
   /// \brief Index of the root link (0).
   int root_link() const { return root_link_; }
-  /// \brief Index of a link by name; throws std::invalid_argument naming the link if absent.
+  /// \brief Index of a link by name; throws std::invalid_argument naming the link and the nearest
+  /// names the robot has if absent.
   int link_index(const std::string& name) const;
   /// \brief Index of a joint by name; throws std::invalid_argument if absent.
   int joint_index(const std::string& name) const;
@@ -99,6 +134,13 @@ class Robot : public std::enable_shared_from_this<Robot> {
   std::vector<std::string> mimic_joints() const;
   /// \brief Chain groups from the SRDF.
   const std::vector<ChainGroup>& groups() const { return groups_; }
+  /// \brief Every SRDF group as written (chains, joint lists, link lists, subgroups), in file order.
+  const std::vector<SrdfGroup>& srdf_groups() const { return srdf_groups_; }
+  /// \brief SRDF end effectors, in file order.
+  const std::vector<EndEffector>& end_effectors() const { return end_effectors_; }
+  /// \brief Moving joints (indices into joints()) of an SRDF group: its chains, joints, the parent
+  /// joints of its links and its subgroups, in tree order; throws naming an unknown group.
+  std::vector<int> group_joints(const std::string& group) const;
   /// \brief Named joint values from the SRDF's group states (for example the PR2's "tuck_left_arm").
   const std::map<std::string, std::map<std::string, double>>& named_states() const { return named_states_; }
   /// \brief Configuration with values from a name -> value map, the rest from home().
@@ -146,6 +188,24 @@ class Robot : public std::enable_shared_from_this<Robot> {
   /// \throws std::invalid_argument if samples < 1, Cancelled when `progress` returns false
   std::vector<std::pair<int, int>> compute_allowed_collisions(int samples = 2000, std::uint64_t seed = 0,
                                                               const ProgressCallback& progress = nullptr) const;
+  /// \brief MoveIt-style set-up of the allowed-collision matrix (allowed_collisions.cpp): among the
+  /// checked pairs, those never or always in collision over options.samples random configurations
+  /// and those in collision at home(); read from / written to the on-disk cache when it is enabled.
+  /// \throws std::invalid_argument if samples < 1, Cancelled when `progress` returns false
+  SampledCollisions sample_allowed_collisions(const AllowedCollisionOptions& options = {},
+                                              const ProgressCallback& progress = nullptr) const;
+  /// \brief This robot with sample_allowed_collisions() added to its allowed pairs.
+  std::shared_ptr<Robot> with_sampled_collisions(const AllowedCollisionOptions& options = {},
+                                                 const ProgressCallback& progress = nullptr) const;
+  /// \brief Checked pairs in collision at the link poses (at most `limit`), to name them in errors.
+  std::vector<std::pair<int, int>> colliding_pairs(const std::vector<Pose>& link_poses,
+                                                   const std::vector<std::pair<int, int>>& pairs,
+                                                   std::size_t limit = 8) const;
+  /// \brief SRDF text of the model: its groups, end effectors, group states and every allowed pair
+  /// as <disable_collisions> (reason "Adjacent" for adjacent links, else "Allowed").
+  std::string srdf_text() const;
+  /// \brief srdf_text() written atomically to `path`.
+  void write_srdf(const std::string& path) const;
 
   /// \brief Links with collision geometry.
   const std::vector<int>& collision_links() const { return collision_links_; }
@@ -164,6 +224,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
   int root_link_ = 0;
   std::map<std::string, int> link_by_name_, joint_by_name_;
   std::vector<ChainGroup> groups_;
+  std::vector<SrdfGroup> srdf_groups_;
+  std::vector<EndEffector> end_effectors_;
   std::map<std::string, std::map<std::string, double>> named_states_;
   std::vector<std::pair<int, int>> allowed_, checked_;
   std::vector<int> collision_links_;
