@@ -269,10 +269,14 @@ ApproachAxis infer_approach_axis(const Robot& robot, const std::string& base_lin
   for (int l : tree.rigid_below(root))
     for (int j : robot.links()[l].child_joints) {
       if (robot.joints()[j].type == JointType::Fixed) continue;
-      finger_names += (finger_names.empty() ? "" : ", ") + quoted(robot.joints()[j].name);
       std::vector<int> sub{robot.joints()[j].child_link};
-      for (std::size_t i = 0; i < sub.size(); ++i)
+      bool arm_goes_on = false;  // a tool frame further down: the arm continues, these are no fingers
+      for (std::size_t i = 0; i < sub.size(); ++i) {
+        arm_goes_on = arm_goes_on || tool_score(robot.links()[sub[i]].name) >= 4;
         for (int c : robot.links()[sub[i]].child_joints) sub.push_back(robot.joints()[c].child_link);
+      }
+      if (arm_goes_on) continue;
+      finger_names += (finger_names.empty() ? "" : ", ") + quoted(robot.joints()[j].name);
       for (int s : sub) finger_sum += tree.home[s].translation(), ++finger_links;
     }
   const Eigen::Vector3d to_fingers =

@@ -4,6 +4,7 @@
 // links of other variants of the robot.
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include <tinyxml.h>
 
@@ -22,8 +23,17 @@ std::string attribute(TiXmlElement* e, const char* name, const std::string& wher
   return v;
 }
 
-// Every <group> as written.
+// Names of <virtual_joint>s: joints of the SRDF (world -> root link), not of the URDF.
+std::set<std::string> virtual_joints(TiXmlElement* root) {
+  std::set<std::string> out;
+  for (TiXmlElement* v = root->FirstChildElement("virtual_joint"); v; v = v->NextSiblingElement("virtual_joint"))
+    if (v->Attribute("name")) out.insert(v->Attribute("name"));
+  return out;
+}
+
+// Every <group> as written (virtual joints left out of joint lists).
 std::vector<SrdfGroup> read_all_groups(TiXmlElement* root) {
+  const std::set<std::string> virtuals = virtual_joints(root);
   std::vector<SrdfGroup> groups;
   for (TiXmlElement* g = root->FirstChildElement("group"); g; g = g->NextSiblingElement("group")) {
     SrdfGroup group;
@@ -33,7 +43,10 @@ std::vector<SrdfGroup> read_all_groups(TiXmlElement* root) {
       const std::string kind = c->Value();
       if (kind == "chain")
         group.chains.emplace_back(attribute(c, "base_link", "<chain> of " + where), attribute(c, "tip_link", "<chain> of " + where));
-      else if (kind == "joint") group.joints.push_back(attribute(c, "name", "<joint> of " + where));
+      else if (kind == "joint") {
+        std::string name = attribute(c, "name", "<joint> of " + where);
+        if (!virtuals.count(name)) group.joints.push_back(name);
+      }
       else if (kind == "link") group.links.push_back(attribute(c, "name", "<link> of " + where));
       else if (kind == "group") group.subgroups.push_back(attribute(c, "name", "<group> of " + where));
     }
@@ -55,16 +68,17 @@ std::vector<EndEffector> read_end_effectors(TiXmlElement* root) {
   return out;
 }
 
-// Names an SRDF uses that the URDF lacks, as "link 'x' (in group 'g'; did you mean ...)".
+// Names an SRDF's groups and end effectors use that the URDF lacks, as "link 'x' (in group 'g'; did you mean ...)".
 struct Disagreements {
   const Robot& robot;
   std::vector<std::string> problems;
   std::vector<std::string> link_names, joint_names, group_names;
+  std::set<std::string> virtuals;
   void link(const std::string& name, const std::string& where) {
     if (!robot.has_link(name)) problems.push_back("link '" + name + "' (" + where + detail::did_you_mean(name, link_names) + ")");
   }
   void joint(const std::string& name, const std::string& where) {
-    if (std::find(joint_names.begin(), joint_names.end(), name) == joint_names.end())
+    if (!virtuals.count(name) && std::find(joint_names.begin(), joint_names.end(), name) == joint_names.end())
       problems.push_back("joint '" + name + "' (" + where + detail::did_you_mean(name, joint_names) + ")");
   }
   void group(const std::string& name, const std::string& where) {
@@ -75,7 +89,7 @@ struct Disagreements {
 
 void check_against_urdf(const Robot& robot, const std::vector<SrdfGroup>& groups, const std::vector<EndEffector>& ees,
                         TiXmlElement* root) {
-  Disagreements d{robot, {}, {}, {}, {}};
+  Disagreements d{robot, {}, {}, {}, {}, virtual_joints(root)};
   for (const Link& l : robot.links()) d.link_names.push_back(l.name);
   for (const Joint& j : robot.joints()) d.joint_names.push_back(j.name);
   for (const SrdfGroup& g : groups) d.group_names.push_back(g.name);
@@ -92,10 +106,7 @@ void check_against_urdf(const Robot& robot, const std::vector<SrdfGroup>& groups
     if (!e.group.empty()) d.group(e.group, where);
     if (!e.parent_group.empty()) d.group(e.parent_group, where);
   }
-  for (TiXmlElement* g = root->FirstChildElement("group_state"); g; g = g->NextSiblingElement("group_state"))
-    for (TiXmlElement* j = g->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint"))
-      if (j->Attribute("name") && g->Attribute("name"))
-        d.joint(j->Attribute("name"), std::string("group_state '") + g->Attribute("name") + "'");
+  // Group states may name free-flyer joints ("root_joint") that are no URDF joint: skipped, as MoveIt does.
   if (d.problems.empty()) return;
   std::string msg = "the SRDF does not match the URDF of robot '" + robot.name() + "': it names " +
                     std::to_string(d.problems.size()) + " thing(s) the URDF does not have: ";

@@ -11,6 +11,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "octoreach/robot.hpp"
+#include "common/nearest_names.hpp"
 #include "robot_builder.hpp"
 
 namespace octoreach {
@@ -122,6 +123,8 @@ urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& xml) {
                                   std::to_string(doc.ErrorRow()));
     if (!doc.RootElement() || std::string(doc.RootElement()->Value()) != "robot")
       throw std::invalid_argument("malformed URDF: the root element must be <robot>");
+    if (!doc.RootElement()->Attribute("name") || !*doc.RootElement()->Attribute("name"))
+      throw std::invalid_argument("malformed URDF: <robot> has no name attribute");
   }
   urdf::ModelInterfaceSharedPtr model;
   try {
@@ -260,8 +263,12 @@ void RobotBuilder::add_mimics_and_number_joints(const urdf::ModelInterface& mode
     if (uj->mimic && r.joints_[ji].type != JointType::Fixed) {
       auto it = r.joint_by_name_.find(uj->mimic->joint_name);
       if (it == r.joint_by_name_.end())
+      {
+        std::vector<std::string> names;
+        for (const Joint& j : r.joints_) names.push_back(j.name);
         throw std::invalid_argument("malformed URDF: joint '" + uj->name + "' mimics unknown joint '" +
-                                    uj->mimic->joint_name + "'");
+                                    uj->mimic->joint_name + "'" + did_you_mean(uj->mimic->joint_name, names));
+      }
       r.joints_[ji].mimic = it->second;
       r.joints_[ji].mimic_multiplier = uj->mimic->multiplier;
       r.joints_[ji].mimic_offset = uj->mimic->offset;

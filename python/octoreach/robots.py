@@ -77,6 +77,9 @@ def _index() -> dict[str, tuple[Path, Path | None]]:
     for alias, (folder, urdf, srdf_file) in _KNOWN.items():
         urdf_path = root / "robots" / folder / "urdf" / urdf
         if urdf_path.is_file():
+            if alias in index and index[alias][0] != urdf_path:  # ur3.urdf next to the alias ur3 -> ur3_robot.urdf
+                shadowed = index[alias]
+                index[f"{shadowed[0].parent.parent.name.removesuffix('_description')}/{alias}"] = shadowed
             index[alias] = (urdf_path, root / "robots" / folder / "srdf" / srdf_file if srdf_file else None)
     return index
 

@@ -68,7 +68,7 @@ struct EndEffector {
 /// in collision over `samples` random configurations, pairs always in collision, and pairs in
 /// collision at the home posture are allowed; adjacent pairs always are.
 struct AllowedCollisionOptions {
-  int samples = 4000;       ///< random configurations (MoveIt's default is 10,000)
+  int samples = 5000;       ///< random configurations (MoveIt's default is 10,000)
   std::uint64_t seed = 0;   ///< sample i uses the stream mix64(seed, i): the result never depends on threads
   int threads = 0;          ///< 0 = every core
   bool default_posture = true;  ///< also allow pairs in collision at home() (MoveIt's "Default")
