@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'grasp_orientations', 'link_roles', 'look_at', 'next_best_view', 'set_progress_factory', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'look_at', 'next_best_view', 'set_progress_factory', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
 class Obstacles:
@@ -130,6 +130,50 @@ class Chain:
         """
         Upper joint limits (+inf for continuous joints).
         """
+class AllowedCollisionOptions:
+    """
+    How the allowed-collision matrix is sampled (MoveIt setup assistant's method; defaults defined once, in C++).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def cache_dir(self) -> str:
+        """
+        '' = $OCTOREACH_CACHE_DIR, else $XDG_CACHE_HOME/octoreach, else ~/.cache/octoreach; 'none' = no cache.
+        """
+    @cache_dir.setter
+    def cache_dir(self, arg0: str) -> None:
+        ...
+    @property
+    def default_posture(self) -> bool:
+        """
+        Also allow pairs in collision at home().
+        """
+    @default_posture.setter
+    def default_posture(self, arg0: bool) -> None:
+        ...
+    @property
+    def samples(self) -> int:
+        """
+        Random configurations (MoveIt's default: 10,000).
+        """
+    @samples.setter
+    def samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def threads(self) -> int:
+        """
+        0: every core.
+        """
+    @threads.setter
+    def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
 class Robot:
     """
     Robot model from a URDF: links, joints, collision shapes. Never changes once built.
@@ -148,11 +192,15 @@ class Robot:
         """
         Link pairs (link_a, link_b) never or always in collision over `samples` random configurations
         (deterministic for seed), among the pairs checked now: pass them to with_allowed_collisions.
-        Empty when there is nothing to add.
+        Empty when there is nothing to add. with_sampled_collisions() does it all (and caches).
         """
     def configuration(self, values: collections.abc.Mapping[str, typing.SupportsFloat | typing.SupportsIndex]) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         Configuration vector from a {joint name: value} dict, the rest from home().
+        """
+    def group_joints(self, group: str) -> list[str]:
+        """
+        Moving joints of an SRDF group (chains, joints, links' parent joints, subgroups).
         """
     def has_link(self, arg0: str) -> bool:
         ...
@@ -173,10 +221,32 @@ class Robot:
         """
         {link name: 4x4 pose in the root link frame}.
         """
+    def sample_allowed_collisions(self, options: typing.Any = None, progress: typing.Any = False, **kwargs) -> dict:
+        """
+        MoveIt setup-assistant pairs among the checked ones: {'never', 'always', 'default': [(a, b)], 'from_cache',
+        'cache_file'}; keywords set AllowedCollisionOptions fields (samples, seed, threads, default_posture, cache_dir).
+        """
+    def self_collisions(self, q: typing.Any) -> list[tuple[str, str]]:
+        """
+        Checked link pairs (link_a, link_b) in collision at q.
+        """
+    def srdf_text(self) -> str:
+        """
+        SRDF of the model: groups, end effectors, group states, every allowed pair.
+        """
     def with_allowed_collisions(self, pairs: collections.abc.Sequence[tuple[str, str]]) -> Robot:
         """
         A new Robot, this one with the (link_a, link_b) pairs added to its allowed collisions (its own
         model_hash); this robot is left as it is.
+        """
+    def with_sampled_collisions(self, options: typing.Any = None, progress: typing.Any = False, **kwargs) -> Robot:
+        """
+        A new Robot with the sampled allowed-collision pairs added (cached on disk by model hash); keywords set
+        AllowedCollisionOptions fields.
+        """
+    def write_srdf(self, path: str) -> None:
+        """
+        Writes srdf_text() atomically to path.
         """
     @property
     def allowed_collisions(self) -> list[tuple[str, str]]:
@@ -194,6 +264,11 @@ class Robot:
     @property
     def dof(self) -> int:
         ...
+    @property
+    def end_effectors(self) -> list:
+        """
+        SRDF end effectors: [{'name', 'parent_link', 'group', 'parent_group'}].
+        """
     @property
     def groups(self) -> dict:
         """
@@ -229,6 +304,11 @@ class Robot:
     @property
     def root_link(self) -> str:
         ...
+    @property
+    def srdf_groups(self) -> dict:
+        """
+        Every SRDF group: name -> {'chains': [(base, tip)], 'joints': [...], 'links': [...], 'subgroups': [...]}.
+        """
     @property
     def upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
@@ -270,17 +350,31 @@ class OrientationSet:
         ...
 class Arm:
     """
-    An arm as capability maps see it: base link, tip (tool) link and the tool's approach axis.
+    An arm: base link, tip (tool) link, the tool's approach axis and why (reason), its name and where it
+    was found (source). Arm.named / Arm.from_links / find_arms find them; the reference posture of the
+    joints it does not move is default_reference(robot, robot.chain(arm.base_link, arm.tip_link)).
     """
     @staticmethod
-    def resolve(robot: Robot, arm: typing.Any) -> Arm:
+    def from_links(robot: Robot, base_link: str, tip_link: str, approach_axis: typing.Any = None) -> Arm:
         """
-        The arm of a name (the known-arm table, then SRDF chain groups) or of a (base_link, tip_link[,
-        approach_axis]) tuple; ValueError naming the known arms or a missing link.
+        The arm base_link -> tip_link; the approach axis inferred from the gripper unless given.
         """
-    def __init__(self, base_link: str, tip_link: str, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> None:
+    @staticmethod
+    def named(robot: Robot, name: str) -> Arm:
+        """
+        The arm called `name` (find_arms, else a serial SRDF group); ValueError listing the arms otherwise.
+        """
+    @staticmethod
+    def resolve(robot: Robot, arm: typing.Any, approach_axis: typing.Any = None) -> Arm:
+        """
+        The arm of a name or of a (base_link, tip_link[, approach_axis]) tuple; approach_axis overrides the
+        inferred axis. ValueError listing the arms that exist, or naming a missing link and the nearest names.
+        """
+    def __init__(self, base_link: str, tip_link: str, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
         ...
     def __repr__(self) -> str:
+        ...
+    def with_approach_axis(self, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> Arm:
         ...
     @property
     def approach_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
@@ -288,6 +382,19 @@ class Arm:
     @property
     def base_link(self) -> str:
         ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def reason(self) -> str:
+        """
+        Why this approach axis (inferred from the gripper, or 'given').
+        """
+    @property
+    def source(self) -> str:
+        """
+        Where the arm was found (SRDF group, end effector, kinematic tree, links).
+        """
     @property
     def tip_link(self) -> str:
         ...
@@ -430,8 +537,9 @@ class CapabilityMap:
     @staticmethod
     def build_for_arm(robot: Robot, arm: typing.Any, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> CapabilityMap:
         """
-        Builds the map of an arm (a name or a (base_link, tip_link[, approach_axis]) tuple) with the arm's
-        approach axis; keyword arguments set CapabilityMapOptions fields.
+        Builds the map of an arm (a name, an Arm or a (base_link, tip_link[, approach_axis]) tuple) with the arm's
+        approach axis (inferred from the gripper unless given; approach_axis=(x, y, z) overrides it); other
+        keyword arguments set CapabilityMapOptions fields.
         """
     @staticmethod
     def load(path: str) -> CapabilityMap:
@@ -622,6 +730,11 @@ class InversePointMap:
     def voxels(self) -> tuple:
         """
         (centres (M, 3), values (M, theta_bins)) of the voxels with a non-zero value.
+        """
+    @property
+    def approach_axis(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Approach axis of the arm's tool frame.
         """
     @property
     def arm_base_link(self) -> str:
@@ -1327,7 +1440,7 @@ def accumulate_utility(map: ExplorationMap, sensor_range: typing.SupportsFloat |
     """
 def arm_names(robot: Robot) -> list[str]:
     """
-    Arm names the robot resolves (known table and SRDF groups), sorted.
+    Names of find_arms(robot), sorted.
     """
 def base_pose(pose: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"]) -> numpy.typing.NDArray[numpy.float64]:
     """
@@ -1338,9 +1451,19 @@ def default_reference(robot: Robot, chain: Chain) -> typing.Annotated[numpy.typi
     Reference posture (robot configuration) for the joints off `chain`: home with every SRDF 'tuck*' state
     applied that does not move the chain (the other arm tucked). Builds use it when given no reference.
     """
+def find_arms(robot: Robot) -> list[Arm]:
+    """
+    The robot's arms: serial SRDF groups (tips moved to their tool frames), else branches of the kinematic
+    tree that end in a gripper-like tip.
+    """
 def grasp_orientations(orientations: OrientationSet, directions: collections.abc.Sequence[typing.SupportsInt | typing.SupportsIndex]) -> list[int]:
     """
     Orientation indices (d * rolls + r, sorted) of an OrientationSet for direction indices, all rolls of each.
+    """
+def infer_approach_axis(robot: Robot, base_link: str, tip_link: str) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], str]:
+    """
+    (axis, reason): the approach axis of the tool frame tip_link inferred from the gripper; ValueError saying
+    how to give it when it cannot be inferred.
     """
 def link_roles(robot: Robot, chain: Chain) -> dict:
     """

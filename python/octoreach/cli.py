@@ -47,6 +47,11 @@ def _cmd_robot(args) -> int:
     for a in arms:
         print(f"  {a.name}: {a.base_link} -> {a.tip_link}, approach axis {tuple(round(float(v), 3) for v in a.approach_axis)}"
               f" ({a.reason}); from {a.source}")
+    poses = robot.link_poses(robot.home()) if arms else {}
+    for a in arms:  # where the tool frame's axes point at home, in the arm's base frame
+        R = (np.linalg.inv(poses[a.base_link]) @ poses[a.tip_link])[:3, :3]
+        axes = ", ".join(f"{n} -> {tuple(round(float(v), 2) for v in R[:, k])}" for k, n in enumerate("xyz"))
+        print(f"tool frame {a.tip_link} (arm {a.name}) at home, axes in {a.base_link}: {axes}")
     if args.write_srdf:
         robot.write_srdf(args.write_srdf)
         print(f"wrote {args.write_srdf}")

@@ -357,7 +357,8 @@ def test_cli_robot_pr2(pr2):
     r = _cli("robot", "--robot", "pr2")
     assert r.returncode == 0, r.stderr
     assert r.stdout.startswith("pr2:")
-    assert "group right_arm: torso_lift_link -> r_wrist_roll_link" in r.stdout
+    assert "  right_arm: chain torso_lift_link -> r_wrist_roll_link" in r.stdout
+    assert "  right_arm: torso_lift_link -> r_gripper_tool_frame, approach axis (1.0, 0.0, 0.0)" in r.stdout
 
 
 def test_cli_unknown_robot():

@@ -180,3 +180,21 @@ def test_self_collision_error_names_the_links():
         from octoreach import arms
 
         arms.capability_map(tiago, "arm", resolution=0.3, directions=8, progress=False)
+
+
+def test_cli_robot_by_name_prints_links_joints_groups_end_effectors_and_arms(tmp_path):
+    import subprocess
+    import sys
+
+    out = tmp_path / "panda.srdf"
+    r = subprocess.run([sys.executable, "-m", "octoreach.cli", "robot", "panda", "--write-srdf", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    text = r.stdout
+    assert "links:\n  panda_link0" in text
+    assert "  panda_joint1: [-2.897, 2.897]" in text
+    assert "  arm: joints panda_joint1, panda_joint2" in text and "  arm_and_hand: subgroups arm, hand" in text
+    assert "end effector end_effector: parent link panda_hand_tcp, group arm" in text
+    assert "  arm: panda_link0 -> panda_hand_tcp, approach axis (0.0, 0.0, 1.0) (+z of 'panda_hand_tcp'" in text
+    assert Robot.from_urdf(str(robots._index()["panda"][0]), package_dirs=robots._package_dirs(robots.data_dir()),
+                           srdf=str(out)).srdf_groups["arm"]["joints"][0] == "panda_joint1"
