@@ -41,10 +41,13 @@ def exploration_map(source):
 
 def robot_by_name(name: str):
     from .. import robots
+    from .._core import Robot
 
-    if name == "test_arm":
-        return robots.test_arm()
-    return robots.load(name)
+    own = name[len("octoreach_"):] if name.startswith("octoreach_") else name
+    try:
+        return Robot.from_urdf(str(robots.project_urdf(own)))  # the project's own robots (urdf/)
+    except ValueError:
+        return robots.load(name)
 
 
 def reference_posture(robot, smap) -> np.ndarray:

@@ -1,7 +1,8 @@
 """The robot's visual geometry from its URDF, drawn at a configuration and base pose.
 
-Shapes are the URDF's <visual> elements (meshes through trimesh, boxes, cylinders, spheres), one merged
-mesh per link in the link's frame. Mesh URIs (package://, file://, relative) are resolved by the rule of
+Shapes are the URDF's <visual> elements (meshes through trimesh, boxes, cylinders, spheres), or its
+<collision> elements for links without visuals (the project's test arm has only those), one merged mesh
+per link in the link's frame. Mesh URIs (package://, file://, relative) are resolved by the rule of
 the C++ robot loader (cpp/src/urdf.cpp: resolve_mesh). Link poses come from the compiled
 ``Robot.link_poses``; the viewer only places the per-link meshes there.
 """
@@ -19,11 +20,14 @@ from . import colours
 
 def robot_files(name: str) -> tuple[str, list[str]]:
     """(URDF path, package_dirs) of a robot that ``octoreach.robots.load(name)`` loads, or of the
-    project's own robots ("test_arm")."""
+    project's own robots (``urdf/NAME.urdf``, whose robots are named "octoreach_NAME")."""
     from .. import robots
 
-    if name == "test_arm":
-        return str(robots.project_urdf("test_arm")), []
+    own = name[len("octoreach_"):] if name.startswith("octoreach_") else name
+    try:
+        return str(robots.project_urdf(own)), []
+    except ValueError:
+        pass
     root = robots.data_dir()
     if name in robots._KNOWN:
         folder, urdf, _ = robots._KNOWN[name]
@@ -133,7 +137,7 @@ class RobotMeshes:
         self.colours: dict[str, tuple] = {}
         for link in root.findall("link"):
             parts, rgba = [], None
-            for visual in link.findall("visual"):
+            for visual in link.findall("visual") or link.findall("collision"):
                 geom = visual.find("geometry")
                 mesh = _geometry(geom, package_dirs or [], urdf_dir, cache) if geom is not None else None
                 if mesh is None or len(mesh.faces) == 0:
