@@ -142,3 +142,27 @@ def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_p
         assert sel["rs"] == pytest.approx(float(sm.reachability(pose[None, :])[0]))
         assert sel["rs"] > 0
         assert np.allclose(viewer.robot_layer.base_pose, octoreach.base_pose(pose))
+
+
+def test_exploration_layers(viewer):
+    from types import SimpleNamespace
+
+    emap = octoreach.ExplorationMap(resolution=0.05)
+    g = np.linspace(-0.4, 0.4, 30)
+    wall = np.array([[1.0, y, z] for y in g for z in g + 0.5])
+    origin = np.array([0.0, 0.0, 0.5])
+    emap.insert(wall, origin)
+    poses = [octoreach.exploration.camera.look_at(origin, [1.0, 0.0, 0.5]),
+             octoreach.exploration.camera.look_at([0.0, 0.3, 0.6], [1.0, 0.0, 0.5])]
+    layer = viewer.add_exploration(SimpleNamespace(map=emap, poses=poses, rows=[]))
+    assert layer.counts["occupied"] == len(emap.cells("occupied")) > 0
+    assert layer.counts["frontier"] == len(emap.cells("frontier"))
+    assert layer.counts["void"] == len(emap.cells("void"))
+    assert layer.counts["ellipsoids"] == len(emap.void_clusters())
+    names = viewer.node_names()
+    assert {"/exploration/occupied", "/exploration/frontiers", "/exploration/voids", "/exploration/views/0",
+            "/exploration/views/1"} <= set(names)
+    layer.step(0)
+    assert layer.frusta[0].visible and not layer.frusta[1].visible
+    layer.set_visible("voids", True)
+    assert layer.void.visible

@@ -111,6 +111,11 @@ class Viewer:
     def add_exploration(self, source):
         """An ExplorationMap (or an explore() result, or a .bt path) with a slider over its views."""
         self.exploration = layer = ExplorationLayer(self.scene, files.exploration_map(source))
+        for key, handles in layer.layers.items():
+            if not handles:
+                continue
+            box = self.server.gui.add_checkbox(key, initial_value=bool(handles[0].visible))
+            box.on_update(lambda _e, key=key, box=box: layer.set_visible(key, box.value))
         if layer.frusta:
             slider = self.server.gui.add_slider("view", min=0, max=max(len(layer.frusta) - 1, 1), step=1,
                                                 initial_value=len(layer.frusta) - 1)

@@ -25,15 +25,16 @@ class ExplorationLayer:
         self.rows = list(getattr(source, "rows", []))
         r = float(emap.resolution)
         occupied = np.asarray(emap.cells("occupied"), float).reshape(-1, 3)
-        z = occupied[:, 2] if len(occupied) else np.zeros(0)
-        shade = colours.scale(z, None) if len(z) else np.zeros((0, 3), np.uint8)
-        # Occupied cells coloured by height so the geometry reads well; frontier and void cells small.
+        shade = np.tile(np.array(colours.OCCUPIED, np.uint8), (len(occupied), 1))
+        # Occupied cells as lit boxes so the geometry reads; frontier and void cells as small points (the
+        # voids start hidden: they fill the hull and would bury the geometry; the controls toggle layers).
         self.occupied = cells.add_cells(scene, f"{name}/occupied", occupied, shade, r * 0.95)
         frontier = np.asarray(emap.cells("frontier"), float).reshape(-1, 3)
         self.frontier = scene.add_point_cloud(f"{name}/frontiers", frontier.astype(np.float32), colours.FRONTIER,
-                                              point_size=r * 0.5)
+                                              point_size=r * 0.3)
         void = np.asarray(emap.cells("void"), float).reshape(-1, 3)
-        self.void = scene.add_point_cloud(f"{name}/voids", void.astype(np.float32), colours.VOID, point_size=r * 0.5)
+        self.void = scene.add_point_cloud(f"{name}/voids", void.astype(np.float32), colours.VOID, point_size=r * 0.3,
+                                          visible=False)
         self.ellipsoids = []
         for i, c in enumerate(emap.void_clusters()):
             axes = np.asarray(c.axes, float)
@@ -48,8 +49,15 @@ class ExplorationLayer:
             self.frusta.append(scene.add_camera_frustum(f"{name}/views/{i}", fov=fov, aspect=aspect, scale=0.12,
                                                         color=colours.FRUSTUM, wxyz=_wxyz(T[:3, :3]),
                                                         position=T[:3, 3]))
+        self.layers = {"occupied": [self.occupied], "frontiers": [self.frontier], "voids": [self.void],
+                       "ellipsoids": self.ellipsoids, "views": self.frusta}
         self.counts = {"occupied": len(occupied), "frontier": len(frontier), "void": len(void),
                        "ellipsoids": len(self.ellipsoids), "views": len(self.poses)}
+
+    def set_visible(self, layer: str, visible: bool) -> None:
+        """Shows or hides one of `layers` (occupied, frontiers, voids, ellipsoids, views)."""
+        for h in self.layers[layer]:
+            h.visible = visible
 
     def step(self, view: int) -> str:
         """Shows the frusta of views 0..view (the latest one highlighted) and returns that view's row as text."""
