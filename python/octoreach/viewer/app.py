@@ -50,8 +50,10 @@ class Viewer:
         self._clicked = threading.Event()
         self._info = self.server.gui.add_markdown("Click a cell to see its value.")
         self.scene.set_up_direction("+z")
-        # Dimmer image-based light than viser's default: with toon-shaded cells, colours keep their saturation.
-        self.scene.configure_environment_map("warehouse", environment_intensity=0.4)
+        # No image-based light: building its environment map takes seconds on software WebGL (headless
+        # browsers, machines without a GPU); viser's default lights shade the scene.
+        self.scene.configure_environment_map(None)
+        self.scene.add_light_hemisphere("/lights/sky", intensity=1.1)
 
     # -- layers --------------------------------------------------------------------------------------
     def add_robot(self, robot, q=None, base_pose=None, urdf=None, package_dirs=None) -> RobotLayer:
