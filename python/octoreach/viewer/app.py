@@ -206,7 +206,7 @@ class Viewer:
         extent = float(max(np.linalg.norm(hi - lo), 1.0))
         cam = self.server.initial_camera
         cam.look_at = tuple(centre)
-        cam.position = tuple(centre + np.array([-0.4, -0.55, 0.5]) * extent)
+        cam.position = tuple(centre + np.array([-0.45, -0.65, 0.55]) * extent)
         cam.up = (0.0, 0.0, 1.0)
         cam.fov = np.radians(50)
 

@@ -51,6 +51,8 @@ class Browser:
             opts.add_argument(a)
         self.driver = webdriver.Chrome(options=opts, service=Service(shutil.which("chromedriver")))
         self.driver.set_window_size(width, height)
+        inner = self.driver.execute_script("return [window.innerWidth, window.innerHeight];")
+        self.driver.set_window_size(2 * width - inner[0], 2 * height - inner[1])  # the page gets width x height
         self.width, self.height = width, height
 
     def __enter__(self):

@@ -18,14 +18,15 @@ SLICE_PLANE = (200, 200, 255)
 
 
 def scale(values, vmax: float | None = None) -> np.ndarray:
-    """(N, 3) uint8 colours of values on matplotlib's 'turbo' map, normalised by vmax (default: their max)."""
+    """(N, 3) uint8 colours of values on matplotlib's 'turbo' map, normalised by vmax (default: their max):
+    red low, blue high, as in octoreach.plots and the octovis exports."""
     from matplotlib import colormaps
 
     v = np.asarray(values, dtype=float).reshape(-1)
     top = float(vmax) if vmax is not None else (float(v.max()) if v.size else 1.0)
     t = np.clip(v / top, 0.0, 1.0) if top > 0 else np.zeros_like(v)
-    # turbo's two ends are dark; use its bright middle 0.1 .. 0.95 (blue -> green -> red).
-    rgba = colormaps["turbo"](0.1 + 0.85 * t)
+    # turbo's two ends are dark; use its bright middle 0.95 .. 0.1 (red -> yellow -> green -> blue).
+    rgba = colormaps["turbo"](0.95 - 0.85 * t)
     # The browser renders the colours lighter than given (sRGB output of lit materials); darkening them by
     # the sRGB gamma here keeps the scale's saturated look on screen.
     return (rgba[:, :3] ** 2.2 * 255).round().astype(np.uint8)
