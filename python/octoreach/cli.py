@@ -179,8 +179,15 @@ def _cmd_sample(args) -> int:
 def _cmd_view(args) -> int:
     from .viewer import view
 
-    view(*args.files, robot=args.robot, samples=args.samples, seed=args.seed, port=args.port, host=args.host,
-         html=args.html, png=args.png, block=not args.no_serve)
+    joints = {}
+    for item in args.joint or []:
+        name, _, value = item.partition("=")
+        try:
+            joints[name] = float(value)
+        except ValueError:
+            raise ValueError(f"--joint {item!r}: expected NAME=VALUE (radians or metres)") from None
+    view(*args.files, robot=args.robot, joints=joints, samples=args.samples, seed=args.seed, port=args.port,
+         host=args.host, html=args.html, png=args.png, block=not args.no_serve)
     return 0
 
 
@@ -301,6 +308,8 @@ def build_parser() -> argparse.ArgumentParser:
     sp = sub.add_parser("view", help="show maps, samples and explorations in 3D in the browser (needs the viewer extra)")
     sp.add_argument("files", nargs="+", help="surface (.orsm) or capability (.orcm) map files, OctoMap .bt files")
     sp.add_argument("--robot", help="robot by name (default: the one a surface map was built for)")
+    sp.add_argument("--joint", action="append", metavar="NAME=VALUE",
+                    help="set a joint of the shown configuration (repeatable; default: the map's reference posture)")
     sp.add_argument("--samples", type=int, default=5, help="base poses to sample and show (default 5)")
     sp.add_argument("--seed", type=int, default=1, help="sampler seed (default 1)")
     sp.add_argument("--port", type=int, default=8080, help="port (default 8080; the next free one if taken)")

@@ -166,3 +166,17 @@ def test_exploration_layers(viewer):
     assert layer.frusta[0].visible and not layer.frusta[1].visible
     layer.set_visible("voids", True)
     assert layer.void.visible
+
+
+def test_package_view_with_joints(arm_map):
+    robot, _, sm = arm_map
+    name = robot.joint_names[1]
+    v = octoreach.view(sm, joints={name: 0.7}, samples=1, block=False, port=_free_port(), verbose=False)
+    try:
+        assert v.robot_layer.q[1] == 0.7
+        T = robot.link_poses(v.robot_layer.q)["upper_arm_link"]
+        assert np.allclose(v.robot_layer.links["upper_arm_link"].position, T[:3, 3], atol=1e-6)
+    finally:
+        v.close()
+    with pytest.raises(ValueError, match="unknown joint"):
+        octoreach.view(sm, joints={"nope": 1.0}, samples=0, block=False, port=_free_port(), verbose=False)

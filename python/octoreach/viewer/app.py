@@ -247,12 +247,14 @@ class Viewer:
         self.server.stop()
 
 
-def view(*items, robot=None, q=None, samples: int = 5, seed: int = 1, port: int = 8080, host: str = "127.0.0.1",
-         block: bool = True, html: str | None = None, png: str | None = None, verbose: bool = True) -> Viewer:
+def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
+         host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
+         verbose: bool = True) -> Viewer:
     """Shows maps and explorations in the browser: each item is a file path (.orsm, .orcm, .bt), a SurfaceMap,
     CapabilityMap, ExplorationMap or an explore() result. `robot` (Robot or name) defaults to the one a surface
-    map records. `html`/`png` also write the scene as a static page / a screenshot. block=True serves until
-    Ctrl-C; otherwise the running Viewer is returned."""
+    map records; its configuration is `q`, else the map's reference posture (other arm tucked) or home, with
+    `joints` ({name: value}) set on top. `html`/`png` also write the scene as a static page / a screenshot.
+    block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
     loaded = [files.load(item) for item in items]
     if not loaded:
         raise ValueError("nothing to view: give a map file (.orsm, .orcm), a .bt file or a map object")
@@ -268,6 +270,11 @@ def view(*items, robot=None, q=None, samples: int = 5, seed: int = 1, port: int 
         if robot is not None and v.robot_layer is None:
             r = files.robot_by_name(robot) if isinstance(robot, str) else robot
             v.add_robot(r, q=q)
+        if joints and v.robot_layer is not None:
+            v.robot_layer.set_configuration(files.with_joints(v.robot_layer.meshes.robot, v.robot_layer.q, joints))
+        layer, rl = v.capability_map, v.robot_layer
+        if layer is not None and rl is not None and rl.meshes.robot.has_link(layer.cap.base_link):
+            layer.place(rl.base_pose @ rl.meshes.robot.link_poses(rl.q)[layer.cap.base_link])  # on the robot's arm
         if html:
             print(f"octoreach: wrote {v.save_html(html)}", flush=True)
         if png:

@@ -22,11 +22,7 @@ class CapabilityMapLayer:
         self.colours = colours.scale(self.values, 1.0)
         self.frame = scene.add_frame(name, show_axes=False)
         if base_pose is not None:
-            import viser.transforms as tf
-
-            T = np.asarray(base_pose, float)
-            self.frame.wxyz = tf.SO3.from_matrix(T[:3, :3]).wxyz
-            self.frame.position = T[:3, 3]
+            self.place(base_pose)
         lo = self.centres.min(axis=0) if len(self.centres) else np.zeros(3)
         hi = self.centres.max(axis=0) if len(self.centres) else np.zeros(3)
         self.z_range = (float(lo[2]), float(hi[2]))
@@ -36,6 +32,14 @@ class CapabilityMapLayer:
                                    position=(float((lo[0] + hi[0]) / 2), float((lo[1] + hi[1]) / 2), 0.0))
         self.shown = np.zeros(0, dtype=int)
         self.cut(self.z_range[1])
+
+    def place(self, base_pose) -> None:
+        """Puts the map's frame (the arm's base link) at the 4x4 world pose `base_pose`."""
+        import viser.transforms as tf
+
+        T = np.asarray(base_pose, float)
+        self.frame.wxyz = tf.SO3.from_matrix(T[:3, :3]).wxyz
+        self.frame.position = T[:3, 3]
 
     def cut(self, z: float) -> None:
         """Shows the voxels with centre z <= `z` and moves the slice plane there (arm base frame)."""

@@ -61,3 +61,14 @@ def reference_posture(robot, smap) -> np.ndarray:
             if robot.has_link(base) and robot.has_link(tip):
                 return np.asarray(default_reference(robot, robot.chain(base, tip)), float)
     return np.asarray(robot.home(), float)
+
+
+def with_joints(robot, q, joints: dict) -> np.ndarray:
+    """q with the named joints set (ValueError naming an unknown joint)."""
+    q = np.array(q, dtype=float)
+    names = list(robot.joint_names)
+    for name, value in joints.items():
+        if name not in names:
+            raise ValueError(f"unknown joint {name!r} of {robot.name}")
+        q[names.index(name)] = float(value)
+    return q
