@@ -54,6 +54,7 @@ class Viewer:
         # browsers, machines without a GPU); viser's default lights shade the scene.
         self.scene.configure_environment_map(None)
         self.scene.add_light_hemisphere("/lights/sky", intensity=1.1)
+        self.scene.configure_default_lights(cast_shadow=False)  # shadow maps streak the small cells
 
     # -- layers --------------------------------------------------------------------------------------
     def add_robot(self, robot, q=None, base_pose=None, urdf=None, package_dirs=None) -> RobotLayer:
@@ -99,7 +100,7 @@ class Viewer:
         self.capability_map = layer = CapabilityMapLayer(self.scene, cap, base_pose=base_pose)
         lo, hi = layer.z_range
         step = float(cap.resolution)
-        slider = self.server.gui.add_slider("slice z (m)", min=lo, max=max(hi, lo + step), step=step, initial_value=hi)
+        slider = self.server.gui.add_slider("slice z (m)", min=lo, max=max(hi, lo + step), step=step, initial_value=layer.z)
 
         @slider.on_update
         def _(_event) -> None:
@@ -274,7 +275,9 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
             v.robot_layer.set_configuration(files.with_joints(v.robot_layer.meshes.robot, v.robot_layer.q, joints))
         layer, rl = v.capability_map, v.robot_layer
         if layer is not None and rl is not None and rl.meshes.robot.has_link(layer.cap.base_link):
-            layer.place(rl.base_pose @ rl.meshes.robot.link_poses(rl.q)[layer.cap.base_link])  # on the robot's arm
+            T = rl.base_pose @ rl.meshes.robot.link_poses(rl.q)[layer.cap.base_link]
+            layer.place(T)  # on the robot's arm
+            v._frame_camera(layer.centres @ T[:3, :3].T + T[:3, 3])
         if html:
             print(f"octoreach: wrote {v.save_html(html)}", flush=True)
         if png:

@@ -31,7 +31,8 @@ class CapabilityMapLayer:
                                    dimensions=(float(size[0]), float(size[1]), 0.002), opacity=0.35,
                                    position=(float((lo[0] + hi[0]) / 2), float((lo[1] + hi[1]) / 2), 0.0))
         self.shown = np.zeros(0, dtype=int)
-        self.cut(self.z_range[1])
+        # First cut at the arm base's height (clipped into the map): shows the map's inside at once.
+        self.cut(min(max(0.0, self.z_range[0]), self.z_range[1]))
 
     def place(self, base_pose) -> None:
         """Puts the map's frame (the arm's base link) at the 4x4 world pose `base_pose`."""

@@ -23,7 +23,7 @@ def add_cells(scene, name: str, centres: np.ndarray, colours: np.ndarray, edge: 
     wxyz = np.tile(np.array([1.0, 0.0, 0.0, 0.0], dtype=np.float32), (n, 1))
     return scene.add_batched_meshes_simple(name, v, f, batched_wxyzs=wxyz, batched_positions=centres,
                                            batched_colors=np.asarray(colours, dtype=np.uint8).reshape(-1, 3),
-                                           lod="off", opacity=opacity, material="toon3", cast_shadow=False,
+                                           lod="off", opacity=opacity, cast_shadow=False,
                                            receive_shadow=False)
 
 
