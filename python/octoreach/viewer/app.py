@@ -128,7 +128,8 @@ class Viewer:
                 self._info.content = layer.step(int(slider.value))
 
         occupied = np.asarray(layer.map.cells("occupied"), float).reshape(-1, 3)
-        self._frame_camera(occupied if len(occupied) else np.zeros((1, 3)))
+        views = np.array([T[:3, 3] for T in layer.poses]).reshape(-1, 3)
+        self._frame_camera(np.vstack([occupied, views, np.zeros((0 if len(occupied) else 1, 3))]), distance=1.3)
         return layer
 
     # -- interaction ---------------------------------------------------------------------------------
@@ -198,7 +199,8 @@ class Viewer:
         self._watch_clicks(self.surface_map)
         return time.perf_counter() - t
 
-    def _frame_camera(self, points) -> None:
+    def _frame_camera(self, points, distance: float = 1.0) -> None:
+        """Initial camera: looking at the points' box from the front left, `distance` times its diagonal."""
         pts = np.asarray(points, float).reshape(-1, 3)
         if not len(pts):
             return
@@ -207,7 +209,7 @@ class Viewer:
         extent = float(max(np.linalg.norm(hi - lo), 1.0))
         cam = self.server.initial_camera
         cam.look_at = tuple(centre)
-        cam.position = tuple(centre + np.array([-0.45, -0.65, 0.55]) * extent)
+        cam.position = tuple(centre + np.array([-0.45, -0.65, 0.55]) * extent * distance)
         cam.up = (0.0, 0.0, 1.0)
         cam.fov = np.radians(50)
 

@@ -47,8 +47,10 @@ class ExplorationLayer:
         self.frusta = []
         for i, T in enumerate(self.poses):
             self.frusta.append(scene.add_camera_frustum(f"{name}/views/{i}", fov=fov, aspect=aspect, scale=0.12,
-                                                        color=colours.FRUSTUM, wxyz=_wxyz(T[:3, :3]),
+                                                        thickness=0.006, color=colours.FRUSTUM, wxyz=_wxyz(T[:3, :3]),
                                                         position=T[:3, 3]))
+        if self.frusta:
+            self.step(len(self.frusta) - 1)
         self.layers = {"occupied": [self.occupied], "frontiers": [self.frontier], "voids": [self.void],
                        "ellipsoids": self.ellipsoids, "views": self.frusta}
         self.counts = {"occupied": len(occupied), "frontier": len(frontier), "void": len(void),
