@@ -147,14 +147,19 @@ def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_p
 def test_exploration_layers(viewer):
     from types import SimpleNamespace
 
+    from octoreach.viewer import ExplorationRecorder
+
     emap = octoreach.ExplorationMap(resolution=0.05)
     g = np.linspace(-0.4, 0.4, 30)
-    wall = np.array([[1.0, y, z] for y in g for z in g + 0.5])
     origin = np.array([0.0, 0.0, 0.5])
-    emap.insert(wall, origin)
+    recorder = ExplorationRecorder()
+    emap.insert(np.array([[1.0, y, z] for y in g[:15] for z in g + 0.5]), origin)  # view 0: half the wall
+    recorder(None, emap, None)
+    emap.insert(np.array([[1.0, y, z] for y in g for z in g + 0.5]), origin)  # view 1: all of it
+    recorder(None, emap, None)
     poses = [octoreach.exploration.camera.look_at(origin, [1.0, 0.0, 0.5]),
              octoreach.exploration.camera.look_at([0.0, 0.3, 0.6], [1.0, 0.0, 0.5])]
-    layer = viewer.add_exploration(SimpleNamespace(map=emap, poses=poses, rows=[]))
+    layer = viewer.add_exploration(SimpleNamespace(map=emap, poses=poses, rows=[]), steps=recorder)
     assert layer.counts["occupied"] == len(emap.cells("occupied")) > 0
     assert layer.counts["frontier"] == len(emap.cells("frontier"))
     assert layer.counts["void"] == len(emap.cells("void"))
@@ -162,10 +167,14 @@ def test_exploration_layers(viewer):
     names = viewer.node_names()
     assert {"/exploration/occupied", "/exploration/frontiers", "/exploration/voids", "/exploration/views/0",
             "/exploration/views/1"} <= set(names)
+    assert not layer.void.visible  # voids start hidden
     layer.step(0)
     assert layer.frusta[0].visible and not layer.frusta[1].visible
+    assert layer.counts["occupied"] == len(recorder.states[0]["occupied"]) < len(emap.cells("occupied"))
     layer.set_visible("voids", True)
-    assert layer.void.visible
+    layer.step(1)
+    assert layer.void.visible and layer.frusta[1].visible
+    assert layer.counts["occupied"] == len(emap.cells("occupied"))
 
 
 def test_package_view_with_joints(arm_map):

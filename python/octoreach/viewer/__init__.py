@@ -9,5 +9,6 @@ files (what can be opened), app (the server and its controls), export (static HT
 Chromium screenshots and clicks).
 """
 from .app import Viewer, view  # noqa: F401
+from .exploration import ExplorationRecorder  # noqa: F401
 
-__all__ = ["Viewer", "view"]
+__all__ = ["ExplorationRecorder", "Viewer", "view"]

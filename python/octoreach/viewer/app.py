@@ -111,9 +111,10 @@ class Viewer:
         self._frame_camera(layer.centres)
         return layer
 
-    def add_exploration(self, source):
-        """An ExplorationMap (or an explore() result, or a .bt path) with a slider over its views."""
-        self.exploration = layer = ExplorationLayer(self.scene, files.exploration_map(source))
+    def add_exploration(self, source, steps=None):
+        """An ExplorationMap (or an explore() result, or a .bt path) with a slider over its views; `steps`: an
+        ExplorationRecorder passed to explore(on_view=...) for the map as it was after each view."""
+        self.exploration = layer = ExplorationLayer(self.scene, files.exploration_map(source), steps=steps)
         for key, handles in layer.layers.items():
             if not handles:
                 continue
@@ -122,6 +123,8 @@ class Viewer:
         if layer.frusta:
             slider = self.server.gui.add_slider("view", min=0, max=max(len(layer.frusta) - 1, 1), step=1,
                                                 initial_value=len(layer.frusta) - 1)
+
+            self._view_slider = slider
 
             @slider.on_update
             def _(_event) -> None:
@@ -133,6 +136,12 @@ class Viewer:
         return layer
 
     # -- interaction ---------------------------------------------------------------------------------
+    def show_view(self, view: int) -> None:
+        """Steps the exploration to view `view` (as its slider does)."""
+        if getattr(self, "_view_slider", None) is not None:
+            self._view_slider.value = view
+        self._info.content = self.exploration.step(int(view))
+
     def stand(self, pose4, reference_frame: str | None = None) -> None:
         """Moves the robot so that its reference frame (default: root link) is at base pose (x, y, z, theta)."""
         from .._core import base_pose
@@ -252,11 +261,12 @@ class Viewer:
 
 def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
          host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
-         verbose: bool = True) -> Viewer:
+         steps=None, verbose: bool = True) -> Viewer:
     """Shows maps and explorations in the browser: each item is a file path (.orsm, .orcm, .bt), a SurfaceMap,
     CapabilityMap, ExplorationMap or an explore() result. `robot` (Robot or name) defaults to the one a surface
     map records; its configuration is `q`, else the map's reference posture (other arm tucked) or home, with
-    `joints` ({name: value}) set on top. `html`/`png` also write the scene as a static page / a screenshot.
+    `joints` ({name: value}) set on top. `steps`: an ExplorationRecorder for an explore() result (the map after
+    each view on the view slider). `html`/`png` also write the scene as a static page / a screenshot.
     block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
     loaded = [files.load(item) for item in items]
     if not loaded:
@@ -269,7 +279,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
             elif kind == "capability_map":
                 v.add_capability_map(obj)
             else:
-                v.add_exploration(obj)
+                v.add_exploration(obj, steps=steps)
         if robot is not None and v.robot_layer is None:
             r = files.robot_by_name(robot) if isinstance(robot, str) else robot
             v.add_robot(r, q=q)
