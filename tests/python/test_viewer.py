@@ -189,3 +189,12 @@ def test_package_view_with_joints(arm_map):
         v.close()
     with pytest.raises(ValueError, match="unknown joint"):
         octoreach.view(sm, joints={"nope": 1.0}, samples=0, block=False, port=_free_port(), verbose=False)
+
+
+def test_empty_surface_map_warns(arm_map, viewer, capsys):
+    robot, cap, _ = arm_map
+    empty = octoreach.SurfaceMap.build(robot, cap, octoreach.Surface.rectangle(0.3, 0.3, 5.0), resolution=0.15,
+                                       z_range=(0, 0), progress=False)
+    layer = viewer.add_surface_map(empty, samples=3)
+    assert len(layer.shown) == 0 and len(viewer.samples.poses) == 0
+    assert "empty surface map" in capsys.readouterr().err

@@ -8,6 +8,7 @@
 """
 from __future__ import annotations
 
+import sys
 import threading
 import time
 
@@ -78,8 +79,14 @@ class Viewer:
         if isinstance(robot, str):
             robot = files.robot_by_name(robot)
         if robot is not None:
+            if smap.urdf_hash and robot.urdf_hash != smap.urdf_hash:
+                print(f"octoreach: warning: the map was built for another robot model ({smap.robot_name}) than "
+                      f"{robot.name}'s URDF", file=sys.stderr)
             q = files.reference_posture(robot, smap) if q is None else q
             self.add_robot(robot, q=q)
+        if smap.voxel_count == 0:
+            print(f"octoreach: warning: empty surface map: {smap.empty_reason}", file=sys.stderr)
+            samples = 0
         footprint = self.robot_layer.meshes.footprint(self.robot_layer.q) if self.robot_layer else \
             np.array([[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]])
         obstacles = Surface(polygon, surface_thickness).obstacles() if len(polygon) >= 3 else None

@@ -20,7 +20,7 @@ class SurfaceMapLayer:
         self.scene, self.smap, self.name = scene, smap, name
         centres, values = smap.voxels()
         self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
-        self.values = np.asarray(values, dtype=float).reshape(len(self.centres), -1)
+        self.values = np.asarray(values, dtype=float).reshape(len(self.centres), smap.theta_bins)
         self.vmax = float(smap.max_reachability) or 1.0
         self.edge = float(smap.resolution)
         self.tile_height = self.edge * 0.2
