@@ -5,6 +5,7 @@ from __future__ import annotations
 import socket
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -38,6 +39,18 @@ def _free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+def _changed(browser, before: np.ndarray, timeout: float = 10.0) -> np.ndarray:
+    """The page's pixels once they differ from `before` (and have settled)."""
+    t_end = time.time() + timeout
+    while time.time() < t_end:
+        time.sleep(0.2)
+        px = browser.pixels()
+        if np.abs(px.astype(int) - before).mean() > 0.01:
+            time.sleep(0.3)
+            return browser.pixels()
+    raise AssertionError("the page did not change")
 
 
 def _near(pixels: np.ndarray, colour, tol: int) -> np.ndarray:
@@ -117,13 +130,32 @@ def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_p
         px = b.pixels()
         assert open(shot, "rb").read().startswith(b"\x89PNG")
         assert px.std() > 20, "blank page"
-        # The map: pixels of the cells' colours (at least a third of the distinct ones seen on screen).
+        # The map: pixels of the cells' colours (at least a third of the distinct ones seen on screen)...
         distinct = np.unique(cell_colours // 16, axis=0) * 16 + 8
-        seen = sum(_near(px, c, 24).sum() > 20 for c in distinct)
-        assert seen >= max(2, len(distinct) // 3), (seen, len(distinct))
-        # The robot: grey, unsaturated pixels that are neither background nor GUI white.
-        grey = (px.max(axis=-1).astype(int) - px.min(axis=-1) < 12) & (px.mean(axis=-1) > 90) & (px.mean(axis=-1) < 215)
-        assert grey.sum() > 300, grey.sum()
+
+        def map_pixels(img):
+            return sum(int(_near(img, c, 24).sum()) for c in distinct)
+
+        def seen(img):
+            return sum(_near(img, c, 24).sum() > 20 for c in distinct)
+
+        # ...and the robot: grey, unsaturated pixels, neither background nor GUI white.
+        def grey_pixels(img):
+            spread = img.max(axis=-1).astype(int) - img.min(axis=-1)
+            mean = img.mean(axis=-1)
+            return int(((spread < 12) & (mean > 90) & (mean < 215)).sum())
+
+        assert seen(px) >= max(2, len(distinct) // 3), (seen(px), len(distinct))
+        # Both must be the scene's own: hiding the robot, then the map, removes those pixels.
+        viewer.robot_layer.root.visible = False
+        no_robot = _changed(b, px)
+        assert grey_pixels(px) - grey_pixels(no_robot) > 500, (grey_pixels(px), grey_pixels(no_robot))
+        layer.handle.visible = False
+        no_map = _changed(b, no_robot)
+        assert map_pixels(no_robot) - map_pixels(no_map) > 2000, (map_pixels(no_robot), map_pixels(no_map))
+        viewer.robot_layer.root.visible = True
+        layer.handle.visible = True
+        px = _changed(b, no_map)
 
         # A real click on a cell: aim at the cell nearest the camera (least likely to be hidden).
         client = next(iter(viewer.server.get_clients().values()))
