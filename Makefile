@@ -31,7 +31,7 @@ $(VENV)/.build-deps: $(VENV)/.created pyproject.toml
 
 $(BUILD)/.installed: $(VENV)/.build-deps $(SOURCES)
 	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PIP) install --no-build-isolation \
-	  -Cbuild-dir=$(BUILD) -Ccmake.define.BUILD_TESTING=ON ".[robots,test]"
+	  -Cbuild-dir=$(BUILD) -Ccmake.define.BUILD_TESTING=ON ".[robots,test,viewer]"
 	@touch $@
 
 install: sysdeps $(BUILD)/.installed

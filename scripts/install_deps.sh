@@ -7,6 +7,7 @@ PACKAGES=(
   python3 python3-dev python3-venv python3-pip
   libeigen3-dev liboctomap-dev liborocos-kdl-dev liburdfdom-dev libtinyxml-dev
   libfcl-dev libccd-dev libqhull-dev libassimp-dev libgtest-dev zlib1g-dev
+  chromium chromium-driver
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

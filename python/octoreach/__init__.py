@@ -52,9 +52,19 @@ from ._core import (  # noqa: F401
 from . import exploration  # noqa: F401
 from .exploration import explore  # noqa: F401
 
+
+
+def view(*items, **kwargs):
+    """Shows maps, samples and explorations in 3D in the browser (octoreach.viewer.view; needs the viewer
+    extra)."""
+    from .viewer import view as _view
+
+    return _view(*items, **kwargs)
+
+
 __all__ = ["Arm", "Cancelled", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
            "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
            "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
            "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
-            "exploration", "explore"]
+            "exploration", "explore", "view"]

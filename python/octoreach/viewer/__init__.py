@@ -1,0 +1,14 @@
+"""octoreach's 3D viewer in the browser (viser): robots, surface and capability maps, samples, explorations.
+
+    octoreach.view("demo_out/table_either_arm.orsm")       # or: octoreach view FILE... on the command line
+
+One concept per file: robot_meshes (the URDF's visual meshes at link poses), surfaces (the work surface),
+surface_map (cells per theta), capability_map (voxels and slice plane), samples (footprints and arrows),
+exploration (cells, frontiers, voids, ellipsoids, frusta), cells (batched boxes and picking), colours,
+files (what can be opened), app (the server and its controls), export (static HTML), browser (headless
+Chromium screenshots and clicks).
+"""
+from .app import Viewer, view  # noqa: F401
+from .exploration import ExplorationRecorder  # noqa: F401
+
+__all__ = ["ExplorationRecorder", "Viewer", "view"]

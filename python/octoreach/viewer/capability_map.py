@@ -1,0 +1,56 @@
+"""A capability map in the scene: its voxels coloured by reachability index, cut by a horizontal slice plane.
+
+Voxel centres and values come from the compiled ``CapabilityMap.voxels()``; the viewer only selects the
+voxels below the plane.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import cells, colours
+
+
+class CapabilityMapLayer:
+    """Voxels under `name` (arm base frame placed at `base_pose`); `cut(z)` shows those with centre z <= z."""
+
+    def __init__(self, scene, cap, name: str = "/capability_map", base_pose=None):
+        self.scene, self.cap, self.name = scene, cap, name
+        centres, values = cap.voxels()
+        self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
+        self.values = np.asarray(values, dtype=float).reshape(-1)
+        self.edge = float(cap.resolution)
+        self.colours = colours.scale(self.values, 1.0)
+        self.frame = scene.add_frame(name, show_axes=False)
+        if base_pose is not None:
+            self.place(base_pose)
+        lo = self.centres.min(axis=0) if len(self.centres) else np.zeros(3)
+        hi = self.centres.max(axis=0) if len(self.centres) else np.zeros(3)
+        self.z_range = (float(lo[2]), float(hi[2]))
+        size = (hi - lo)[:2] + self.edge
+        self.plane = scene.add_box(f"{name}/slice_plane", color=colours.SLICE_PLANE,
+                                   dimensions=(float(size[0]), float(size[1]), 0.002), opacity=0.35,
+                                   position=(float((lo[0] + hi[0]) / 2), float((lo[1] + hi[1]) / 2), 0.0))
+        self.shown = np.zeros(0, dtype=int)
+        # First cut at the arm base's height (clipped into the map): shows the map's inside at once.
+        self.cut(min(max(0.0, self.z_range[0]), self.z_range[1]))
+
+    def place(self, base_pose) -> None:
+        """Puts the map's frame (the arm's base link) at the 4x4 world pose `base_pose`."""
+        import viser.transforms as tf
+
+        T = np.asarray(base_pose, float)
+        self.frame.wxyz = tf.SO3.from_matrix(T[:3, :3]).wxyz
+        self.frame.position = T[:3, 3]
+
+    def cut(self, z: float) -> None:
+        """Shows the voxels with centre z <= `z` and moves the slice plane there (arm base frame)."""
+        self.z = float(z)
+        self.shown = np.flatnonzero(self.centres[:, 2] <= self.z + 1e-9)
+        self.handle = cells.add_cells(self.scene, f"{self.name}/voxels", self.centres[self.shown],
+                                      self.colours[self.shown], self.edge * 0.9)
+        p = self.plane.position
+        self.plane.position = (p[0], p[1], self.z + self.edge / 2)
+
+    def value(self, index: int) -> float:
+        """Reachability index of shown voxel `index` (the compiled map's lookup at its centre)."""
+        return float(self.cap.reachability(self.centres[self.shown[index]][None, :])[0])

@@ -1,0 +1,74 @@
+"""What the viewer can open: map files, .bt occupancy files, map objects, robots by name."""
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+
+def load(item):
+    """(kind, object) of a path or object; kind is "surface_map", "capability_map" or "exploration".
+    A file that is not a map: OSError/ValueError naming it."""
+    from .._core import CapabilityMap, ExplorationMap, InversePointMap, SurfaceMap
+
+    if isinstance(item, SurfaceMap):
+        return "surface_map", item
+    if isinstance(item, CapabilityMap):
+        return "capability_map", item
+    if isinstance(item, ExplorationMap) or hasattr(item, "map") and isinstance(item.map, ExplorationMap):
+        return "exploration", item
+    if not isinstance(item, (str, os.PathLike)):
+        raise ValueError(f"cannot view a {type(item).__name__}: give a map file or a map object")
+    path = os.fspath(item)
+    if not os.path.isfile(path):
+        raise OSError(f"{path}: no such file")
+    if path.endswith(".bt"):
+        return "exploration", ExplorationMap.from_file(path)
+    from ..cli import _load_any_map  # the command line's loader: tries every map kind, one error if none
+
+    m = _load_any_map(path)
+    if isinstance(m, InversePointMap):
+        raise ValueError(f"{path}: an inverse point map; the viewer shows surface and capability maps")
+    return ("surface_map" if isinstance(m, SurfaceMap) else "capability_map"), m
+
+
+def exploration_map(source):
+    """An ExplorationMap or explore() result as given, or the map of a .bt path."""
+    if isinstance(source, (str, os.PathLike)):
+        return load(source)[1]
+    return source
+
+
+def robot_by_name(name: str):
+    from .. import robots
+    from .._core import Robot
+
+    own = name[len("octoreach_"):] if name.startswith("octoreach_") else name
+    try:
+        return Robot.from_urdf(str(robots.project_urdf(own)))  # the project's own robots (urdf/)
+    except ValueError:
+        return robots.load(name)
+
+
+def reference_posture(robot, smap) -> np.ndarray:
+    """The posture the map was built with: the default reference of its first arm ("base->tip" in smap.arms),
+    or home."""
+    from .._core import default_reference
+
+    for token in str(smap.arms).split():
+        if "->" in token:
+            base, tip = token.split("->", 1)
+            if robot.has_link(base) and robot.has_link(tip):
+                return np.asarray(default_reference(robot, robot.chain(base, tip)), float)
+    return np.asarray(robot.home(), float)
+
+
+def with_joints(robot, q, joints: dict) -> np.ndarray:
+    """q with the named joints set (ValueError naming an unknown joint)."""
+    q = np.array(q, dtype=float)
+    names = list(robot.joint_names)
+    for name, value in joints.items():
+        if name not in names:
+            raise ValueError(f"unknown joint {name!r} of {robot.name}")
+        q[names.index(name)] = float(value)
+    return q

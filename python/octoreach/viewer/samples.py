@@ -1,0 +1,57 @@
+"""Sampled base poses in the scene: the robot's footprint at each pose, an arrow along its heading, R_S."""
+from __future__ import annotations
+
+import numpy as np
+
+from . import colours
+
+
+def outline_segments(footprint: np.ndarray, pose4, lift: float = 0.04) -> np.ndarray:
+    """Line segments (K, 2, 3) of a closed xy outline (K, 2) placed at base pose (x, y, z, theta), `lift` m up."""
+    from .._core import base_pose
+
+    T = base_pose(np.asarray(pose4, dtype=float))
+    p = np.column_stack([footprint, np.full(len(footprint), lift)])
+    w = p @ T[:3, :3].T + T[:3, 3]
+    return np.stack([w, np.roll(w, -1, axis=0)], axis=1)
+
+
+class SamplesLayer:
+    """Poses (N, 4) drawn as footprints plus arrows, each labelled with its R_S."""
+
+    def __init__(self, scene, poses, rs, footprint: np.ndarray, name: str = "/samples", lift: float = 0.04):
+        """`lift`: height above each pose at which outlines and arrows are drawn (above the map's tiles)."""
+        from .._core import base_pose
+
+        self.poses = np.asarray(poses, dtype=float).reshape(-1, 4)
+        self.rs = np.asarray(rs, dtype=float).reshape(-1)
+        if len(self.poses) == 0:
+            return
+        segs = np.concatenate([outline_segments(footprint, p, lift) for p in self.poses])
+        scene.add_line_segments(f"{name}/footprints", segs.astype(np.float32), colours.FOOTPRINT, thickness=0.015)
+        reach = float(np.ptp(footprint, axis=0).max()) * 0.6
+        arrows = []
+        for p in self.poses:
+            T = base_pose(p)
+            start = T[:3, 3] + [0.0, 0.0, lift + 0.02]
+            arrows.append([start, start + T[:3, 0] * max(reach, 0.15)])
+        scene.add_arrows(f"{name}/headings", np.asarray(arrows, dtype=np.float32),
+                         np.tile(np.array(colours.ARROW, np.uint8), (len(arrows), 1)),
+                         shaft_radius=0.015, head_radius=0.04, head_length=0.08)
+        for i, (p, r) in enumerate(zip(self.poses, self.rs)):
+            scene.add_label(f"{name}/label_{i}", f"R_S {r:.2f}", position=(p[0], p[1], p[2] + lift + 0.08))
+
+
+def sample_poses(smap, count: int, seed: int = 1, robot=None, obstacles=None, reference=None):
+    """`count` well spread base poses from the compiled PoseSampler (checked against `obstacles` with the
+    robot at `reference` when given) and their R_S."""
+    from .._core import PoseSampler
+
+    if count <= 0:
+        return np.zeros((0, 4)), np.zeros(0)
+    kwargs = {}
+    if robot is not None and obstacles is not None and reference is not None:
+        kwargs["in_collision"] = (robot, obstacles, reference)
+    sampler = PoseSampler(smap, seed=seed, **kwargs)
+    poses = np.asarray(sampler.sample(count), dtype=float).reshape(-1, 4)
+    return poses, smap.reachability(poses)

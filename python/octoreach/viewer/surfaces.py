@@ -1,0 +1,30 @@
+"""The work surface (the map's table or shelf polygon) as a slab in the scene."""
+from __future__ import annotations
+
+import numpy as np
+
+from . import colours
+
+
+def slab(vertices, thickness: float) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and triangles of the polygon (K, 3) extruded `thickness` downwards (fan triangulation:
+    exact for convex polygons, which is what surfaces are in practice)."""
+    top = np.asarray(vertices, dtype=float).reshape(-1, 3)
+    k = len(top)
+    bottom = top - np.array([0.0, 0.0, thickness])
+    v = np.vstack([top, bottom]).astype(np.float32)
+    faces = []
+    for i in range(1, k - 1):
+        faces.append([0, i, i + 1])
+        faces.append([k, k + i + 1, k + i])
+    for i in range(k):
+        j = (i + 1) % k
+        faces.append([i, k + i, k + j])
+        faces.append([i, k + j, j])
+    return v, np.array(faces, dtype=np.uint32)
+
+
+def add_surface(scene, vertices, thickness: float = 0.03, name: str = "/surface"):
+    """Adds the surface polygon as a double-sided slab; returns the handle."""
+    v, f = slab(vertices, thickness)
+    return scene.add_mesh_simple(name, v, f, color=colours.SURFACE, side="double", cast_shadow=False)

@@ -1,0 +1,232 @@
+"""The 3D viewer (octoreach.viewer) in a real browser: headless Chromium loads the page, the screenshot shows
+the robot and the map, a real mouse click on a cell reports the cell's R_S (checked against reachability())."""
+from __future__ import annotations
+
+import socket
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import octoreach
+from octoreach.viewer import Viewer, colours
+from octoreach.viewer.browser import Browser, chromium_missing
+
+_MISSING = chromium_missing()
+needs_chromium = pytest.mark.skipif(_MISSING is not None, reason=f"no headless browser: {_MISSING}")
+
+
+@pytest.fixture(scope="module")
+def arm_map():
+    robot = octoreach.robots.test_arm()
+    cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.15, directions=24,
+                                        progress=False)
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)
+    sm = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.15, z_range=(0, 0), progress=False)
+    return robot, cap, sm
+
+
+@pytest.fixture
+def viewer():
+    v = Viewer(port=_free_port(), verbose=False)
+    yield v
+    v.close()
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _changed(browser, before: np.ndarray, timeout: float = 10.0) -> np.ndarray:
+    """The page's pixels once they differ from `before` (and have settled)."""
+    t_end = time.time() + timeout
+    while time.time() < t_end:
+        time.sleep(0.2)
+        px = browser.pixels()
+        if np.abs(px.astype(int) - before).mean() > 0.01:
+            time.sleep(0.3)
+            return browser.pixels()
+    raise AssertionError("the page did not change")
+
+
+def _near(pixels: np.ndarray, colour, tol: int) -> np.ndarray:
+    return (np.abs(pixels.astype(int) - np.asarray(colour, int)) <= tol).all(axis=-1)
+
+
+def test_scene_nodes_and_theta_slider(arm_map, viewer):
+    robot, _, sm = arm_map
+    layer = viewer.add_surface_map(sm, samples=3)  # the robot comes from the map's robot name
+    names = viewer.node_names()
+    for node in ("/robot", "/robot/base_link", "/robot/tool0" if "tool0" in viewer.robot_layer.links else
+                 "/robot/wrist_3_link", "/surface", "/surface_map", "/samples/footprints", "/samples/headings"):
+        assert node in names, (node, names)
+    centres, values = sm.voxels()
+    # Best theta: every voxel with R_S > 0 is shown; one theta bin: exactly the voxels with R_S > 0 there.
+    assert len(layer.shown) == len(centres)
+    for k in (0, 5):
+        viewer.show_theta(k)
+        assert set(layer.shown) == set(np.flatnonzero(np.asarray(values)[:, k] > 0))
+        i = int(np.argmax(np.asarray(values)[layer.shown, k]))
+        pose = layer.cell_pose(i)
+        assert pose[3] == pytest.approx(2 * np.pi * k / sm.theta_bins)
+        sel = viewer.select_cell(i)
+        assert sel["rs"] == pytest.approx(float(sm.reachability(pose[None, :])[0]))
+        assert sel["rs"] == pytest.approx(float(np.asarray(values)[layer.shown[i], k]), abs=1e-6)
+        # The robot stands at the clicked pose: its root link (= the map's reference frame) there.
+        assert np.allclose(viewer.robot_layer.base_pose, octoreach.base_pose(pose))
+
+
+def test_capability_map_slice(arm_map, viewer):
+    _, cap, _ = arm_map
+    layer = viewer.add_capability_map(cap)
+    centres, _ = cap.voxels()
+    z = float(np.median(np.asarray(centres)[:, 2]))
+    layer.cut(z)
+    assert len(layer.shown) == int((np.asarray(centres)[:, 2] <= z + 1e-9).sum()) > 0
+    assert layer.value(0) == pytest.approx(float(cap.reachability(np.asarray(centres)[layer.shown[:1]])[0]))
+
+
+def test_static_html(arm_map, viewer, tmp_path):
+    viewer.add_surface_map(arm_map[2], samples=2)
+    path = viewer.save_html(tmp_path / "scene.html")
+    text = open(path, encoding="utf-8").read()
+    assert "__VISER_EMBED_DATA__" in text and len(text) > 100_000
+
+
+def test_port_in_use_picks_another(arm_map):
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        s.listen(1)
+        port = s.getsockname()[1]
+        v = Viewer(port=port, verbose=False)
+        try:
+            assert v.server.get_port() != port and v.url.endswith(f":{v.server.get_port()}")
+        finally:
+            v.close()
+
+
+def test_cli_not_a_map(tmp_path):
+    bad = tmp_path / "notes.orsm"
+    bad.write_text("not a map\n")
+    r = subprocess.run([sys.executable, "-m", "octoreach.cli", "view", str(bad)], capture_output=True, text=True)
+    assert r.returncode == 2
+    assert r.stderr.startswith("octoreach: error:") and "not an octoreach map" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+
+
+@needs_chromium
+def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_path):
+    robot, _, sm = arm_map
+    layer = viewer.add_surface_map(sm, robot=robot, samples=3)
+    rs_shown = layer.values[layer.shown].max(axis=1)
+    cell_colours = colours.scale(rs_shown, layer.vmax)
+    with Browser(1024, 700) as b:
+        b.open(viewer.url, viewer)
+        shot = b.screenshot(tmp_path / "viewer.png")
+        px = b.pixels()
+        assert open(shot, "rb").read().startswith(b"\x89PNG")
+        assert px.std() > 20, "blank page"
+        # The map: pixels of the cells' colours (at least a third of the distinct ones seen on screen)...
+        distinct = np.unique(cell_colours // 16, axis=0) * 16 + 8
+
+        def map_pixels(img):
+            return sum(int(_near(img, c, 24).sum()) for c in distinct)
+
+        def seen(img):
+            return sum(_near(img, c, 24).sum() > 20 for c in distinct)
+
+        # ...and the robot: grey, unsaturated pixels, neither background nor GUI white.
+        def grey_pixels(img):
+            spread = img.max(axis=-1).astype(int) - img.min(axis=-1)
+            mean = img.mean(axis=-1)
+            return int(((spread < 12) & (mean > 90) & (mean < 215)).sum())
+
+        assert seen(px) >= max(2, len(distinct) // 3), (seen(px), len(distinct))
+        # Both must be the scene's own: hiding the robot, then the map, removes those pixels.
+        viewer.robot_layer.root.visible = False
+        no_robot = _changed(b, px)
+        assert grey_pixels(px) - grey_pixels(no_robot) > 500, (grey_pixels(px), grey_pixels(no_robot))
+        layer.handle.visible = False
+        no_map = _changed(b, no_robot)
+        assert map_pixels(no_robot) - map_pixels(no_map) > 2000, (map_pixels(no_robot), map_pixels(no_map))
+        viewer.robot_layer.root.visible = True
+        layer.handle.visible = True
+        px = _changed(b, no_map)
+
+        # A real click on a cell: aim at the cell nearest the camera (least likely to be hidden).
+        client = next(iter(viewer.server.get_clients().values()))
+        canvas = b.canvas()
+        w, h = canvas.size["width"], canvas.size["height"]
+        top = layer.centres[layer.shown] + [0.0, 0.0, layer.tile_height / 2]
+        pix = np.array([b.project(client.camera, p) for p in top])
+        ok = (pix[:, 0] > 40) & (pix[:, 0] < 0.6 * w) & (pix[:, 1] > 40) & (pix[:, 1] < h - 40)
+        assert ok.any()
+        target = int(np.flatnonzero(ok)[np.argmax(pix[ok, 1])])
+        b.click(*pix[target])
+        sel = viewer.wait_for_click(10.0)
+        assert sel is not None, "the click reached no cell"
+        assert sel["index"] == target
+        pose = layer.cell_pose(target)
+        assert sel["rs"] == pytest.approx(float(sm.reachability(pose[None, :])[0]))
+        assert sel["rs"] > 0
+        assert np.allclose(viewer.robot_layer.base_pose, octoreach.base_pose(pose))
+
+
+def test_exploration_layers(viewer):
+    from types import SimpleNamespace
+
+    from octoreach.viewer import ExplorationRecorder
+
+    emap = octoreach.ExplorationMap(resolution=0.05)
+    g = np.linspace(-0.4, 0.4, 30)
+    origin = np.array([0.0, 0.0, 0.5])
+    recorder = ExplorationRecorder()
+    emap.insert(np.array([[1.0, y, z] for y in g[:15] for z in g + 0.5]), origin)  # view 0: half the wall
+    recorder(None, emap, None)
+    emap.insert(np.array([[1.0, y, z] for y in g for z in g + 0.5]), origin)  # view 1: all of it
+    recorder(None, emap, None)
+    poses = [octoreach.exploration.camera.look_at(origin, [1.0, 0.0, 0.5]),
+             octoreach.exploration.camera.look_at([0.0, 0.3, 0.6], [1.0, 0.0, 0.5])]
+    layer = viewer.add_exploration(SimpleNamespace(map=emap, poses=poses, rows=[]), steps=recorder)
+    assert layer.counts["occupied"] == len(emap.cells("occupied")) > 0
+    assert layer.counts["frontier"] == len(emap.cells("frontier"))
+    assert layer.counts["void"] == len(emap.cells("void"))
+    assert layer.counts["ellipsoids"] == len(emap.void_clusters())
+    names = viewer.node_names()
+    assert {"/exploration/occupied", "/exploration/frontiers", "/exploration/voids", "/exploration/views/0",
+            "/exploration/views/1"} <= set(names)
+    assert not layer.void.visible  # voids start hidden
+    layer.step(0)
+    assert layer.frusta[0].visible and not layer.frusta[1].visible
+    assert layer.counts["occupied"] == len(recorder.states[0]["occupied"]) < len(emap.cells("occupied"))
+    layer.set_visible("voids", True)
+    layer.step(1)
+    assert layer.void.visible and layer.frusta[1].visible
+    assert layer.counts["occupied"] == len(emap.cells("occupied"))
+
+
+def test_package_view_with_joints(arm_map):
+    robot, _, sm = arm_map
+    name = robot.joint_names[1]
+    v = octoreach.view(sm, joints={name: 0.7}, samples=1, block=False, port=_free_port(), verbose=False)
+    try:
+        assert v.robot_layer.q[1] == 0.7
+        T = robot.link_poses(v.robot_layer.q)["upper_arm_link"]
+        assert np.allclose(v.robot_layer.links["upper_arm_link"].position, T[:3, 3], atol=1e-6)
+    finally:
+        v.close()
+    with pytest.raises(ValueError, match="unknown joint"):
+        octoreach.view(sm, joints={"nope": 1.0}, samples=0, block=False, port=_free_port(), verbose=False)
+
+
+def test_empty_surface_map_warns(arm_map, viewer, capsys):
+    robot, cap, _ = arm_map
+    empty = octoreach.SurfaceMap.build(robot, cap, octoreach.Surface.rectangle(0.3, 0.3, 5.0), resolution=0.15,
+                                       z_range=(0, 0), progress=False)
+    layer = viewer.add_surface_map(empty, samples=3)
+    assert len(layer.shown) == 0 and len(viewer.samples.poses) == 0
+    assert "empty surface map" in capsys.readouterr().err
