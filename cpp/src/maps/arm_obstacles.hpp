@@ -1,0 +1,60 @@
+#pragma once
+// Private: does an arm, at the joint solution a capability map stored, touch an obstacle of the
+// room (boxes, meshes, OctoMaps, other surfaces)? Cheapest test first: the obstacles near the arm's
+// whole reach at a base pose, then the arm's bounding box at that solution, then FCL per link.
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include <fcl/math/bv/AABB.h>
+
+#include "octoreach/arm.hpp"
+#include "octoreach/capability_map.hpp"
+#include "octoreach/collision.hpp"
+
+namespace octoreach::detail {
+
+/// Arm-frame bounding box of a stored joint solution (links moved by the arm, gripper included).
+struct ArmBox {
+  Eigen::Vector3f lo, hi;
+};
+
+/// The obstacles near the arm at one base pose, as boxes in the arm frame.
+struct NearObstacles {
+  std::vector<Eigen::Vector3d> lo, hi;
+  bool empty() const { return lo.empty(); }
+};
+
+/// Arm boxes of capability cells and the checks against a set of obstacles. Thread-safe for const
+/// use once compute() has run.
+class ArmObstacles {
+ public:
+  ArmObstacles(const Robot& robot, const CapabilityMap& capability, const ArmPlacement& place,
+               std::shared_ptr<const Obstacles> obstacles);
+  bool empty() const { return !obstacles_ || obstacles_->empty(); }
+  /// Arm boxes of every (record, orientation) with a solution (parallel).
+  void compute(int threads);
+  /// Obstacles whose world box meets the arm's whole reach when the arm base is at `world_from_arm`.
+  void near(const Pose& world_from_arm, NearObstacles& out) const;
+  /// True when the arm at the stored solution of (rec, orient) touches an obstacle; the root link at
+  /// `world_from_root`. `poses` is scratch.
+  bool collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_root,
+                std::vector<Pose>& poses) const;
+
+ private:
+  std::uint64_t key(std::uint32_t rec, int orient) const { return static_cast<std::uint64_t>(rec) * orientations_ + orient; }
+  const Robot& robot_;
+  const CapabilityMap& cap_;
+  Chain arm_;
+  Eigen::VectorXd reference_;
+  std::vector<int> links_;          // links moved by the arm (arm and tool roles)
+  Pose arm_from_root_;
+  int orientations_;
+  std::shared_ptr<const Obstacles> obstacles_;
+  std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
+  std::unordered_map<std::uint64_t, ArmBox> arm_boxes_;
+  Eigen::Vector3d reach_lo_, reach_hi_;  // union of the arm boxes (arm frame)
+};
+
+}  // namespace octoreach::detail
