@@ -394,6 +394,8 @@ def surface_from_file(path: str | os.PathLike) -> tuple[Surface, Obstacles]:
     try:
         room = Room({"surfaces": [data]}, base_dir=path.parent)
     except (ValueError, TypeError) as e:
-        raise type(e)(f"polygon file {str(path)!r}: {str(e).replace('surfaces[0] ', '')}") from None
+        where = "surfaces[0] ('surface')"
+        message = str(e).replace(where + ": ", "").replace(where, "surface")
+        raise type(e)(f"polygon file {str(path)!r}: {message}") from None
     (surface,) = room.surfaces.values()
     return surface, room.obstacles(without=next(iter(room.surfaces)))
