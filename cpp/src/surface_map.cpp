@@ -288,11 +288,13 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   detail::ArmClearance clearance(robot, cap, place, o.grasp_height);
   b.clearance = &clearance;
   detail::ArmObstacles arm_obstacles(robot, cap, place, others);
-  if (o.check_arm) arm_obstacles.compute(o.threads);
   b.obstacles = &arm_obstacles;
   if (b.upright && o.check_arm) {
     auto [za_lo, za_hi] = target_heights_in_arm(b, g);
     clearance.compute_shared(za_lo, za_hi, o.threads);
+    arm_obstacles.compute(o.threads, za_lo, za_hi);
+  } else if (o.check_arm) {
+    arm_obstacles.compute(o.threads);
   }
 
   const int T = o.theta_bins;

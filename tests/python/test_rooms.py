@@ -1,6 +1,7 @@
 """Rooms: every obstacle checked against body and arm, scene files, and the conventions (floor, radians, NaN)."""
 from __future__ import annotations
 
+import itertools
 import json
 from pathlib import Path
 
@@ -90,8 +91,12 @@ def _tiago():
         robot = octoreach.Robot.from_urdf(str(urdf), package_dirs=[str(root.parent), str(root / "robots")])
     chain = robot.chain("torso_lift_link", "hand_grasping_frame")
     ref = octoreach.default_reference(robot, chain)
-    if robot.in_self_collision(ref):  # before allowed-collision sampling is automatic: sample it here
-        robot = robot.with_allowed_collisions(robot.compute_allowed_collisions(samples=300, seed=1, progress=False))
+    if robot.in_self_collision(ref):  # before the loader samples allowed collisions: sample them here
+        robot = robot.with_allowed_collisions(robot.compute_allowed_collisions(samples=300, seed=1))
+        allowed = {tuple(sorted(p)) for p in robot.allowed_collisions}
+        rest = [p for p in itertools.combinations(sorted(robot.collision_links), 2) if p not in allowed]
+        robot = robot.with_allowed_collisions(
+            [p for p in rest if robot.with_allowed_collisions([c for c in rest if c != p]).in_self_collision(ref)])
     return robot
 
 

@@ -1,6 +1,7 @@
 #include "arm_obstacles.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include <fcl/fcl.h>
@@ -39,17 +40,40 @@ ArmObstacles::ArmObstacles(const Robot& robot, const CapabilityMap& cap, const A
     for (const auto& o : obstacles_->objects()) boxes_.push_back(o->getAABB());
 }
 
-void ArmObstacles::compute(int threads) {
+namespace {
+
+// Centimetre box rounded outwards; the arm frame spans far less than +-327 m.
+void put_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::int16_t* out) {
+  for (int k = 0; k < 3; ++k) {
+    out[k] = static_cast<std::int16_t>(std::max(-32000.0, std::floor(lo[k] * 100)));
+    out[3 + k] = static_cast<std::int16_t>(std::min(32000.0, std::ceil(hi[k] * 100)));
+  }
+}
+
+bool meets(const std::int16_t* box, const Eigen::Vector3d& lo_cm, const Eigen::Vector3d& hi_cm) {
+  for (int k = 0; k < 3; ++k)
+    if (box[k] > hi_cm[k] || box[3 + k] < lo_cm[k]) return false;
+  return true;
+}
+
+}  // namespace
+
+void ArmObstacles::compute(int threads, double za_lo, double za_hi) {
   if (empty()) return;
+  for (int li : links_)
+    if (!robot_.links()[li].shapes.empty()) shaped_.push_back(li);
+  const std::size_t stride = 6 * (1 + shaped_.size());
   std::vector<Eigen::Vector3d> cc;
   std::vector<double> cv;
   cap_.voxels(cc, cv);
   std::vector<std::uint32_t> records;
   for (const auto& c : cc) {
+    if (c.z() < za_lo - cap_.resolution() || c.z() > za_hi + cap_.resolution()) continue;
     std::int64_t rec = cap_.record_at(c);
     if (rec >= 0) records.push_back(static_cast<std::uint32_t>(rec));
   }
-  std::vector<std::vector<std::pair<std::uint64_t, ArmBox>>> parts(records.size());
+  std::vector<std::vector<std::uint64_t>> keys(records.size());
+  std::vector<std::vector<std::int16_t>> parts(records.size());
   detail::parallel_for(records.size(), threads, [&](std::size_t i, int) {
     thread_local std::vector<Pose> poses;
     const std::uint32_t rec = records[i];
@@ -58,52 +82,73 @@ void ArmObstacles::compute(int threads) {
       const float* qf = cap_.record_solution(rec, orient);
       Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
       robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
+      const std::size_t at = parts[i].size();
+      parts[i].resize(at + stride);
       Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-      for (int li : links_)
+      for (std::size_t j = 0; j < shaped_.size(); ++j) {
+        const int li = shaped_[j];
+        Eigen::Vector3d llo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), lhi = -llo;
         for (const auto& s : robot_.links()[li].shapes) {
           fcl::AABBd b = world_aabb(*s.geometry, arm_from_root_ * poses[li] * s.origin);
-          lo = lo.cwiseMin(b.min_);
-          hi = hi.cwiseMax(b.max_);
+          llo = llo.cwiseMin(b.min_);
+          lhi = lhi.cwiseMax(b.max_);
         }
-      parts[i].emplace_back(key(rec, orient), ArmBox{lo.cast<float>(), hi.cast<float>()});
+        put_box(llo, lhi, parts[i].data() + at + 6 * (1 + j));
+        lo = lo.cwiseMin(llo);
+        hi = hi.cwiseMax(lhi);
+      }
+      put_box(lo, hi, parts[i].data() + at);
+      keys[i].push_back(key(rec, orient));
     }
   }, 4);
-  for (auto& part : parts)
-    for (auto& [k, box] : part) {
-      reach_lo_ = reach_lo_.cwiseMin(box.lo.cast<double>());
-      reach_hi_ = reach_hi_.cwiseMax(box.hi.cast<double>());
-      arm_boxes_.emplace(k, box);
+  std::size_t total = 0;
+  for (const auto& k : keys) total += k.size();
+  boxes_cm_.reserve(total * stride);
+  offset_.reserve(total);
+  for (std::size_t i = 0; i < records.size(); ++i)
+    for (std::size_t c = 0; c < keys[i].size(); ++c) {
+      const std::int16_t* box = parts[i].data() + c * stride;
+      for (int k = 0; k < 3; ++k) {
+        reach_lo_[k] = std::min(reach_lo_[k], box[k] / 100.0);
+        reach_hi_[k] = std::max(reach_hi_[k], box[3 + k] / 100.0);
+      }
+      offset_.emplace(keys[i][c], static_cast<std::uint32_t>(boxes_cm_.size()));
+      boxes_cm_.insert(boxes_cm_.end(), box, box + stride);
     }
 }
 
 void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
   out.lo.clear();
   out.hi.clear();
-  if (empty() || arm_boxes_.empty()) return;
+  if (empty() || offset_.empty()) return;
   const Pose arm_from_world = world_from_arm.inverse();
   for (const auto& b : boxes_) {
     Eigen::Vector3d lo, hi;
     box_in_frame(arm_from_world, b.min_, b.max_, lo, hi);
     if ((lo.array() > reach_hi_.array()).any() || (hi.array() < reach_lo_.array()).any()) continue;
-    out.lo.push_back(lo);
-    out.hi.push_back(hi);
+    out.lo.push_back(lo * 100);  // centimetres, as the arm boxes
+    out.hi.push_back(hi * 100);
   }
 }
 
 bool ArmObstacles::collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_root,
                             std::vector<Pose>& poses) const {
   if (near.empty()) return false;
-  auto it = arm_boxes_.find(key(rec, orient));
-  if (it == arm_boxes_.end()) return false;  // no stored solution: nothing to check
-  const Eigen::Vector3d lo = it->second.lo.cast<double>(), hi = it->second.hi.cast<double>();
+  auto it = offset_.find(key(rec, orient));
+  if (it == offset_.end()) return false;  // no stored solution: nothing to check
+  const std::int16_t* box = boxes_cm_.data() + it->second;
+  // The whole arm's box, then each link's box, against each near obstacle's box; FCL only when a link's
+  // box meets one.
   bool overlap = false;
-  for (std::size_t j = 0; j < near.lo.size() && !overlap; ++j)
-    overlap = (near.lo[j].array() <= hi.array()).all() && (near.hi[j].array() >= lo.array()).all();
+  for (std::size_t j = 0; j < near.lo.size() && !overlap; ++j) {
+    if (!meets(box, near.lo[j], near.hi[j])) continue;
+    for (std::size_t l = 0; l < shaped_.size() && !overlap; ++l) overlap = meets(box + 6 * (1 + l), near.lo[j], near.hi[j]);
+  }
   if (!overlap) return false;
   const float* qf = cap_.record_solution(rec, orient);
   Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
   robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
-  return robot_.links_in_collision(poses, *obstacles_, world_from_root, &links_);
+  return robot_.links_in_collision(poses, *obstacles_, world_from_root, &shaped_);
 }
 
 }  // namespace octoreach::detail

@@ -15,11 +15,6 @@
 
 namespace octoreach::detail {
 
-/// Arm-frame bounding box of a stored joint solution (links moved by the arm, gripper included).
-struct ArmBox {
-  Eigen::Vector3f lo, hi;
-};
-
 /// The obstacles near the arm at one base pose, as boxes in the arm frame.
 struct NearObstacles {
   std::vector<Eigen::Vector3d> lo, hi;
@@ -33,8 +28,10 @@ class ArmObstacles {
   ArmObstacles(const Robot& robot, const CapabilityMap& capability, const ArmPlacement& place,
                std::shared_ptr<const Obstacles> obstacles);
   bool empty() const { return !obstacles_ || obstacles_->empty(); }
-  /// Arm boxes of every (record, orientation) with a solution (parallel).
-  void compute(int threads);
+  /// Arm boxes of every (record, orientation) with a solution whose voxel centre height (arm frame) lies
+  /// in [za_lo, za_hi] widened by one capability voxel (the cells an upright build can meet; the default
+  /// is every cell), in parallel.
+  void compute(int threads, double za_lo = -1e9, double za_hi = 1e9);
   /// Obstacles whose world box meets the arm's whole reach when the arm base is at `world_from_arm`.
   void near(const Pose& world_from_arm, NearObstacles& out) const;
   /// True when the arm at the stored solution of (rec, orient) touches an obstacle; the root link at
@@ -49,11 +46,15 @@ class ArmObstacles {
   Chain arm_;
   Eigen::VectorXd reference_;
   std::vector<int> links_;          // links moved by the arm (arm and tool roles)
+  std::vector<int> shaped_;         // those of them with collision shapes
+  // Per cell: the box of the whole arm, then one box per shaped link, arm frame, in centimetres
+  // rounded outwards (lo x y z, hi x y z): 6 (1 + shaped links) int16 from offset_[key].
+  std::vector<std::int16_t> boxes_cm_;
+  std::unordered_map<std::uint64_t, std::uint32_t> offset_;
   Pose arm_from_root_;
   int orientations_;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
-  std::unordered_map<std::uint64_t, ArmBox> arm_boxes_;
   Eigen::Vector3d reach_lo_, reach_hi_;  // union of the arm boxes (arm frame)
 };
 
