@@ -295,9 +295,7 @@ class Room:
         return surface
 
     def _add_surface(self, entry: dict) -> Surface:
-        where = f"surfaces[{len(self._description.get('surfaces', []))}]"
-        _check_keys(entry, _SURFACE_KEYS, where)
-        name = _name(entry, where, f"surface_{len(self._surfaces)}")
+        where, name = self._entry("surfaces", entry, _SURFACE_KEYS, "surface")
         where += f" ({name!r})"
         surface = self._surface_from(entry, where)
         meshes = Obstacles()  # a surface's meshes (a sink, a lamp) are room obstacles
@@ -313,9 +311,7 @@ class Room:
         return surface
 
     def _add_shelf(self, entry: dict) -> list[Surface]:
-        where = f"shelves[{len(self._description.get('shelves', []))}]"
-        _check_keys(entry, _SHELF_KEYS, where)
-        name = _name(entry, where, f"shelf_{len(self._description.get('shelves', []))}")
+        where, name = self._entry("shelves", entry, _SHELF_KEYS, "shelf")
         where += f" ({name!r})"
         width, depth = _vector(entry, "size", where, 2)
         boards = _list(entry.get("boards"), "boards", where)
@@ -352,30 +348,29 @@ class Room:
         self._record("shelves", entry)
         return out
 
+    def _entry(self, key: str, entry: dict, known: set, prefix: str) -> tuple[str, str]:
+        """(where, name) of a new entry of list `key`, its keys checked."""
+        count = len(self._description.get(key, []))
+        where = f"{key}[{count}]"
+        _check_keys(entry, known, where)
+        return where, _name(entry, where, f"{prefix}_{count}")
+
     def _add_box(self, entry: dict) -> None:
-        where = f"boxes[{len(self._description.get('boxes', []))}]"
-        _check_keys(entry, _BOX_KEYS, where)
-        name = _name(entry, where, f"box_{len(self._description.get('boxes', []))}")
-        size = _vector(entry, "size", where, 3)
-        pose = _pose(entry, where)
+        where, name = self._entry("boxes", entry, _BOX_KEYS, "box")
+        size, pose = _vector(entry, "size", where, 3), _pose(entry, where)
         self._claim(name, where)
         self._objects.add_box(size, pose, name)
         self._record("boxes", entry)
 
     def _add_mesh(self, entry: dict) -> None:
-        where = f"meshes[{len(self._description.get('meshes', []))}]"
-        _check_keys(entry, _MESH_KEYS, where)
-        name = _name(entry, where, f"mesh_{len(self._description.get('meshes', []))}")
-        path, pose = self._path(entry, where), _pose(entry, where)
-        scale = _vector(entry, "scale", where, 3, [1, 1, 1])
+        where, name = self._entry("meshes", entry, _MESH_KEYS, "mesh")
+        path, pose, scale = self._path(entry, where), _pose(entry, where), _vector(entry, "scale", where, 3, [1, 1, 1])
         self._claim(name, where)
         self._objects.add_mesh(path, pose, scale, name)
         self._record("meshes", entry)
 
     def _add_octomap(self, entry: dict) -> None:
-        where = f"octomaps[{len(self._description.get('octomaps', []))}]"
-        _check_keys(entry, _OCTOMAP_KEYS, where)
-        name = _name(entry, where, f"octomap_{len(self._description.get('octomaps', []))}")
+        where, name = self._entry("octomaps", entry, _OCTOMAP_KEYS, "octomap")
         path, pose = self._path(entry, where), _pose(entry, where)
         self._claim(name, where)
         self._objects.add_octree_file(path, pose, name)
