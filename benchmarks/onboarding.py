@@ -137,6 +137,36 @@ def run_robot(name: str, args, workdir: str) -> dict:
     return out
 
 
+def obstacle_cost(pr2, seed: int) -> dict:
+    """What checking the arm against obstacles costs: the PR2 paper table (1.4 x 0.65 m at 0.72 m, 0.1 m,
+    right arm) without obstacles (the reference: no arm-obstacle check runs), with its four legs, and in a
+    room with a wall beside it and a shelf of three boards; best of three builds each."""
+    from octoreach import rooms
+
+    cap = octoreach.arms.capability_map(pr2, "right_arm", resolution=0.1, seed=seed, progress=False)
+    room = rooms.Room()
+    room.add_table("table", 1.4, 0.65, 0.72)
+    room.add_box("wall", [3.0, 0.05, 2.0], [0.0, 0.8, 1.0])
+    room.add_shelf("shelf", 0.8, 0.35, [0.4, 0.8, 1.2], x=-1.5, y=-0.5)
+    bare = octoreach.Surface.rectangle(1.4, 0.65, 0.72)
+    cases = {"table_without_obstacles": (bare, None),
+             "table_with_legs": (room.surfaces["table"], None),
+             "table_with_legs_wall_and_shelf": (room.surfaces["table"], room.obstacles(without="table"))}
+    out = {}
+    for name, (surface, obstacles) in cases.items():
+        times = []
+        for _ in range(3):
+            t0 = time.perf_counter()
+            sm = octoreach.SurfaceMap.build(pr2, cap, surface, obstacles=obstacles, progress=False)
+            times.append(time.perf_counter() - t0)
+        out[name] = {"seconds": round(min(times), 3), "best_r_s": round(sm.max_reachability, 4),
+                     "arm_rejections": sm.stats["arm_rejections"]}
+    ref = out["table_without_obstacles"]["seconds"]
+    for name in out:
+        out[name]["times_reference"] = round(out[name]["seconds"] / ref, 2)
+    return out
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--robots", nargs="+", default=list(ROBOTS), choices=list(ROBOTS), help="robots to run")
@@ -154,6 +184,7 @@ def main(argv=None) -> int:
     pr2.compute_allowed_collisions(samples=10000, seed=0)
     out["anchor"] = {"what": "MoveIt setup assistant's self-collision sampling density: 10,000 configurations, PR2",
                      "seconds": round(time.perf_counter() - t0, 2)}
+    out["arm_obstacle_check_cost"] = obstacle_cost(pr2, args.seed)
     out["robots"] = {}
     with tempfile.TemporaryDirectory() as workdir:
         for name in args.robots:
