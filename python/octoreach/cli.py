@@ -106,9 +106,9 @@ def _cmd_surface(args) -> int:
         sources = [s if isinstance(s, CapabilityMap) else
                    arms.capability_map(robot, s, resolution=args.resolution, directions=args.directions, seed=args.seed,
                                        progress=not args.quiet) for s in sources]
-        os.makedirs(args.out, exist_ok=True)
-        if args.plot:
-            os.makedirs(args.plot, exist_ok=True)
+        for folder in (args.out, args.plot, args.octovis):
+            if folder:
+                os.makedirs(folder, exist_ok=True)
     for name, (surface, obstacles) in surfaces.items():
         maps = [SurfaceMap.build(robot, source, surface, resolution=args.resolution, theta_bins=args.theta_bins,
                                  z_range=(args.z, args.z), obstacles=obstacles, directions=args.directions,
@@ -282,7 +282,8 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--combine", choices=["max", "min"], default="max",
                     help="several arms: max = any arm reaches, min = both reach (default max)")
     sp.add_argument("--plot", help="also write a PNG of the map's slices")
-    sp.add_argument("--out", required=True, help="output map file (.orsm)")
+    sp.add_argument("--out", required=True, help="output map file (.orsm); with --scene a folder (one NAME.orsm per "
+                                                 "surface, '/' in names written as '_')")
     sp.set_defaults(func=_cmd_surface)
 
     sp = sub.add_parser("info", help="print a map file's parameters, robot, size and value range")
