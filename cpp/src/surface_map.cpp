@@ -167,7 +167,8 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   const BinFrame f(b, k);
   const auto& hp = b.surface.halfplanes();
   std::unordered_map<std::uint64_t, detail::LowSet> own_low;
-  std::vector<Pose> poses, arm_poses;
+  std::vector<Pose> poses;
+  detail::ArmScratch arm_scratch;
   detail::NearObstacles near;
   auto low_points = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre) -> const detail::LowSet& {
     if (b.upright) return b.clearance->shared(rec, orient);
@@ -187,8 +188,8 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
         // Heights are evaluated inside the z range: a robot on the floor (z range (0, 0)) is
         // evaluated at z = 0 exactly and stored in the voxel holding 0.
         const Eigen::Vector3d base(bc.x(), bc.y(), std::min(std::max(double(bc.z()), b.o.z_min), b.o.z_max));
-        const Pose root = b.place.root_pose(base.x(), base.y(), base.z(), f.theta);
-        if (b.o.check_arm) b.obstacles->near(base_pose(base.x(), base.y(), base.z(), f.theta) * b.place.reference_to_arm, near);
+        const Pose world_from_arm = base_pose(base.x(), base.y(), base.z(), f.theta) * b.place.reference_to_arm;
+        if (b.o.check_arm) b.obstacles->near(world_from_arm, near);
         double sum = 0;
         for (std::size_t i = 0; i < b.targets.size(); ++i) {
           Eigen::Vector3d in_ref = f.Rz.transpose() * (b.targets[i] - base);
@@ -205,7 +206,7 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
             if (!b.cap.record_has(static_cast<std::uint32_t>(rec), mo)) continue;
             const auto r = static_cast<std::uint32_t>(rec);
             bool ok = !b.o.check_arm || (!f.arm_under(b, low_points(r, mo, centre), b.target_uv[i], d) &&
-                                         !b.obstacles->collides(r, mo, near, root, arm_poses));
+                                         !b.obstacles->collides(r, mo, near, world_from_arm, arm_scratch));
             if (!ok) ++n.arm;
             count += ok;
           }
@@ -216,7 +217,8 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
         }
         if (sum <= 0) continue;
         if (b.o.check_body &&
-            b.robot.links_in_collision(b.place.link_poses, *b.slab, root, &b.place.roles.body)) {
+            b.robot.links_in_collision(b.place.link_poses, *b.slab, b.place.root_pose(base.x(), base.y(), base.z(), f.theta),
+                                       &b.place.roles.body)) {
           ++n.body;
           continue;
         }

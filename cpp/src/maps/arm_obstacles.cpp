@@ -131,24 +131,61 @@ void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
   }
 }
 
-bool ArmObstacles::collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_root,
-                            std::vector<Pose>& poses) const {
+// Link poses (arm frame) of the shaped links at the stored solution of a cell, from the scratch's
+// cache, computed and cached on first use (the cache stops growing at 32 MB).
+const float* ArmObstacles::link_poses(std::uint32_t rec, int orient, ArmScratch& s) const {
+  const std::uint64_t k = key(rec, orient);
+  auto it = s.at.find(k);
+  if (it != s.at.end()) return s.pool.data() + it->second;
+  const float* qf = cap_.record_solution(rec, orient);
+  Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
+  robot_.link_poses(arm_.to_robot_configuration(q, reference_), s.poses);
+  const std::size_t n = 12 * shaped_.size();
+  const bool keep = s.pool.size() + n <= (std::size_t(32) << 20) / sizeof(float);
+  const std::size_t at = s.pool.size();
+  thread_local std::vector<float> spare;  // a cell met once the cache is full
+  float* out;
+  if (keep) {
+    s.pool.resize(at + n);
+    out = s.pool.data() + at;
+  } else {
+    spare.resize(n);
+    out = spare.data();
+  }
+  for (std::size_t j = 0; j < shaped_.size(); ++j) {
+    Eigen::Matrix<float, 3, 4> m = (arm_from_root_ * s.poses[shaped_[j]]).matrix().topRows<3>().cast<float>();
+    std::copy(m.data(), m.data() + 12, out + 12 * j);
+  }
+  if (keep) s.at.emplace(k, static_cast<std::uint32_t>(at));
+  return out;
+}
+
+bool ArmObstacles::collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_arm,
+                            ArmScratch& scratch) const {
   if (near.empty()) return false;
   auto it = offset_.find(key(rec, orient));
   if (it == offset_.end()) return false;  // no stored solution: nothing to check
   const std::int16_t* box = boxes_cm_.data() + it->second;
-  // The whole arm's box, then each link's box, against each near obstacle's box; FCL only when a link's
-  // box meets one.
-  bool overlap = false;
-  for (std::size_t j = 0; j < near.lo.size() && !overlap; ++j) {
+  // The whole arm's box, then each link's box, against each near obstacle's box; FCL only for the
+  // links whose box meets one.
+  thread_local std::vector<int> hit;
+  hit.clear();
+  for (std::size_t j = 0; j < near.lo.size(); ++j) {
     if (!meets(box, near.lo[j], near.hi[j])) continue;
-    for (std::size_t l = 0; l < shaped_.size() && !overlap; ++l) overlap = meets(box + 6 * (1 + l), near.lo[j], near.hi[j]);
+    for (std::size_t l = 0; l < shaped_.size(); ++l)
+      if (meets(box + 6 * (1 + l), near.lo[j], near.hi[j]) && std::find(hit.begin(), hit.end(), int(l)) == hit.end())
+        hit.push_back(static_cast<int>(l));
   }
-  if (!overlap) return false;
-  const float* qf = cap_.record_solution(rec, orient);
-  Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
-  robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
-  return robot_.links_in_collision(poses, *obstacles_, world_from_root, &shaped_);
+  if (hit.empty()) return false;
+  const float* P = link_poses(rec, orient, scratch);
+  for (int l : hit) {
+    Pose in_arm = Pose::Identity();
+    in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
+    const Pose world = world_from_arm * in_arm;
+    for (const auto& s : robot_.links()[shaped_[l]].shapes)
+      if (obstacles_->collides(*s.geometry, world * s.origin)) return true;
+  }
+  return false;
 }
 
 }  // namespace octoreach::detail

@@ -21,6 +21,14 @@ struct NearObstacles {
   bool empty() const { return lo.empty(); }
 };
 
+/// Scratch of one thread of a build: link poses (arm frame, float 3 x 4 per shaped link) of the cells
+/// checked so far, so a cell met again from another base position needs no forward kinematics.
+struct ArmScratch {
+  std::vector<Pose> poses;
+  std::unordered_map<std::uint64_t, std::uint32_t> at;
+  std::vector<float> pool;
+};
+
 /// Arm boxes of capability cells and the checks against a set of obstacles. Thread-safe for const
 /// use once compute() has run.
 class ArmObstacles {
@@ -34,10 +42,10 @@ class ArmObstacles {
   void compute(int threads, double za_lo = -1e9, double za_hi = 1e9);
   /// Obstacles whose world box meets the arm's whole reach when the arm base is at `world_from_arm`.
   void near(const Pose& world_from_arm, NearObstacles& out) const;
-  /// True when the arm at the stored solution of (rec, orient) touches an obstacle; the root link at
-  /// `world_from_root`. `poses` is scratch.
-  bool collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_root,
-                std::vector<Pose>& poses) const;
+  /// True when the arm at the stored solution of (rec, orient) touches an obstacle; the arm base link
+  /// at `world_from_arm`.
+  bool collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_arm,
+                ArmScratch& scratch) const;
 
  private:
   std::uint64_t key(std::uint32_t rec, int orient) const { return static_cast<std::uint64_t>(rec) * orientations_ + orient; }
@@ -52,6 +60,7 @@ class ArmObstacles {
   std::vector<std::int16_t> boxes_cm_;
   std::unordered_map<std::uint64_t, std::uint32_t> offset_;
   Pose arm_from_root_;
+  const float* link_poses(std::uint32_t rec, int orient, ArmScratch& scratch) const;
   int orientations_;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
