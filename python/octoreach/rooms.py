@@ -115,7 +115,8 @@ def _read_data(path: Path, kind: str):
         try:
             return yaml.safe_load(text)
         except yaml.YAMLError as e:
-            raise ValueError(f"{kind} {str(path)!r} is neither JSON nor YAML: {e}") from None
+            problem = " ".join(str(e).split())  # one line: YAML's messages draw the place over several
+            raise ValueError(f"{kind} {str(path)!r} is neither JSON nor YAML: {problem}") from None
 
 
 class Room:
