@@ -44,6 +44,10 @@ void wrap_obstacles(py::module_& m) {
              o.add_points(matrix_from(points, 3, "points"), resolution, name);
            }, py::arg("points"), py::arg("resolution"), py::arg("name") = "",
            "Adds occupied cells at the given points (N, 3) as an OctoMap of the given resolution.")
+      .def("add", [](Obstacles& o, const std::shared_ptr<Obstacles>& other) {
+             if (!other) throw py::type_error("add needs an octoreach.Obstacles, got None");
+             o.add(*other);
+           }, py::arg("other"), "Adds every obstacle of `other` (the objects are shared; the two sets stay independent).")
       .def("__len__", &Obstacles::size)
       .def_property_readonly("names", &Obstacles::names)
       .def("collides_box", [](const Obstacles& o, const Eigen::Vector3d& size, const py::object& pose) {

@@ -32,6 +32,11 @@ void wrap_surface(py::module_& m) {
         for (std::size_t i = 0; i < s.vertices().size(); ++i) v.row(i) = s.vertices()[i].transpose();
         return v;
       })
+      .def_property_readonly("boxes", [](const Surface& s) {
+        py::list out;
+        for (const auto& [size, pose] : s.boxes()) out.append(py::make_tuple(size, pose_to_array(pose)));
+        return out;
+      }, "The obstacle boxes as (size (3,), pose (4, 4)) pairs.")
       .def_property_readonly("normal", &Surface::normal)
       .def_property_readonly("area", &Surface::area)
       .def_property_readonly("thickness", &Surface::thickness)

@@ -12,8 +12,17 @@ void wrap_options(py::module_& m) {
   cls.def(py::init<>())
       .def_readwrite("reference_frame", &O::reference_frame, "Link whose pose is mapped ('': the root link).")
       .def_readwrite("theta_bins", &O::theta_bins)
-      .def_readwrite("check_body", &O::check_body, "Reject base poses where the body touches the surface or boxes.")
-      .def_readwrite("check_arm", &O::check_arm, "Reject grasps whose arm passes below the surface inside its outline.")
+      .def_property("obstacles",
+          [](const O& o) { return std::const_pointer_cast<Obstacles>(o.obstacles); },
+          [](O& o, const py::object& obs) {
+            if (obs.is_none()) o.obstacles = nullptr;
+            else if (py::isinstance<Obstacles>(obs)) o.obstacles = obs.cast<std::shared_ptr<Obstacles>>();
+            else throw py::type_error("obstacles must be an octoreach.Obstacles or None, got " +
+                                      std::string(py::str(py::type::of(obs).attr("__name__"))));
+          }, "The rest of the room (Obstacles, world frame) or None: checked against the body and the arm.")
+      .def_readwrite("check_body", &O::check_body, "Reject base poses where the body touches the surface, boxes or obstacles.")
+      .def_readwrite("check_arm", &O::check_arm,
+                     "Reject grasps whose arm passes below the surface inside its outline or touches a box or obstacle.")
       .def_readwrite("grasp_height", &O::grasp_height, "Grasp points lie this far above the surface (m).")
       .def_readwrite("threads", &O::threads, "0: every core.");
   def_grasps<O>(cls);
@@ -74,7 +83,8 @@ void wrap_surface_map(py::module_& m) {
                   "tuple whose capability map is built first (keywords directions and seed; at `resolution`, default\n"
                   "CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,\n"
                   "theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.\n"
-                  "z_range=(0, 0) evaluates a robot standing on the floor. `reference` fixes the joints off the arm\n"
+                  "The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.\n"
+                  "`obstacles` (Obstacles: walls, other surfaces, meshes, OctoMaps) are checked against body and arm. `reference` fixes the joints off the arm\n"
                   "(default: default_reference, the other arm tucked). Grasp points lie `grasp_height` above the surface.")
       .def_static("combine", [](const std::vector<std::shared_ptr<SurfaceMap>>& maps, const std::string& mode) {
              std::vector<const SurfaceMap*> ptrs;

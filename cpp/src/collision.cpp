@@ -155,6 +155,12 @@ void Obstacles::add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen:
   add_octree(tree, Pose::Identity(), name);
 }
 
+void Obstacles::add(const Obstacles& other) {
+  if (&other == this) throw std::invalid_argument("cannot add obstacles to themselves");
+  objects_.insert(objects_.end(), other.objects_.begin(), other.objects_.end());
+  names_.insert(names_.end(), other.names_.begin(), other.names_.end());
+}
+
 bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) const {
   fcl::Boxd box(size);
   box.computeLocalAABB();

@@ -12,6 +12,7 @@
 #include "common/thread_pool.hpp"
 #include "map_io.hpp"
 #include "maps/arm_clearance.hpp"
+#include "maps/arm_obstacles.hpp"
 #include "maps/batch.hpp"
 #include "reach_extent.hpp"
 
@@ -41,7 +42,8 @@ struct SurfaceBuild {
   Pose arm_from_reference;
   bool upright = false;             // arm frame upright and surface horizontal
   detail::ArmClearance* clearance = nullptr;
-  std::shared_ptr<Obstacles> slab;
+  std::shared_ptr<Obstacles> slab;        // the surface, its boxes and the rest of the room: the body check
+  const detail::ArmObstacles* obstacles = nullptr;  // its boxes and the rest of the room: the arm check
 };
 
 struct BinCounts {
@@ -166,6 +168,8 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   const auto& hp = b.surface.halfplanes();
   std::unordered_map<std::uint64_t, detail::LowSet> own_low;
   std::vector<Pose> poses;
+  detail::ArmScratch arm_scratch;
+  detail::NearObstacles near;
   auto low_points = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre) -> const detail::LowSet& {
     if (b.upright) return b.clearance->shared(rec, orient);
     auto it = own_low.find(b.clearance->key(rec, orient));
@@ -184,6 +188,8 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
         // Heights are evaluated inside the z range: a robot on the floor (z range (0, 0)) is
         // evaluated at z = 0 exactly and stored in the voxel holding 0.
         const Eigen::Vector3d base(bc.x(), bc.y(), std::min(std::max(double(bc.z()), b.o.z_min), b.o.z_max));
+        const Pose world_from_arm = base_pose(base.x(), base.y(), base.z(), f.theta) * b.place.reference_to_arm;
+        if (b.o.check_arm) b.obstacles->near(world_from_arm, near);
         double sum = 0;
         for (std::size_t i = 0; i < b.targets.size(); ++i) {
           Eigen::Vector3d in_ref = f.Rz.transpose() * (b.targets[i] - base);
@@ -198,8 +204,9 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
               d[j] = static_cast<float>(hp[j].z() - hp[j].head<2>().dot(b.target_uv[i]));
           for (int mo : f.mapped) {
             if (!b.cap.record_has(static_cast<std::uint32_t>(rec), mo)) continue;
-            bool ok = !b.o.check_arm ||
-                      !f.arm_under(b, low_points(static_cast<std::uint32_t>(rec), mo, centre), b.target_uv[i], d);
+            const auto r = static_cast<std::uint32_t>(rec);
+            bool ok = !b.o.check_arm || (!f.arm_under(b, low_points(r, mo, centre), b.target_uv[i], d) &&
+                                         !b.obstacles->collides(r, mo, near, world_from_arm, arm_scratch));
             if (!ok) ++n.arm;
             count += ok;
           }
@@ -252,6 +259,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   m.z_max_ = o.z_max;
   m.grasp_height_ = o.grasp_height;
   m.checks_ = std::string(o.check_body ? "body" : "") + (o.check_body && o.check_arm ? "+" : "") + (o.check_arm ? "arm" : "");
+  if (o.obstacles && !o.obstacles->empty()) m.checks_ += " (room: " + std::to_string(o.obstacles->size()) + " obstacles)";
   m.map_ = PoseMap(res, o.theta_bins);
   m.grasp_name_ = place.grasps.name;
   if (!(o.grasp_height >= 0) || !std::isfinite(o.grasp_height))
@@ -259,6 +267,14 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
 
   SurfaceBuild b{robot, cap, surface, o, place, m.map_.tree(), surface.sample_points(res), {},
                  place.reference_to_arm.inverse(), false, nullptr, surface.obstacles()};
+  // Every obstacle but the slab meets the arm at its stored solutions (the slab has the finer
+  // "arm under the outline" test); the body meets them all.
+  auto others = std::make_shared<Obstacles>();
+  for (const auto& [size, pose] : surface.boxes()) others->add_box(size, pose, "surface_box");
+  if (o.obstacles) {
+    others->add(*o.obstacles);
+    b.slab->add(*o.obstacles);
+  }
   for (auto& t : b.targets) t += o.grasp_height * surface.normal();
   m.stats_.surface_points = b.targets.size();
   SurfaceGrid g;
@@ -273,9 +289,14 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   b.upright = std::abs(place.reference_to_arm.linear()(2, 2) - 1.0) < 1e-9 && std::abs(surface.normal().z() - 1.0) < 1e-9;
   detail::ArmClearance clearance(robot, cap, place, o.grasp_height);
   b.clearance = &clearance;
+  detail::ArmObstacles arm_obstacles(robot, cap, place, others);
+  b.obstacles = &arm_obstacles;
   if (b.upright && o.check_arm) {
     auto [za_lo, za_hi] = target_heights_in_arm(b, g);
     clearance.compute_shared(za_lo, za_hi, o.threads);
+    arm_obstacles.compute(o.threads, za_lo, za_hi);
+  } else if (o.check_arm) {
+    arm_obstacles.compute(o.threads);
   }
 
   const int T = o.theta_bins;
@@ -310,6 +331,10 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
 }
 
 void SurfaceMap::reachability(const double* rows, std::size_t n, double* out) const {
+  // A NaN pose would fall outside every voxel and read R_S 0: a wrong answer, not an absent one.
+  for (std::size_t i = 0; i < 4 * n; ++i)
+    if (!std::isfinite(rows[i]))
+      throw std::invalid_argument("base pose " + std::to_string(i / 4) + " is not finite (x, y, z, theta in m and rad)");
   detail::batch_lookup(n, [&](std::size_t i) {
     const double* r = rows + 4 * i;
     out[i] = reachability(r[0], r[1], r[2], r[3]);

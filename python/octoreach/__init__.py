@@ -39,6 +39,8 @@ _set_progress_factory(_progress.make_progress)  # how progress=True is drawn by 
 
 from . import robots  # noqa: F401
 from . import arms, surface_maps  # noqa: F401
+from . import rooms  # noqa: F401
+from .rooms import Room  # noqa: F401
 from ._core import (  # noqa: F401
     CameraIntrinsics,
     DepthCamera,
@@ -65,6 +67,7 @@ def view(*items, **kwargs):
 __all__ = ["Arm", "Cancelled", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
            "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
            "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
-           "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis"]
+           "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis",
+           "rooms", "Room"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore", "view"]

@@ -17,6 +17,10 @@ class Obstacles:
         ...
     def __len__(self) -> int:
         ...
+    def add(self, other: Obstacles) -> None:
+        """
+        Adds every obstacle of `other` (the objects are shared; the two sets stay independent).
+        """
     def add_box(self, size: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], pose: typing.Any = None, name: str = '') -> None:
         """
         Adds a box of extents `size` (x, y, z) centred at `pose` (4x4, world frame).
@@ -824,6 +828,11 @@ class Surface:
     def area(self) -> float:
         ...
     @property
+    def boxes(self) -> list:
+        """
+        The obstacle boxes as (size (3,), pose (4, 4)) pairs.
+        """
+    @property
     def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         ...
     @property
@@ -841,7 +850,7 @@ class SurfaceMapOptions:
     @property
     def check_arm(self) -> bool:
         """
-        Reject grasps whose arm passes below the surface inside its outline.
+        Reject grasps whose arm passes below the surface inside its outline or touches a box or obstacle.
         """
     @check_arm.setter
     def check_arm(self, arg0: bool) -> None:
@@ -849,7 +858,7 @@ class SurfaceMapOptions:
     @property
     def check_body(self) -> bool:
         """
-        Reject base poses where the body touches the surface or boxes.
+        Reject base poses where the body touches the surface, boxes or obstacles.
         """
     @check_body.setter
     def check_body(self, arg0: bool) -> None:
@@ -869,6 +878,14 @@ class SurfaceMapOptions:
         """
     @grasps.setter
     def grasps(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def obstacles(self) -> Obstacles:
+        """
+        The rest of the room (Obstacles, world frame) or None: checked against the body and the arm.
+        """
+    @obstacles.setter
+    def obstacles(self, arg1: typing.Any) -> None:
         ...
     @property
     def reference(self) -> typing.Any:
@@ -939,7 +956,8 @@ class SurfaceMap:
         tuple whose capability map is built first (keywords directions and seed; at `resolution`, default
         CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,
         theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.
-        z_range=(0, 0) evaluates a robot standing on the floor. `reference` fixes the joints off the arm
+        The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.
+        `obstacles` (Obstacles: walls, other surfaces, meshes, OctoMaps) are checked against body and arm. `reference` fixes the joints off the arm
         (default: default_reference, the other arm tucked). Grasp points lie `grasp_height` above the surface.
         """
     @staticmethod

@@ -89,36 +89,30 @@ def _named_arm(args, robot, name):
     return Arm.resolve(robot, name, approach_axis=None if args.approach_axis is None else tuple(args.approach_axis))
 
 
-def _surface(args):
-    import json
+def _angle(text: str) -> float:
+    """An angle on the command line: radians, or degrees with an explicit suffix ("90deg")."""
+    t = str(text).strip().lower()
+    try:
+        return float(np.radians(float(t[:-3]))) if t.endswith("deg") else float(t)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an angle: {text!r} (radians, or degrees as e.g. 90deg)") from None
+
+
+def _surfaces(args):
+    """{name: (surface, obstacles of the rest of the room or None)} from --scene, --polygon or --table."""
+    from . import rooms
     from ._core import Surface
 
+    if args.scene:
+        room = rooms.Room.load(args.scene)
+        if not room.surfaces:
+            raise ValueError(f"scene file {args.scene!r} holds no surface")
+        return {name: (surface, room.obstacles(without=name)) for name, surface in room.surfaces.items()}
     if args.polygon:
-        try:
-            with open(args.polygon) as f:
-                text = f.read()
-        except OSError as e:
-            raise OSError(f"cannot read polygon file {args.polygon!r}: {e.strerror}") from None
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError:
-            try:
-                import yaml  # optional
-
-                data = yaml.safe_load(text)
-            except ImportError:
-                raise ValueError(f"polygon file {args.polygon!r} is not JSON (YAML needs PyYAML)") from None
-            except Exception as e:  # noqa: BLE001 - any YAML error is a malformed file
-                raise ValueError(f"polygon file {args.polygon!r} is malformed: {e}") from None
-        vertices = data.get("vertices") if isinstance(data, dict) else data
-        thickness = data.get("thickness", 0.03) if isinstance(data, dict) else 0.03
-        try:
-            vertices = np.asarray(vertices, dtype=float)
-        except (TypeError, ValueError):
-            raise ValueError(f"polygon file {args.polygon!r}: 'vertices' must be a list of [x, y, z]") from None
-        return Surface(vertices, thickness)
+        surface, obstacles = rooms.surface_from_file(args.polygon)
+        return {"surface": (surface, obstacles if len(obstacles) else None)}
     sx, sy, h = args.table
-    return Surface.rectangle(sx, sy, h, args.table_x, args.table_y, np.radians(args.table_yaw))
+    return {"table": (Surface.rectangle(sx, sy, h, args.table_x, args.table_y, args.table_yaw), None)}
 
 
 def _cmd_capability(args) -> int:
@@ -138,29 +132,44 @@ def _cmd_capability(args) -> int:
 
 
 def _cmd_surface(args) -> int:
+    import os
+
     from ._core import CapabilityMap, SurfaceMap
 
     robot = _load_robot(args)
-    surface = _surface(args)
-    maps = []
+    surfaces = _surfaces(args)
+    sources = []
     for arm in args.arms:
         source = CapabilityMap.load(arm) if arm.endswith(".orcm") else _named_arm(args, robot, arm)
         if isinstance(source, CapabilityMap) and not source.has_solutions:
             raise ValueError(f"{arm}: the capability map was saved without joint solutions (--with-solutions)")
-        maps.append(SurfaceMap.build(robot, source, surface, resolution=args.resolution, theta_bins=args.theta_bins,
-                                     z_range=(args.z, args.z), directions=args.directions, seed=args.seed,
-                                     progress=not args.quiet))
-    smap = maps[0] if len(maps) == 1 else SurfaceMap.combine(maps, args.combine)
-    if smap.voxel_count == 0:
-        print(f"octoreach: warning: empty surface map: {smap.empty_reason}", file=sys.stderr)
-    smap.save(args.out)
-    if args.octovis:
-        smap.export_octovis(args.octovis)
-    if args.plot:
-        from . import plots
+        sources.append(source)
+    if args.scene:  # one map per surface: build each arm's capability map once
+        from . import arms
 
-        plots.surface_slices(smap, args.plot)
-    print(f"{smap!r}: best R_S {smap.max_reachability:.3f} -> {args.out}")
+        sources = [s if isinstance(s, CapabilityMap) else
+                   arms.capability_map(robot, s, resolution=args.resolution, directions=args.directions, seed=args.seed,
+                                       progress=not args.quiet) for s in sources]
+        for folder in (args.out, args.plot, args.octovis):
+            if folder:
+                os.makedirs(folder, exist_ok=True)
+    for name, (surface, obstacles) in surfaces.items():
+        maps = [SurfaceMap.build(robot, source, surface, resolution=args.resolution, theta_bins=args.theta_bins,
+                                 z_range=(args.z, args.z), obstacles=obstacles, directions=args.directions,
+                                 seed=args.seed, progress=not args.quiet) for source in sources]
+        smap = maps[0] if len(maps) == 1 else SurfaceMap.combine(maps, args.combine)
+        if smap.voxel_count == 0:
+            print(f"octoreach: warning: empty surface map of {name!r}: {smap.empty_reason}", file=sys.stderr)
+        stem = name.replace("/", "_")
+        out = os.path.join(args.out, stem + ".orsm") if args.scene else args.out
+        smap.save(out)
+        if args.octovis:
+            smap.export_octovis(os.path.join(args.octovis, stem + ".ot") if args.scene else args.octovis)
+        if args.plot:
+            from . import plots
+
+            plots.surface_slices(smap, os.path.join(args.plot, stem + ".png") if args.scene else args.plot)
+        print(f"{name}: {smap!r}: best R_S {smap.max_reachability:.3f} -> {out}")
     return 0
 
 
@@ -203,9 +212,12 @@ def _cmd_query(args) -> int:
     from ._core import SurfaceMap
 
     smap = SurfaceMap.load(args.map)
-    poses = np.asarray(args.pose, dtype=float).reshape(-1, 4)
+    try:
+        poses = np.array([[float(x), float(y), float(z), _angle(t)] for x, y, z, t in args.pose], dtype=float)
+    except argparse.ArgumentTypeError as e:
+        raise ValueError(f"--pose: {e}") from None
     for pose, r in zip(poses, smap.reachability(poses)):
-        print(f"{pose[0]:+.3f} {pose[1]:+.3f} {pose[2]:+.3f} {pose[3]:+.3f}  R_S={r:.4f}")
+        print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}")
     return 0
 
 
@@ -279,9 +291,10 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--base", required=True, help="base link of the chain")
     sp.add_argument("--tip", required=True, help="tip link of the chain")
     sp.add_argument("--xyz", type=float, nargs=3, required=True, help="target position in the base frame (m)")
-    sp.add_argument("--mode", choices=["full", "position", "approach"], default="position")
-    sp.add_argument("--approach-axis", type=float, nargs=3, default=[0, 0, 1])
-    sp.add_argument("--seed", type=int, default=0)
+    sp.add_argument("--mode", choices=["full", "position", "approach"], default="position", help="IK mode")
+    sp.add_argument("--approach-axis", type=float, nargs=3, default=[0, 0, 1],
+                    help="tool axis that approaches the target, tip frame (unit vector; default 0 0 1)")
+    sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.set_defaults(func=_cmd_ik)
 
     from ._core import CapabilityMapOptions
@@ -321,15 +334,20 @@ def build_parser() -> argparse.ArgumentParser:
                     help="rectangular table: sizes and top height in m (default 1.4 0.65 0.72)")
     sp.add_argument("--table-x", type=float, default=0.0, help="table centre x (m)")
     sp.add_argument("--table-y", type=float, default=0.0, help="table centre y (m)")
-    sp.add_argument("--table-yaw", type=float, default=0.0, help="table yaw (degrees)")
-    sp.add_argument("--polygon", help="JSON (or YAML) file: a list of [x, y, z] vertices, or "
-                                      "{\"vertices\": [...], \"thickness\": 0.03}; replaces --table")
-    sp.add_argument("--theta-bins", type=int, default=16, help="orientation bins (default 16)")
-    sp.add_argument("--z", type=float, default=0.0, help="height of the robot's reference frame (default 0: floor)")
+    sp.add_argument("--table-yaw", type=_angle, default=0.0, help="table yaw (rad, or degrees as e.g. 90deg)")
+    sp.add_argument("--polygon", help="JSON (or YAML) file: a list of [x, y, z] vertices (m), or {\"vertices\": [...], "
+                                      "\"thickness\": 0.03, \"legs\": 0.05, \"boxes\": [...], \"meshes\": [...]}; "
+                                      "replaces --table")
+    sp.add_argument("--scene", help="room file (JSON or YAML: surfaces, shelves, boxes, meshes, octomaps; m and rad): "
+                                    "one map per surface, each with every obstacle of the room; --out (and --plot, "
+                                    "--octovis) are then folders")
+    sp.add_argument("--theta-bins", type=int, default=16, help="orientation bins over 2 pi rad (default 16)")
+    sp.add_argument("--z", type=float, default=0.0, help="height of the robot's reference frame (m; default 0: floor)")
     sp.add_argument("--combine", choices=["max", "min"], default="max",
                     help="several arms: max = any arm reaches, min = both reach (default max)")
     sp.add_argument("--plot", help="also write a PNG of the map's slices")
-    sp.add_argument("--out", required=True, help="output map file (.orsm)")
+    sp.add_argument("--out", required=True, help="output map file (.orsm); with --scene a folder (one NAME.orsm per "
+                                                 "surface, '/' in names written as '_')")
     sp.set_defaults(func=_cmd_surface)
 
     sp = sub.add_parser("info", help="print a map file's parameters, robot, size and value range")
@@ -343,15 +361,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     sp = sub.add_parser("query", help="R_S of base poses in a surface map (the condition attachment)")
     sp.add_argument("map", help="a surface map file")
-    sp.add_argument("--pose", type=float, nargs=4, action="append", required=True, metavar=("X", "Y", "Z", "THETA"),
-                    help="a base pose (m, m, m, rad); repeatable")
+    sp.add_argument("--pose", nargs=4, action="append", required=True, metavar=("X", "Y", "Z", "THETA"),
+                    help="a base pose: x y z in m, theta in rad (or degrees as e.g. 90deg); repeatable")
     sp.set_defaults(func=_cmd_query)
 
-    sp = sub.add_parser("sample", help="sample well spread base poses from a surface map (the grounding attachment)")
+    sp = sub.add_parser("sample", help="sample well spread base poses from a surface map (the grounding attachment); "
+                                       "prints x y z in m and theta in rad")
     sp.add_argument("map", help="a surface map file")
     sp.add_argument("--count", type=int, default=5, help="poses to sample (default 5)")
     sp.add_argument("--candidates", type=int, default=40, help="valid candidates per pose (default 40)")
-    sp.add_argument("--seed", type=int, default=0)
+    sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.set_defaults(func=_cmd_sample)
 
     sp = sub.add_parser("view", help="show maps, samples and explorations in 3D in the browser (needs the viewer extra)")

@@ -267,18 +267,19 @@ def _pose_map_layer(smap, z: Optional[float]):
     return centres[sel], values[sel], z
 
 
-def surface_slices(smap, path: Union[str, os.PathLike], *, z: Optional[float] = None, thetas=(0, 90, 180, 270),
+def surface_slices(smap, path: Union[str, os.PathLike], *, z: Optional[float] = None,
+                   thetas=(0.0, math.pi / 2, math.pi, 3 * math.pi / 2),
                    title: Optional[str] = None, dpi: int = 110) -> str:
     """Writes the surface map's layer at height `z` (default: its floor layer) as PNG panels: R_S of the best
-    orientation per position, then R_S for the given orientations (degrees), red (low) to blue (high), with
+    orientation per position, then R_S for the given orientations (rad), red (low) to blue (high), with
     the surface outline drawn (the paper's Fig. 2b); returns `path`."""
     centres, values, z = _pose_map_layer(smap, z)
     r = smap.resolution
     bins = values.shape[1]
     poly = np.asarray(smap.polygon, float) if hasattr(smap, "polygon") and len(smap.polygon) else None
     panels = [("best orientation", values.max(axis=1))]
-    for deg in thetas:
-        k = int(round(math.radians(deg) / (2 * math.pi / bins))) % bins
+    for theta in thetas:
+        k = int(round(theta / (2 * math.pi / bins))) % bins
         panels.append((f"theta = {math.degrees(2 * math.pi * k / bins):.1f} deg", values[:, k]))
     x0, y0 = centres[:, :2].min(axis=0) - r / 2
     x1, y1 = centres[:, :2].max(axis=0) + r / 2

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import CapabilityMap, Robot, Surface, SurfaceMapOptions, base_pose, default_reference, grasp_orientations
+from ._core import (CapabilityMap, Obstacles, Robot, Surface, SurfaceMapOptions, base_pose, default_reference,
+                    grasp_orientations)
 from ._core import link_roles as _link_roles
 
 
@@ -20,22 +21,33 @@ def link_roles(robot: Robot, chain) -> dict:
 def direct_reachability(robot: Robot, capability_map: CapabilityMap, surface: Surface, poses, reference=None,
                         reference_frame: str = "", grasps="upper_hemisphere", resolution: float = None,
                         grasp_height: float = SurfaceMapOptions().grasp_height, attempts: int = 20,
-                        seed: int = 0) -> np.ndarray:
+                        seed: int = 0, obstacles: Obstacles = None) -> np.ndarray:
     """R_S of base poses (N, 4) computed by brute force, without any map: for every surface point and every
     grasp direction, IK (approach mode, random restarts) of the arm from that base pose, keeping only
-    solutions free of self-collision whose arm links do not touch the surface slab, and poses whose body
-    (links the arm does not move) does not touch the surface or its boxes. For checking maps; slow.
+    solutions free of self-collision whose arm links do not touch the surface slab or any obstacle and whose
+    gripper touches no box or obstacle, and poses whose body (links the arm does not move) touches nothing.
+    `obstacles` is the rest of the room, as in SurfaceMap.build. For checking maps; slow.
     `reference` defaults to the arm's default reference posture, as in the map builds."""
     poses = np.asarray(poses, float)
     if poses.ndim != 2 or poses.shape[1] != 4:
         raise ValueError("poses must have shape (N, 4): x, y, z, theta")
+    if not np.all(np.isfinite(poses)):
+        raise ValueError("poses must be finite (x, y, z in m, theta in rad)")
+    if obstacles is not None and not isinstance(obstacles, Obstacles):
+        raise TypeError(f"obstacles must be an octoreach.Obstacles or None, got {type(obstacles).__name__}")
     chain = robot.chain(capability_map.base_link, capability_map.tip_link)
     reference = default_reference(robot, chain) if reference is None else np.asarray(reference, float)
     axis = np.asarray(capability_map.approach_axis, float)
     res = capability_map.resolution if resolution is None else resolution
     frame = reference_frame or robot.root_link
     roles = link_roles(robot, chain)
-    slab = surface.obstacles()
+    slab = surface.obstacles()  # the slab and the surface's boxes: every check but the gripper's
+    others = Obstacles()  # what the gripper must not touch either: the boxes and the rest of the room
+    for size, pose in surface.boxes:
+        others.add_box(size, pose)
+    if obstacles is not None:
+        slab.add(obstacles)
+        others.add(obstacles)
     targets = surface.points(res) + grasp_height * np.asarray(surface.normal)
     orientations = capability_map.orientations
     dirs_ids = orientations.subset(grasps) if isinstance(grasps, str) else list(grasps)
@@ -60,8 +72,12 @@ def direct_reachability(robot: Robot, capability_map: CapabilityMap, surface: Su
                 Ts[n] = world_to_arm @ T
                 n += 1
         rolls = orientations.rolls
-        _, ok = chain.ik_batch(Ts, mode="approach" if rolls == 1 else "full", approach_axis=axis, attempts=attempts, rng_seed=seed,
+        qs, ok = chain.ik_batch(Ts, mode="approach" if rolls == 1 else "full", approach_axis=axis, attempts=attempts, rng_seed=seed,
                                position_tolerance=1e-3, orientation_tolerance=1e-2, self_collision=True,
                                reference=reference, obstacles=slab, base_pose=root, obstacle_links=roles["arm"])
+        if len(others) and roles["tool"]:
+            for i in np.flatnonzero(ok):
+                q = chain.to_robot_configuration(qs[i], reference)
+                ok[i] = not robot.in_collision(q, others, base_pose=root, links=roles["tool"], self_collision=False)
         out[k] = ok.reshape(len(targets), len(ids)).mean(axis=1).mean()
     return out

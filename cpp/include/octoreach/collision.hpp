@@ -81,6 +81,8 @@ class Obstacles {
   void add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points, double resolution,
                   const std::string& name = "");
 
+  /// \brief Adds every obstacle of `other` (the FCL objects are shared, never changed; the sets stay independent).
+  void add(const Obstacles& other);
   /// \brief Number of obstacles.
   std::size_t size() const { return objects_.size(); }
   /// \brief True when there is no obstacle.

@@ -24,10 +24,17 @@ struct SurfaceMapOptions {
   std::string grasp_subset = "upper_hemisphere";
   int theta_bins = 16;
   double resolution = 0;            ///< 0: the capability map's resolution
-  double z_min = -1e9, z_max = 1e9; ///< base z range (world frame); a wheeled robot on the floor: (0, 0)
+  /// Base z range (world frame). The default (0, 0): the robot stands on the floor; a floating base
+  /// (a humanoid's pelvis, a lift) only when asked, e.g. (-1e9, 1e9).
+  double z_min = 0, z_max = 0;
   Eigen::VectorXd reference;        ///< robot configuration off the arm (torso, other arm); empty: default_reference
-  bool check_body = true;           ///< reject base poses where the robot body touches the surface or boxes
-  bool check_arm = true;            ///< reject grasps whose arm passes below the surface inside its outline
+  /// The rest of the room (other surfaces, walls, meshes, OctoMaps), world frame: checked against the
+  /// body and, with check_arm, against the arm at its stored solutions, like the surface's own boxes.
+  std::shared_ptr<const Obstacles> obstacles;
+  bool check_body = true;           ///< reject base poses where the robot body touches the surface, boxes or obstacles
+  /// Reject grasps whose arm passes below the surface inside its outline or whose arm (gripper
+  /// included) touches a box of the surface or an obstacle.
+  bool check_arm = true;
   /// Grasp points lie this far above the surface along its normal (the tool frame holds an object,
   /// it does not touch the board): 0.05 m suits cans and cups.
   double grasp_height = 0.05;
@@ -62,7 +69,7 @@ class SurfaceMap {
     return map_.value(x, y, std::min(std::max(z, z_min_), z_max_), theta);
   }
   /// \brief reachability() of n base poses given as rows x, y, z, theta (4 n doubles) into `out`
-  /// (n doubles); large batches run on every core.
+  /// (n doubles); large batches run on every core. Throws std::invalid_argument for a NaN or infinite value.
   void reachability(const double* rows, std::size_t n, double* out) const;
   const PoseMap& map() const { return map_; }
   const SurfaceMapStats& stats() const { return stats_; }

@@ -1,0 +1,397 @@
+"""Rooms: one scene of working surfaces (tables, shelf boards) and obstacles (walls, meshes, OctoMaps),
+from which every surface gets its surface map with all the room's obstacles checked against body and arm.
+
+A room is described by a plain dictionary, which is also its file format (JSON, or YAML where PyYAML is
+installed). Lengths in metres, angles in radians, poses as ``xyz`` (3,) and ``rpy`` (3,)::
+
+    {"surfaces": [{"name": "table", "rectangle": {"size": [1.2, 0.8], "height": 0.75, "x": 0.6, "yaw": 0.0},
+                   "legs": 0.05}],
+     "shelves":  [{"name": "shelf", "size": [0.8, 0.35], "boards": [0.4, 0.8, 1.2], "x": -0.8, "y": 1.0,
+                   "yaw": 0.0}],
+     "boxes":    [{"name": "wall", "size": [0.05, 2.0, 2.0], "xyz": [1.5, 0.0, 1.0]}],
+     "meshes":   [{"name": "bin", "path": "bin.stl", "xyz": [0, -1, 0], "scale": [1, 1, 1]}],
+     "octomaps": [{"name": "rest", "path": "scan.bt"}]}
+
+A surface is a ``rectangle`` or a polygon given by ``vertices`` (a list of [x, y, z]), with an optional
+``thickness``, ``legs`` (leg width) and its own ``boxes`` and ``meshes``. A shelf is several boards
+(surfaces named ``<shelf>/<i>``, bottom first) between two side panels and a back panel. Relative
+mesh and OctoMap paths are relative to the file. An unknown key is a ValueError that names it; a value
+of the wrong type is a TypeError that names the field.
+"""
+from __future__ import annotations
+
+import copy
+import json
+import math
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from ._core import CapabilityMap, Obstacles, Robot, Surface, SurfaceMap
+
+_SURFACE_KEYS = {"name", "rectangle", "vertices", "thickness", "legs", "boxes", "meshes"}
+_RECTANGLE_KEYS = {"size", "height", "x", "y", "yaw"}
+_SHELF_KEYS = {"name", "size", "boards", "x", "y", "yaw", "thickness", "panels"}
+_BOX_KEYS = {"name", "size", "xyz", "rpy"}
+_MESH_KEYS = {"name", "path", "xyz", "rpy", "scale"}
+_OCTOMAP_KEYS = {"name", "path", "xyz", "rpy"}
+_ROOM_KEYS = {"surfaces", "shelves", "boxes", "meshes", "octomaps"}
+
+
+def _check_keys(entry, known: set, where: str) -> None:
+    if not isinstance(entry, dict):
+        raise TypeError(f"{where} must be a mapping (JSON object), got {type(entry).__name__}")
+    for key in entry:
+        if key not in known:
+            raise ValueError(f"{where}: unknown key {key!r} (known: {', '.join(sorted(known))})")
+
+
+def _number(entry: dict, key: str, where: str, default=None) -> float:
+    value = entry.get(key, default)
+    if value is None:
+        raise ValueError(f"{where}: {key!r} is required")
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError(f"{where}: {key!r} must be a number, got {type(value).__name__}")
+    if not math.isfinite(value):
+        raise ValueError(f"{where}: {key!r} must be finite, got {value}")
+    return float(value)
+
+
+def _vector(entry: dict, key: str, where: str, n: int, default=None) -> np.ndarray:
+    value = entry.get(key, default)
+    if value is None:
+        raise ValueError(f"{where}: {key!r} is required")
+    if not isinstance(value, (list, tuple, np.ndarray)) or len(value) != n or any(
+            isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) for v in value):
+        raise TypeError(f"{where}: {key!r} must be a list of {n} numbers, got {value!r}")
+    out = np.asarray(value, float)
+    if not np.all(np.isfinite(out)):
+        raise ValueError(f"{where}: {key!r} must be finite, got {value!r}")
+    return out
+
+
+def _name(entry: dict, where: str, default: str) -> str:
+    name = entry.get("name", default)
+    if not isinstance(name, str) or not name:
+        raise TypeError(f"{where}: 'name' must be a non-empty string, got {name!r}")
+    return name
+
+
+def _pose(entry: dict, where: str) -> np.ndarray:
+    """4x4 pose from xyz (m) and rpy (rad, fixed axes x, y, z as in URDF)."""
+    x, y, z = _vector(entry, "xyz", where, 3, [0, 0, 0])
+    r, p, w = _vector(entry, "rpy", where, 3, [0, 0, 0])
+    cr, sr, cp, sp, cw, sw = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(w), math.sin(w)
+    T = np.eye(4)
+    T[:3, :3] = np.array([[cw, -sw, 0], [sw, cw, 0], [0, 0, 1]]) @ np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]]) \
+        @ np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    T[:3, 3] = [x, y, z]
+    return T
+
+
+def _list(value, key: str, where: str) -> list:
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        raise TypeError(f"{where}: {key!r} must be a list, got {type(value).__name__}")
+    return value
+
+
+def _read_data(path: Path, kind: str):
+    """The data of a JSON file, or of a YAML file where PyYAML is installed."""
+    try:
+        text = path.read_text()
+    except OSError as e:
+        raise OSError(f"cannot read {kind} {str(path)!r}: {e.strerror}") from None
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as json_error:
+        try:
+            import yaml  # optional
+        except ImportError:
+            raise ValueError(f"{kind} {str(path)!r} is not valid JSON ({json_error}); YAML needs PyYAML") from None
+        try:
+            return yaml.safe_load(text)
+        except yaml.YAMLError as e:
+            problem = " ".join(str(e).split())  # one line: YAML's messages draw the place over several
+            raise ValueError(f"{kind} {str(path)!r} is neither JSON nor YAML: {problem}") from None
+
+
+class Room:
+    """Working surfaces and obstacles of one room (world frame). ``Room(description, base_dir)`` checks and
+    builds a description (see the module docstring); ``Room.load(path)`` reads a JSON or YAML file."""
+
+    def __init__(self, description: dict | None = None, base_dir: str | os.PathLike = "."):
+        self._base = Path(base_dir)
+        self._description: dict = {}
+        self._surfaces: dict[str, Surface] = {}
+        self._objects = Obstacles()  # boxes, meshes, OctoMaps and shelf panels: everything but the surfaces
+        self._owner: dict[str, str] = {}  # name -> kind, to refuse duplicates
+        description = {} if description is None else description
+        _check_keys(description, _ROOM_KEYS, "room")
+        adders = {"surfaces": self._add_surface, "shelves": self._add_shelf, "boxes": self._add_box,
+                  "meshes": self._add_mesh, "octomaps": self._add_octomap}
+        for key, add in adders.items():
+            for entry in _list(description.get(key), key, "room"):
+                add(entry)
+
+    # ------------------------------------------------------------------ description and files
+    @property
+    def description(self) -> dict:
+        """The room as a plain dictionary (a copy): what save() writes and Room() reads."""
+        return copy.deepcopy(self._description)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike) -> "Room":
+        """Reads a room file: JSON, or YAML where PyYAML is installed."""
+        path = Path(path)
+        data = _read_data(path, "room file")
+        try:
+            return cls(data, base_dir=path.parent)
+        except (ValueError, TypeError) as e:
+            raise type(e)(f"room file {str(path)!r}: {e}") from None
+
+    def save(self, path: str | os.PathLike) -> None:
+        """Writes the description as JSON (YAML for a .yaml/.yml name), atomically."""
+        path = Path(path)
+        if path.suffix in (".yaml", ".yml"):
+            import yaml
+
+            text = yaml.safe_dump(self._description, sort_keys=False)
+        else:
+            text = json.dumps(self._description, indent=2)
+        fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", prefix=path.name, suffix=".tmp")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(text + "\n")
+                f.flush()
+                os.fsync(f.fileno())
+            os.replace(tmp, path)
+        except BaseException:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+            raise
+
+    # ------------------------------------------------------------------ building a room in code
+    def add_table(self, name: str, size_x: float, size_y: float, height: float, x: float = 0.0, y: float = 0.0,
+                  yaw: float = 0.0, legs: float | None = 0.05) -> Surface:
+        """A rectangular table top (yaw in rad) with four legs of width `legs` (None: no legs)."""
+        entry = {"name": name, "rectangle": {"size": [size_x, size_y], "height": height, "x": x, "y": y, "yaw": yaw}}
+        if legs is not None:
+            entry["legs"] = legs
+        return self._add_surface(entry)
+
+    def add_surface(self, name: str, vertices, thickness: float = 0.03) -> Surface:
+        """A polygon surface (vertices (N, 3), world frame)."""
+        return self._add_surface({"name": name, "vertices": np.asarray(vertices, float).tolist(), "thickness": thickness})
+
+    def add_shelf(self, name: str, width: float, depth: float, boards, x: float = 0.0, y: float = 0.0,
+                  yaw: float = 0.0, thickness: float = 0.02, panels: bool = True) -> list[Surface]:
+        """A shelf of `width` (local x) by `depth` (local y, open towards +y) with boards at the given heights (m),
+        turned by `yaw` (rad) about its centre (x, y); `panels` adds two side panels and a back panel."""
+        return self._add_shelf({"name": name, "size": [width, depth], "boards": list(boards), "x": x, "y": y, "yaw": yaw,
+                                "thickness": thickness, "panels": panels})
+
+    def add_box(self, name: str, size, xyz, rpy=(0.0, 0.0, 0.0)) -> None:
+        """An obstacle box (a wall, a cupboard): extents `size`, centre at xyz, orientation rpy (rad)."""
+        self._add_box({"name": name, "size": list(map(float, size)), "xyz": list(map(float, xyz)),
+                       "rpy": list(map(float, rpy))})
+
+    def add_mesh(self, name: str, path: str, xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0), scale=(1.0, 1.0, 1.0)) -> None:
+        """An obstacle mesh file (STL, DAE, OBJ...)."""
+        self._add_mesh({"name": name, "path": str(path), "xyz": list(map(float, xyz)), "rpy": list(map(float, rpy)),
+                        "scale": list(map(float, scale))})
+
+    def add_octomap(self, name: str, path: str, xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> None:
+        """The occupied cells of an OctoMap file (.bt or .ot) as obstacles."""
+        self._add_octomap({"name": name, "path": str(path), "xyz": list(map(float, xyz)), "rpy": list(map(float, rpy))})
+
+    # ------------------------------------------------------------------ reading
+    @property
+    def surfaces(self) -> dict[str, Surface]:
+        """The working surfaces by name, in the order they were added (each with its own legs and boxes)."""
+        return dict(self._surfaces)
+
+    def obstacles(self, without: str | None = None) -> Obstacles:
+        """Every obstacle of the room (surfaces with their boxes, boxes, meshes, OctoMaps) except the surface
+        named `without` (the one a map is built for: its slab and boxes come with it)."""
+        if without is not None and without not in self._surfaces:
+            raise KeyError(f"no surface {without!r} in the room (surfaces: {', '.join(self._surfaces) or 'none'})")
+        out = Obstacles()
+        for name, surface in self._surfaces.items():
+            if name != without:
+                out.add(surface.obstacles())
+        out.add(self._objects)
+        return out
+
+    def surface_maps(self, robot: Robot, arm, progress=True, directions: int | None = None, seed: int = 0,
+                     **kwargs) -> dict[str, SurfaceMap]:
+        """One surface map per surface, each built with every other obstacle of the room. `arm` is a CapabilityMap
+        with solutions, an arm name or a (base, tip[, approach_axis]) tuple (its capability map is built once,
+        at `resolution`); other keywords set SurfaceMapOptions fields."""
+        if not isinstance(robot, Robot):
+            raise TypeError(f"robot must be an octoreach.Robot, got {type(robot).__name__}")
+        if "obstacles" in kwargs:
+            raise TypeError("surface_maps takes the obstacles from the room; add them to it instead")
+        if not self._surfaces:
+            raise ValueError("the room has no surface")
+        if not isinstance(arm, CapabilityMap):
+            from . import arms
+
+            cap_kwargs = {"seed": seed}
+            if kwargs.get("resolution"):
+                cap_kwargs["resolution"] = kwargs["resolution"]
+            if directions is not None:
+                cap_kwargs["directions"] = directions
+            arm = arms.capability_map(robot, arm, progress=progress, **cap_kwargs)
+        return {name: SurfaceMap.build(robot, arm, surface, obstacles=self.obstacles(without=name), progress=progress,
+                                       **kwargs)
+                for name, surface in self._surfaces.items()}
+
+    def __repr__(self) -> str:
+        return (f"<octoreach.Room {len(self._surfaces)} surfaces ({', '.join(self._surfaces)}), "
+                f"{len(self._objects)} other obstacles>")
+
+    # ------------------------------------------------------------------ entries
+    def _claim(self, name: str, where: str) -> None:
+        if name in self._owner:
+            raise ValueError(f"{where}: the name {name!r} is already used by a {self._owner[name]}")
+        self._owner[name] = where.split("[")[0]
+
+    def _record(self, key: str, entry: dict) -> None:
+        self._description.setdefault(key, []).append(copy.deepcopy(entry))
+
+    def _path(self, entry: dict, where: str) -> str:
+        path = entry.get("path")
+        if not isinstance(path, str) or not path:
+            raise TypeError(f"{where}: 'path' must be a file name, got {path!r}")
+        p = Path(path)
+        return str(p if p.is_absolute() else self._base / p)
+
+    def _surface_from(self, entry: dict, where: str) -> Surface:
+        if ("rectangle" in entry) == ("vertices" in entry):
+            raise ValueError(f"{where}: give exactly one of 'rectangle' and 'vertices'")
+        thickness = _number(entry, "thickness", where, 0.03)
+        if "rectangle" in entry:
+            rect = entry["rectangle"]
+            rw = where + ".rectangle"
+            _check_keys(rect, _RECTANGLE_KEYS, rw)
+            sx, sy = _vector(rect, "size", rw, 2)
+            surface = Surface.rectangle(sx, sy, _number(rect, "height", rw), _number(rect, "x", rw, 0.0),
+                                        _number(rect, "y", rw, 0.0), _number(rect, "yaw", rw, 0.0), thickness)
+        else:
+            vertices = entry["vertices"]
+            if not isinstance(vertices, list) or not all(isinstance(v, list) for v in vertices):
+                raise TypeError(f"{where}: 'vertices' must be a list of [x, y, z], got {vertices!r}")
+            surface = Surface(np.array([_vector({"v": v}, "v", f"{where}.vertices[{i}]", 3) for i, v in
+                                        enumerate(vertices)]).reshape(-1, 3), thickness)
+        if "legs" in entry:
+            surface.add_legs(_number(entry, "legs", where))
+        for i, box in enumerate(_list(entry.get("boxes"), "boxes", where)):
+            bw = f"{where}.boxes[{i}]"
+            _check_keys(box, _BOX_KEYS, bw)
+            surface.add_box(_vector(box, "size", bw, 3), _pose(box, bw))
+        return surface
+
+    def _add_surface(self, entry: dict) -> Surface:
+        where, name = self._entry("surfaces", entry, _SURFACE_KEYS, "surface")
+        where += f" ({name!r})"
+        surface = self._surface_from(entry, where)
+        meshes = Obstacles()  # a surface's meshes (a sink, a lamp) are room obstacles
+        for i, mesh in enumerate(_list(entry.get("meshes"), "meshes", where)):
+            mw = f"{where}.meshes[{i}]"
+            _check_keys(mesh, _MESH_KEYS, mw)
+            meshes.add_mesh(self._path(mesh, mw), _pose(mesh, mw), _vector(mesh, "scale", mw, 3, [1, 1, 1]),
+                            _name(mesh, mw, f"{name}/mesh_{i}"))
+        self._claim(name, where)
+        self._surfaces[name] = surface
+        self._objects.add(meshes)
+        self._record("surfaces", entry)
+        return surface
+
+    def _add_shelf(self, entry: dict) -> list[Surface]:
+        where, name = self._entry("shelves", entry, _SHELF_KEYS, "shelf")
+        where += f" ({name!r})"
+        width, depth = _vector(entry, "size", where, 2)
+        boards = _list(entry.get("boards"), "boards", where)
+        if not boards:
+            raise ValueError(f"{where}: 'boards' must list at least one board height")
+        heights = [_number({"h": h}, "h", f"{where}.boards[{i}]") for i, h in enumerate(boards)]
+        x, y, yaw = (_number(entry, k, where, 0.0) for k in ("x", "y", "yaw"))
+        t = _number(entry, "thickness", where, 0.02)
+        panels = entry.get("panels", True)
+        if not isinstance(panels, bool):
+            raise TypeError(f"{where}: 'panels' must be true or false, got {panels!r}")
+        if min(width, depth, t) <= 0:
+            raise ValueError(f"{where}: 'size' and 'thickness' must be positive")
+        self._claim(name, where)
+        c, s = math.cos(yaw), math.sin(yaw)
+        out = []
+        for i, h in enumerate(sorted(heights)):
+            board = Surface.rectangle(width, depth, h, x, y, yaw, t)
+            self._surfaces[f"{name}/{i}"] = board
+            self._owner[f"{name}/{i}"] = "shelf board"
+            out.append(board)
+        if panels:  # two sides and a back (local -y), up to the top board and a little above
+            top = max(heights) + 0.05
+
+            def panel(size, local):
+                T = np.eye(4)
+                T[:3, :3] = [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+                T[:3, 3] = [x + c * local[0] - s * local[1], y + s * local[0] + c * local[1], top / 2]
+                self._objects.add_box(np.asarray(size, float), T, f"{name}/panel")
+
+            panel([t, depth, top], [-(width + t) / 2, 0])
+            panel([t, depth, top], [(width + t) / 2, 0])
+            panel([width + 2 * t, t, top], [0, -(depth + t) / 2])
+        self._record("shelves", entry)
+        return out
+
+    def _entry(self, key: str, entry: dict, known: set, prefix: str) -> tuple[str, str]:
+        """(where, name) of a new entry of list `key`, its keys checked."""
+        count = len(self._description.get(key, []))
+        where = f"{key}[{count}]"
+        _check_keys(entry, known, where)
+        return where, _name(entry, where, f"{prefix}_{count}")
+
+    def _add_box(self, entry: dict) -> None:
+        where, name = self._entry("boxes", entry, _BOX_KEYS, "box")
+        size, pose = _vector(entry, "size", where, 3), _pose(entry, where)
+        self._claim(name, where)
+        self._objects.add_box(size, pose, name)
+        self._record("boxes", entry)
+
+    def _add_mesh(self, entry: dict) -> None:
+        where, name = self._entry("meshes", entry, _MESH_KEYS, "mesh")
+        path, pose, scale = self._path(entry, where), _pose(entry, where), _vector(entry, "scale", where, 3, [1, 1, 1])
+        self._claim(name, where)
+        self._objects.add_mesh(path, pose, scale, name)
+        self._record("meshes", entry)
+
+    def _add_octomap(self, entry: dict) -> None:
+        where, name = self._entry("octomaps", entry, _OCTOMAP_KEYS, "octomap")
+        path, pose = self._path(entry, where), _pose(entry, where)
+        self._claim(name, where)
+        self._objects.add_octree_file(path, pose, name)
+        self._record("octomaps", entry)
+
+
+def surface_from_file(path: str | os.PathLike) -> tuple[Surface, Obstacles]:
+    """A polygon file: a list of [x, y, z] vertices, or one surface entry of a room file ({"vertices": ...,
+    "thickness", "legs", "boxes", "meshes"}). Returns the surface and the obstacles of its meshes."""
+    path = Path(path)
+    data = _read_data(path, "polygon file")
+    if isinstance(data, list):
+        data = {"vertices": data}
+    if isinstance(data, dict):
+        data = {"name": "surface", **data}
+    try:
+        room = Room({"surfaces": [data]}, base_dir=path.parent)
+    except (ValueError, TypeError) as e:
+        where = "surfaces[0] ('surface')"
+        message = str(e).replace(where + ": ", "").replace(where, "surface")
+        raise type(e)(f"polygon file {str(path)!r}: {message}") from None
+    (surface,) = room.surfaces.values()
+    return surface, room.obstacles(without=next(iter(room.surfaces)))

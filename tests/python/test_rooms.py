@@ -1,0 +1,295 @@
+"""Rooms: every obstacle checked against body and arm, scene files, and the conventions (floor, radians, NaN)."""
+from __future__ import annotations
+
+import itertools
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import octoreach
+from octoreach import robots, rooms, surface_maps
+
+WALL_Y = 0.45  # a wall along x at y = 0.45, between the table (y in [-0.2, 0.2]) and poses with y > 0.5
+
+
+@pytest.fixture(scope="module")
+def arm_room():
+    robot = robots.test_arm()
+    cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.1, directions=48,
+                                        progress=False, seed=3)
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.4)
+    wall = octoreach.Obstacles()
+    pose = np.eye(4)
+    pose[:3, 3] = [0.0, WALL_Y, 1.0]
+    wall.add_box(np.array([2.0, 0.05, 2.0]), pose, "wall")
+    open_map = octoreach.SurfaceMap.build(robot, cap, table, progress=False)
+    walled = octoreach.SurfaceMap.build(robot, cap, table, obstacles=wall, progress=False)
+    return robot, cap, table, wall, open_map, walled
+
+
+def _values_behind(sm, y_min):
+    centres, values = sm.voxels()
+    return values[centres[:, 1] > y_min]
+
+
+def test_a_wall_stops_the_arm(arm_room):
+    robot, cap, table, wall, open_map, walled = arm_room
+    # Without the wall the arm reaches the table from beyond y = 0.5; with it, never.
+    assert _values_behind(open_map, WALL_Y + 0.05).max() > 0.05
+    assert _values_behind(walled, WALL_Y + 0.05).size == 0 or _values_behind(walled, WALL_Y + 0.05).max() == 0
+    behind = np.array([[0.0, 0.8, 0.0, -np.pi / 2], [0.2, 0.7, 0.0, -np.pi / 2]])
+    assert np.all(open_map.reachability(behind) > 0)  # the issue's pose: reached through the wall before
+    assert np.all(walled.reachability(behind) == 0)
+    # In front of the wall the map is unchanged where the arm keeps clear of it.
+    front = np.array([[0.0, -0.5, 0.0, np.pi / 2], [0.6, 0.0, 0.0, np.pi]])
+    assert np.allclose(walled.reachability(front), open_map.reachability(front))
+    assert walled.stats["arm_rejections"] > open_map.stats["arm_rejections"]
+    assert "room: 1 obstacles" in walled.parameters["checks"]
+
+
+def test_the_sampler_never_stands_behind_the_wall(arm_room):
+    robot, _, _, wall, _, walled = arm_room
+    poses = octoreach.PoseSampler(walled, seed=4, in_collision=(robot, wall)).sample(20)
+    assert np.all(poses[:, 1] < WALL_Y)
+
+
+def test_the_arm_check_matches_brute_force_with_a_wall(arm_room):
+    robot, cap, table, wall, _, walled = arm_room
+    centres, _ = walled.voxels()
+    rng = np.random.default_rng(5)
+    idx = rng.choice(len(centres), size=min(12, len(centres)), replace=False)
+    poses = np.column_stack([centres[idx, :2], np.zeros(len(idx)), rng.integers(0, 16, len(idx)) * np.pi / 8])
+    # Poses right behind the wall too: the map and brute force must both say 0 there.
+    poses = np.vstack([poses, [[0.0, 0.8, 0.0, -np.pi / 2], [0.3, 0.6, 0.0, -np.pi / 2]]])
+    brute = surface_maps.direct_reachability(robot, cap, table, poses, attempts=10, obstacles=wall)
+    mapped = walled.reachability(poses)
+    assert np.all(brute[-2:] == 0) and np.all(mapped[-2:] == 0)
+    diff = mapped - brute
+    assert np.max(diff) <= 0.05, f"map above brute force by {np.max(diff):.3f}"
+    assert np.mean(np.abs(diff)) <= 0.08
+    assert brute.max() > 0.2
+
+
+# ----------------------------------------------------------------- TIAGo at a table beside a wall, brute force
+
+
+def _tiago():
+    """TIAGo by name once the robot loader knows it, else by path; with its reference posture free of
+    self-collision (allowed-collision sampling) either way."""
+    try:
+        robot = robots.load("tiago")
+    except (ValueError, KeyError, FileNotFoundError, OSError):
+        try:
+            root = robots.data_dir()
+        except FileNotFoundError as e:
+            pytest.skip(f"example-robot-data unavailable: {e}")
+        urdf = root / "robots" / "tiago_description" / "robots" / "tiago.urdf"
+        if not urdf.exists():
+            pytest.skip("TIAGo is not in this example-robot-data")
+        robot = octoreach.Robot.from_urdf(str(urdf), package_dirs=[str(root.parent), str(root / "robots")])
+    chain = robot.chain("torso_lift_link", "hand_grasping_frame")
+    ref = octoreach.default_reference(robot, chain)
+    if robot.in_self_collision(ref):  # before the loader samples allowed collisions: sample them here
+        robot = robot.with_allowed_collisions(robot.compute_allowed_collisions(samples=300, seed=1))
+        allowed = {tuple(sorted(p)) for p in robot.allowed_collisions}
+        rest = [p for p in itertools.combinations(sorted(robot.collision_links), 2) if p not in allowed]
+        robot = robot.with_allowed_collisions(
+            [p for p in rest if robot.with_allowed_collisions([c for c in rest if c != p]).in_self_collision(ref)])
+    return robot
+
+
+def test_tiago_at_a_table_beside_a_wall_matches_brute_force():
+    robot = _tiago()
+    arm = ("torso_lift_link", "hand_grasping_frame", (1.0, 0.0, 0.0))
+    cap = octoreach.CapabilityMap.build_for_arm(robot, arm, resolution=0.15, directions=30, progress=False)
+    room = rooms.Room()
+    room.add_table("table", 0.8, 0.6, 0.75, x=0.0, y=0.0)
+    room.add_box("wall", [0.05, 2.0, 2.0], [0.75, 0.0, 1.0])  # beside the table, along its +x edge
+    (name, sm), = room.surface_maps(robot, cap, resolution=0.15, theta_bins=8, progress=False).items()
+    assert name == "table" and sm.voxel_count > 0
+    # Nowhere behind the wall.
+    centres, values = sm.voxels()
+    assert values[centres[:, 0] > 0.75].size == 0 or values[centres[:, 0] > 0.75].max() == 0
+    rng = np.random.default_rng(0)
+    idx = rng.choice(len(centres), size=min(6, len(centres)), replace=False)
+    poses = np.column_stack([centres[idx, :2], np.zeros(len(idx)), rng.integers(0, 8, len(idx)) * np.pi / 4])
+    poses = np.vstack([poses, [[1.3, 0.0, 0.0, np.pi]]])  # behind the wall, facing the table
+    brute = surface_maps.direct_reachability(robot, cap, room.surfaces["table"], poses, resolution=0.15,
+                                             attempts=8, obstacles=room.obstacles(without="table"))
+    mapped = sm.reachability(poses)
+    assert brute[-1] == 0 and mapped[-1] == 0
+    diff = mapped - brute
+    assert np.max(diff) <= 0.08, f"map above brute force by {np.max(diff):.3f}"
+    assert np.mean(np.abs(diff)) <= 0.1
+    assert brute.max() > 0.1
+
+
+# ----------------------------------------------------------------- rooms and scene files
+
+SCENE = {
+    "surfaces": [{"name": "table", "rectangle": {"size": [0.6, 0.4], "height": 0.4, "x": 0.0, "y": 0.0, "yaw": 0.0},
+                  "legs": 0.04}],
+    "shelves": [{"name": "shelf", "size": [0.6, 0.3], "boards": [0.2, 0.45, 0.7], "x": 0.0, "y": -0.9,
+                 "yaw": 0.0}],
+    "boxes": [{"name": "wall", "size": [0.05, 4.0, 2.0], "xyz": [0.6, 0.0, 1.0]}],  # beyond every surface
+}
+
+
+def test_a_room_with_a_shelf_of_three_boards_and_a_wall(arm_room, tmp_path):
+    robot, cap = arm_room[:2]
+    path = tmp_path / "room.json"
+    path.write_text(json.dumps(SCENE))
+    room = rooms.Room.load(path)
+    assert list(room.surfaces) == ["table", "shelf/0", "shelf/1", "shelf/2"]
+    # The table's map sees the wall, the shelf boards and panels; the boards see the table and the wall.
+    boards = sum(len(room.surfaces[f"shelf/{i}"].obstacles()) for i in range(3))
+    assert len(room.obstacles(without="table")) == 1 + 3 + boards  # the wall, three panels, three boards
+    maps = room.surface_maps(robot, cap, progress=False)
+    assert set(maps) == set(room.surfaces)
+    for name, sm in maps.items():
+        centres, values = sm.voxels()
+        assert sm.voxel_count > 0, name
+        # Never behind the wall at x = 0.6.
+        assert values[centres[:, 0] > 0.65].size == 0 or values[centres[:, 0] > 0.65].max() == 0, name
+    # Each map respects every obstacle: with the room the table map is never above the table alone.
+    alone = octoreach.SurfaceMap.build(robot, cap, room.surfaces["table"], progress=False)
+    centres, _ = alone.voxels()
+    poses = np.column_stack([centres[:, :2], np.zeros(len(centres)), np.zeros(len(centres))])
+    assert np.all(maps["table"].reachability(poses) <= alone.reachability(poses) + 1e-6)
+
+
+def test_the_cli_writes_one_map_per_surface(arm_room, tmp_path):
+    from octoreach import cli
+
+    cap = arm_room[1]
+    cap_path = tmp_path / "arm.orcm"
+    cap.save(str(cap_path), with_solutions=True)
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(SCENE))
+    out, plots_dir = tmp_path / "maps", tmp_path / "plots"
+    assert cli.main(["surface", "--urdf", str(robots.project_urdf("test_arm")), "--arms", str(cap_path),
+                     "--scene", str(path), "--theta-bins", "8", "--quiet", "--out", str(out)]) == 0
+    written = sorted(p.name for p in out.iterdir())
+    assert written == ["shelf_0.orsm", "shelf_1.orsm", "shelf_2.orsm", "table.orsm"]
+    table = octoreach.SurfaceMap.load(str(out / "table.orsm"))
+    others = len(rooms.Room(SCENE).obstacles(without="table"))
+    assert table.voxel_count > 0 and f"room: {others} obstacles" in table.parameters["checks"]
+    assert not plots_dir.exists()
+
+
+def test_scene_file_round_trip(tmp_path):
+    room = rooms.Room(SCENE)
+    room.add_box("cupboard", [0.5, 0.5, 1.8], [-1.0, 1.0, 0.9], rpy=[0.0, 0.0, 0.3])
+    room.save(tmp_path / "a.json")
+    back = rooms.Room.load(tmp_path / "a.json")
+    assert back.description == room.description
+    assert list(back.surfaces) == list(room.surfaces)
+    assert len(back.obstacles()) == len(room.obstacles())
+    for name in room.surfaces:
+        assert np.allclose(back.surfaces[name].vertices, room.surfaces[name].vertices)
+    pytest.importorskip("yaml")
+    room.save(tmp_path / "a.yaml")
+    assert rooms.Room.load(tmp_path / "a.yaml").description == room.description
+
+
+@pytest.mark.parametrize("scene, message", [
+    ({"surfaces": [], "walls": []}, "unknown key 'walls'"),
+    ({"boxes": [{"name": "w", "size": [1, 1, 1], "xyz": [0, 0, 0], "colour": "red"}]}, "unknown key 'colour'"),
+    ({"surfaces": [{"name": "t", "rectangle": {"size": [1, 1], "height": 0.7, "heigth": 0.7}}]}, "unknown key 'heigth'"),
+    ({"shelves": [{"name": "s", "size": [1, 0.3], "boards": [0.5], "bords": [1]}]}, "unknown key 'bords'"),
+    ({"surfaces": [{"name": "t", "rectangle": {"size": [1, 1], "height": 0.7}, "vertices": [[0, 0, 0]]}]},
+     "exactly one of"),
+    ({"boxes": [{"name": "w", "size": [1, 1, 1]}, {"name": "w", "size": [1, 1, 1]}]}, "already used"),
+])
+def test_scene_errors_name_the_key(tmp_path, scene, message):
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(scene))
+    with pytest.raises(ValueError, match=message) as e:
+        rooms.Room.load(path)
+    assert "bad.json" in str(e.value)
+
+
+@pytest.mark.parametrize("scene, message", [
+    ({"boxes": [{"name": "w", "size": "big"}]}, "'size' must be a list of 3 numbers"),
+    ({"surfaces": [{"name": "t", "rectangle": {"size": [1, 1], "height": "high"}}]}, "'height' must be a number"),
+    ({"surfaces": "table"}, "'surfaces' must be a list"),
+    ([1, 2], "room must be a mapping"),
+])
+def test_scene_wrong_types_are_type_errors(scene, message):
+    with pytest.raises(TypeError, match=message):
+        rooms.Room(scene)
+
+
+def test_polygon_file_carries_boxes_and_rejects_unknown_keys(arm_room, tmp_path):
+    robot, cap = arm_room[:2]
+    poly = {"vertices": [[-0.3, -0.2, 0.4], [0.3, -0.2, 0.4], [0.3, 0.2, 0.4], [-0.3, 0.2, 0.4]],
+            "boxes": [{"size": [2.0, 0.05, 2.0], "xyz": [0.0, WALL_Y, 1.0]}]}
+    path = tmp_path / "poly.json"
+    path.write_text(json.dumps(poly))
+    surface, others = rooms.surface_from_file(path)
+    assert len(surface.boxes) == 1 and len(others) == 0
+    sm = octoreach.SurfaceMap.build(robot, cap, surface, progress=False)
+    assert sm.reachability(np.array([[0.0, 0.8, 0.0, -np.pi / 2]]))[0] == 0  # the box is a wall
+    path.write_text(json.dumps({**poly, "boxs": []}))
+    with pytest.raises(ValueError, match="unknown key 'boxs'"):
+        rooms.surface_from_file(path)
+
+
+# ----------------------------------------------------------------- conventions
+
+
+def test_the_base_stands_on_the_floor_by_default(arm_room):
+    *_, open_map, _ = arm_room
+    assert octoreach.SurfaceMapOptions().z_range == (0.0, 0.0)
+    assert open_map.z_range == (0.0, 0.0)
+    centres, _ = open_map.voxels()
+    assert np.all(np.abs(centres[:, 2]) <= open_map.resolution / 2 + 1e-6)
+    poses = octoreach.PoseSampler(open_map, seed=1).sample(5)
+    assert np.all(poses[:, 2] == 0.0)
+
+
+def test_a_floating_base_only_when_asked(arm_room):
+    robot, cap, table = arm_room[:3]
+    floating = octoreach.SurfaceMap.build(robot, cap, table, z_range=(-0.3, 0.3), progress=False)
+    assert floating.z_range == (-0.3, 0.3)
+    assert len(np.unique(np.round(floating.voxels()[0][:, 2], 6))) > 1
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_nan_or_infinite_poses_are_errors(arm_room, bad):
+    *_, open_map, _ = arm_room
+    for column in range(4):
+        pose = np.array([[0.0, -0.5, 0.0, 0.0]])
+        pose[0, column] = bad
+        with pytest.raises(ValueError, match="not finite"):
+            open_map.reachability(pose)
+
+
+def test_wrong_types_name_the_argument(arm_room):
+    robot, cap, table = arm_room[:3]
+    with pytest.raises(TypeError, match="obstacles"):
+        octoreach.SurfaceMap.build(robot, cap, table, obstacles="a wall", progress=False)
+    with pytest.raises(TypeError, match="robot"):
+        rooms.Room(SCENE).surface_maps("pr2", cap)
+
+
+def test_cli_angles_are_radians_or_say_deg(arm_room, tmp_path, capsys):
+    from octoreach import cli
+
+    *_, open_map, _ = arm_room
+    path = str(tmp_path / "m.orsm")
+    open_map.save(path)
+    assert cli.main(["query", path, "--pose", "0", "-0.5", "0", "1.5707963267948966"]) == 0
+    rad = capsys.readouterr().out
+    assert cli.main(["query", path, "--pose", "0", "-0.5", "0", "90deg"]) == 0
+    assert capsys.readouterr().out == rad
+    assert cli.main(["query", path, "--pose", "0", "-0.5", "0", "nan"]) == 2
+    assert "not finite" in capsys.readouterr().err
+    parser = cli.build_parser()
+    for command in ("surface", "query"):
+        sub = next(a for a in parser._subparsers._group_actions[0].choices.items() if a[0] == command)[1]
+        helps = " ".join(a.help or "" for a in sub._actions)
+        assert "rad" in helps
+        assert "degrees" not in helps.replace("degrees as", "")  # no bare degrees anywhere
