@@ -150,6 +150,7 @@ void derive_rotated_bins(int sym, PointGrid& g) {
 
 InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& cap, const PointMapOptions& o,
                                        const ProgressCallback& progress) {
+  detail::CancellableScope cancellable;
   const auto t0 = std::chrono::steady_clock::now();
   check_map_robot(robot, cap);
   if (o.theta_bins < 1 || o.theta_bins > 360)

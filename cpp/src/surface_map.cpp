@@ -236,6 +236,7 @@ void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
 
 SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const Surface& surface,
                              const SurfaceMapOptions& o, const ProgressCallback& progress) {
+  detail::CancellableScope cancellable;
   const auto t0 = std::chrono::steady_clock::now();
   check_map_robot(robot, cap);
   check_options(cap, o);
@@ -437,6 +438,11 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   std::istringstream poly(header_string(h, "polygon", path));
   double x, y, z;
   while (poly >> x >> y >> z) m.polygon_.emplace_back(x, y, z);
+  bool finite = true;
+  for (const auto& v : m.polygon_) finite = finite && v.allFinite();
+  if (!(poly >> std::ws).eof() || m.polygon_.size() < 3 || !finite)
+    throw FileError("'" + path + "' has a damaged polygon (at least 3 finite vertices expected)");
+  if (!(m.z_min_ <= m.z_max_)) throw FileError("'" + path + "' has z_min > z_max (damaged header)");
   if (m.map_.voxel_count() == 0) m.empty_reason_ = "the map is empty";
   return m;
 }

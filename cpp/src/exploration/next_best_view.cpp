@@ -31,7 +31,7 @@ struct UtilityVector {
 
 std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
   std::vector<UtilityVector> out;
-  const auto& vcs = map.void_clusters();
+  const auto& vcs = detail::cached_void_clusters(map);
   for (const auto& fv : map.frontier_voids()) {
     const VoidCluster& v = vcs[fv.void_index];
     std::vector<Eigen::Vector3d> corners{v.centroid};
@@ -289,6 +289,7 @@ bool SensorWorkspace::contains(const Eigen::Vector3d& p) const {
 
 std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap& map, double sensor_range,
                                                            std::size_t* vectors) {
+  auto guard = detail::read_guard(map);
   const std::vector<UtilityVector> vecs = utility_vectors(map);
   if (vectors) *vectors = vecs.size();
   std::vector<std::pair<CellKey, double>> out;
@@ -300,6 +301,7 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
                                                  const Pose& pose, int sw, int sh) {
   if (sw <= 0 || sh <= 0)
     throw std::invalid_argument("score grid must be positive, got " + std::to_string(sw) + " x " + std::to_string(sh));
+  auto guard = detail::read_guard(map);
   detail::GridReader g(detail::state(map).grid);
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
@@ -349,6 +351,7 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt) {
   auto t0 = Clock::now();
   validate(cam, opt);
+  auto guard = detail::read_guard(map);
   NbvResult r;
   const int threads = detail::default_threads(opt.threads);
   const std::vector<UtilityVector> vecs = utility_vectors(map);

@@ -38,6 +38,7 @@ DepthCamera::DepthCamera(int width, int height, double fov, double max_range, do
 std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose& pose, int threads) {
   const int W = intr_.width, H = intr_.height;
   const std::uint64_t call = calls_++;
+  std::shared_lock<std::shared_mutex> lock(*scene.mutex_);  // the scene may not change during the capture
   std::vector<std::vector<Eigen::Vector3d>> rows(H);
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
