@@ -32,7 +32,7 @@ inline int cube_cell(const Eigen::Vector3d& d, int n) {
 class DirectionGrid {
  public:
   explicit DirectionGrid(const std::vector<Eigen::Vector3d>& d)
-      : d_(d), g_(std::max(1, static_cast<int>(std::sqrt(double(d.size()) / 12.0)))) {
+      : g_(std::max(1, static_cast<int>(std::sqrt(double(d.size()) / 12.0)))) {
     const std::size_t cells = std::size_t(g_) * g_ * g_;
     start_.assign(cells + 1, 0);
     std::vector<std::size_t> cell(d.size());
@@ -68,7 +68,6 @@ class DirectionGrid {
     return std::min(g_ - 1, static_cast<int>((std::min(x, 1.0) + 1.0) * 0.5 * g_));
   }
   std::size_t id(int x, int y, int z) const { return (std::size_t(z) * g_ + y) * g_ + x; }
-  const std::vector<Eigen::Vector3d>& d_;
   int g_;
   std::vector<int> start_, idx_;
 };

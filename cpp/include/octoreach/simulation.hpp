@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <atomic>
 #include <memory>
-#include <shared_mutex>
 #include <string>
 #include <vector>
 
@@ -71,7 +70,10 @@ class Scene {
   void rebuild_bvh_();
   void add_box_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   void add_interior_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
-  std::shared_ptr<std::shared_mutex> mutex_ = std::make_shared<std::shared_mutex>();  // copies share it
+  struct Lock;                  // a writer-first reader-writer mutex (scene.cpp); copies share it
+  std::shared_ptr<Lock> lock_;  // add_* exclusive, DepthCamera::capture shared
+  void lock_shared_() const;
+  void unlock_shared_() const;
   std::vector<Aabb> boxes_, interiors_;
   std::vector<Eigen::Vector3d> tris_;  // 3 rows per triangle
   std::shared_ptr<const Bvh> bvh_;

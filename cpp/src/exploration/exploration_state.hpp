@@ -13,6 +13,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "common/shared_mutex.hpp"
 #include "hull.hpp"
 #include "octoreach/exploration.hpp"
 
@@ -143,7 +144,7 @@ void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
 // MapGuard; the caches below are rebuilt under cache_mutex by readers.
 struct ExplorationState {
   explicit ExplorationState(double res) : tree(res) {}
-  mutable std::shared_mutex rw;
+  mutable SharedMutex rw;  // writer first: a stream of queries cannot starve an insert
   MapTree tree;
   StateGrid grid;
   // frontier cell -> cluster label, label -> cells (cells may be stale; filter by the flag)

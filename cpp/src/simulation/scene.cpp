@@ -8,12 +8,12 @@
 #include <numeric>
 #include <mutex>
 #include <random>
-#include <shared_mutex>
 #include <sstream>
 
 #include <octomap/OcTree.h>
 
 #include "common/format.hpp"
+#include "common/shared_mutex.hpp"
 #include "common/octree_file.hpp"
 
 namespace octoreach {
@@ -132,13 +132,17 @@ struct Scene::Bvh {
   }
 };
 
-Scene::Scene() = default;
+struct Scene::Lock : detail::SharedMutex {};
+
+Scene::Scene() : lock_(std::make_shared<Lock>()) {}
+void Scene::lock_shared_() const { lock_->lock_shared(); }
+void Scene::unlock_shared_() const { lock_->unlock_shared(); }
 Scene::~Scene() = default;
 Scene::Scene(const Scene&) = default;
 Scene& Scene::operator=(const Scene&) = default;
 
 void Scene::add_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  std::unique_lock<std::shared_mutex> lock(*mutex_);
+  std::unique_lock<Lock> lock(*lock_);
   add_box_(lo, hi);
 }
 void Scene::add_box_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
@@ -147,7 +151,7 @@ void Scene::add_box_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
 }
 
 void Scene::add_interior(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  std::unique_lock<std::shared_mutex> lock(*mutex_);
+  std::unique_lock<Lock> lock(*lock_);
   add_interior_(lo, hi);
 }
 void Scene::add_interior_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
@@ -156,7 +160,7 @@ void Scene::add_interior_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) 
 }
 
 void Scene::add_crate(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double th) {
-  std::unique_lock<std::shared_mutex> lock(*mutex_);
+  std::unique_lock<Lock> lock(*lock_);
   check_box(lo, hi, "crate");
   if (!(th > 0) || 2 * th >= (hi - lo).head<2>().minCoeff() || th >= hi.z() - lo.z())
     throw std::invalid_argument("crate wall thickness must be positive and smaller than half the crate, got " +
@@ -172,7 +176,7 @@ void Scene::add_crate(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, doub
 
 void Scene::add_closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double th, const std::string& face,
                            double ow, double oh) {
-  std::unique_lock<std::shared_mutex> lock(*mutex_);
+  std::unique_lock<Lock> lock(*lock_);
   check_box(lo, hi, "closed box");
   if (!(th > 0) || 2 * th >= (hi - lo).minCoeff())
     throw std::invalid_argument("closed box wall thickness must be positive and smaller than half the box, got " +
@@ -229,7 +233,7 @@ void Scene::add_mesh(const std::vector<Eigen::Vector3d>& vertices, const std::ve
       if (t[j] < 0 || t[j] >= int(vertices.size()))
         throw std::invalid_argument("triangle index " + std::to_string(t[j]) + " out of range [0, " +
                                     std::to_string(vertices.size()) + ")");
-  std::unique_lock<std::shared_mutex> lock(*mutex_);
+  std::unique_lock<Lock> lock(*lock_);
   for (const auto& t : triangles)
     for (int j = 0; j < 3; ++j) tris_.push_back(vertices[t[j]]);
   rebuild_bvh_();
@@ -240,7 +244,7 @@ void Scene::rebuild_bvh_() { bvh_ = tris_.empty() ? nullptr : std::make_shared<c
 void Scene::load_octomap(const std::string& path) {
   auto tree = std::make_shared<octomap::OcTree>(0.1);
   detail::read_bt(*tree, path, "OctoMap scene file", 0);  // not expanded: the resolution check bounds raycasts
-  std::unique_lock<std::shared_mutex> lock(*mutex_);
+  std::unique_lock<Lock> lock(*lock_);
   octree_ = tree;
 }
 
