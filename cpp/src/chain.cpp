@@ -19,26 +19,6 @@ inline double wrap_pi(double a) {
   return a - kPi;
 }
 
-// The value of q + 2 pi k for the integer k of smallest |k| that brings q into [lo, hi] from the
-// side it is on, as far as whole turns fit (within 1e-12 of the far limit).
-inline double shift_by_turns(double q, double lo, double hi) {
-  const double turn = 2 * kPi;
-  if (!std::isfinite(q)) return q;
-  if (q > hi) {
-    double fit = std::floor((q - (lo - 1e-12)) / turn);  // most turns that keep q >= lo
-    double need = std::ceil((q - hi) / turn);            // fewest turns that bring q <= hi
-    double k = std::max(0.0, std::min(fit, need));
-    return q - k * turn;
-  }
-  if (q < lo) {
-    double fit = std::floor(((hi + 1e-12) - q) / turn);
-    double need = std::ceil((lo - q) / turn);
-    double k = std::max(0.0, std::min(fit, need));
-    return q + k * turn;
-  }
-  return q;
-}
-
 }  // namespace
 
 Chain Robot::chain(const std::string& base_link, const std::string& tip_link) const {
@@ -169,7 +149,7 @@ Eigen::VectorXd Chain::wrap(const Eigen::VectorXd& q_in) const {
     } else if (segments_[i].type == JointType::Revolute) {
       // Shift by whole turns toward the limits; leave it outside if no turn fits. The turn count is
       // computed, not looped for, so the work does not grow with |q| (non-finite values stay as they are).
-      q[i] = shift_by_turns(q[i], lower_[i], upper_[i]);
+      q[i] = detail::shift_by_turns(q[i], lower_[i], upper_[i], 1e-12);
     }
   }
   return q;

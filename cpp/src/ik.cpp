@@ -135,10 +135,7 @@ class LmIk {
     const auto& upper = c_.upper();
     for (int i = 0; i < n_; ++i) {
       if (c_.continuous()[i]) continue;
-      if (c_.segments()[i].type == JointType::Revolute) {
-        while (v[i] > upper[i] && v[i] - 2 * kPi >= lower[i]) v[i] -= 2 * kPi;
-        while (v[i] < lower[i] && v[i] + 2 * kPi <= upper[i]) v[i] += 2 * kPi;
-      }
+      if (c_.segments()[i].type == JointType::Revolute) v[i] = detail::shift_by_turns(v[i], lower[i], upper[i], 0.0);
       v[i] = std::min(std::max(v[i], lower[i]), upper[i]);
     }
   }

@@ -8,6 +8,7 @@
 
 #include <fcl/fcl.h>
 
+#include "common/cancel.hpp"
 #include "common/format.hpp"
 #include "common/thread_pool.hpp"
 #include "map_io.hpp"
@@ -178,7 +179,7 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   std::vector<float> d(hp.size());
   BinCounts n;
   for (int ix = 0; ix < g.nx; ++ix)
-    for (int iy = 0; iy < g.ny; ++iy)
+    for (int iy = 0; iy < g.ny; ++iy, detail::poll_cancel("surface map build cancelled"))
       for (int iz = 0; iz < g.nz; ++iz) {
         octomap::point3d bc = b.tree.keyToCoord(g.key(ix, iy, iz));
         // Heights are evaluated inside the z range: a robot on the floor (z range (0, 0)) is
@@ -293,6 +294,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
 
   const std::size_t ncells = g.cells();
   for (std::size_t c = 0; c < ncells; ++c) {
+    if ((c & 0xffff) == 0) detail::poll_cancel("surface map build cancelled");
     const float* v = g.values.data() + c * T;
     if (*std::max_element(v, v + T) <= 0) continue;
     int iz = c % g.nz, iy = (c / g.nz) % g.ny, ix = c / (static_cast<std::size_t>(g.ny) * g.nz);

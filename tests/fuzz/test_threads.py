@@ -34,8 +34,8 @@ def test_mutable_objects_from_many_threads():
             lambda: (m.snapshot(), m.cells('free'), m.frontier_voids(), m.void_clusters()),
             lambda: (m.inside_hull([1.5, 0, 0.5]), m.state(pts[:50]), m.occupancy_digest()),
             lambda: scene.add_box([1.5, -1, 0], [1.6, 1, 1]),
-            lambda: cam.capture(scene, o.look_at([0, 0, 0.5], [1, 0, 0.5])),
-            lambda: cam.capture(scene, o.look_at([0, 0, 0.5], [1, 0.3, 0.5])),
+            lambda: cam.capture(scene, o._core.look_at([0, 0, 0.5], [1, 0, 0.5])),
+            lambda: cam.capture(scene, o._core.look_at([0, 0, 0.5], [1, 0.3, 0.5])),
             lambda: sampler.sample(),
             lambda: (cap.reachability(rng.uniform(-1, 1, (100, 3))), sm.reachability(np.zeros((10, 4)))),
         ]

@@ -66,7 +66,7 @@ def test_next_best_view_runs_while_another_thread_inserts():
         t.start()
         while t.is_alive():
             o.next_best_view(m, cam)
-            o.accumulate_utility(m, 2.0)
+            o._core.accumulate_utility(m, 2.0)
         t.join()
         print('OK')
     """, timeout=300)
@@ -79,7 +79,7 @@ def test_scene_add_while_capturing_is_safe():
         s = o.Scene()
         s.add_box([1, -1, 0], [1.2, 1, 1])
         cam = o.DepthCamera(64, 48, 1.0, 4.0, 0.001)
-        pose = o.look_at([0, 0, 0.5], [1, 0, 0.5])
+        pose = o._core.look_at([0, 0, 0.5], [1, 0, 0.5])
         def add():
             for i in range(300):
                 s.add_box([1.5 + 0.01 * i, -1, 0], [1.6 + 0.01 * i, 1, 1])
@@ -152,7 +152,8 @@ def test_from_file_cell_limit_is_stated_and_adjustable(tmp_path):
     with pytest.raises(OSError, match="cells"):
         octoreach.ExplorationMap.from_file(str(tmp_path / "m.bt"), max_cells=total - 1)
     again = octoreach.ExplorationMap.from_file(str(tmp_path / "m.bt"), max_cells=total)
-    assert again.occupancy_digest() == n
+    d = again.occupancy_digest()  # .bt keeps the classes, not the exact log-odds
+    assert (d["free"], d["occupied"]) == (n["free"], n["occupied"])
 
 
 def test_bt_with_absurd_resolution_is_rejected(tmp_path):
@@ -231,21 +232,21 @@ chain = robot.chain('base_link', 'tool0')
 """
 
 _CTRL_C_CASES = {
-    "capability_map_build": "print('READY', flush=True); o.CapabilityMap.build(chain, resolution=0.02, directions=400, progress=False)",
+    "capability_map_build": "print('READY', flush=True); o.CapabilityMap.build(chain, resolution=0.04, directions=200, progress=False)",
     "surface_map_build": """
 cap = o.CapabilityMap.build(chain, resolution=0.1, directions=48, progress=False, seed=3)
 table = o.Surface.rectangle(3.0, 3.0, 0.4)
 print('READY', flush=True)
-o.SurfaceMap.build(robot, cap, table, resolution=0.01, theta_bins=64, z_range=(0, 0), progress=False)""",
+o.SurfaceMap.build(robot, cap, table, resolution=0.02, theta_bins=32, z_range=(0, 0), progress=False)""",
     "surface_map_build_with_bar": """
 cap = o.CapabilityMap.build(chain, resolution=0.1, directions=48, progress=False, seed=3)
 table = o.Surface.rectangle(3.0, 3.0, 0.4)
 print('READY', flush=True)
-o.SurfaceMap.build(robot, cap, table, resolution=0.01, theta_bins=64, z_range=(0, 0), progress=True)""",
+o.SurfaceMap.build(robot, cap, table, resolution=0.02, theta_bins=32, z_range=(0, 0), progress=True)""",
     "point_map_build": """
 cap = o.CapabilityMap.build(chain, resolution=0.05, directions=200, progress=False, seed=3)
 print('READY', flush=True)
-o.InversePointMap.build(robot, cap, theta_bins=360, resolution=0.01, progress=False)""",
+o.InversePointMap.build(robot, cap, theta_bins=64, resolution=0.02, progress=False)""",
     "ik_batch": """
 T = chain.fk_batch(np.zeros((1, chain.dof)))[0].copy(); T[0, 3] += 5.0
 print('READY', flush=True)
@@ -264,8 +265,8 @@ def test_ctrl_c_stops_long_calls(case):
 print('FINISHED', flush=True)
 """
     code = "try:\n" + "\n".join("    " + line for line in code.splitlines()) + """
-except o.Cancelled:
-    print('CANCELLED', flush=True)
+except KeyboardInterrupt as e:  # octoreach.Cancelled inside a call, KeyboardInterrupt between two calls
+    print('CANCELLED', type(e).__name__, flush=True)
     sys.exit(3)
 """
     child, latency = interrupt_latency(code, delay=0.3, timeout=60)

@@ -10,6 +10,7 @@ namespace octoreach {
 namespace {
 std::atomic<CancelCheck> g_check{nullptr};
 thread_local bool t_cancellable = false;
+thread_local const std::atomic<bool>* t_stop = nullptr;
 thread_local std::chrono::steady_clock::time_point t_next_poll{};
 constexpr std::chrono::milliseconds kPollInterval{100};
 }  // namespace
@@ -21,7 +22,11 @@ namespace detail {
 CancellableScope::CancellableScope() : previous_(t_cancellable) { t_cancellable = true; }
 CancellableScope::~CancellableScope() { t_cancellable = previous_; }
 
+StopScope::StopScope(const std::atomic<bool>* stop) : previous_(t_stop) { t_stop = stop; }
+StopScope::~StopScope() { t_stop = previous_; }
+
 void poll_cancel(const char* what) {
+  if (t_stop && t_stop->load(std::memory_order_relaxed)) throw Cancelled(what);
   if (!t_cancellable) return;
   const auto now = std::chrono::steady_clock::now();
   if (now < t_next_poll) return;

@@ -7,6 +7,8 @@
 // one thread_local read. Computations that modify an existing object (ExplorationMap::insert) are
 // never marked: cancelling them half-way would leave the object invalid.
 
+#include <atomic>
+
 namespace octoreach::detail {
 
 /// \brief Marks the calling thread's work as cancellable for the scope (scopes nest).
@@ -19,6 +21,19 @@ class CancellableScope {
 
  private:
   bool previous_;
+};
+
+/// \brief While it lives, poll_cancel() on this thread also throws Cancelled once `*stop` is set: a parallel
+/// loop sets it when one of its threads failed or was cancelled, so the others stop mid-item too.
+class StopScope {
+ public:
+  explicit StopScope(const std::atomic<bool>* stop);
+  ~StopScope();
+  StopScope(const StopScope&) = delete;
+  StopScope& operator=(const StopScope&) = delete;
+
+ private:
+  const std::atomic<bool>* previous_;
 };
 
 /// \brief Inside a CancellableScope, at most every 100 ms: throws Cancelled(what) if the check says stop.

@@ -46,9 +46,11 @@ void parallel_for(std::size_t n, int threads, Body&& body, std::size_t chunk = 1
     return;
   }
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};  // set on the first error: the other threads stop at their next poll
   std::exception_ptr error;
   std::mutex error_mutex;
   run_on_pool(threads, [&](int tid) {
+    StopScope stop_scope(&stop);
     try {
       for (;;) {
         std::size_t start = next.fetch_add(chunk);
@@ -61,6 +63,7 @@ void parallel_for(std::size_t n, int threads, Body&& body, std::size_t chunk = 1
       std::lock_guard<std::mutex> lock(error_mutex);
       if (!error) error = std::current_exception();
       next.store(n);
+      stop.store(true);
     }
   });
   if (error) std::rethrow_exception(error);
