@@ -275,7 +275,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   // counts checked at full width before they are narrowed
   const auto dof64 = header_int(h, "dof", path), dirs64 = header_int(h, "directions", path),
              rolls64 = header_int(h, "rolls", path), sym64 = header_int(h, "symmetry", path);
-  if (!(m.resolution_ >= 0.001) || !std::isfinite(m.resolution_) || dirs64 < 1 ||
+  if (!(m.resolution_ >= 0.001 && m.resolution_ <= 100.0) || dirs64 < 1 ||
       dirs64 > OrientationSet::kMaxDirections || rolls64 < 1 || rolls64 > OrientationSet::kMaxRolls || sym64 < 1 ||
       sym64 > 64 || dof64 < 1 || dof64 > 64)
     throw FileError("'" + path + "' has implausible map parameters");

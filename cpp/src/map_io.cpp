@@ -64,7 +64,7 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
 void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload) {
   std::ifstream f(path, std::ios::binary);
   if (!f) {
-    if (errno == ENOENT) throw FileNotFound("no map file '" + path + "'");
+    if (errno == ENOENT) throw FileNotFound("cannot open map file '" + path + "' (no such file)");
     throw FileError("cannot open map file '" + path + "'");
   }
   f.seekg(0, std::ios::end);

@@ -27,7 +27,7 @@ bool looks_like_xml(const std::string& s) {
 std::string read_text_file(const std::string& path, const char* what) {
   std::ifstream f(path, std::ios::binary);
   if (!f) {
-    if (errno == ENOENT) throw FileNotFound(std::string("no ") + what + " file '" + path + "'");
+    if (errno == ENOENT) throw FileNotFound(std::string("cannot read ") + what + " file '" + path + "' (no such file)");
     throw FileError(std::string("cannot read ") + what + " file '" + path + "'");
   }
   std::stringstream ss;

@@ -193,7 +193,8 @@ def test_lookup_shapes(arm_setup):
     assert sm.reachability(turned)[0] == pytest.approx(sm.reachability(pose)[0])
     with pytest.raises(ValueError, match=r"\(N, 4\)"):
         sm.reachability(np.zeros((3, 3)))
-    assert sm.reachability(np.array([[np.nan, 0, 0, 0]]))[0] == 0
+    with pytest.raises(ValueError, match="not finite"):  # issue 12: NaN is rejected, not answered
+        sm.reachability(np.array([[np.nan, 0, 0, 0]]))
 
 
 def test_discount_spreads_samples(arm_setup):
