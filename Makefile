@@ -85,6 +85,7 @@ benchmarks: install
 	$(PY) benchmarks/capability_map.py
 	$(PY) benchmarks/surface_map.py
 	$(PY) benchmarks/exploration.py
+	$(PY) benchmarks/robustness.py
 
 # Regenerates the type stubs of the compiled module (python/octoreach/_core.pyi); review the diff.
 stubs: install
