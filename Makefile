@@ -12,7 +12,8 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf -type f 2>/dev/null) \
            CMakeLists.txt pyproject.toml
 
-.PHONY: all demo demo-exploration stubs test test-cpp test-python install sysdeps venv benchmarks clean
+.PHONY: all demo demo-exploration stubs test test-cpp test-python install sysdeps venv benchmarks clean \
+        fuzz test-sanitize
 
 all: install
 
@@ -40,7 +41,36 @@ test-cpp: install
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 test-python: install
-	$(PY) -m pytest -q tests/python
+	$(PY) -m pytest -q tests/python tests/fuzz
+
+# A long fuzz run: the file-damage fuzzer (counts per category: cases, loaded, OSError, crashes, hangs,
+# wrong errors) and the property tests with many examples. FUZZ_CASES and FUZZ_SEED choose the run.
+FUZZ_CASES ?= 3000
+FUZZ_SEED  ?= 1
+fuzz: install
+	$(PY) tests/fuzz/file_fuzz.py --cases $(FUZZ_CASES) --seed $(FUZZ_SEED)
+	OCTOREACH_FUZZ_PROFILE=long $(PY) -m pytest -q tests/fuzz/test_properties.py tests/fuzz/test_threads.py
+
+# Sanitizer builds, each in its own build directory: AddressSanitizer + UndefinedBehaviorSanitizer
+# (the library, the C++ tests and the Python module; ctest, then the fuzz suite and the robustness
+# tests with the ASan runtime preloaded into the interpreter), and ThreadSanitizer (the C++ threads test).
+SAN_CMAKE = cmake -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBUILD_TESTING=ON \
+  -Dpybind11_DIR=$$($(PY) -c 'import pybind11; print(pybind11.get_cmake_dir())') -DPython_EXECUTABLE=$(PY)
+test-sanitize: install
+	$(SAN_CMAKE) -S . -B build/asan -DOCTOREACH_SANITIZE=address -DOCTOREACH_PYTHON=ON
+	cmake --build build/asan -j $(JOBS)
+	cd build/asan && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS) -E packaging
+	rm -rf build/asan/py && mkdir -p build/asan/py/octoreach && cp -r python/octoreach/. build/asan/py/octoreach/ \
+	  && cp build/asan/*.so* build/asan/py/octoreach/ && cp -r urdf build/asan/py/octoreach/urdf
+	LD_PRELOAD="$$(gcc -print-file-name=libasan.so) $$(gcc -print-file-name=libubsan.so)" \
+	  ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 PYTHONPATH=build/asan/py \
+	  OCTOREACH_FUZZ_FILE_CASES=120 $(PY) -m pytest -q -p no:cacheprovider tests/fuzz tests/python/test_robustness.py \
+	  -k "not ctrl_c"
+	$(SAN_CMAKE) -S . -B build/tsan -DOCTOREACH_SANITIZE=thread -DOCTOREACH_PYTHON=OFF
+	cmake --build build/tsan -j $(JOBS) --target octoreach_tests
+	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build/tsan/tests/cpp/octoreach_tests \
+	  --gtest_filter='Threads.*:Cancellation.*'
 
 test: test-cpp test-python
 
@@ -55,6 +85,7 @@ benchmarks: install
 	$(PY) benchmarks/capability_map.py
 	$(PY) benchmarks/surface_map.py
 	$(PY) benchmarks/exploration.py
+	$(PY) benchmarks/robustness.py
 
 # Regenerates the type stubs of the compiled module (python/octoreach/_core.pyi); review the diff.
 stubs: install

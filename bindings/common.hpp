@@ -6,6 +6,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,15 @@ namespace py = pybind11;
 using RowMatrixXd = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// Sets a Python error whose message is `what` decoded as UTF-8 with bad bytes replaced (a message
+/// quoting a damaged file must not turn into a UnicodeDecodeError).
+inline void set_error(PyObject* type, const char* what) {
+  PyObject* msg = PyUnicode_DecodeUTF8(what, Py_ssize_t(std::char_traits<char>::length(what)), "replace");
+  if (!msg) return;
+  PyErr_SetObject(type, msg);
+  Py_DECREF(msg);
+}
 
 /// Raises ValueError unless `m` is a finite rigid transform.
 inline Pose checked_pose(const Eigen::Matrix4d& m, const char* what = "pose") {
@@ -81,13 +92,68 @@ inline RowMatrixXd matrix_from(const py::handle& obj, py::ssize_t cols, const ch
   return Eigen::Map<const RowMatrixXd>(a.data(), a.shape(0), a.shape(1));
 }
 
+/// ValueError naming the first NaN or infinite entry of `a` (as "<what> i").
+inline void check_finite(const Array& a, const char* what) {
+  const double* d = a.data();
+  const py::ssize_t n = a.size(), per = a.ndim() > 1 ? a.size() / std::max<py::ssize_t>(1, a.shape(0)) : 1;
+  for (py::ssize_t i = 0; i < n; ++i)
+    if (!std::isfinite(d[i]))
+      throw std::invalid_argument(std::string(what) + " " + std::to_string(i / per) + " is not finite (NaN or inf)");
+}
+
+/// matrix_from, and ValueError when an entry is NaN or infinite.
+inline RowMatrixXd finite_matrix_from(const py::handle& obj, py::ssize_t cols, const char* what) {
+  RowMatrixXd m = matrix_from(obj, cols, what);
+  if (!m.allFinite()) throw std::invalid_argument(std::string(what) + " must be finite (got NaN or inf)");
+  return m;
+}
+
+using IndexTriples = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// (M, 3) integer array of vertex indices, each checked against [0, vertices) at full 64-bit width
+/// before it is narrowed to int; ValueError naming the first bad entry.
+inline IndexTriples index_triples_from(const py::handle& obj, std::size_t vertices, const char* what) {
+  auto a = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a || a.ndim() != 2 || a.shape(1) != 3) throw std::invalid_argument(std::string(what) + " must have shape (M, 3)");
+  IndexTriples t(a.shape(0), 3);
+  const std::int64_t* d = a.data();
+  for (py::ssize_t i = 0; i < a.shape(0) * 3; ++i) {
+    if (d[i] < 0 || std::uint64_t(d[i]) >= vertices)
+      throw std::invalid_argument(std::string(what) + " row " + std::to_string(i / 3) + " refers to vertex " +
+                                  std::to_string(d[i]) + ", outside [0, " + std::to_string(vertices) + ")");
+    t(i / 3, i % 3) = int(d[i]);
+  }
+  return t;
+}
+
+/// `obj` converted to T, or TypeError "<what> must be <expected>, got <type>" (never pybind11's cast message).
+template <class T>
+T cast_arg(const py::handle& obj, const char* what, const char* expected) {
+  try {
+    return obj.cast<T>();
+  } catch (const py::cast_error&) {
+    throw py::type_error(std::string(what) + " must be " + expected + ", got " +
+                         std::string(py::str(py::type::of(obj).attr("__name__"))));
+  }
+}
+
+/// The result of a Python predicate: a bool (or numpy bool), else TypeError naming the callable.
+inline bool bool_result(const py::handle& r, const char* what) {
+  if (PyBool_Check(r.ptr())) return r.ptr() == Py_True;
+  if (py::hasattr(r, "dtype") && py::str(r.attr("dtype").attr("kind")).cast<std::string>() == "b" &&
+      py::hasattr(r, "ndim") && r.attr("ndim").cast<int>() == 0)
+    return PyObject_IsTrue(r.ptr()) == 1;
+  throw py::type_error(std::string(what) + " must return a bool, got " +
+                       std::string(py::str(py::type::of(r).attr("__name__"))));
+}
+
 /// Wraps a Python callable (done, total) -> bool|None as a C++ progress callback that takes the GIL.
 inline ProgressCallback progress_from(const py::object& cb) {
   if (cb.is_none()) return nullptr;
   return [cb](std::size_t done, std::size_t total) {
     py::gil_scoped_acquire gil;
     py::object r = cb(done, total);
-    return r.is_none() ? true : r.cast<bool>();
+    return r.is_none() ? true : bool_result(r, "the progress callback");
   };
 }
 
@@ -117,7 +183,7 @@ inline void grasps_arg(const py::object& grasps, std::vector<int>& indices, std:
   if (py::isinstance<py::str>(grasps)) {
     subset = grasps.cast<std::string>();
   } else if (!grasps.is_none()) {
-    indices = grasps.cast<std::vector<int>>();
+    indices = cast_arg<std::vector<int>>(grasps, "grasps", "a subset name or a list of int");
     if (indices.empty()) throw std::invalid_argument("the grasp set is empty");
   }
 }

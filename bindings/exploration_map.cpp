@@ -79,13 +79,17 @@ void def_map_core(MapClass& cls) {
            py::arg("resolution") = 0.025, py::arg("void_fit_threshold") = 0.6, py::arg("seed") = 0,
            py::arg("threads") = 0, py::arg("track_voids") = true, py::arg("search_space") = py::none(),
            "search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.")
-      .def_static("from_file", [](const std::string& path, double threshold, std::uint64_t seed) {
+      .def_static("from_file", [](const std::string& path, double threshold, std::uint64_t seed, std::uint64_t max_cells) {
              ExplorationOptions o;
              o.void_fit_threshold = threshold;
              o.seed = seed;
+             o.max_file_cells = max_cells;
+             py::gil_scoped_release release;
              return ExplorationMap::from_file(path, o);
            }, py::arg("path"), py::arg("void_fit_threshold") = 0.6, py::arg("seed") = 0,
-           "Map from an OctoMap .bt file (OSError if it cannot be read).")
+           py::arg("max_cells") = ExplorationOptions().max_file_cells,
+           "Map from an OctoMap .bt file: FileNotFoundError if it does not exist, OSError if it cannot be read,\n"
+           "states a resolution outside [1e-4, 1e4] m or covers more than max_cells finest-resolution cells.")
       .def_property_readonly("resolution", &ExplorationMap::resolution)
       .def("insert", [](ExplorationMap& self, const py::object& points, const py::object& origin, double max_range) {
              auto pts = points_from(points, "points");
@@ -102,9 +106,9 @@ void def_map_core(MapClass& cls) {
            "no-op; max_range <= 0 means unlimited. ValueError for a wrong shape, a non-finite origin or an\n"
            "origin outside the map bounds.")
       .def("state", [](const ExplorationMap& self, const py::object& points) {
-             auto pts = points_from(points, "points");
-             py::array_t<std::uint8_t> out(static_cast<py::ssize_t>(pts.size()));
-             for (std::size_t i = 0; i < pts.size(); ++i) out.mutable_data()[i] = std::uint8_t(self.state(pts[i]));
+             RowMatrixXd pts = matrix_from(points, 3, "points");
+             py::array_t<std::uint8_t> out(static_cast<py::ssize_t>(pts.rows()));
+             self.state(pts.data(), std::size_t(pts.rows()), out.mutable_data());
              return out;
            }, py::arg("points"), "Class of the cell of each point (N, 3): 0 unknown, 1 free, 2 occupied.")
       .def("key_of", [](const ExplorationMap& self, const py::object& p) { return self.key_of(vec3_from(p, "point")); })

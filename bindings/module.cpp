@@ -2,15 +2,37 @@
 
 namespace py = pybind11;
 
+namespace {
+
+// The Python side of octoreach::set_cancel_check: long C++ loops poll it about every 100 ms. Signals are
+// handled by Python's main thread only, so other threads answer "go on" at once; on the main thread it
+// takes the GIL and runs the pending signal handlers: a KeyboardInterrupt (Ctrl-C) cancels the work,
+// which then surfaces as octoreach.Cancelled (a KeyboardInterrupt).
+unsigned long g_main_thread = 0;
+
+bool python_interrupted() {
+  if (PyThread_get_thread_ident() != g_main_thread) return false;
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() == 0) return false;
+  PyErr_Clear();
+  return true;
+}
+
+}  // namespace
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "octoreach compiled core: robot model, IK, collision, reachability maps, exploration";
   m.attr("__version__") = octoreach::version();
   py::register_exception<octoreach::Cancelled>(m, "Cancelled", PyExc_KeyboardInterrupt);
+  g_main_thread = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+  octoreach::set_cancel_check(&python_interrupted);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const octoreach::FileNotFound& e) {
+      octoreach::py_bindings::set_error(PyExc_FileNotFoundError, e.what());
     } catch (const octoreach::FileError& e) {
-      PyErr_SetString(PyExc_OSError, e.what());
+      octoreach::py_bindings::set_error(PyExc_OSError, e.what());
     }
   });
   octoreach::py_bindings::wrap_progress(m);

@@ -29,10 +29,7 @@ void wrap_obstacles(py::module_& m) {
       .def("add_triangles", [](Obstacles& o, const py::object& vertices, const py::object& triangles,
                                const py::object& pose, const std::string& name) {
              Points v = matrix_from(vertices, 3, "vertices");
-             auto t = py::array_t<int, py::array::c_style | py::array::forcecast>::ensure(triangles);
-             if (!t || t.ndim() != 2 || t.shape(1) != 3) throw std::invalid_argument("triangles must have shape (M, 3)");
-             Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> tri =
-                 Eigen::Map<const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>>(t.data(), t.shape(0), 3);
+             IndexTriples tri = index_triples_from(triangles, std::size_t(v.rows()), "triangles");
              o.add_geometry(make_mesh(v, tri), pose.is_none() ? Pose::Identity() : pose_from(pose), name);
            }, py::arg("vertices"), py::arg("triangles"), py::arg("pose") = py::none(), py::arg("name") = "",
            "Adds a triangle mesh from arrays: vertices (N, 3) and triangles (M, 3) of vertex indices.")

@@ -49,7 +49,7 @@ void wrap_point_map(py::module_& m) {
       .def_static("direct_reachability", [](const CapabilityMap& cap, const py::object& reference_to_arm,
                                             const std::vector<int>& orientations, const py::object& poses) {
              Pose T = pose_from(reference_to_arm, "reference_to_arm");
-             RowMatrixXd P = matrix_from(poses, 4, "poses");
+             RowMatrixXd P = finite_matrix_from(poses, 4, "poses");
              Eigen::VectorXd out(P.rows());
              for (Eigen::Index i = 0; i < P.rows(); ++i)
                out[i] = InversePointMap::direct_reachability(cap, T, orientations, P(i, 0), P(i, 1), P(i, 2), P(i, 3));

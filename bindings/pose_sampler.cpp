@@ -37,22 +37,26 @@ void wrap_pose_sampler(py::module_& m) {
                py::function f = is_free;
                s.set_is_free([f](const Eigen::Vector4d& c) {
                  py::gil_scoped_acquire gil;
-                 return f(c).cast<bool>();
+                 return bool_result(f(c), "is_free");
                });
              }
              if (py::isinstance<py::tuple>(in_collision)) {
                py::tuple t = in_collision;
                if (t.size() < 2 || t.size() > 3)
                  throw std::invalid_argument("in_collision must be a callable or a tuple (robot, obstacles[, reference])");
-               Eigen::VectorXd ref = t.size() == 3 && !t[2].is_none() ? t[2].cast<Eigen::VectorXd>() : Eigen::VectorXd();
-               s.set_collision(t[0].cast<std::shared_ptr<Robot>>(), t[1].cast<std::shared_ptr<Obstacles>>(), ref);
+               Eigen::VectorXd ref = t.size() == 3 && !t[2].is_none()
+                                         ? cast_arg<Eigen::VectorXd>(t[2], "in_collision[2] (reference)", "a float array")
+                                         : Eigen::VectorXd();
+               s.set_collision(cast_arg<std::shared_ptr<Robot>>(t[0], "in_collision[0]", "an octoreach.Robot"),
+                               cast_arg<std::shared_ptr<Obstacles>>(t[1], "in_collision[1]", "an octoreach.Obstacles"),
+                               ref);
              } else if (!in_collision.is_none()) {
                if (!PyCallable_Check(in_collision.ptr()))
                  throw std::invalid_argument("in_collision must be a callable or a tuple (robot, obstacles[, reference])");
                py::function f = in_collision;
                s.set_in_collision([f](const Eigen::Vector4d& c) {
                  py::gil_scoped_acquire gil;
-                 return f(c).cast<bool>();
+                 return bool_result(f(c), "in_collision");
                });
              }
              return s;
@@ -73,8 +77,12 @@ void wrap_pose_sampler(py::module_& m) {
                return *p;
              };
              if (k.is_none()) return py::cast(one());
-             int n = k.cast<int>();
-             if (n < 0) throw std::invalid_argument("k must be non-negative");
+             if (!PyIndex_Check(k.ptr()) || PyBool_Check(k.ptr()))
+               throw py::type_error("k must be an int or None, got " + std::string(py::str(py::type::of(k).attr("__name__"))));
+             const long long kk = PyLong_AsLongLong(py::reinterpret_steal<py::object>(PyNumber_Index(k.ptr())).ptr());
+             if (kk == -1 && PyErr_Occurred()) throw py::error_already_set();
+             if (kk < 0 || kk > (1ll << 30)) throw std::invalid_argument("k must be in [0, 2**30], got " + std::to_string(kk));
+             const int n = int(kk);
              RowMatrixXd out(n, 4);
              for (int i = 0; i < n; ++i) out.row(i) = one().transpose();
              return py::cast(out);

@@ -28,7 +28,8 @@ std::vector<std::string> link_names(const Robot& r, const std::vector<int>& link
 void wrap_robot_model(py::class_<Robot, std::shared_ptr<Robot>>& c) {
   c.def_static("from_urdf", [](const std::string& urdf, const std::vector<std::string>& package_dirs,
                                const py::object& srdf) {
-          return Robot::from_urdf(urdf, package_dirs, srdf.is_none() ? "" : srdf.cast<std::string>());
+          return Robot::from_urdf(urdf, package_dirs,
+                                  srdf.is_none() ? "" : cast_arg<std::string>(srdf, "srdf", "a path or XML string (str)"));
         }, py::arg("urdf"), py::arg("package_dirs") = std::vector<std::string>{}, py::arg("srdf") = py::none(),
         "Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through\n"
         "package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs.")

@@ -24,13 +24,11 @@ void wrap_scene(py::module_& m) {
            }, py::arg("lo"), py::arg("hi"), py::arg("thickness") = 0.02, py::arg("face") = "-x",
            py::arg("opening_width") = 0.1, py::arg("opening_height") = 0.1,
            "Closed box with one opening centred in face '+x', '-x', '+y', '-y' or '+z'; its inside is an interior.")
-      .def("add_mesh", [](Scene& s, const py::object& vertices, const py::array_t<std::int64_t>& triangles) {
+      .def("add_mesh", [](Scene& s, const py::object& vertices, const py::object& triangles) {
              auto v = points_from(vertices, "vertices");
-             if (triangles.ndim() != 2 || triangles.shape(1) != 3)
-               throw std::invalid_argument("triangles must have shape (M, 3)");
-             auto r = triangles.unchecked<2>();
-             std::vector<Eigen::Vector3i> t(triangles.shape(0));
-             for (py::ssize_t i = 0; i < triangles.shape(0); ++i) t[i] = {int(r(i, 0)), int(r(i, 1)), int(r(i, 2))};
+             IndexTriples tri = index_triples_from(triangles, v.size(), "triangles");
+             std::vector<Eigen::Vector3i> t(std::size_t(tri.rows()));
+             for (Eigen::Index i = 0; i < tri.rows(); ++i) t[std::size_t(i)] = tri.row(i).transpose();
              s.add_mesh(v, t);
            }, py::arg("vertices"), py::arg("triangles"))
       .def("load_octomap", &Scene::load_octomap, py::arg("path"),

@@ -47,7 +47,7 @@ void wrap_surface(py::module_& m) {
              return out;
            }, py::arg("resolution"), "Grid points (M, 3) inside the polygon, as used to build surface maps.")
       .def("contains", [](const Surface& s, const py::object& points) {
-             RowMatrixXd p = matrix_from(points, 3, "points");
+             RowMatrixXd p = finite_matrix_from(points, 3, "points");
              py::array_t<bool> out(p.rows());
              auto w = out.mutable_unchecked<1>();
              for (Eigen::Index i = 0; i < p.rows(); ++i) w(i) = s.contains(s.project(p.row(i).transpose()));

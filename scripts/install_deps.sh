@@ -5,7 +5,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build git pkg-config
   python3 python3-dev python3-venv python3-pip
-  libeigen3-dev liboctomap-dev liborocos-kdl-dev liburdfdom-dev libtinyxml-dev
+  libeigen3-dev liboctomap-dev liborocos-kdl-dev liburdfdom-dev libconsole-bridge-dev libtinyxml-dev
   libfcl-dev libccd-dev libqhull-dev libassimp-dev libgtest-dev zlib1g-dev
   chromium chromium-driver
 )

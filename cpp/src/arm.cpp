@@ -74,6 +74,12 @@ void check_map_robot(const Robot& robot, const CapabilityMap& capability) {
   if (capability.model_hash() != 0 && capability.model_hash() != robot.model_hash())
     throw std::invalid_argument("the capability map was built for robot '" + capability.robot_name() +
                                 "' with another allowed-collision matrix (model_hash differs)");
+  // A header edited after the build: the chain it names must exist here and move as many joints as it stores.
+  if (!robot.has_link(capability.base_link()) || !robot.has_link(capability.tip_link()) ||
+      robot.chain(capability.base_link(), capability.tip_link()).dof() != capability.dof())
+    throw std::invalid_argument("the capability map's chain '" + capability.base_link() + "' -> '" +
+                                capability.tip_link() + "' with " + std::to_string(capability.dof()) +
+                                " joints does not match robot '" + robot.name() + "'");
 }
 
 ArmPlacement ArmPlacement::make(const Robot& robot, const CapabilityMap& cap, const std::string& reference_frame,

@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 
+#include "common/cancel.hpp"
 #include "map_io.hpp"
 #include "maps/batch.hpp"
 #include "maps/capability_build.hpp"
@@ -45,6 +46,7 @@ void check_options(const Chain& chain, const CapabilityMapOptions& o) {
 }  // namespace
 
 CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOptions& o, const ProgressCallback& progress) {
+  detail::CancellableScope cancellable;
   check_options(chain, o);
   const auto t_start = std::chrono::steady_clock::now();
   const Robot& robot = chain.robot();
@@ -279,18 +281,22 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   m.model_hash_ = detail::header_model_hash(h, path);
   m.base_link_ = header_string(h, "base_link", path);
   m.tip_link_ = header_string(h, "tip_link", path);
-  m.dof_ = static_cast<int>(header_int(h, "dof", path));
   m.resolution_ = header_double(h, "resolution", path);
-  int dirs = static_cast<int>(header_int(h, "directions", path));
-  int rolls = static_cast<int>(header_int(h, "rolls", path));
-  int sym = static_cast<int>(header_int(h, "symmetry", path));
-  if (!(m.resolution_ >= 0.001) || dirs < 1 || dirs > 100000 || rolls < 1 || rolls > 360 || sym < 1 || sym > 64 ||
-      m.dof_ < 1 || m.dof_ > 64)
+  // counts checked at full width before they are narrowed
+  const auto dof64 = header_int(h, "dof", path), dirs64 = header_int(h, "directions", path),
+             rolls64 = header_int(h, "rolls", path), sym64 = header_int(h, "symmetry", path);
+  if (!(m.resolution_ >= 0.001 && m.resolution_ <= 100.0) || dirs64 < 1 ||
+      dirs64 > OrientationSet::kMaxDirections || rolls64 < 1 || rolls64 > OrientationSet::kMaxRolls || sym64 < 1 ||
+      sym64 > 64 || dof64 < 1 || dof64 > 64)
     throw FileError("'" + path + "' has implausible map parameters");
+  m.dof_ = static_cast<int>(dof64);
+  const int dirs = static_cast<int>(dirs64), rolls = static_cast<int>(rolls64), sym = static_cast<int>(sym64);
   {
     std::istringstream axis(header_string(h, "approach_axis", path));
     if (!(axis >> m.approach_axis_.x() >> m.approach_axis_.y() >> m.approach_axis_.z()))
       throw FileError("'" + path + "' has a malformed approach_axis");
+    if (!m.approach_axis_.allFinite() || std::abs(m.approach_axis_.norm() - 1.0) > 1e-6)
+      throw FileError("'" + path + "' has an approach_axis that is not a unit vector");
   }
   m.self_collision_ = header_int(h, "self_collision", path) != 0;
   m.seed_ = detail::header_u64(h, "seed", path);

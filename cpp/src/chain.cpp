@@ -147,9 +147,9 @@ Eigen::VectorXd Chain::wrap(const Eigen::VectorXd& q_in) const {
     if (continuous_[i]) {
       q[i] = wrap_pi(q[i]);
     } else if (segments_[i].type == JointType::Revolute) {
-      // Shift by whole turns toward the limits; leave it outside if no turn fits.
-      while (q[i] > upper_[i] && q[i] - 2 * kPi >= lower_[i] - 1e-12) q[i] -= 2 * kPi;
-      while (q[i] < lower_[i] && q[i] + 2 * kPi <= upper_[i] + 1e-12) q[i] += 2 * kPi;
+      // Shift by whole turns toward the limits; leave it outside if no turn fits. The turn count is
+      // computed, not looped for, so the work does not grow with |q| (non-finite values stay as they are).
+      q[i] = detail::shift_by_turns(q[i], lower_[i], upper_[i], 1e-12);
     }
   }
   return q;

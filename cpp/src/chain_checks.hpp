@@ -1,6 +1,8 @@
 #pragma once
 // Internal: the joint-vector size check shared by the chain's kinematics (chain.cpp) and IK (ik.cpp).
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +15,25 @@ inline void check_joint_vector(const Chain& c, const Eigen::VectorXd& q) {
   if (q.size() != c.dof())
     throw std::invalid_argument("joint vector has " + std::to_string(q.size()) + " entries, chain '" + c.base_link() +
                                 "' -> '" + c.tip_link() + "' has " + std::to_string(c.dof()) + " joints");
+}
+
+/// The value of q + 2 pi k for the integer k of smallest |k| that brings q into [lo, hi] from the side it
+/// is on, as far as whole turns fit (within `eps` of the far limit). The turn count is computed, not looped
+/// for, so the work does not grow with |q|; a non-finite q is returned as it is.
+inline double shift_by_turns(double q, double lo, double hi, double eps) {
+  const double turn = 2 * kPi;
+  if (!std::isfinite(q)) return q;
+  if (q > hi) {
+    const double fit = std::floor((q - (lo - eps)) / turn);  // most turns that keep q >= lo
+    const double need = std::ceil((q - hi) / turn);          // fewest turns that bring q <= hi
+    return q - std::max(0.0, std::min(fit, need)) * turn;
+  }
+  if (q < lo) {
+    const double fit = std::floor(((hi + eps) - q) / turn);
+    const double need = std::ceil((lo - q) / turn);
+    return q + std::max(0.0, std::min(fit, need)) * turn;
+  }
+  return q;
 }
 
 }  // namespace octoreach::detail

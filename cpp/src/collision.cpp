@@ -1,5 +1,6 @@
 #include "octoreach/collision.hpp"
 
+#include <cerrno>
 #include <fstream>
 
 #include <assimp/Importer.hpp>
@@ -9,6 +10,7 @@
 #include <octomap/OcTree.h>
 
 #include "collision_detail.hpp"
+#include "common/octree_file.hpp"
 
 namespace octoreach {
 namespace {
@@ -52,7 +54,10 @@ std::shared_ptr<fcl::CollisionGeometryd> bvh_from(const std::vector<fcl::Vector3
 // An OctoMap file: .ot holds any AbstractOcTree (it must be an OcTree), anything else is read as .bt.
 std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw FileError("cannot read octree file '" + path + "'");
+  if (!f) {
+    if (errno == ENOENT) throw FileNotFound("no octree file '" + path + "'");
+    throw FileError("cannot read octree file '" + path + "'");
+  }
   if (path.size() >= 3 && path.substr(path.size() - 3) == ".ot") {
     std::unique_ptr<octomap::AbstractOcTree> t(octomap::AbstractOcTree::read(f));
     auto* tree = dynamic_cast<octomap::OcTree*>(t.get());
@@ -61,7 +66,7 @@ std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
     return std::shared_ptr<octomap::OcTree>(tree);
   }
   auto tree = std::make_shared<octomap::OcTree>(0.1);
-  if (!tree->readBinary(f)) throw FileError("'" + path + "' is not a valid OctoMap .bt file");
+  detail::read_bt(*tree, path, "octree file", 0);
   return tree;
 }
 
@@ -162,6 +167,10 @@ void Obstacles::add(const Obstacles& other) {
 }
 
 bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) const {
+  if (!size.allFinite() || (size.array() < 0).any() || size.maxCoeff() > kMaxBoxSize)
+    throw std::invalid_argument("collides_box: size must be finite, >= 0 and at most " + std::to_string(kMaxBoxSize) +
+                                " m per axis");
+  if (!pose.matrix().allFinite()) throw std::invalid_argument("collides_box: pose must be finite");
   fcl::Boxd box(size);
   box.computeLocalAABB();
   return collides(box, pose);

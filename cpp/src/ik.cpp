@@ -9,6 +9,7 @@
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
 #include "chain_checks.hpp"
+#include "common/cancel.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
 
@@ -73,6 +74,7 @@ class LmIk {
 
   std::optional<Eigen::VectorXd> solve(const Eigen::VectorXd* seed) {
     for (int attempt = 0; attempt < o_.attempts; ++attempt) {
+      detail::poll_cancel("IK cancelled");
       if (attempt == 0 && seed) {
         q_ = *seed;
         clamp(q_);
@@ -133,10 +135,7 @@ class LmIk {
     const auto& upper = c_.upper();
     for (int i = 0; i < n_; ++i) {
       if (c_.continuous()[i]) continue;
-      if (c_.segments()[i].type == JointType::Revolute) {
-        while (v[i] > upper[i] && v[i] - 2 * kPi >= lower[i]) v[i] -= 2 * kPi;
-        while (v[i] < lower[i] && v[i] + 2 * kPi <= upper[i]) v[i] += 2 * kPi;
-      }
+      if (c_.segments()[i].type == JointType::Revolute) v[i] = detail::shift_by_turns(v[i], lower[i], upper[i], 0.0);
       v[i] = std::min(std::max(v[i], lower[i]), upper[i]);
     }
   }
@@ -223,6 +222,7 @@ class LmIk {
 
 std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) const {
   check_ik_request(*this, target, o, seed);
+  detail::CancellableScope cancellable;
   if (dof() == 0) return rigid_chain_ik(*this, target, o);
   if (dof() <= 12) return LmIk<12>(*this, target, o).solve(seed);
   return LmIk<Eigen::Dynamic>(*this, target, o).solve(seed);
@@ -233,6 +233,7 @@ void Chain::ik_batch(const std::vector<Pose>& targets, const IkOptions& options,
   if (seeds && (seeds->rows() != static_cast<Eigen::Index>(targets.size()) || seeds->cols() != dof()))
     throw std::invalid_argument("seeds must have shape (" + std::to_string(targets.size()) + ", " +
                                 std::to_string(dof()) + ")");
+  detail::CancellableScope cancellable;
   solutions = Eigen::MatrixXd::Constant(targets.size(), dof(), std::numeric_limits<double>::quiet_NaN());
   std::vector<char> flags(targets.size(), 0);
   detail::parallel_for(targets.size(), threads, [&](std::size_t i, int) {

@@ -2,6 +2,9 @@
 
 #include "common/atomic_file.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -60,7 +63,13 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
 
 void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw FileError("cannot open map file '" + path + "'");
+  if (!f) {
+    if (errno == ENOENT) throw FileNotFound("cannot open map file '" + path + "' (no such file)");
+    throw FileError("cannot open map file '" + path + "'");
+  }
+  f.seekg(0, std::ios::end);
+  const std::uint64_t file_size = std::uint64_t(std::max<std::streamoff>(0, f.tellg()));
+  f.seekg(0, std::ios::beg);
   char magic[kMagicLen];
   if (!f.read(magic, kMagicLen) || std::memcmp(magic, kMagic, kMagicLen) != 0)
     throw FileError("'" + path + "' is not an octoreach map file (bad magic)");
@@ -72,8 +81,11 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   if (!get(f, klen) || klen > 64) throw FileError("'" + path + "' is damaged (bad kind field)");
   std::string file_kind(klen, '\0');
   if (!f.read(file_kind.data(), klen)) throw FileError("'" + path + "' is truncated (kind)");
-  if (file_kind != kind)
+  if (file_kind != kind) {
+    for (char& c : file_kind)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '?';  // damaged: keep it printable
     throw FileError("'" + path + "' holds a " + file_kind + " map, expected a " + kind + " map");
+  }
   if (!get(f, hlen) || hlen > (1u << 24)) throw FileError("'" + path + "' is damaged (bad header length)");
   std::string text(hlen, '\0');
   if (!f.read(text.data(), hlen)) throw FileError("'" + path + "' is truncated (header)");
@@ -89,6 +101,7 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   if (!get(f, raw) || !get(f, size) || !get(f, crc)) throw FileError("'" + path + "' is truncated (payload sizes)");
   // zlib expands at most about 1032 times: a larger raw size is damage, and must not drive an allocation.
   if (size > (1ull << 34) || raw > 1032 * size + 1024) throw FileError("'" + path + "' is damaged (implausible sizes)");
+  if (size > file_size) throw FileError("'" + path + "' is truncated (payload has fewer bytes than its header says)");
   std::vector<Bytef> compressed(size);
   if (!f.read(reinterpret_cast<char*>(compressed.data()), size))
     throw FileError("'" + path + "' is truncated (payload has fewer bytes than its header says)");
@@ -109,7 +122,7 @@ double header_double(const Header& h, const std::string& key, const std::string&
   try {
     std::size_t pos = 0;
     double v = std::stod(it->second, &pos);
-    if (pos != it->second.size()) throw std::invalid_argument("");
+    if (pos != it->second.size() || std::isnan(v)) throw std::invalid_argument("");
     return v;
   } catch (const std::exception&) {
     throw FileError("'" + path + "' has a malformed header entry '" + key + "'");

@@ -1,7 +1,10 @@
 #include "octoreach/orientation_set.hpp"
 
+#include "common/cancel.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <set>
 #include <stdexcept>
@@ -24,20 +27,74 @@ inline int cube_cell(const Eigen::Vector3d& d, int n) {
   return (face * n + iu) * n + iv;
 }
 
+// Unit directions bucketed in a uniform grid over [-1, 1]^3 (about 4 per occupied cell), so that
+// the directions near a point are found without looking at all of them.
+class DirectionGrid {
+ public:
+  explicit DirectionGrid(const std::vector<Eigen::Vector3d>& d)
+      : g_(std::max(1, static_cast<int>(std::sqrt(double(d.size()) / 12.0)))) {
+    const std::size_t cells = std::size_t(g_) * g_ * g_;
+    start_.assign(cells + 1, 0);
+    std::vector<std::size_t> cell(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      cell[i] = id(coord(d[i].x()), coord(d[i].y()), coord(d[i].z()));
+      ++start_[cell[i] + 1];
+    }
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    idx_.resize(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) idx_[std::size_t(fill[cell[i]]++)] = int(i);
+  }
+  double cell_size() const { return 2.0 / g_; }
+  // f(j) for every direction j within distance r of p (and some more: those of the cells the box touches).
+  template <class F>
+  void near(const Eigen::Vector3d& p, double r, F&& f) const {
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = coord(p[a] - r);
+      hi[a] = coord(p[a] + r);
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int x = lo[0]; x <= hi[0]; ++x) {
+          const std::size_t c = id(x, y, z);
+          for (int k = start_[c]; k < start_[c + 1]; ++k) f(idx_[std::size_t(k)]);
+        }
+  }
+
+ private:
+  int coord(double x) const {
+    if (!(x > -1.0)) return 0;  // also NaN
+    return std::min(g_ - 1, static_cast<int>((std::min(x, 1.0) + 1.0) * 0.5 * g_));
+  }
+  std::size_t id(int x, int y, int z) const { return (std::size_t(z) * g_ + y) * g_ + x; }
+  int g_;
+  std::vector<int> start_, idx_;
+};
+
+// A search radius (chord distance) covers the whole sphere once it reaches this.
+constexpr double kWholeSphere = 2.5;
+// Every direction outside the box of half-width r around a unit vector p has p.d < 1 - r^2 / 2 + 1e-12:
+// a candidate whose dot product passes this bound beats all of them.
+inline bool beats_outside(double dot, double r) { return r >= kWholeSphere || dot >= 1.0 - 0.5 * r * r + 1e-9; }
+
 Eigen::Matrix3d align(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
   return Eigen::Quaterniond::FromTwoVectors(from, to).toRotationMatrix();
 }
 
 }  // namespace
 
-OrientationSet OrientationSet::sphere(int count, int rolls, int symmetry) {
-  if (count < 1) throw std::invalid_argument("direction count must be at least 1, got " + std::to_string(count));
-  if (rolls < 1) throw std::invalid_argument("rolls must be at least 1, got " + std::to_string(rolls));
+OrientationSet OrientationSet::sphere(std::int64_t count, int rolls, int symmetry) {
+  if (count < 1 || count > kMaxDirections)
+    throw std::invalid_argument("direction count must be in [1, " + std::to_string(kMaxDirections) + "], got " +
+                                std::to_string(count));
+  if (rolls < 1 || rolls > kMaxRolls)
+    throw std::invalid_argument("rolls must be in [1, " + std::to_string(kMaxRolls) + "], got " + std::to_string(rolls));
   if (symmetry < 1 || symmetry > 64) throw std::invalid_argument("symmetry must be in [1, 64]");
   OrientationSet s;
   s.rolls_ = rolls;
   s.symmetry_ = symmetry;
-  int per_wedge = std::max(1, (count + symmetry / 2) / symmetry);
+  const int per_wedge = int(std::max<std::int64_t>(1, (count + symmetry / 2) / symmetry));
   // Fibonacci spiral over the sphere, compressed into one azimuth wedge of 2 pi / symmetry:
   // equal-area in z, golden-ratio spacing in azimuth within the wedge.
   const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
@@ -58,7 +115,11 @@ OrientationSet OrientationSet::sphere(int count, int rolls, int symmetry) {
 
 OrientationSet OrientationSet::from_directions(const std::vector<Eigen::Vector3d>& directions, int rolls) {
   if (directions.empty()) throw std::invalid_argument("an orientation set needs at least one direction");
-  if (rolls < 1) throw std::invalid_argument("rolls must be at least 1");
+  if (directions.size() > std::size_t(kMaxDirections))
+    throw std::invalid_argument("an orientation set holds at most " + std::to_string(kMaxDirections) + " directions, got " +
+                                std::to_string(directions.size()));
+  if (rolls < 1 || rolls > kMaxRolls)
+    throw std::invalid_argument("rolls must be in [1, " + std::to_string(kMaxRolls) + "], got " + std::to_string(rolls));
   OrientationSet s;
   s.rolls_ = rolls;
   for (const auto& d : directions) {
@@ -70,15 +131,25 @@ OrientationSet OrientationSet::from_directions(const std::vector<Eigen::Vector3d
 }
 
 void OrientationSet::finalize_() {
+  detail::CancellableScope cancellable;
   const int n = directions();
-  // Nearest neighbours (up to 6) by angle.
+  const DirectionGrid grid(dirs_);
+  // Nearest neighbours (up to 6) by angle, ties by index: the 6 best of the directions within a
+  // growing radius, once the 6th beats every direction outside it.
   neighbours_.assign(n, {});
+  std::vector<std::pair<double, int>> d;
   for (int i = 0; i < n; ++i) {
-    std::vector<std::pair<double, int>> d;
-    for (int j = 0; j < n; ++j)
-      if (j != i) d.emplace_back(-dirs_[i].dot(dirs_[j]), j);
-    std::sort(d.begin(), d.end());
-    for (int k = 0; k < std::min<int>(6, d.size()); ++k) neighbours_[i].push_back(d[k].second);
+    detail::poll_cancel("orientation set construction cancelled");
+    for (double r = grid.cell_size();; r *= 2) {
+      d.clear();
+      grid.near(dirs_[i], r, [&](int j) {
+        if (j != i) d.emplace_back(-dirs_[i].dot(dirs_[j]), j);
+      });
+      const std::size_t k = std::min<std::size_t>(6, d.size());
+      std::partial_sort(d.begin(), d.begin() + std::ptrdiff_t(k), d.end());
+      if (r >= kWholeSphere || (k == 6 && beats_outside(-d[5].first, r))) break;
+    }
+    for (std::size_t k = 0; k < std::min<std::size_t>(6, d.size()); ++k) neighbours_[i].push_back(d[k].second);
   }
   // Candidates per cube-map cell: directions nearest to some sample point of the cell,
   // widened by the cell's angular size so that the exact nearest is always among them.
@@ -101,11 +172,18 @@ void OrientationSet::finalize_() {
           for (double fv : {0.0, 1.0}) radius = std::max(radius, std::acos(std::min(1.0, c.dot(point(fu, fv)))));
         // Nearest to the centre at angle a0: any direction within a0 + 2 radius may be nearest somewhere.
         double best = -2;
-        for (const auto& d : dirs_) best = std::max(best, c.dot(d));
+        for (double r = grid.cell_size();; r *= 2) {
+          grid.near(c, r, [&](int j) { best = std::max(best, c.dot(dirs_[j])); });
+          if (beats_outside(best, r)) break;
+        }
         double limit = std::acos(std::min(1.0, best)) + 2.0 * radius + 1e-9;
         auto& cands = table_[cube_cell(c, kCells)];
-        for (int j = 0; j < n; ++j)
+        const std::size_t first = cands.size();
+        const double reach = limit >= kPi ? kWholeSphere : 2.0 * std::sin(0.5 * limit) + 1e-9;
+        grid.near(c, reach, [&](int j) {
           if (std::acos(std::max(-1.0, std::min(1.0, c.dot(dirs_[j])))) <= limit) cands.push_back(j);
+        });
+        std::sort(cands.begin() + std::ptrdiff_t(first), cands.end());
       }
   }
   // Rotation table for the z symmetry.
@@ -117,6 +195,7 @@ void OrientationSet::finalize_() {
 }
 
 int OrientationSet::nearest_direction(const Eigen::Vector3d& d) const {
+  if (!d.allFinite() || d.isZero(0)) throw std::invalid_argument("nearest_direction needs a finite non-zero direction");
   const auto& cands = table_[cube_cell(d, kCells)];
   int best = cands.empty() ? 0 : cands[0];
   double best_dot = -2;

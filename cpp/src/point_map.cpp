@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "map_io.hpp"
+#include "common/cancel.hpp"
 #include "common/thread_pool.hpp"
 #include "reach_extent.hpp"
 
@@ -131,7 +132,7 @@ void fill_direct_bins(const CapabilityMap& cap, const Pose& reference_to_arm, co
 void derive_rotated_bins(int sym, PointGrid& g) {
   const int T = g.T, step = T / sym, nxy = g.nxy, half = g.half;
   for (int ix = 0; ix < nxy; ++ix)
-    for (int iy = 0; iy < nxy; ++iy)
+    for (int iy = 0; iy < nxy; ++iy, detail::poll_cancel("point map build cancelled"))
       for (int mrot = 1; mrot < sym; ++mrot) {
         double a = -2.0 * M_PI * mrot / sym;
         double cx = ix - half + 0.5, cy = iy - half + 0.5;
@@ -150,6 +151,7 @@ void derive_rotated_bins(int sym, PointGrid& g) {
 
 InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& cap, const PointMapOptions& o,
                                        const ProgressCallback& progress) {
+  detail::CancellableScope cancellable;
   const auto t0 = std::chrono::steady_clock::now();
   check_map_robot(robot, cap);
   if (o.theta_bins < 1 || o.theta_bins > 360)
@@ -188,7 +190,7 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
                    progress);
   if (symmetric) derive_rotated_bins(sym, g);
   const std::size_t ncols = g.columns();
-  for (std::size_t col = 0; col < ncols; ++col)
+  for (std::size_t col = 0; col < ncols; ++col, detail::poll_cancel("point map build cancelled"))
     for (int iz = 0; iz < g.nz; ++iz) {
       const float* v = &g.at(col, iz, 0);
       if (*std::max_element(v, v + g.T) <= 0) continue;

@@ -1,5 +1,7 @@
 #include "octoreach/pose_sampler.hpp"
 
+#include "common/cancel.hpp"
+
 #include <cmath>
 
 namespace octoreach {
@@ -62,7 +64,9 @@ std::optional<Eigen::Vector4d> PoseSampler::sample(double* score) {
   double best = -1;
   Eigen::Vector4d best_pose;
   int found = 0;
+  detail::CancellableScope cancellable;
   while (found < options_.candidates && counts_[0] < max_draws) {
+    detail::poll_cancel("pose sampling cancelled");
     ++counts_[0];
     // Named draws: argument evaluation order is unspecified, and the stream must not depend on the compiler.
     const double x = ux(rng_), y = uy(rng_), z = uz(rng_), t = ut(rng_);

@@ -203,6 +203,7 @@ void Surface::add_legs(double width) {
 }
 
 bool Surface::contains_even_odd(const Eigen::Vector2d& p) const {
+  if (!p.allFinite()) return false;
   bool inside = false;
   const std::size_t N = polygon_.size();
   for (std::size_t i = 0, j = N - 1; i < N; j = i++) {

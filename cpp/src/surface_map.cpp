@@ -8,6 +8,7 @@
 
 #include <fcl/fcl.h>
 
+#include "common/cancel.hpp"
 #include "common/format.hpp"
 #include "common/thread_pool.hpp"
 #include "map_io.hpp"
@@ -182,7 +183,7 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   std::vector<float> d(hp.size());
   BinCounts n;
   for (int ix = 0; ix < g.nx; ++ix)
-    for (int iy = 0; iy < g.ny; ++iy)
+    for (int iy = 0; iy < g.ny; ++iy, detail::poll_cancel("surface map build cancelled"))
       for (int iz = 0; iz < g.nz; ++iz) {
         octomap::point3d bc = b.tree.keyToCoord(g.key(ix, iy, iz));
         // Heights are evaluated inside the z range: a robot on the floor (z range (0, 0)) is
@@ -243,6 +244,7 @@ void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
 
 SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const Surface& surface,
                              const SurfaceMapOptions& o, const ProgressCallback& progress) {
+  detail::CancellableScope cancellable;
   const auto t0 = std::chrono::steady_clock::now();
   check_map_robot(robot, cap);
   check_options(cap, o);
@@ -313,6 +315,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
 
   const std::size_t ncells = g.cells();
   for (std::size_t c = 0; c < ncells; ++c) {
+    if ((c & 0xffff) == 0) detail::poll_cancel("surface map build cancelled");
     const float* v = g.values.data() + c * T;
     if (*std::max_element(v, v + T) <= 0) continue;
     int iz = c % g.nz, iy = (c / g.nz) % g.ny, ix = c / (static_cast<std::size_t>(g.ny) * g.nz);
@@ -462,6 +465,11 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   std::istringstream poly(header_string(h, "polygon", path));
   double x, y, z;
   while (poly >> x >> y >> z) m.polygon_.emplace_back(x, y, z);
+  bool finite = true;
+  for (const auto& v : m.polygon_) finite = finite && v.allFinite();
+  if (!(poly >> std::ws).eof() || m.polygon_.size() < 3 || !finite)
+    throw FileError("'" + path + "' has a damaged polygon (at least 3 finite vertices expected)");
+  if (!(m.z_min_ <= m.z_max_)) throw FileError("'" + path + "' has z_min > z_max (damaged header)");
   if (m.map_.voxel_count() == 0) m.empty_reason_ = "the map is empty";
   return m;
 }

@@ -1,12 +1,15 @@
 // Robot::from_urdf: URDF text -> urdfdom model -> links, joints and collision shapes; mesh URIs
 // (package://, file://, relative paths) resolved to files. The SRDF part is in srdf.cpp.
+#include <cerrno>
 #include <deque>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <sstream>
 
 #include <fcl/fcl.h>
+#include <console_bridge/console.h>
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
@@ -24,7 +27,10 @@ bool looks_like_xml(const std::string& s) {
 
 std::string read_text_file(const std::string& path, const char* what) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw FileError(std::string("cannot read ") + what + " file '" + path + "'");
+  if (!f) {
+    if (errno == ENOENT) throw FileNotFound(std::string("cannot read ") + what + " file '" + path + "' (no such file)");
+    throw FileError(std::string("cannot read ") + what + " file '" + path + "'");
+  }
   std::stringstream ss;
   ss << f.rdbuf();
   return ss.str();
@@ -113,7 +119,28 @@ UrdfText read_urdf_text(const std::string& urdf) {
   return t;
 }
 
-// urdfdom prints parse errors instead of naming them, so the XML is checked here first.
+// urdfdom reports parse errors through console_bridge: while one parse runs, its errors are collected
+// here instead of printed (console_bridge's handler is process-wide, hence the mutex).
+class CaptureConsole : public console_bridge::OutputHandler {
+ public:
+  CaptureConsole() : lock_(mutex()) { console_bridge::useOutputHandler(this); }
+  ~CaptureConsole() override { console_bridge::restorePreviousOutputHandler(); }
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) return;
+    errors_ += (errors_.empty() ? "" : "; ") + text;
+  }
+  const std::string& errors() const { return errors_; }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  std::string errors_;
+};
+
+// The XML is checked with tinyxml first (its error names the line); urdfdom's own reasons are captured.
 urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& xml) {
   {
     TiXmlDocument doc;
@@ -127,12 +154,16 @@ urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& xml) {
       throw std::invalid_argument("malformed URDF: <robot> has no name attribute");
   }
   urdf::ModelInterfaceSharedPtr model;
+  std::string reason;
   try {
+    CaptureConsole capture;  // urdfdom's errors go into the exception, not to stderr
     model = urdf::parseURDF(xml);
+    reason = capture.errors();
   } catch (const std::exception& e) {
     throw std::invalid_argument(std::string("malformed URDF: ") + e.what());
   }
-  if (!model) throw std::invalid_argument("malformed URDF: urdfdom rejected it (see the message above)");
+  if (!model)
+    throw std::invalid_argument("malformed URDF: " + (reason.empty() ? std::string("urdfdom rejected it") : reason));
   if (!model->getRoot()) throw std::invalid_argument("malformed URDF: no root link");
   return model;
 }

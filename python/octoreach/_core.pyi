@@ -1100,7 +1100,7 @@ class Scene:
         """
         Records a region of interest for coverage figures.
         """
-    def add_mesh(self, vertices: typing.Any, triangles: typing.Annotated[numpy.typing.ArrayLike, numpy.int64]) -> None:
+    def add_mesh(self, vertices: typing.Any, triangles: typing.Any) -> None:
         ...
     def bounds(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
         ...
@@ -1212,9 +1212,10 @@ class ExplorationMap:
     occupied cells), clustered into ellipsoids. Map frame, metres.
     """
     @staticmethod
-    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> ExplorationMap:
+    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, max_cells: typing.SupportsInt | typing.SupportsIndex = 16777216) -> ExplorationMap:
         """
-        Map from an OctoMap .bt file (OSError if it cannot be read).
+        Map from an OctoMap .bt file: FileNotFoundError if it does not exist, OSError if it cannot be read,
+        states a resolution outside [1e-4, 1e4] m or covers more than max_cells finest-resolution cells.
         """
     def __init__(self, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.025, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, track_voids: bool = True, search_space: typing.Any = None) -> None:
         """

@@ -218,11 +218,15 @@ def test_reachable_poses_use_nearest_orientation(cmap, brute):
     assert got.dtype == bool
     np.testing.assert_array_equal(got, expected)
     assert 0 < got.sum() < n
-    # non-finite poses are simply unreachable
+    # non-finite poses are rejected, not answered (issue 12: no silent answer for NaN)
     bad = poses[:3].copy()
     bad[0, 0, 3] = np.nan
+    with pytest.raises(ValueError, match="pose 0"):
+        cmap.reachable(bad)
+    bad = poses[:3].copy()
     bad[1, :3, :3] = np.inf
-    assert not cmap.reachable(bad)[:2].any()
+    with pytest.raises(ValueError, match="pose 1"):
+        cmap.reachable(bad)
 
 
 def test_orientation_rotation_points_the_approach_axis(cmap):

@@ -111,6 +111,9 @@ struct ExplorationOptions {
   /// The search space S of the paper (its boundary is known): void cells are only looked for
   /// inside this box. Default: unbounded.
   Eigen::Vector3d search_lo = Eigen::Vector3d::Constant(-1e9), search_hi = Eigen::Vector3d::Constant(1e9);
+  /// from_file rejects a .bt file whose leaves cover more finest-resolution cells than this (counted
+  /// before anything is expanded: a damaged file cannot make the load run out of memory or time).
+  std::uint64_t max_file_cells = std::uint64_t(1) << 24;
 };
 
 /// \brief Order-independent digest of an occupancy tree at the finest resolution: counts of free and
@@ -134,7 +137,12 @@ struct ExplorationSnapshot {
 
 /// \brief OctoMap occupancy tree with incremental frontiers, voids and their clusters.
 ///
-/// Not thread-safe for concurrent writes; const methods may run concurrently.
+/// Threads: every method may be called from any number of threads at once. The map holds a
+/// reader-writer lock: insert() takes it exclusively, every const method (and next_best_view,
+/// accumulate_utility and view_utility for their whole run) shares it, so a query waits for a running
+/// insert and sees the map before or after it, never in between. resolution(), options(), key_of()
+/// and center() read only what is fixed at construction and take no lock. The one exception is
+/// octree(): the reference it returns is not guarded, do not use it while another thread inserts.
 class ExplorationMap {
  public:
   explicit ExplorationMap(const ExplorationOptions& options = ExplorationOptions());
@@ -143,7 +151,8 @@ class ExplorationMap {
   ExplorationMap& operator=(const ExplorationMap&) = delete;
 
   /// \brief Map whose occupancy comes from an OctoMap .bt file (frontiers and voids rebuilt;
-  /// the hull from the occupied cells). \throws FileError if it cannot be read.
+  /// the hull from the occupied cells). \throws FileNotFound if it does not exist, FileError if it cannot be
+  /// read, states a resolution outside [1e-4, 1e4] m or covers more than options.max_file_cells cells.
   static std::unique_ptr<ExplorationMap> from_file(const std::string& path,
                                                    const ExplorationOptions& options = ExplorationOptions());
 
@@ -161,12 +170,14 @@ class ExplorationMap {
   double resolution() const { return resolution_; }
   /// \brief The options the map was made with (resolution: that of the tree).
   const ExplorationOptions& options() const { return options_; }
-  /// \brief The occupancy tree.
+  /// \brief The occupancy tree (not guarded by the map's lock: see the class comment).
   const octomap::OcTree& octree() const;
 
   /// \brief Class of the cell holding point p (map frame); Unknown outside the map bounds.
   CellState state(const Eigen::Vector3d& p) const;
   CellState state(CellKey key) const;
+  /// \brief Batched state(p): rows (n, 3), out[i] = CellState as a byte; one lock for the batch.
+  void state(const double* rows, std::size_t n, std::uint8_t* out) const;
   /// \brief Key of the cell holding p; throws std::invalid_argument outside the map bounds.
   CellKey key_of(const Eigen::Vector3d& p) const;
   /// \brief Centre of a cell, metres.
@@ -176,24 +187,24 @@ class ExplorationMap {
   bool is_void(CellKey key) const;
 
   /// \brief Cells whose class the last insert changed (in Morton order).
-  const std::vector<CellChange>& changed_cells() const { return changed_; }
+  std::vector<CellChange> changed_cells() const;
 
   /// \brief Frontier cells, sorted.
   std::vector<CellKey> frontier_cells() const;
   /// \brief Frontier clusters (each sorted, ordered by their first cell).
-  const std::vector<std::vector<CellKey>>& frontier_clusters() const;
+  std::vector<std::vector<CellKey>> frontier_clusters() const;
   /// \brief Void cells, sorted.
   std::vector<CellKey> void_cells() const;
   std::size_t void_cell_count() const;
   /// \brief Void clusters (ellipsoidal region growing, deterministic for options().seed).
-  const std::vector<VoidCluster>& void_clusters() const;
+  std::vector<VoidCluster> void_clusters() const;
   /// \brief Frontier-voids: each void cluster with the frontier clusters touching it.
   std::vector<FrontierVoid> frontier_voids() const;
   /// \brief Vertices of the current convex hull of the occupied cells (metres).
   std::vector<Eigen::Vector3d> hull_vertices() const;
   /// \brief Facet planes (n, d) with n.x + d <= 0 inside, unit n.
   std::vector<Eigen::Vector4d> hull_planes() const;
-  /// \brief True when p lies inside (or on) the current hull.
+  /// \brief True when p lies inside (or on) the current hull. \throws std::invalid_argument for a non-finite p.
   bool inside_hull(const Eigen::Vector3d& p) const;
 
   /// \brief Frontiers, their clusters and voids recomputed from the occupancy and hull alone.
@@ -206,7 +217,10 @@ class ExplorationMap {
   /// \brief occupancy_digest(octree()).
   OccupancyDigest occupancy_digest() const;
 
+  /// \brief Most cells count_known visits.
+  static constexpr std::uint64_t kMaxCountCells = std::uint64_t(1) << 30;
   /// \brief Counts of known / unknown cells (at the finest resolution) in an axis-aligned box.
+  /// \throws std::invalid_argument for a corner outside the map bounds or a box of more than kMaxCountCells cells.
   std::pair<std::size_t, std::size_t> count_known(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
 
   /// \brief Writes the tree as an OctoMap binary .bt (for octovis); temporary file + rename.

@@ -2,6 +2,7 @@
 /// \file orientation_set.hpp
 /// \brief Evenly spread end-effector orientations: approach directions on the sphere and rolls about them.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,13 @@ namespace octoreach {
 /// inverse point map uses that to derive yaw bins instead of recomputing them.
 class OrientationSet {
  public:
-  /// \brief Evenly spread set of about `count` directions (rounded to a multiple of `symmetry`).
-  static OrientationSet sphere(int count = 200, int rolls = 1, int symmetry = 4);
+  /// \brief Most directions a set may hold, and most rolls (checked before anything is allocated).
+  static constexpr std::int64_t kMaxDirections = 100000;
+  static constexpr int kMaxRolls = 360;
+  /// \brief Evenly spread set of about `count` directions (rounded to a multiple of `symmetry`); built in
+  /// O(count log count). \throws std::invalid_argument for count outside [1, kMaxDirections], rolls outside
+  /// [1, kMaxRolls] or symmetry outside [1, 64].
+  static OrientationSet sphere(std::int64_t count = 200, int rolls = 1, int symmetry = 4);
   /// \brief Set from explicit unit directions (normalised here); symmetry 1.
   static OrientationSet from_directions(const std::vector<Eigen::Vector3d>& directions, int rolls = 1);
 

@@ -7,6 +7,7 @@
 /// +x points right in the image and +y down. Poses are camera -> world transforms.
 
 #include <cstdint>
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,11 @@ class OcTree;
 namespace octoreach {
 
 /// \brief A static world the depth camera can see.
+///
+/// Threads: const methods may run from many threads at once. The add_* and load_octomap methods take the
+/// scene's lock exclusively and DepthCamera::capture takes it shared for a whole capture, so adding while
+/// another thread captures is safe (the capture sees the scene before or after). A direct raycast() or
+/// solid() call concurrent with an add_* call is not (Python serialises those through the GIL).
 class Scene {
  public:
   Scene();
@@ -59,8 +65,15 @@ class Scene {
   bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const;
 
  private:
+  friend class DepthCamera;
   struct Bvh;
   void rebuild_bvh_();
+  void add_box_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+  void add_interior_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+  struct Lock;                  // a writer-first reader-writer mutex (scene.cpp); copies share it
+  std::shared_ptr<Lock> lock_;  // add_* exclusive, DepthCamera::capture shared
+  void lock_shared_() const;
+  void unlock_shared_() const;
   std::vector<Aabb> boxes_, interiors_;
   std::vector<Eigen::Vector3d> tris_;  // 3 rows per triangle
   std::shared_ptr<const Bvh> bvh_;
@@ -90,6 +103,8 @@ Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward
 Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll = 0.0);
 
 /// \brief A simulated depth camera: one ray per pixel, Gaussian depth noise growing with depth^2.
+///
+/// Threads: capture() may run from many threads at once (each call takes the next noise stream).
 class DepthCamera {
  public:
   /// \param noise standard deviation of the depth at 1 m (metres); at depth z it is noise * z^2
@@ -105,7 +120,8 @@ class DepthCamera {
  private:
   CameraIntrinsics intr_;
   double noise_;
-  std::uint64_t seed_, calls_ = 0;
+  std::uint64_t seed_;
+  std::atomic<std::uint64_t> calls_{0};
 };
 
 }  // namespace octoreach

@@ -45,11 +45,12 @@ class Surface {
     Eigen::Vector3d d = p - origin_;
     return {d.dot(u_), d.dot(v_)};
   }
-  /// \brief True when (u, v) lies inside the polygon (half-planes for convex polygons, else even-odd).
+  /// \brief True when (u, v) lies inside the polygon (half-planes for convex polygons, else even-odd);
+  /// false for a non-finite (u, v).
   bool contains(const Eigen::Vector2d& uv) const {
     if (convex_) {
       for (const auto& h : halfplanes_)
-        if (h.x() * uv.x() + h.y() * uv.y() > h.z()) return false;
+        if (!(h.x() * uv.x() + h.y() * uv.y() <= h.z())) return false;
       return true;
     }
     return contains_even_odd(uv);

@@ -32,10 +32,23 @@ class Cancelled : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// \brief A process-wide check that long computations (map builds, IK batches and many-attempt IK,
+/// pose sampling, orientation sets, OctoMap loading) poll about every 100 ms on the thread that called
+/// them: returning true stops the computation with Cancelled (the object it was building is dropped;
+/// existing objects stay valid). The Python module installs one that reports a pending Ctrl-C.
+using CancelCheck = bool (*)();
+void set_cancel_check(CancelCheck check);
+
 /// \brief Raised when a file cannot be read or written, or is damaged (Python: OSError).
 class FileError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// \brief Raised when a file to read does not exist (Python: FileNotFoundError).
+class FileNotFound : public FileError {
+ public:
+  using FileError::FileError;
 };
 
 /// \brief Library version string.

@@ -7,6 +7,7 @@
 // Rules: body(i, tid) gets tid in [0, threads) (index per-thread scratch with it). A parallel_for
 // called from inside a pool task runs serially on that thread (no nested fan-out, no deadlock).
 // Two callers from different threads at once: the second runs on its own threads.
+// Cancellation (common/cancel.hpp) is polled after every chunk; a Cancelled is rethrown like any error.
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -14,6 +15,8 @@
 #include <mutex>
 #include <thread>
 #include <vector>
+
+#include "common/cancel.hpp"
 
 namespace octoreach::detail {
 
@@ -36,24 +39,31 @@ template <class Body>
 void parallel_for(std::size_t n, int threads, Body&& body, std::size_t chunk = 16) {
   threads = std::max(1, std::min<int>(default_threads(threads), static_cast<int>((n + chunk - 1) / chunk)));
   if (threads <= 1 || inside_pool_task()) {
-    for (std::size_t i = 0; i < n; ++i) body(i, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      body(i, 0);
+      poll_cancel();
+    }
     return;
   }
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};  // set on the first error: the other threads stop at their next poll
   std::exception_ptr error;
   std::mutex error_mutex;
   run_on_pool(threads, [&](int tid) {
+    StopScope stop_scope(&stop);
     try {
       for (;;) {
         std::size_t start = next.fetch_add(chunk);
         if (start >= n) break;
         std::size_t end = std::min(n, start + chunk);
         for (std::size_t i = start; i < end; ++i) body(i, tid);
+        poll_cancel();  // a no-op on workers and outside cancellable work
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(error_mutex);
       if (!error) error = std::current_exception();
       next.store(n);
+      stop.store(true);
     }
   });
   if (error) std::rethrow_exception(error);

@@ -12,7 +12,9 @@
 #include "batch_insert.hpp"
 #include "cell_sets.hpp"
 #include "common/atomic_file.hpp"
+#include "common/cancel.hpp"
 #include "common/format.hpp"
+#include "common/octree_file.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
 #include "exploration_state.hpp"
@@ -85,13 +87,37 @@ CellKey ExplorationMap::key_of(const Eigen::Vector3d& p) const {
 
 Eigen::Vector3d ExplorationMap::center(CellKey k) const { return state_->center(k); }
 
-CellState ExplorationMap::state(CellKey key) const { return state_->state(key); }
+CellState ExplorationMap::state(CellKey key) const {
+  detail::MapGuard guard(*state_, false);
+  return state_->state(key);
+}
 CellState ExplorationMap::state(const Eigen::Vector3d& p) const {
   octomap::OcTreeKey k;
-  return key_checked(state_->tree, p, k) ? state_->state(detail::to_cell(k)) : CellState::Unknown;
+  if (!key_checked(state_->tree, p, k)) return CellState::Unknown;
+  detail::MapGuard guard(*state_, false);
+  return state_->state(detail::to_cell(k));
 }
-bool ExplorationMap::is_frontier(CellKey key) const { return (state_->grid.get(key) & kFrontierFlag) != 0; }
-bool ExplorationMap::is_void(CellKey key) const { return (state_->grid.get(key) & kVoidFlag) != 0; }
+void ExplorationMap::state(const double* rows, std::size_t n, std::uint8_t* out) const {
+  detail::MapGuard guard(*state_, false);
+  detail::GridReader g(state_->grid);
+  for (std::size_t i = 0; i < n; ++i) {
+    octomap::OcTreeKey k;
+    const Eigen::Vector3d p(rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]);
+    out[i] = key_checked(state_->tree, p, k) ? std::uint8_t(g.get(detail::to_cell(k)) & kStateMask) : 0;
+  }
+}
+bool ExplorationMap::is_frontier(CellKey key) const {
+  detail::MapGuard guard(*state_, false);
+  return (state_->grid.get(key) & kFrontierFlag) != 0;
+}
+bool ExplorationMap::is_void(CellKey key) const {
+  detail::MapGuard guard(*state_, false);
+  return (state_->grid.get(key) & kVoidFlag) != 0;
+}
+std::vector<CellChange> ExplorationMap::changed_cells() const {
+  detail::MapGuard guard(*state_, false);
+  return changed_;
+}
 
 InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
                                    double max_range) {
@@ -101,6 +127,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     throw std::invalid_argument("sensor_origin must be finite, got " + detail::format_point(origin));
   if (std::isnan(max_range)) throw std::invalid_argument("max_range must be a number (<= 0 or inf: unlimited), got nan");
   auto& S = *state_;
+  detail::MapGuard guard(S, true);
   octomap::OcTreeKey okey;
   if (!key_checked(S.tree, origin, okey))
     throw std::invalid_argument("sensor_origin " + detail::format_point(origin) +
@@ -144,6 +171,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
 
 std::vector<CellKey> ExplorationMap::known_cells(CellState which) const {
   if (which == CellState::Unknown) throw std::invalid_argument("known_cells: which must be Free or Occupied");
+  detail::MapGuard guard(*state_, false);
   const auto& tree = state_->tree;
   const bool want = which == CellState::Occupied;
   std::vector<CellKey> keys;
@@ -154,9 +182,13 @@ std::vector<CellKey> ExplorationMap::known_cells(CellState which) const {
   return keys;
 }
 
-OccupancyDigest ExplorationMap::occupancy_digest() const { return octoreach::occupancy_digest(state_->tree); }
+OccupancyDigest ExplorationMap::occupancy_digest() const {
+  detail::MapGuard guard(*state_, false);
+  return octoreach::occupancy_digest(state_->tree);
+}
 
 ExplorationSnapshot ExplorationMap::snapshot() const {
+  detail::MapGuard guard(*state_, false);
   ExplorationSnapshot s;
   s.frontier_cells = frontier_cells();
   s.frontier_clusters = frontier_clusters();
@@ -165,6 +197,7 @@ ExplorationSnapshot ExplorationMap::snapshot() const {
 }
 
 ExplorationSnapshot ExplorationMap::recompute_from_scratch() const {
+  detail::MapGuard guard(*state_, false);
   ExplorationSnapshot s;
   const auto& S = *state_;
   // Every known leaf of the tree, expanded to the finest resolution, classified by the tree itself.
@@ -207,7 +240,14 @@ ExplorationSnapshot ExplorationMap::recompute_from_scratch() const {
 std::pair<std::size_t, std::size_t> ExplorationMap::count_known(const Eigen::Vector3d& lo,
                                                                 const Eigen::Vector3d& hi) const {
   CellKey a = key_of(lo), b = key_of(hi);
+  const std::uint64_t cells = std::uint64_t(key_x(b) >= key_x(a) ? key_x(b) - key_x(a) + 1 : 0) *
+                              (key_y(b) >= key_y(a) ? key_y(b) - key_y(a) + 1 : 0) *
+                              (key_z(b) >= key_z(a) ? key_z(b) - key_z(a) + 1 : 0);
+  if (cells > kMaxCountCells)
+    throw std::invalid_argument("count_known: the box holds " + std::to_string(cells) + " cells, more than the limit " +
+                                std::to_string(kMaxCountCells));
   std::size_t known = 0, unknown = 0;
+  detail::MapGuard guard(*state_, false);
   detail::GridReader g(state_->grid);
   for (std::uint32_t z = key_z(a); z <= key_z(b); ++z)
     for (std::uint32_t y = key_y(a); y <= key_y(b); ++y)
@@ -221,23 +261,23 @@ std::pair<std::size_t, std::size_t> ExplorationMap::count_known(const Eigen::Vec
 }
 
 void ExplorationMap::write_bt(const std::string& path) const {
+  detail::MapGuard guard(*state_, false);
   detail::write_file_atomically(path, [&](std::ostream& out) {
     if (!state_->tree.writeBinaryConst(out)) throw FileError("cannot write OctoMap file '" + path + "'");
   }, "OctoMap file");
 }
 
 std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& path, const ExplorationOptions& options) {
-  {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw FileError("cannot open OctoMap file '" + path + "'");
-  }
+  detail::CancellableScope cancellable;
   auto m = std::make_unique<ExplorationMap>(options);
   auto& S = *m->state_;
-  if (!S.tree.readBinary(path)) throw FileError("'" + path + "' is not a readable OctoMap binary (.bt) file");
+  detail::read_bt(S.tree, path, "OctoMap file", options.max_file_cells);
   m->resolution_ = S.tree.getResolution();
   m->options_.resolution = m->resolution_;
   std::vector<Eigen::Vector3d> occupied;
+  std::size_t visited = 0;
   detail::for_each_leaf_cell(S.tree, [&](CellKey c, const auto& it) {
+    if ((++visited & 0xffff) == 0) detail::poll_cancel("OctoMap loading cancelled");
     bool occ = S.tree.isNodeOccupied(*it);
     S.grid.at(c) = std::uint8_t(occ ? CellState::Occupied : CellState::Free);
     if (occ) occupied.push_back(S.center(c));

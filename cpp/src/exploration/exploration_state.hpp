@@ -4,13 +4,16 @@
 // Nothing here is part of the public API.
 #include <array>
 #include <memory>
+#include <algorithm>
 #include <mutex>
+#include <shared_mutex>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
 #include <octomap/OcTree.h>
 
+#include "common/shared_mutex.hpp"
 #include "hull.hpp"
 #include "octoreach/exploration.hpp"
 
@@ -136,10 +139,12 @@ void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
   }
 }
 
-// Everything an ExplorationMap maintains. Writers: ExplorationMap's non-const methods (one at a
-// time, see the class comment); the caches below are rebuilt under cache_mutex by const methods.
+// Everything an ExplorationMap maintains. `rw` is the map's reader-writer lock: insert holds it
+// exclusively, every other public method (and next_best_view for its whole search) shared, through
+// MapGuard; the caches below are rebuilt under cache_mutex by readers.
 struct ExplorationState {
   explicit ExplorationState(double res) : tree(res) {}
+  mutable SharedMutex rw;  // writer first: a stream of queries cannot starve an insert
   MapTree tree;
   StateGrid grid;
   // frontier cell -> cluster label, label -> cells (cells may be stale; filter by the flag)
@@ -164,6 +169,43 @@ struct ExplorationState {
   }
 };
 
+// Holds a map's lock for the scope, shared (read) or exclusive (write). Re-entrant per thread: a
+// thread that already holds the lock of this map (a public method calling another, next_best_view
+// calling the map's queries) passes without locking again.
+class MapGuard {
+ public:
+  MapGuard(const ExplorationState& s, bool write) {
+    auto& h = held();
+    if (std::find(h.begin(), h.end(), &s) != h.end()) return;
+    if (write)
+      s.rw.lock();
+    else
+      s.rw.lock_shared();
+    s_ = &s;
+    write_ = write;
+    h.push_back(&s);
+  }
+  ~MapGuard() {
+    if (!s_) return;
+    auto& h = held();
+    h.erase(std::find(h.begin(), h.end(), s_));
+    if (write_)
+      s_->rw.unlock();
+    else
+      s_->rw.unlock_shared();
+  }
+  MapGuard(const MapGuard&) = delete;
+  MapGuard& operator=(const MapGuard&) = delete;
+
+ private:
+  static std::vector<const ExplorationState*>& held() {
+    thread_local std::vector<const ExplorationState*> h;
+    return h;
+  }
+  const ExplorationState* s_ = nullptr;
+  bool write_ = false;
+};
+
 // The only door from outside the class to its state (declared a friend in exploration.hpp).
 struct ExplorationAccess {
   static const ExplorationState& state(const ExplorationMap& m) { return *m.state_; }
@@ -171,5 +213,13 @@ struct ExplorationAccess {
 
 /// \brief The state behind `map`, for octoreach's own algorithms (next_best_view).
 inline const ExplorationState& state(const ExplorationMap& map) { return ExplorationAccess::state(map); }
+
+/// \brief The cached frontier clusters / void clusters (rebuilt when stale); valid while the caller
+/// holds the map's lock (ExplorationMap::frontier_clusters / void_clusters return copies).
+const std::vector<std::vector<CellKey>>& cached_frontier_clusters(const ExplorationState& s);
+const std::vector<VoidCluster>& cached_void_clusters(const ExplorationMap& map);
+
+/// \brief Shared lock of `map` for a whole computation (next_best_view and its helpers).
+inline MapGuard read_guard(const ExplorationMap& map) { return MapGuard(state(map), false); }
 
 }  // namespace octoreach::detail

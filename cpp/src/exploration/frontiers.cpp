@@ -111,6 +111,7 @@ namespace octoreach {
 using detail::kFrontierFlag;
 
 std::vector<CellKey> ExplorationMap::frontier_cells() const {
+  detail::MapGuard guard(*state_, false);
   std::vector<CellKey> out;
   out.reserve(state_->frontier_label.size());
   for (const auto& kv : state_->frontier_label) out.push_back(kv.first);
@@ -118,8 +119,12 @@ std::vector<CellKey> ExplorationMap::frontier_cells() const {
   return out;
 }
 
-const std::vector<std::vector<CellKey>>& ExplorationMap::frontier_clusters() const {
-  auto& I = *state_;
+std::vector<std::vector<CellKey>> ExplorationMap::frontier_clusters() const {
+  detail::MapGuard guard(*state_, false);
+  return detail::cached_frontier_clusters(*state_);
+}
+
+const std::vector<std::vector<CellKey>>& detail::cached_frontier_clusters(const detail::ExplorationState& I) {
   std::lock_guard<std::mutex> lock(I.cache_mutex);
   if (I.clusters_dirty) {
     std::vector<std::pair<int, std::vector<CellKey>>> tmp;

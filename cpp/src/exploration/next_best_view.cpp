@@ -29,9 +29,12 @@ struct UtilityVector {
   double u;
 };
 
+std::pair<std::size_t, std::size_t> view_utility_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam,
+                                                          const Pose& pose, int sw, int sh);
+
 std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
   std::vector<UtilityVector> out;
-  const auto& vcs = map.void_clusters();
+  const auto& vcs = detail::cached_void_clusters(map);
   for (const auto& fv : map.frontier_voids()) {
     const VoidCluster& v = vcs[fv.void_index];
     std::vector<Eigen::Vector3d> corners{v.centroid};
@@ -233,7 +236,7 @@ Slot PoseScorer::score(std::size_t idx) const {
     return s;
   }
   if (opt_.chain && !reach(s, idx)) return s;
-  auto [v, u] = view_utility(map_, cam_, s.view.pose, opt_.score_width, opt_.score_height);
+  auto [v, u] = view_utility_unlocked(map_, cam_, s.view.pose, opt_.score_width, opt_.score_height);
   const double res = map_.resolution();
   s.view.void_cells = v;
   s.view.unknown_cells = u;
@@ -289,6 +292,7 @@ bool SensorWorkspace::contains(const Eigen::Vector3d& p) const {
 
 std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap& map, double sensor_range,
                                                            std::size_t* vectors) {
+  auto guard = detail::read_guard(map);
   const std::vector<UtilityVector> vecs = utility_vectors(map);
   if (vectors) *vectors = vecs.size();
   std::vector<std::pair<CellKey, double>> out;
@@ -300,6 +304,16 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
                                                  const Pose& pose, int sw, int sh) {
   if (sw <= 0 || sh <= 0)
     throw std::invalid_argument("score grid must be positive, got " + std::to_string(sw) + " x " + std::to_string(sh));
+  auto guard = detail::read_guard(map);
+  return view_utility_unlocked(map, cam, pose, sw, sh);
+}
+
+namespace {
+
+// view_utility without taking the map's lock: its caller holds it (pool workers of next_best_view
+// must not lock again: a writer waiting in between would deadlock them against their caller).
+std::pair<std::size_t, std::size_t> view_utility_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam,
+                                                          const Pose& pose, int sw, int sh) {
   detail::GridReader g(detail::state(map).grid);
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
@@ -346,9 +360,12 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
   return {voids, unknown};
 }
 
+}  // namespace
+
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt) {
   auto t0 = Clock::now();
   validate(cam, opt);
+  auto guard = detail::read_guard(map);
   NbvResult r;
   const int threads = detail::default_threads(opt.threads);
   const std::vector<UtilityVector> vecs = utility_vectors(map);

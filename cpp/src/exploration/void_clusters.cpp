@@ -98,8 +98,15 @@ VoidCluster make_cluster(const detail::ExplorationState& st, const VoidIndex& v,
 }  // namespace
 
 // Region growing from seeded random start cells.
-const std::vector<VoidCluster>& ExplorationMap::void_clusters() const {
-  auto& I = *state_;
+std::vector<VoidCluster> ExplorationMap::void_clusters() const {
+  detail::MapGuard guard(*state_, false);
+  return detail::cached_void_clusters(*this);
+}
+
+const std::vector<VoidCluster>& detail::cached_void_clusters(const ExplorationMap& map) {
+  auto& I = detail::state(map);
+  const ExplorationOptions& options_ = map.options();
+  const double resolution_ = map.resolution();
   std::lock_guard<std::mutex> lock(I.cache_mutex);
   if (!I.voids_dirty) return I.void_clusters;
   I.void_clusters.clear();
@@ -127,8 +134,9 @@ const std::vector<VoidCluster>& ExplorationMap::void_clusters() const {
 }
 
 std::vector<FrontierVoid> ExplorationMap::frontier_voids() const {
-  const auto& fcs = frontier_clusters();
-  const auto& vcs = void_clusters();
+  detail::MapGuard guard(*state_, false);
+  const auto& fcs = detail::cached_frontier_clusters(*state_);
+  const auto& vcs = detail::cached_void_clusters(*this);
   (void)fcs;
   auto& I = *state_;
   std::vector<FrontierVoid> out;

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "common/format.hpp"
 #include "common/thread_pool.hpp"
 #include "upkeep.hpp"
 
@@ -85,15 +86,27 @@ void update_voids(ExplorationState& s, const std::vector<CellChange>& changed, c
 namespace octoreach {
 
 std::vector<CellKey> ExplorationMap::void_cells() const {
+  detail::MapGuard guard(*state_, false);
   std::vector<CellKey> out(state_->void_set.begin(), state_->void_set.end());
   std::sort(out.begin(), out.end());
   return out;
 }
-std::size_t ExplorationMap::void_cell_count() const { return state_->void_set.size(); }
+std::size_t ExplorationMap::void_cell_count() const {
+  detail::MapGuard guard(*state_, false);
+  return state_->void_set.size();
+}
 
-std::vector<Eigen::Vector3d> ExplorationMap::hull_vertices() const { return state_->hull.vertices; }
-std::vector<Eigen::Vector4d> ExplorationMap::hull_planes() const { return state_->hull.planes; }
+std::vector<Eigen::Vector3d> ExplorationMap::hull_vertices() const {
+  detail::MapGuard guard(*state_, false);
+  return state_->hull.vertices;
+}
+std::vector<Eigen::Vector4d> ExplorationMap::hull_planes() const {
+  detail::MapGuard guard(*state_, false);
+  return state_->hull.planes;
+}
 bool ExplorationMap::inside_hull(const Eigen::Vector3d& p) const {
+  if (!p.allFinite()) throw std::invalid_argument("inside_hull: point " + detail::format_point(p) + " is not finite");
+  detail::MapGuard guard(*state_, false);
   if (state_->hull.planes.empty()) return false;
   for (const auto& pl : state_->hull.planes)
     if (pl.head<3>().dot(p) + pl[3] > 1e-7 * resolution_) return false;

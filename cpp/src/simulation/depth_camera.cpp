@@ -38,6 +38,11 @@ DepthCamera::DepthCamera(int width, int height, double fov, double max_range, do
 std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose& pose, int threads) {
   const int W = intr_.width, H = intr_.height;
   const std::uint64_t call = calls_++;
+  struct SceneReadLock {  // the scene may not change during the capture
+    const Scene& s;
+    explicit SceneReadLock(const Scene& scene) : s(scene) { s.lock_shared_(); }
+    ~SceneReadLock() { s.unlock_shared_(); }
+  } lock(scene);
   std::vector<std::vector<Eigen::Vector3d>> rows(H);
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();

@@ -6,12 +6,15 @@
 #include <fstream>
 #include <limits>
 #include <numeric>
+#include <mutex>
 #include <random>
 #include <sstream>
 
 #include <octomap/OcTree.h>
 
 #include "common/format.hpp"
+#include "common/shared_mutex.hpp"
+#include "common/octree_file.hpp"
 
 namespace octoreach {
 
@@ -129,37 +132,51 @@ struct Scene::Bvh {
   }
 };
 
-Scene::Scene() = default;
+struct Scene::Lock : detail::SharedMutex {};
+
+Scene::Scene() : lock_(std::make_shared<Lock>()) {}
+void Scene::lock_shared_() const { lock_->lock_shared(); }
+void Scene::unlock_shared_() const { lock_->unlock_shared(); }
 Scene::~Scene() = default;
 Scene::Scene(const Scene&) = default;
 Scene& Scene::operator=(const Scene&) = default;
 
 void Scene::add_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  std::unique_lock<Lock> lock(*lock_);
+  add_box_(lo, hi);
+}
+void Scene::add_box_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   check_box(lo, hi, "box");
   boxes_.push_back({lo, hi});
 }
 
 void Scene::add_interior(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  std::unique_lock<Lock> lock(*lock_);
+  add_interior_(lo, hi);
+}
+void Scene::add_interior_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   check_box(lo, hi, "interior");
   interiors_.push_back({lo, hi});
 }
 
 void Scene::add_crate(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double th) {
+  std::unique_lock<Lock> lock(*lock_);
   check_box(lo, hi, "crate");
   if (!(th > 0) || 2 * th >= (hi - lo).head<2>().minCoeff() || th >= hi.z() - lo.z())
     throw std::invalid_argument("crate wall thickness must be positive and smaller than half the crate, got " +
                                 std::to_string(th));
   const Eigen::Vector3d t(th, th, th);
-  add_box(lo, {hi.x(), hi.y(), lo.z() + th});                       // floor
-  add_box({lo.x(), lo.y(), lo.z()}, {lo.x() + th, hi.y(), hi.z()});  // -x
-  add_box({hi.x() - th, lo.y(), lo.z()}, {hi.x(), hi.y(), hi.z()});  // +x
-  add_box({lo.x(), lo.y(), lo.z()}, {hi.x(), lo.y() + th, hi.z()});  // -y
-  add_box({lo.x(), hi.y() - th, lo.z()}, {hi.x(), hi.y(), hi.z()});  // +y
-  add_interior(lo + t, {hi.x() - th, hi.y() - th, hi.z()});
+  add_box_(lo, {hi.x(), hi.y(), lo.z() + th});                       // floor
+  add_box_({lo.x(), lo.y(), lo.z()}, {lo.x() + th, hi.y(), hi.z()});  // -x
+  add_box_({hi.x() - th, lo.y(), lo.z()}, {hi.x(), hi.y(), hi.z()});  // +x
+  add_box_({lo.x(), lo.y(), lo.z()}, {hi.x(), lo.y() + th, hi.z()});  // -y
+  add_box_({lo.x(), hi.y() - th, lo.z()}, {hi.x(), hi.y(), hi.z()});  // +y
+  add_interior_(lo + t, {hi.x() - th, hi.y() - th, hi.z()});
 }
 
 void Scene::add_closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double th, const std::string& face,
                            double ow, double oh) {
+  std::unique_lock<Lock> lock(*lock_);
   check_box(lo, hi, "closed box");
   if (!(th > 0) || 2 * th >= (hi - lo).minCoeff())
     throw std::invalid_argument("closed box wall thickness must be positive and smaller than half the box, got " +
@@ -186,7 +203,7 @@ void Scene::add_closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
       else
         wlo[a] = hi[a] - th;
       if (a != axis || s != sign) {
-        add_box(wlo, whi);
+        add_box_(wlo, whi);
         continue;
       }
       // the wall with the opening: four boards around a centred hole
@@ -194,18 +211,18 @@ void Scene::add_closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
       double u0 = cu - ow / 2, u1 = cu + ow / 2, v0 = cv - oh / 2, v1 = cv + oh / 2;
       Eigen::Vector3d a0 = wlo, a1 = whi;
       a1[u] = u0;
-      add_box(a0, a1);  // left of the hole, full height
+      add_box_(a0, a1);  // left of the hole, full height
       a0 = wlo, a1 = whi;
       a0[u] = u1;
-      add_box(a0, a1);  // right
+      add_box_(a0, a1);  // right
       a0 = wlo, a1 = whi;
       a0[u] = u0, a1[u] = u1, a1[v] = v0;
-      add_box(a0, a1);  // below
+      add_box_(a0, a1);  // below
       a0 = wlo, a1 = whi;
       a0[u] = u0, a1[u] = u1, a0[v] = v1;
-      add_box(a0, a1);  // above
+      add_box_(a0, a1);  // above
     }
-  add_interior(lo + Eigen::Vector3d::Constant(th), hi - Eigen::Vector3d::Constant(th));
+  add_interior_(lo + Eigen::Vector3d::Constant(th), hi - Eigen::Vector3d::Constant(th));
 }
 
 void Scene::add_mesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles) {
@@ -216,6 +233,7 @@ void Scene::add_mesh(const std::vector<Eigen::Vector3d>& vertices, const std::ve
       if (t[j] < 0 || t[j] >= int(vertices.size()))
         throw std::invalid_argument("triangle index " + std::to_string(t[j]) + " out of range [0, " +
                                     std::to_string(vertices.size()) + ")");
+  std::unique_lock<Lock> lock(*lock_);
   for (const auto& t : triangles)
     for (int j = 0; j < 3; ++j) tris_.push_back(vertices[t[j]]);
   rebuild_bvh_();
@@ -224,12 +242,9 @@ void Scene::add_mesh(const std::vector<Eigen::Vector3d>& vertices, const std::ve
 void Scene::rebuild_bvh_() { bvh_ = tris_.empty() ? nullptr : std::make_shared<const Bvh>(tris_); }
 
 void Scene::load_octomap(const std::string& path) {
-  {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw FileError("cannot open OctoMap scene file '" + path + "'");
-  }
   auto tree = std::make_shared<octomap::OcTree>(0.1);
-  if (!tree->readBinary(path)) throw FileError("'" + path + "' is not a readable OctoMap binary (.bt) file");
+  detail::read_bt(*tree, path, "OctoMap scene file", 0);  // not expanded: the resolution check bounds raycasts
+  std::unique_lock<Lock> lock(*lock_);
   octree_ = tree;
 }
 
@@ -263,6 +278,9 @@ bool Scene::solid(const Eigen::Vector3d& p) const {
 }
 
 bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const {
+  if (!o.allFinite() || !d.allFinite() || std::isnan(max_range))
+    throw std::invalid_argument("raycast: origin, direction and max_range must be numbers, got origin " +
+                                detail::format_point(o) + ", direction " + detail::format_point(d));
   Eigen::Vector3d inv = d.cwiseInverse();
   double best = max_range;
   bool hit = false;
