@@ -40,8 +40,10 @@ install: sysdeps $(BUILD)/.installed
 test-cpp: install
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# Two runs: each folder has its own conftest.py (test modules import helpers from it by name).
 test-python: install
-	$(PY) -m pytest -q tests/python tests/fuzz
+	$(PY) -m pytest -q tests/python
+	$(PY) -m pytest -q tests/fuzz
 
 # A long fuzz run: the file-damage fuzzer (counts per category: cases, loaded, OSError, crashes, hangs,
 # wrong errors) and the property tests with many examples. FUZZ_CASES and FUZZ_SEED choose the run.

@@ -73,7 +73,9 @@ void check_map_robot(const Robot& robot, const CapabilityMap& capability) {
   // Self-collision decided which cells are reachable: the allowed-collision matrix must match too.
   if (capability.model_hash() != 0 && capability.model_hash() != robot.model_hash())
     throw std::invalid_argument("the capability map was built for robot '" + capability.robot_name() +
-                                "' with another allowed-collision matrix (model_hash differs)");
+                                "' with another allowed-collision matrix (model_hash differs): load the robot the way the map was built "
+                                "(same SRDF; from the command line, --allowed-collisions srdf keeps the URDF/SRDF pairs "
+                                "and auto adds the sampled ones) or rebuild the capability map");
   // A header edited after the build: the chain it names must exist here and move as many joints as it stores.
   if (!robot.has_link(capability.base_link()) || !robot.has_link(capability.tip_link()) ||
       robot.chain(capability.base_link(), capability.tip_link()).dof() != capability.dof())
