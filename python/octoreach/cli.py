@@ -267,27 +267,51 @@ def _cmd_experiment(args) -> int:
     return 0
 
 
-def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="octoreach", description="Where a robot should stand and where it should look.")
-    sub = p.add_subparsers(dest="command", required=True)
+def _robot_args(sp):
+    """--robot/--urdf/--srdf/--package-dir/--allowed-collisions: which robot, and its collision set-up."""
+    sp.add_argument("--robot", default="pr2", help="robot of example-robot-data by name (default: pr2)")
+    sp.add_argument("--urdf", help="URDF file of your own robot (overrides --robot)")
+    sp.add_argument("--srdf", help="SRDF file for --urdf (groups and disabled collision pairs)")
+    sp.add_argument("--package-dir", action="append", help="folder to resolve package:// URIs (repeatable)")
+    sp.add_argument("--allowed-collisions", choices=["auto", "sample", "srdf"], default="auto",
+                    help="auto (default): sample the allowed-collision matrix (cached) when the SRDF is missing or "
+                         "incomplete; sample: always; srdf: only what the URDF/SRDF say")
 
-    def robot_args(sp):
-        sp.add_argument("--robot", default="pr2", help="robot of example-robot-data by name (default: pr2)")
-        sp.add_argument("--urdf", help="URDF file of your own robot (overrides --robot)")
-        sp.add_argument("--srdf", help="SRDF file for --urdf (groups and disabled collision pairs)")
-        sp.add_argument("--package-dir", action="append", help="folder to resolve package:// URIs (repeatable)")
-        sp.add_argument("--allowed-collisions", choices=["auto", "sample", "srdf"], default="auto",
-                        help="auto (default): sample the allowed-collision matrix (cached) when the SRDF is missing or "
-                             "incomplete; sample: always; srdf: only what the URDF/SRDF say")
 
+def _arm_args(sp, many=False):
+    """Which arm(s) and the capability-map build options; defaults from CapabilityMapOptions (C++)."""
+    from ._core import CapabilityMapOptions
+
+    defaults = CapabilityMapOptions()  # the build defaults, defined once in C++
+    if many:
+        sp.add_argument("--arms", nargs="+", default=["right_arm"],
+                        help="arm names (SRDF groups, e.g. right_arm left_arm) or saved capability maps (.orcm "
+                             "with solutions); several are combined (default: right_arm)")
+    else:
+        sp.add_argument("--arm", help="arm name (see `octoreach robot NAME`, e.g. right_arm)")
+        sp.add_argument("--base", help="chain base link (instead of --arm)")
+        sp.add_argument("--tip", help="chain tip (tool) link (instead of --arm)")
+    sp.add_argument("--approach-axis", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                    help="tool axis that approaches the object, tip frame (default: inferred from the gripper)")
+    sp.add_argument("--resolution", type=float, default=defaults.resolution,
+                    help=f"voxel edge in m (default {defaults.resolution})")
+    sp.add_argument("--directions", type=int, default=defaults.directions,
+                    help=f"approach directions (default {defaults.directions})")
+    sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    sp.add_argument("--quiet", action="store_true", help="no progress bar")
+    sp.add_argument("--octovis", help="also write a colour octree (.ot) for octovis")
+
+
+def _add_robot_commands(sub):
+    """robot, ik."""
     sp = sub.add_parser("robot", help="print a robot's links, joints with limits, SRDF groups, end effectors and arms")
     sp.add_argument("name", nargs="?", help="robot of example-robot-data by name (same as --robot)")
-    robot_args(sp)
+    _robot_args(sp)
     sp.add_argument("--write-srdf", metavar="PATH", help="write the robot's SRDF (groups, allowed-collision pairs) to PATH")
     sp.set_defaults(func=_cmd_robot)
 
     sp = sub.add_parser("ik", help="solve inverse kinematics for a position")
-    robot_args(sp)
+    _robot_args(sp)
     sp.add_argument("--base", required=True, help="base link of the chain")
     sp.add_argument("--tip", required=True, help="tip link of the chain")
     sp.add_argument("--xyz", type=float, nargs=3, required=True, help="target position in the base frame (m)")
@@ -297,39 +321,19 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.set_defaults(func=_cmd_ik)
 
-    from ._core import CapabilityMapOptions
 
-    defaults = CapabilityMapOptions()  # the build defaults, defined once in C++
-
-    def arm_args(sp, many=False):
-        if many:
-            sp.add_argument("--arms", nargs="+", default=["right_arm"],
-                            help="arm names (SRDF groups, e.g. right_arm left_arm) or saved capability maps (.orcm "
-                                 "with solutions); several are combined (default: right_arm)")
-        else:
-            sp.add_argument("--arm", help="arm name (see `octoreach robot NAME`, e.g. right_arm)")
-            sp.add_argument("--base", help="chain base link (instead of --arm)")
-            sp.add_argument("--tip", help="chain tip (tool) link (instead of --arm)")
-        sp.add_argument("--approach-axis", type=float, nargs=3, metavar=("X", "Y", "Z"),
-                        help="tool axis that approaches the object, tip frame (default: inferred from the gripper)")
-        sp.add_argument("--resolution", type=float, default=defaults.resolution,
-                        help=f"voxel edge in m (default {defaults.resolution})")
-        sp.add_argument("--directions", type=int, default=defaults.directions,
-                        help=f"approach directions (default {defaults.directions})")
-        sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-        sp.add_argument("--quiet", action="store_true", help="no progress bar")
-        sp.add_argument("--octovis", help="also write a colour octree (.ot) for octovis")
-
+def _add_build_commands(sub):
+    """capability, surface: the map builds."""
     sp = sub.add_parser("capability", help="build an arm's capability map")
-    robot_args(sp)
-    arm_args(sp)
+    _robot_args(sp)
+    _arm_args(sp)
     sp.add_argument("--with-solutions", action="store_true", help="store joint solutions (needed for surface maps)")
     sp.add_argument("--out", required=True, help="output map file (.orcm)")
     sp.set_defaults(func=_cmd_capability)
 
     sp = sub.add_parser("surface", help="build a surface map for a table or shelf polygon")
-    robot_args(sp)
-    arm_args(sp, many=True)
+    _robot_args(sp)
+    _arm_args(sp, many=True)
     sp.add_argument("--table", type=float, nargs=3, default=[1.4, 0.65, 0.72], metavar=("SX", "SY", "HEIGHT"),
                     help="rectangular table: sizes and top height in m (default 1.4 0.65 0.72)")
     sp.add_argument("--table-x", type=float, default=0.0, help="table centre x (m)")
@@ -350,6 +354,9 @@ def build_parser() -> argparse.ArgumentParser:
                                                  "surface, '/' in names written as '_')")
     sp.set_defaults(func=_cmd_surface)
 
+
+def _add_file_commands(sub):
+    """info, export, query, sample: commands on saved maps."""
     sp = sub.add_parser("info", help="print a map file's parameters, robot, size and value range")
     sp.add_argument("map", help="a capability (.orcm), point (.orpm) or surface (.orsm) map file")
     sp.set_defaults(func=_cmd_info)
@@ -373,6 +380,9 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.set_defaults(func=_cmd_sample)
 
+
+def _add_view_and_experiment_commands(sub):
+    """view (3D in the browser), experiment (the papers' experiments)."""
     sp = sub.add_parser("view", help="show maps, samples and explorations in 3D in the browser (needs the viewer extra)")
     sp.add_argument("files", nargs="+", help="surface (.orsm) or capability (.orcm) map files, OctoMap .bt files")
     sp.add_argument("--robot", help="robot by name (default: the one a surface map was built for)")
@@ -397,6 +407,15 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.add_argument("--quiet", action="store_true", help="no progress line")
     sp.set_defaults(func=_cmd_experiment)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="octoreach", description="Where a robot should stand and where it should look.")
+    sub = p.add_subparsers(dest="command", required=True)
+    _add_robot_commands(sub)
+    _add_build_commands(sub)
+    _add_file_commands(sub)
+    _add_view_and_experiment_commands(sub)
     return p
 
 
