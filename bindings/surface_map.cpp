@@ -32,25 +32,30 @@ void wrap_options(py::module_& m) {
 }
 
 // SurfaceMap.build: `arm` is a CapabilityMap, or an arm whose capability map is built first with
-// `directions` and `seed` (the only capability-map keywords), at the surface map's resolution.
+// `directions`, `seed` and `approach_axis` (the only capability-map keywords), at the surface map's resolution.
 std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, const Surface& surface,
                                   const py::object& options, const py::object& progress, const py::kwargs& kw) {
   CapabilityMapOptions co;
   py::kwargs rest;
+  py::object approach_axis = py::none();
   for (auto item : kw) {
     std::string key = py::str(item.first);
-    if (key == "directions") co.directions = item.second.cast<int>();
+    if (key == "approach_axis") approach_axis = py::reinterpret_borrow<py::object>(item.second);
+    else if (key == "directions") co.directions = item.second.cast<int>();
     else if (key == "seed") co.seed = item.second.cast<std::uint64_t>();
     else rest[item.first] = item.second;
   }
   SurfaceMapOptions o = options_from<SurfaceMapOptions>(options, rest, "SurfaceMap.build");
   if (py::isinstance<CapabilityMap>(arm)) {
+    if (!approach_axis.is_none())
+      throw std::invalid_argument("approach_axis: the capability map fixes the approach axis; give an arm name or "
+                                  "tuple to build one with another axis");
     const CapabilityMap& cap = arm.cast<const CapabilityMap&>();
     ProgressCallback cb = progress_arg(progress, "surface map");
     py::gil_scoped_release release;
     return std::make_shared<SurfaceMap>(SurfaceMap::build(robot, cap, surface, o, cb));
   }
-  Arm a = arm_from(robot, arm);
+  Arm a = arm_from(robot, arm, approach_axis);
   if (o.resolution != 0) co.resolution = o.resolution;
   co.reference = o.reference;
   ProgressCallback cap_cb = progress_arg(progress, "capability map"), cb = progress_arg(progress, "surface map");
@@ -119,6 +124,8 @@ void wrap_surface_map(py::module_& m) {
                              "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.")
       .def_property_readonly("reference_frame", &SurfaceMap::reference_frame)
       .def_property_readonly("arms", &SurfaceMap::arms)
+      .def_property_readonly("approach_axes", &SurfaceMap::approach_axes,
+                             "Approach axis (tip frame) of each arm's capability map, as in arms.")
       .def_property_readonly("z_range", &SurfaceMap::z_range)
       .def_property_readonly("empty_reason", &SurfaceMap::empty_reason)
       .def_property_readonly("polygon", [](const SurfaceMap& sm) {

@@ -256,6 +256,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   m.model_hash_ = robot.model_hash();
   m.reference_frame_ = place.reference_frame;
   m.arms_ = cap.base_link() + "->" + cap.tip_link();
+  m.approach_axes_ = detail::format_vector(cap.approach_axis());
   m.polygon_ = surface.vertices();
   m.z_min_ = o.z_min;
   m.z_max_ = o.z_max;
@@ -390,7 +391,10 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
   }
   out.grasp_name_ = first.grasp_name_;
   out.map_ = PoseMap(first.map_.resolution(), T);
-  for (std::size_t i = 0; i < maps.size(); ++i) out.arms_ += (i ? " " + mode + " " : "") + maps[i]->arms_;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    out.arms_ += (i ? " " + mode + " " : "") + maps[i]->arms_;
+    out.approach_axes_ += (i ? " " + mode + " " : "") + maps[i]->approach_axes_;
+  }
   // Union of voxels; a voxel missing from a map counts as 0.
   std::map<std::tuple<int, int, int>, std::vector<float>> cells;
   for (std::size_t mi = 0; mi < maps.size(); ++mi) {
@@ -425,6 +429,7 @@ std::map<std::string, std::string> SurfaceMap::parameters() const {
           {"model_hash", std::to_string(model_hash_)},
           {"reference_frame", reference_frame_},
           {"arms", arms_},
+          {"approach_axes", approach_axes_},
           {"grasp_set", grasp_name_},
           {"polygon", detail::format_vector(flat)},
           {"surface_points", std::to_string(stats_.surface_points)},
@@ -454,6 +459,8 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   m.stats_.valid_poses = detail::header_u64(h, "valid_poses", path);
   m.reference_frame_ = header_string(h, "reference_frame", path);
   m.arms_ = header_string(h, "arms", path);
+  // Files written before the approach axis was recorded have no such line.
+  if (auto it = h.find("approach_axes"); it != h.end()) m.approach_axes_ = it->second;
   m.grasp_name_ = header_string(h, "grasp_set", path);
   m.stats_.seconds = detail::header_double(h, "build_seconds", path);
   m.z_min_ = detail::header_double(h, "z_min", path);

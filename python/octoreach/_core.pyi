@@ -988,6 +988,11 @@ class SurfaceMap:
         (centres (M, 3), R_S (M, theta_bins)) of the voxels with R_S > 0.
         """
     @property
+    def approach_axes(self) -> str:
+        """
+        Approach axis (tip frame) of each arm's capability map, as in arms.
+        """
+    @property
     def arms(self) -> str:
         ...
     @property

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import octoreach
-from octoreach import surface_maps
+from octoreach import robots, surface_maps
 
 THETA = 2 * np.pi / 16
 
@@ -301,3 +301,19 @@ def test_options_objects_equal_keywords(arm_setup):
                                           z_range=(0, 0), progress=False)
     assert by_tuple.arms == "base_link->tool0"
     assert sm.model_hash != 0 and cap.model_hash == sm.model_hash
+
+
+def test_surface_maps_record_the_approach_axis(tmp_path):
+    # Issue 11: every map file's header names the approach axis it was built with.
+    robot = robots.test_arm()
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, 0.55)
+    smap = octoreach.SurfaceMap.build(robot, ("base_link", "tool0", (0, 0, 1)), table, resolution=0.2, directions=24,
+                                      approach_axis=(1, 0, 0), theta_bins=4, progress=False)
+    assert smap.approach_axes == "1 0 0" and smap.parameters["approach_axes"] == "1 0 0"
+    smap.save(str(tmp_path / "t.orsm"))
+    assert octoreach.SurfaceMap.load(str(tmp_path / "t.orsm")).approach_axes == "1 0 0"
+    both = octoreach.SurfaceMap.combine([smap, smap], "max")
+    assert both.approach_axes == "1 0 0 max 1 0 0"
+    cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.2, directions=24, progress=False)
+    with pytest.raises(ValueError, match="approach_axis"):
+        octoreach.SurfaceMap.build(robot, cap, table, approach_axis=(1, 0, 0), progress=False)

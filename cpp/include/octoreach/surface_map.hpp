@@ -79,6 +79,9 @@ class SurfaceMap {
   std::uint64_t model_hash() const { return model_hash_; }
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arms() const { return arms_; }
+  /// \brief The approach axis (tip frame) of each arm's capability map, in the order of arms(), e.g.
+  /// "1 0 0" or "1 0 0 max 1 0 0"; empty for files written before it was recorded.
+  const std::string& approach_axes() const { return approach_axes_; }
   /// \brief Surface outline (world frame) the map was built for.
   const std::vector<Eigen::Vector3d>& polygon() const { return polygon_; }
   /// \brief The base z range the map was built for (world frame): poses are evaluated at heights
@@ -91,7 +94,7 @@ class SurfaceMap {
  private:
   PoseMap map_;
   SurfaceMapStats stats_;
-  std::string robot_name_, reference_frame_, arms_, empty_reason_, grasp_name_;
+  std::string robot_name_, reference_frame_, arms_, approach_axes_, empty_reason_, grasp_name_;
   std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   std::vector<Eigen::Vector3d> polygon_;
   double z_min_ = -1e9, z_max_ = 1e9;
