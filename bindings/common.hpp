@@ -163,6 +163,16 @@ inline ProgressCallback progress_from(const py::object& cb) {
 /// so without a factory True is silent. Defined in progress.cpp.
 ProgressCallback progress_arg(const py::object& progress, const char* label);
 
+/// TypeError for keyword `key` of `call` given `value` where the option holds `current` (its type is
+/// the expected one; a None default says only that the value did not fit).
+inline py::type_error wrong_keyword_type(const char* call, const std::string& key, const py::handle& current,
+                                         const py::handle& value) {
+  std::string expected = current.is_none() ? std::string("another type (see the options class's help)")
+                                           : std::string(py::str(py::type::handle_of(current).attr("__name__")));
+  std::string got = py::str(py::type::handle_of(value).attr("__name__"));
+  return py::type_error(std::string(call) + "(): keyword '" + key + "' must be " + expected + ", got " + got);
+}
+
 /// An options struct bound as a class: a copy of `options` (None: the C++ defaults), then each keyword
 /// argument set as the attribute of that name, so defaults live once, in the C++ struct. An unknown
 /// keyword raises TypeError naming it and the call.
@@ -173,7 +183,14 @@ Options options_from(const py::object& options, const py::kwargs& kwargs, const 
     std::string key = py::str(item.first);
     if (key.empty() || key[0] == '_' || !py::hasattr(o, key.c_str()))
       throw py::type_error(std::string(call) + "() got an unexpected keyword argument '" + key + "'");
-    o.attr(key.c_str()) = item.second;
+    try {
+      o.attr(key.c_str()) = item.second;
+    } catch (const py::cast_error&) {
+      throw wrong_keyword_type(call, key, o.attr(key.c_str()), item.second);
+    } catch (py::error_already_set& e) {
+      if (!e.matches(PyExc_TypeError) && !e.matches(PyExc_RuntimeError)) throw;
+      throw wrong_keyword_type(call, key, o.attr(key.c_str()), item.second);
+    }
   }
   return o.cast<Options>();
 }

@@ -29,7 +29,13 @@ inline Arm arm_from(const Robot& robot, const py::handle& arm) {
 /// arm_from with an optional approach-axis override (None keeps the arm's).
 inline Arm arm_from(const Robot& robot, const py::handle& arm, const py::object& approach_axis) {
   Arm a = arm_from(robot, arm);
-  return approach_axis.is_none() ? a : a.with_approach_axis(approach_axis.cast<Eigen::Vector3d>());
+  if (approach_axis.is_none()) return a;
+  try {
+    return a.with_approach_axis(approach_axis.cast<Eigen::Vector3d>());
+  } catch (const py::cast_error&) {
+    throw py::type_error("approach_axis must be 3 numbers (x, y, z), got " +
+                         std::string(py::str(py::type::handle_of(approach_axis).attr("__name__"))));
+  }
 }
 
 /// Rows (N, cols) of a float64 array as a C-contiguous array; ValueError naming the shape otherwise,

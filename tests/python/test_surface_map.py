@@ -317,3 +317,16 @@ def test_surface_maps_record_the_approach_axis(tmp_path):
     cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.2, directions=24, progress=False)
     with pytest.raises(ValueError, match="approach_axis"):
         octoreach.SurfaceMap.build(robot, cap, table, approach_axis=(1, 0, 0), progress=False)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"resolution": "x"}, "keyword 'resolution' must be float, got str"),
+    ({"theta_bins": "x"}, "keyword 'theta_bins' must be int, got str"),
+    ({"approach_axis": "x"}, "approach_axis must be 3 numbers"),
+])
+def test_wrong_option_types_name_the_keyword(kwargs, message):
+    # Never pybind11's "Unable to cast Python instance" message: a TypeError naming the keyword and the type.
+    robot = robots.test_arm()
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, 0.55)
+    with pytest.raises(TypeError, match=message):
+        octoreach.SurfaceMap.build(robot, ("base_link", "tool0", (0, 0, 1)), table, progress=False, **kwargs)
