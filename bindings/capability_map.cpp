@@ -51,7 +51,6 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
         Array a = Array::ensure(poses);
         if (!a || a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
           throw std::invalid_argument("poses must have shape (N, 4, 4)");
-        check_finite(a, "pose");
         py::array_t<bool> out(a.shape(0));
         const double* p = a.data();
         bool* o = out.mutable_data();

@@ -38,12 +38,11 @@ inline Arm arm_from(const Robot& robot, const py::handle& arm, const py::object&
   }
 }
 
-/// Rows (N, cols) of a float64 array as a C-contiguous array; ValueError naming the shape otherwise,
-/// or naming the first row with a NaN or an infinity (a lookup must not answer for those).
+/// Rows (N, cols) of a float64 array as a C-contiguous array; ValueError naming the shape otherwise.
+/// (The C++ lookups reject rows with a NaN or an infinity themselves, inside their parallel loop.)
 inline Array rows_arg(const py::object& obj, py::ssize_t cols, const char* message) {
   Array a = Array::ensure(obj);
   if (!a || a.ndim() != 2 || a.shape(1) != cols) throw std::invalid_argument(message);
-  check_finite(a, "row");
   return a;
 }
 

@@ -154,17 +154,17 @@ bool CapabilityMap::reachable(const Pose& T) const {
 }
 
 void CapabilityMap::reachability(const double* points, std::size_t n, double* out) const {
-  detail::batch_lookup(n, [&](std::size_t i) {
+  detail::batch_lookup_finite(points, n, 3, "point", " (NaN or inf)", [&](std::size_t i) {
     const double* p = points + 3 * i;
     out[i] = reachability(Eigen::Vector3d(p[0], p[1], p[2]));
   });
 }
 
 void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out) const {
-  detail::batch_lookup(n, [&](std::size_t i) {
+  detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
     Pose T;
     T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
-    out[i] = T.matrix().allFinite() && reachable(T);
+    out[i] = reachable(T);
   });
 }
 

@@ -335,11 +335,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
 }
 
 void SurfaceMap::reachability(const double* rows, std::size_t n, double* out) const {
-  // A NaN pose would fall outside every voxel and read R_S 0: a wrong answer, not an absent one.
-  for (std::size_t i = 0; i < 4 * n; ++i)
-    if (!std::isfinite(rows[i]))
-      throw std::invalid_argument("base pose " + std::to_string(i / 4) + " is not finite (x, y, z, theta in m and rad)");
-  detail::batch_lookup(n, [&](std::size_t i) {
+  detail::batch_lookup_finite(rows, n, 4, "base pose", " (x, y, z, theta in m and rad)", [&](std::size_t i) {
     const double* r = rows + 4 * i;
     out[i] = reachability(r[0], r[1], r[2], r[3]);
   });

@@ -70,9 +70,10 @@ class CapabilityMap {
   /// \brief Reachability index D of the voxel holding p (0 outside the map).
   double reachability(const Eigen::Vector3d& p) const;
   /// \brief reachability() of n points (3 n doubles) into `out` (n doubles); large batches run on every core.
+  /// Throws std::invalid_argument naming the first point with a NaN or an infinity.
   void reachability(const double* points, std::size_t n, double* out) const;
   /// \brief reachable() of n tool poses, each a row-major 4x4 matrix (16 n doubles), into `out`;
-  /// a pose with a non-finite entry is not reachable.
+  /// throws std::invalid_argument naming the first pose with a NaN or an infinity.
   void reachable(const double* poses, std::size_t n, bool* out) const;
   /// \brief True when the cell of the tool pose T (base link frame) is reachable.
   bool reachable(const Pose& T) const;

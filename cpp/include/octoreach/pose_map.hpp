@@ -29,7 +29,8 @@ class PoseMap {
   /// \brief Value of pose (x, y, z, theta); 0 where the map has no voxel.
   double value(double x, double y, double z, double theta) const;
   /// \brief Values of n poses given as rows x, y, z, theta (`rows` holds 4 n doubles) into `out`
-  /// (n doubles); large batches run on every core. Thread-safe.
+  /// (n doubles); large batches run on every core. Thread-safe. Throws std::invalid_argument naming the
+  /// first row with a NaN or an infinity.
   void values(const double* rows, std::size_t n, double* out) const;
   /// \brief The theta bin of an angle (any real angle).
   int theta_bin(double theta) const;

@@ -1,7 +1,11 @@
 #pragma once
 // Private: the batched lookups of the map classes (many poses or points at once): on the shared
 // pool for batches large enough to pay for it, else on the calling thread.
+#include <atomic>
+#include <cmath>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 
 #include "../common/thread_pool.hpp"
 
@@ -11,6 +15,29 @@ namespace octoreach::detail {
 template <class F>
 void batch_lookup(std::size_t n, F&& f) {
   parallel_for(n, n > 20000 ? 0 : 1, [&](std::size_t i, int) { f(i); }, 4096);
+}
+
+/// batch_lookup over n rows of `width` doubles, each row checked for NaN and infinity as it is read
+/// (inside the parallel loop: the batch is touched once, the check costs nothing measurable); f(i) runs
+/// only for finite rows. Throws std::invalid_argument "<what> <i> is not finite<hint>" naming the first
+/// non-finite row afterwards: a NaN would fall outside every voxel and read 0, a wrong answer.
+template <class F>
+void batch_lookup_finite(const double* rows, std::size_t n, int width, const char* what, const char* hint, F&& f) {
+  std::atomic<std::size_t> first_bad{n};
+  batch_lookup(n, [&](std::size_t i) {
+    const double* r = rows + i * static_cast<std::size_t>(width);
+    bool finite = true;
+    for (int k = 0; k < width; ++k) finite &= std::isfinite(r[k]);
+    if (finite) {
+      f(i);
+      return;
+    }
+    std::size_t seen = first_bad.load(std::memory_order_relaxed);
+    while (i < seen && !first_bad.compare_exchange_weak(seen, i, std::memory_order_relaxed)) {
+    }
+  });
+  if (first_bad.load() < n)
+    throw std::invalid_argument(std::string(what) + " " + std::to_string(first_bad.load()) + " is not finite" + hint);
 }
 
 }  // namespace octoreach::detail
