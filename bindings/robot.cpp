@@ -106,7 +106,14 @@ void wrap_robot_model(py::class_<Robot, std::shared_ptr<Robot>>& c) {
 
 // Collision checks and the allowed-collision matrix.
 void wrap_robot_collision(py::class_<Robot, std::shared_ptr<Robot>>& c) {
-  c.def("in_self_collision", [](const Robot& r, const py::object& q) {
+  c.def("lowest_point", [](const Robot& r, const py::object& q) {
+         int link = -1;
+         double z = r.lowest_point(r.link_poses(robot_q(r, q)), Pose::Identity(), &link);
+         return py::make_tuple(z, link < 0 ? py::object(py::none()) : py::object(py::str(r.links()[link].name)));
+       }, py::arg("q"),
+       "(z, link): the lowest point of the collision geometry at q in the root link frame and the link holding it\n"
+       "((inf, None) without geometry). A surface map refuses a robot that would stand in the floor.")
+      .def("in_self_collision", [](const Robot& r, const py::object& q) {
          Eigen::VectorXd v = robot_q(r, q);
          py::gil_scoped_release release;
          return r.in_self_collision(v);

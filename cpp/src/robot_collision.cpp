@@ -2,6 +2,7 @@
 // sampled pairs added through a new robot) and the checks themselves, against itself and against
 // Obstacles.
 #include <algorithm>
+#include <limits>
 
 #include <fcl/fcl.h>
 
@@ -66,6 +67,40 @@ std::shared_ptr<Robot> Robot::with_allowed_collisions(
   indices.reserve(pairs.size());
   for (const auto& [a, b] : pairs) indices.emplace_back(link_index(a), link_index(b));
   return with_allowed_collisions(indices);
+}
+
+namespace {
+
+// Lowest world z of one shape at a world pose.
+double shape_lowest(const fcl::CollisionGeometryd& g, const Pose& T) {
+  if (const auto* mesh = dynamic_cast<const fcl::BVHModel<fcl::OBBRSSd>*>(&g); mesh && mesh->vertices) {
+    double z = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < mesh->num_vertices; ++i) z = std::min(z, (T * mesh->vertices[i]).z());
+    return z;
+  }
+  if (const auto* box = dynamic_cast<const fcl::Boxd*>(&g)) {
+    // The lowest corner: each half side along the direction that lowers z.
+    Eigen::Vector3d h = 0.5 * box->side;
+    return T.translation().z() - (T.linear().row(2).transpose().cwiseAbs().array() * h.array()).sum();
+  }
+  return world_aabb(g, T).min_.z();
+}
+
+}  // namespace
+
+double Robot::lowest_point(const std::vector<Pose>& poses, const Pose& base_pose, int* link,
+                           const std::vector<int>* only_links) const {
+  double lowest = std::numeric_limits<double>::infinity();
+  if (link) *link = -1;
+  for (int li : only_links ? *only_links : collision_links_)
+    for (const auto& shape : links_[li].shapes) {
+      double z = shape_lowest(*shape.geometry, base_pose * poses[li] * shape.origin);
+      if (z < lowest) {
+        lowest = z;
+        if (link) *link = li;
+      }
+    }
+  return lowest;
 }
 
 bool Robot::in_self_collision_poses(const std::vector<Pose>& poses) const {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include <fcl/fcl.h>
@@ -242,6 +243,29 @@ void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
 
 }  // namespace
 
+// A robot whose reference frame is not at its feet (Baxter's 'base' sits on top of its pedestal, a
+// humanoid's root is its pelvis) stands sunk into the floor at the default height 0: every pose would
+// be evaluated below the surface's real reach, and the map would look plausible and be wrong.
+void check_standing(const Robot& robot, const ArmPlacement& place, const SurfaceMapOptions& o) {
+  constexpr double kBelowFloor = 0.05;  // mesh tolerance of wheels and feet that touch the floor
+  int link = -1;
+  // The body only (links the arm does not move): an arm's home posture may dip below its own base.
+  const double lowest = robot.lowest_point(place.link_poses, place.root_pose(0, 0, o.z_max, 0), &link, &place.roles.body);
+  if (!(lowest < -kBelowFloor)) return;
+  auto metres = [](double v) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2) << v;
+    return s.str();
+  };
+  const std::string h = metres(o.z_max - lowest);
+  throw std::invalid_argument(
+      "robot '" + robot.name() + "' stands " + metres(-lowest) + " m deep in the floor: with its " +
+      "reference frame '" + place.reference_frame + "' at z = " + metres(o.z_max) + " (the highest " +
+      "base height asked for), its body link '" + robot.links()[link].name + "' reaches below z = 0. " +
+      "The frame is not at the robot's feet: give its height above the floor, z_range=(" + h + ", " + h +
+      ") in Python or --z " + h + " on the command line, or a reference_frame at the feet");
+}
+
 SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const Surface& surface,
                              const SurfaceMapOptions& o, const ProgressCallback& progress) {
   detail::CancellableScope cancellable;
@@ -249,6 +273,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   check_map_robot(robot, cap);
   check_options(cap, o);
   const ArmPlacement place = ArmPlacement::make(robot, cap, o.reference_frame, o.reference, o.grasps, o.grasp_subset);
+  if (o.check_body) check_standing(robot, place, o);
   const double res = o.resolution == 0 ? cap.resolution() : o.resolution;
   SurfaceMap m;
   m.robot_name_ = robot.name();

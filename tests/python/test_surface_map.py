@@ -330,3 +330,26 @@ def test_wrong_option_types_name_the_keyword(kwargs, message):
     table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, 0.55)
     with pytest.raises(TypeError, match=message):
         octoreach.SurfaceMap.build(robot, ("base_link", "tool0", (0, 0, 1)), table, progress=False, **kwargs)
+
+
+def test_a_robot_whose_frame_is_not_at_its_feet_is_told_its_height():
+    # Baxter's 'base' sits on top of its pedestal and a humanoid's root is its pelvis: on the floor
+    # (the default z = 0) such a robot would stand in it, and its map would look plausible and be wrong.
+    xml = (robots.project_urdf("test_arm")).read_text().replace(
+        '<link name="tool0"/>',
+        '<link name="tool0"/>\n  <link name="pedestal"><collision><origin xyz="0 0 -0.3"/>'
+        '<geometry><box size="0.3 0.3 0.6"/></geometry></collision></link>\n'
+        '  <joint name="pedestal_fixed" type="fixed"><parent link="base_link"/><child link="pedestal"/></joint>')
+    robot = octoreach.Robot.from_urdf(xml)
+    z, link = robot.lowest_point(robot.home())
+    assert z == pytest.approx(-0.6) and link == "pedestal"
+    cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.1, directions=48,
+                                        progress=False, seed=3)
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.9, x=0.55)
+    with pytest.raises(ValueError, match=r"0\.60 m deep in the floor.*'pedestal'.*z_range=\(0\.60, 0\.60\)"):
+        octoreach.SurfaceMap.build(robot, cap, table, resolution=0.1, progress=False)
+    raised = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.1, z_range=(0.6, 0.6), progress=False)
+    assert raised.max_reachability > 0
+    # The plain test arm stands on its base plate.
+    plain = robots.test_arm()
+    assert plain.lowest_point(plain.home())[0] >= -1e-9

@@ -165,6 +165,12 @@ class Robot : public std::enable_shared_from_this<Robot> {
   /// poses (root link frame) touches an obstacle, with the root at `base_pose` (world frame).
   bool links_in_collision(const std::vector<Pose>& link_poses, const Obstacles& obstacles,
                           const Pose& base_pose, const std::vector<int>* only_links = nullptr) const;
+  /// \brief Lowest point (world z) of the robot's collision geometry at the given link poses (root link
+  /// frame) with the root at `base_pose`, over every link with geometry or the `only_links` indices: mesh
+  /// vertices and box corners exactly, other shapes by their bounding box; `link` gets the index of the
+  /// link that holds it (-1 when there is no geometry, and the result is +inf).
+  double lowest_point(const std::vector<Pose>& link_poses, const Pose& base_pose, int* link = nullptr,
+                      const std::vector<int>* only_links = nullptr) const;
   /// \brief Self-collision of the checked pairs at the given link poses (root link frame).
   bool in_self_collision_poses(const std::vector<Pose>& link_poses) const;
   /// \brief Self-collision over the given link pairs only.
