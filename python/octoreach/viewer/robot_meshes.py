@@ -8,10 +8,8 @@ the C++ robot loader (cpp/src/urdf.cpp: resolve_mesh). Link poses come from the 
 """
 from __future__ import annotations
 
-import glob
 import os
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import numpy as np
 
@@ -28,16 +26,8 @@ def robot_files(name: str) -> tuple[str, list[str]]:
         return str(robots.project_urdf(own)), []
     except ValueError:
         pass
-    root = robots.data_dir()
-    if name in robots._KNOWN:
-        folder, urdf, _ = robots._KNOWN[name]
-        path = root / "robots" / folder / "urdf" / urdf
-    else:
-        matches = glob.glob(str(root / "robots" / "*" / "urdf" / f"{name}.urdf"))
-        if not matches:
-            raise ValueError(f"unknown robot {name!r}; available: {', '.join(robots.available())}")
-        path = Path(matches[0])
-    return str(path), robots._package_dirs(root)
+    urdf, _, dirs = robots.files(name)
+    return str(urdf), dirs
 
 
 def resolve_uri(uri: str, package_dirs, urdf_dir: str) -> str:

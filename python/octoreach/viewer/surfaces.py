@@ -1,4 +1,5 @@
-"""The work surface (the map's table or shelf polygon) as a slab in the scene."""
+"""The work surface in the scene: the map's table or shelf polygon as a slab, and a Surface's obstacle boxes
+(table legs, walls) when the Surface itself is given (map files record the polygon only)."""
 from __future__ import annotations
 
 import numpy as np
@@ -28,3 +29,16 @@ def add_surface(scene, vertices, thickness: float = 0.03, name: str = "/surface"
     """Adds the surface polygon as a double-sided slab; returns the handle."""
     v, f = slab(vertices, thickness)
     return scene.add_mesh_simple(name, v, f, color=colours.SURFACE, side="double", cast_shadow=False)
+
+
+def add_boxes(scene, boxes, name: str = "/surface/boxes") -> list:
+    """Adds a Surface's obstacle boxes ((size (3,), pose (4, 4)) pairs, ``Surface.boxes``); returns the handles."""
+    import viser.transforms as tf
+
+    handles = []
+    for i, (size, pose) in enumerate(boxes):
+        T = np.asarray(pose, float)
+        handles.append(scene.add_box(f"{name}/{i}", color=colours.SURFACE, dimensions=tuple(map(float, size)),
+                                     wxyz=tf.SO3.from_matrix(T[:3, :3]).wxyz, position=T[:3, 3],
+                                     cast_shadow=False))
+    return handles
