@@ -3,23 +3,26 @@ theta slider updates (issue 14: under 3 s to open at 0.05 m, under 200 ms per sl
 
 Prints JSON. Each scene is timed in parts:
   load_s       reading the map file (compiled loader)
-  scene_s      building the scene on the server (numpy, colour maps, viser messages queued)
+  scene_s      building the scene on the server (numpy, colour maps, robot meshes, viser messages queued)
   wire_bytes   the scene's messages as viser encodes them (its .viser recording, uncompressed size);
   serialise_s  the time of that recording (msgpack + zstd level 12: an upper bound of the wire's level 1)
-  boot_s       page request until the page's websocket connects (page load and viser's client start-up)
-  transfer_s   connect until the last scene message reached the page (JS clock, worker -> page)
-  draw_s       last message until the browser has drawn the scene: a viser get_render() capture (the
-               client's camera, after every earlier message is handled and committed) that shows the
-               scene's colours; the capture's round trip is included, so this is an upper bound
-  page_s       boot_s + transfer_s + draw_s (page request until the scene is drawn); open_s adds load and scene
-  js_frames_s  main-thread time spent in animation frames (React commits, three.js set-up, GL calls) from
-               connect to drawn; rasterisation runs in Chromium's GPU process (SwiftShader here)
-  frame_s      median round trip of a full-size capture of the steady scene (one draw + JPEG + transfer)
-The slider: per theta move, the server-side update time and the time until a capture shows the change.
+  boot_s       page request until the page's websocket is open (page load and viser's client start-up; JS
+               clock from here on, synchronised with the server's through Date.now)
+  transfer_s   open until the last scene message reached the page (sent, decoded in viser's worker, posted)
+  draw_s       last message until the first frame drawing the whole scene (as many triangles as the steady
+               scene) has been drawn: its 1-pixel read-back returned (JS timing injected into the page)
+  page_s       page request until then (boot_s + transfer_s + draw_s); open_s = load_s + scene_s + page_s
+  js_frames_s  main-thread time of the animation frames from connect to drawn (React commits, three.js
+               set-up, shader compiles, GL calls); first_frame_js_s: that of the first full frame alone
+  triangles    triangles the steady scene draws per frame
+The slider: per theta move, the server-side time and the time until the first frame whose pixels differ
+from the frame before the move has been drawn (frames are read back whole while the slider is timed, which
+adds the read-back to each frame: an upper bound).
 
 References measured in the same run: an empty viewer page (boot and draw of nothing), the capability map
-drawn the old way (every voxel below the cut, one instance each), and the slider the old way (the surface
-map's node re-sent on every move).
+drawn the old way (every voxel below the cut, one instance each), the slider the old way (the surface map's
+node re-sent on every move), and the robot meshes the old way (trimesh, in a fresh process: its import and
+the PR2's meshes).
 
 Maps: --capability FILE --surface FILE, or --build RES to build the PR2's right-arm capability map and the
 two-arm table surface map at RES into --cache (0.05 m: about a minute per arm).
@@ -34,6 +37,8 @@ import argparse
 import json
 import os
 import platform
+import subprocess
+import sys
 import threading
 import time
 
@@ -46,21 +51,62 @@ from octoreach.viewer.browser import Browser
 from octoreach.viewer.capability_map import CapabilityMapLayer
 
 TARGETS = {"open_s": 3.0, "slider_s": 0.2}
-CAPTURE = (400, 640)  # height, width of the polling captures
 
-# Injected before the page's own scripts: timestamps (epoch ms) of the messages viser's websocket worker hands
-# to the page, and the main-thread time of each animation-frame callback.
-TIMING_JS = """
+# Injected before the page's own scripts (epoch ms, synchronised with Date.now()): when viser's websocket worker
+# hands each message batch to the page; per animation frame with draws: start, end of its main-thread work,
+# draw calls, triangles, and `finished`, when a 1-pixel read-back returned (the GPU process, SwiftShader here,
+# has drawn the frame; taken on frames that draw more triangles than before). While `watch` is set, every
+# frame is read back whole and `hash` records a digest of its pixels (the slider: the first frame that differs).
+TIMING_JS = r"""
 (() => {
-  const T = window.__octoreach_timing = {messages: [], frames: []};
-  const now = () => performance.timeOrigin + performance.now();
+  const T = window.__octoreach_timing = {messages: [], frames: [], watch: false};
+  const offset = Date.now() - performance.now();
+  const now = () => offset + performance.now();
   const W = window.Worker;
   window.Worker = class extends W {
     constructor(...args) { super(...args); this.addEventListener('message', () => T.messages.push(now())); }
   };
+  let cur = null, curGl = null, maxTris = 0, buf = null;
+  const P = WebGL2RenderingContext.prototype;
+  const wrap = (name, count) => {
+    const g = P[name];
+    P[name] = function (...a) {
+      if (cur) { cur.draws += 1; cur.tris += count(a); curGl = this; }
+      return g.apply(this, a);
+    };
+  };
+  wrap('drawElements', (a) => a[1] / 3);
+  wrap('drawArrays', (a) => a[2] / 3);
+  wrap('drawElementsInstanced', (a) => a[1] / 3 * a[4]);
+  wrap('drawArraysInstanced', (a) => a[2] / 3 * a[3]);
   const raf = window.requestAnimationFrame.bind(window);
   window.requestAnimationFrame = (cb) => raf((t) => {
-    const s = now(); cb(t); T.frames.push([s, now() - s]);
+    const f = cur = {start: now(), draws: 0, tris: 0};
+    curGl = null;
+    try { cb(t); } finally {
+      cur = null;
+      f.end = now();
+      const gl = curGl;  // the context that drew this frame
+      if (f.draws) {
+        if (gl && T.watch) {
+          const n = gl.drawingBufferWidth * gl.drawingBufferHeight * 4;
+          if (!buf || buf.length !== n) buf = new Uint8Array(n);
+          const bound = gl.getParameter(gl.READ_FRAMEBUFFER_BINDING);
+          gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);  // the canvas, not the last render target
+          gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, buf);
+          gl.bindFramebuffer(gl.READ_FRAMEBUFFER, bound);
+          f.finished = now();
+          let h = 0;
+          for (let i = 0; i < n; i += 61) h = (h * 31 + buf[i]) >>> 0;
+          f.hash = h;
+        } else if (gl && f.tris > maxTris) {
+          gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+          f.finished = now();
+        }
+        maxTris = Math.max(maxTris, f.tris);
+        T.frames.push(f);
+      }
+    }
   });
 })();
 """
@@ -104,99 +150,111 @@ def old_show(layer, k: int) -> None:
                                    colours.scale(rs[shown], layer.vmax), layer.edge * 0.92, layer.tile_height)
 
 
-def _has_colours(img: np.ndarray, groups, tol: int = 40, share: float = 2e-4) -> bool:
-    """Whether, for every group of colours (K, 3), at least `share` of the capture's pixels are near one of
-    them (no groups: any capture)."""
-    px = img.reshape(-1, 3)[::7].astype(np.int16)
-    for wanted in groups:
-        near = np.zeros(len(px), dtype=bool)
-        for c in wanted:
-            near |= (np.abs(px - np.asarray(c, np.int16)) <= tol).all(axis=1)
-        if near.mean() < share:
-            return False
-    return True
+def _timing(browser: Browser) -> dict:
+    T = browser.driver.execute_script("return window.__octoreach_timing;")
+    for f in T["frames"]:
+        for k in ("start", "end", "finished"):
+            if k in f:
+                f[k] /= 1000.0
+    T["messages"] = [m / 1000.0 for m in T["messages"]]
+    return T
 
 
-def _capture(client, size=CAPTURE) -> np.ndarray:
-    return np.asarray(client.get_render(size[0], size[1], transport_format="jpeg", timeout=30.0))[..., :3]
-
-
-def open_scene(browser: Browser, build, wanted, name: str) -> tuple[dict, Viewer]:
-    """Builds a scene with build(viewer) (a dict of facts, load_s: the file's share of the time), opens it in the
-    browser and times the parts (see the docstring); drawn means a capture shows colours near each of the
-    colour groups wanted(viewer) returns (the layer added last among them, so the earlier ones are in too)."""
+def open_scene(browser: Browser, build, name: str, quiet: float = 1.5, timeout: float = 60.0) -> tuple[dict, Viewer]:
+    """Builds a scene with build(viewer) (a dict of facts; load_s: the file's share of the time), opens it in the
+    browser and times the parts (see the docstring). Drawn: the first frame, after the last scene message, that
+    draws as many triangles as the steady scene (no message and no new frame size for `quiet` s), finished."""
     t0 = time.perf_counter()
     v = Viewer(port=0, verbose=False)
     connected = threading.Event()
-    t_connect = [0.0]
-
-    @v.server.on_client_connect
-    def _(_client) -> None:
-        t_connect[0] = time.time()
-        connected.set()
+    v.server.on_client_connect(lambda _client: connected.set())
 
     info = build(v)
     load = info.pop("load_s", 0.0)
     scene = time.perf_counter() - t0 - load
-    wanted_colours = [np.unique(np.asarray(g, int).reshape(-1, 3) // 16, axis=0) * 16 + 8 for g in wanted(v)]
     t1 = time.perf_counter()
     recording = v.server.get_scene_serializer().serialize()
     serialise = time.perf_counter() - t1
     wire_bytes = int.from_bytes(recording[:8], "little")
     t_request = time.time()
     browser.driver.get(v.url)
-    if not connected.wait(60.0):
+    if not connected.wait(timeout):
         raise TimeoutError(f"{name}: the page did not connect")
-    client = next(iter(v.server.get_clients().values()))
-    t_end = time.time() + 60.0
     while True:
-        t_ask = time.time()
-        img = _capture(client)
-        if _has_colours(img, wanted_colours):
-            t_drawn = time.time()
-            break
-        if time.time() > t_end:
-            raise TimeoutError(f"{name}: the scene's colours never showed")
-    timing = browser.driver.execute_script("return window.__octoreach_timing;")
-    arrivals = [t / 1000.0 for t in timing["messages"] if t / 1000.0 <= t_ask]
-    t_last = max(arrivals) if arrivals else t_connect[0]
-    frames = sum(d for s, d in timing["frames"] if t_connect[0] * 1000 <= s <= t_drawn * 1000) / 1000.0
-    frame = [time.perf_counter()]
-    for _ in range(3):
-        _capture(client, (browser.height, browser.width))
-        frame.append(time.perf_counter())
-    out = dict(info, load_s=round(load, 3), scene_s=round(scene, 3),
-               wire_bytes=wire_bytes, serialise_s=round(serialise, 3),
-               boot_s=round(t_connect[0] - t_request, 3), transfer_s=round(t_last - t_connect[0], 3),
-               draw_s=round(t_drawn - t_last, 3), page_s=round(t_drawn - t_request, 3),
-               js_frames_s=round(frames, 3), frame_s=round(float(np.median(np.diff(frame))), 3))
+        time.sleep(0.25)
+        T = _timing(browser)
+        if not T["messages"]:
+            continue
+        last = max(T["messages"])
+        after = [f for f in T["frames"] if f["start"] >= last]
+        if after and time.time() - last > quiet:
+            tris = max(f["tris"] for f in after)
+            first = next(f for f in after if f["tris"] == tris)
+            if "finished" in first:
+                break
+        if time.time() - t_request > timeout:
+            raise TimeoutError(f"{name}: no steady scene")
+    t_drawn = first["finished"]
+    t_open = T["messages"][0]  # the worker's first message to the page: "connected"
+    frames = sum(f["end"] - f["start"] for f in T["frames"] if t_open <= f["start"] <= t_drawn)
+    out = dict(info, load_s=round(load, 3), scene_s=round(scene, 3), wire_bytes=wire_bytes,
+               serialise_s=round(serialise, 3), boot_s=round(t_open - t_request, 3),
+               transfer_s=round(last - t_open, 3), draw_s=round(t_drawn - last, 3),
+               page_s=round(t_drawn - t_request, 3), js_frames_s=round(frames, 3),
+               first_frame_js_s=round(first["end"] - first["start"], 3), triangles=int(tris))
     out["open_s"] = round(out["load_s"] + out["scene_s"] + out["page_s"], 3)
     return out, v
 
 
 def slider_times(v: Viewer, browser: Browser, old: bool) -> dict:
-    """Theta moves over 8 bins: server-side time and the time until a capture shows the change."""
+    """Theta moves over 8 bins: the server-side time of each, and the time until the page's first frame whose
+    pixels differ from the frame before the move has been drawn (read back whole while watching)."""
     layer = v.surface_map
-    client = next(iter(v.server.get_clients().values()))
     bins = layer.smap.theta_bins
+    browser.driver.execute_script("window.__octoreach_timing.watch = true;")
     server, page = [], []
-    before = _capture(client)
     for k in range(0, bins, max(1, bins // 8)):
-        t0 = time.perf_counter()
+        time.sleep(1.5)  # an idle frame or two to read the scene before the move
+        before = [f for f in _timing(browser)["frames"] if "hash" in f]
+        t0 = time.time()
+        t = time.perf_counter()
         if old:
             old_show(layer, k)
         else:
             layer.show(k)
-        server.append(time.perf_counter() - t0)
-        while True:
-            img = _capture(client)
-            if np.abs(img.astype(np.int16) - before).mean() > 0.05 or time.perf_counter() - t0 > 10.0:
-                break
-        page.append(time.perf_counter() - t0)
-        before = img
+        server.append(time.perf_counter() - t)
+        changed = None
+        while changed is None and time.time() - t0 < 15.0:
+            time.sleep(0.1)
+            frames = [f for f in _timing(browser)["frames"] if "hash" in f and f["start"] >= t0]
+            changed = next((f for f in frames if before and f["hash"] != before[-1]["hash"]), None)
+        page.append((changed["finished"] if changed else float("nan")) - t0)
+    browser.driver.execute_script("window.__octoreach_timing.watch = false;")
     return {"moves": len(server), "server_s_max": round(max(server), 4),
             "server_s_median": round(float(np.median(server)), 4), "page_s_max": round(max(page), 3),
-            "page_s_median": round(float(np.median(page)), 3)}
+            "page_s_median": round(float(np.median(page)), 3), "page_s": [round(p, 3) for p in page]}
+
+
+def trimesh_reference() -> dict:
+    """Seconds a fresh process (octoreach imported, the PR2 loaded) takes to import trimesh and read the PR2's
+    visual meshes with it (the viewer's old way), and to read them now (RobotMeshes through mesh_files)."""
+    code = "import time, octoreach; r = octoreach.robots.pr2(); t = time.perf_counter(); {}; print(time.perf_counter() - t)"
+    old = ("import trimesh; from octoreach.viewer.robot_meshes import robot_files; import re; "
+           "u, d = robot_files('pr2'); from octoreach.viewer.robot_meshes import resolve_uri; "
+           "[trimesh.load(resolve_uri(f, d, ''), force='mesh') for f in "
+           "set(re.findall('filename=\"([^\"]+)\"', open(u).read()))]")
+    new = "from octoreach.viewer.robot_meshes import RobotMeshes; RobotMeshes(r)"
+    times = [float(subprocess.run([sys.executable, "-c", code.format(c)], capture_output=True, text=True,
+                                  check=True).stdout.split()[-1]) for c in (old, new)]
+    return {"trimesh_import_and_meshes_s": round(times[0], 3), "mesh_files_meshes_s": round(times[1], 3)}
+
+
+def import_times() -> dict:
+    """Seconds a fresh process takes to import octoreach, and then viser (not in the open times below)."""
+    code = ("import time; t = time.perf_counter(); import octoreach; u = time.perf_counter(); import viser; "
+            "print(u - t, time.perf_counter() - u)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    return {"octoreach_s": round(float(out[-2]), 3), "viser_s": round(float(out[-1]), 3)}
 
 
 def _timed_load(path: str):
@@ -217,25 +275,29 @@ def main() -> None:
         cap_path, sm_path = build_maps(args.build, args.cache)
     result = {"machine": platform.processor() or platform.machine(), "cpus": os.cpu_count(),
               "browser": "headless Chromium, software WebGL (SwiftShader)", "window": [1280, 800],
-              "capture": list(CAPTURE[::-1]), "targets": TARGETS}
+              "targets": TARGETS, "note": "shared 2-core machine, other jobs running: figures vary from run to run"}
+    result["imports_in_a_fresh_process"] = import_times()
+    import viser  # noqa: F401  (imported before the timings: a running viewer has it)
+
     with Browser(1280, 800) as b:
         b.driver.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": TIMING_JS})
-        empty, v = open_scene(b, lambda v: {}, lambda v: [], "empty")
+        empty, v = open_scene(b, lambda v: {}, "empty")
         v.close()
         result["reference_empty_page"] = empty
-        result["reference_empty_page"]["note"] = "no map: page load, viser start-up, a capture of the empty scene"
+        result["reference_empty_page"]["note"] = "no map: page load, viser start-up, drawing the empty scene"
+        result["reference_robot_meshes_trimesh_s"] = trimesh_reference()
         if cap_path:
             for key, layer_class in (("reference_capability_map_all_voxels", AllVoxels),
                                      ("capability_map", CapabilityMapLayer)):
                 def build_cap(v, layer_class=layer_class):
                     cap, load = _timed_load(cap_path)
                     layer = v.capability_map = layer_class(v.scene, cap)
-                    v._frame_camera(layer.centres)
+                    v.frame_camera(layer.centres)
                     return {"map": cap_path, "voxels": len(layer.centres), "cells": int(cap.stats["reachable_cells"])
                             if "reachable_cells" in cap.stats else None, "below_cut": len(layer.shown),
                             "drawn": len(layer.drawn), "load_s": load}
 
-                out, v = open_scene(b, build_cap, lambda v: [v.capability_map.colours[v.capability_map.drawn]], key)
+                out, v = open_scene(b, build_cap, key)
                 v.close()
                 result[key] = out
         if sm_path:
@@ -246,7 +308,7 @@ def main() -> None:
                     return {"map": sm_path, "cells": len(layer.centres), "theta_bins": sm.theta_bins,
                             "load_s": load}
 
-                out, v = open_scene(b, build_sm, lambda v: [v.surface_map.colours_at(-1), [colours.ARROW]], key)
+                out, v = open_scene(b, build_sm, key)
                 try:
                     slider = slider_times(v, b, old=old)
                 finally:

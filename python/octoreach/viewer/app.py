@@ -113,7 +113,7 @@ class Viewer:
         if self.robot_layer is not None and len(poses):
             self.stand(poses[0], smap.reference_frame)
         self._surface_controls(smap)
-        self._frame_camera(np.vstack([polygon, self.surface_map.centres]) if len(polygon) else self.surface_map.centres)
+        self.frame_camera(np.vstack([polygon, self.surface_map.centres]) if len(polygon) else self.surface_map.centres)
         return self.surface_map
 
     def add_capability_map(self, cap, base_pose=None):
@@ -129,7 +129,7 @@ class Viewer:
             self._watch_clicks(layer)  # cut() makes a new node
 
         self._watch_clicks(layer)
-        self._frame_camera(layer.centres)
+        self.frame_camera(layer.centres)
         return layer
 
     def add_exploration(self, source, steps=None):
@@ -153,7 +153,7 @@ class Viewer:
 
         occupied = np.asarray(layer.map.cells("occupied"), float).reshape(-1, 3)
         views = np.array([T[:3, 3] for T in layer.poses]).reshape(-1, 3)
-        self._frame_camera(np.vstack([occupied, views, np.zeros((0 if len(occupied) else 1, 3))]), distance=1.3)
+        self.frame_camera(np.vstack([occupied, views, np.zeros((0 if len(occupied) else 1, 3))]), distance=1.3)
         return layer
 
     def note(self, text: str) -> None:
@@ -237,7 +237,7 @@ class Viewer:
         self.surface_map.show(theta_bin)
         return time.perf_counter() - t
 
-    def _frame_camera(self, points, distance: float = 1.0) -> None:
+    def frame_camera(self, points, distance: float = 1.0) -> None:
         """Initial camera: looking at the points' box from the front left, `distance` times its diagonal."""
         pts = np.asarray(points, float).reshape(-1, 3)
         if not len(pts):
@@ -319,7 +319,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
         if layer is not None and rl is not None and rl.meshes.robot.has_link(layer.cap.base_link):
             T = rl.base_pose @ rl.meshes.robot.link_poses(rl.q)[layer.cap.base_link]
             layer.place(T)  # on the robot's arm
-            v._frame_camera(layer.centres @ T[:3, :3].T + T[:3, 3])
+            v.frame_camera(layer.centres @ T[:3, :3].T + T[:3, 3])
         if html:
             print(f"octoreach: wrote {v.save_html(html)}", flush=True)
         if png:
