@@ -15,6 +15,8 @@ Prints JSON. Each scene is timed in parts:
   js_frames_s  main-thread time of the animation frames from connect to drawn (React commits, three.js
                set-up, shader compiles, GL calls); first_frame_js_s: that of the first full frame alone
   triangles    triangles the steady scene draws per frame
+  shader_programs, shader_compile_wait_s   programs the page linked (three.js: one per material kind) and
+               the main thread's waits for their compiles (SwiftShader compiles each in a few hundred ms)
 The slider: per theta move, the server-side time and the time until the first frame whose pixels differ
 from the frame before the move has been drawn (frames are read back whole while the slider is timed, which
 adds the read-back to each frame: an upper bound).
@@ -79,6 +81,14 @@ TIMING_JS = r"""
   wrap('drawArrays', (a) => a[2] / 3);
   wrap('drawElementsInstanced', (a) => a[1] / 3 * a[4]);
   wrap('drawArraysInstanced', (a) => a[2] / 3 * a[3]);
+  // Shader programs linked, and the main thread's waits for their compiles (three.js reads their logs).
+  T.programs = 0; T.compile_ms = 0;
+  const link = P.linkProgram;
+  P.linkProgram = function (...a) { T.programs += 1; return link.apply(this, a); };
+  for (const name of ['getShaderInfoLog', 'getProgramInfoLog', 'getProgramParameter', 'getShaderParameter']) {
+    const g = P[name];
+    P[name] = function (...a) { const s = performance.now(); const r = g.apply(this, a); T.compile_ms += performance.now() - s; return r; };
+  }
   const raf = window.requestAnimationFrame.bind(window);
   window.requestAnimationFrame = (cb) => raf((t) => {
     const f = cur = {start: now(), draws: 0, tris: 0};
@@ -201,7 +211,8 @@ def open_scene(browser: Browser, build, name: str, quiet: float = 1.5, timeout: 
                serialise_s=round(serialise, 3), boot_s=round(t_open - t_request, 3),
                transfer_s=round(last - t_open, 3), draw_s=round(t_drawn - last, 3),
                page_s=round(t_drawn - t_request, 3), js_frames_s=round(frames, 3),
-               first_frame_js_s=round(first["end"] - first["start"], 3), triangles=int(tris))
+               first_frame_js_s=round(first["end"] - first["start"], 3), triangles=int(tris),
+               shader_programs=T["programs"], shader_compile_wait_s=round(T["compile_ms"] / 1000.0, 3))
     out["open_s"] = round(out["load_s"] + out["scene_s"] + out["page_s"], 3)
     return out, v
 
@@ -230,7 +241,11 @@ def slider_times(v: Viewer, browser: Browser, old: bool) -> dict:
             changed = next((f for f in frames if before and f["hash"] != before[-1]["hash"]), None)
         page.append((changed["finished"] if changed else float("nan")) - t0)
     browser.driver.execute_script("window.__octoreach_timing.watch = false;")
-    return {"moves": len(server), "server_s_max": round(max(server), 4),
+    n = len(layer.centres)
+    # Arrays a move sends: colours (3 bytes) and scales (4 bytes) a cell, or the whole node again (positions,
+    # orientations, colours of the cells shown, and the box's vertices and triangles).
+    sent = n * 7 if not old else int(np.median([(layer.values[:, k] > 0).sum() for k in range(bins)])) * (12 + 16 + 3) + 8 * 12 + 12 * 12
+    return {"moves": len(server), "bytes_per_move": sent, "server_s_max": round(max(server), 4),
             "server_s_median": round(float(np.median(server)), 4), "page_s_max": round(max(page), 3),
             "page_s_median": round(float(np.median(page)), 3), "page_s": [round(p, 3) for p in page]}
 

@@ -286,3 +286,16 @@ def test_empty_surface_map_warns(arm_map, viewer, capsys):
     layer = viewer.add_surface_map(empty, samples=3)
     assert len(layer.shown) == 0 and len(viewer.samples.poses) == 0
     assert "empty surface map" in capsys.readouterr().err
+
+
+def test_surface_slab_faces_outwards():
+    from octoreach.viewer.surfaces import slab
+
+    square = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]
+    for poly in (square, square[::-1]):  # counter-clockwise and clockwise seen from above
+        v, f = slab(poly, 0.1)
+        a, b, c = (v[f[:, i]].astype(float) for i in range(3))
+        volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0  # > 0 when every face points outwards
+        assert volume == pytest.approx(0.1)
+        normals = np.cross(b - a, c - a)
+        assert (normals[:, 2] > 0).sum() == 2 and (normals[:, 2] < 0).sum() == 2  # top up, bottom down
