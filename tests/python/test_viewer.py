@@ -60,10 +60,9 @@ def _near(pixels: np.ndarray, colour, tol: int) -> np.ndarray:
 def test_scene_nodes_and_theta_slider(arm_map, viewer):
     robot, _, sm = arm_map
     layer = viewer.add_surface_map(sm, samples=3)  # the robot comes from the map's robot name
-    names = viewer.node_names()
     for node in ("/robot", "/robot/base_link", "/robot/tool0" if "tool0" in viewer.robot_layer.links else
                  "/robot/wrist_3_link", "/surface", "/surface_map", "/samples/footprints", "/samples/headings"):
-        assert node in names, (node, names)
+        assert viewer.has_node(node), node
     centres, values = sm.voxels()
     values = np.asarray(values)
     # Best theta: every voxel with R_S > 0 is shown; one theta bin: exactly the voxels with R_S > 0 there.
@@ -73,7 +72,7 @@ def test_scene_nodes_and_theta_slider(arm_map, viewer):
         viewer.show_theta(k)
         assert set(layer.shown) == set(np.flatnonzero(values[:, k] > 0))
         # A move recolours the one node: same node, its colours those of bin k, cells with R_S = 0 scaled to 0.
-        assert layer.handle is handle and viewer.node_names().count("/surface_map") == 1
+        assert layer.handle is handle and viewer.scene.get_handle_by_name("/surface_map") is handle
         assert np.array_equal(handle.batched_colors, colours.scale(values[:, k], layer.vmax))
         assert np.array_equal(handle.batched_scales > 0, values[:, k] > 0)
         i = int(layer.shown[np.argmax(values[layer.shown, k])])
@@ -113,13 +112,13 @@ def test_surface_obstacles_drawn_or_said_missing(arm_map, viewer):
     table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)
     table.add_legs()
     viewer.add_surface_map(sm, samples=0, surface=table)
-    names = viewer.node_names()
-    assert sum(n.startswith("/surface/boxes/") for n in names) == len(table.boxes) == 4
+    assert len(table.boxes) == 4 and all(viewer.has_node(f"/surface/boxes/{i}") for i in range(4))
+    assert not viewer.has_node("/surface/boxes/4")
     assert not viewer.notes
     other = Viewer(port=_free_port(), verbose=False)
     try:
         other.add_surface_map(sm, samples=0)  # as from a file: the polygon only, and a note saying so
-        assert not any(n.startswith("/surface/boxes") for n in other.node_names())
+        assert not other.has_node("/surface/boxes") and not other.has_node("/surface/boxes/0")
         assert any("polygon only" in n for n in other.notes)
     finally:
         other.close()
@@ -252,9 +251,9 @@ def test_exploration_layers(viewer):
     assert layer.counts["frontier"] == len(emap.cells("frontier"))
     assert layer.counts["void"] == len(emap.cells("void"))
     assert layer.counts["ellipsoids"] == len(emap.void_clusters())
-    names = viewer.node_names()
-    assert {"/exploration/occupied", "/exploration/frontiers", "/exploration/voids", "/exploration/views/0",
-            "/exploration/views/1"} <= set(names)
+    for node in ("/exploration/occupied", "/exploration/frontiers", "/exploration/voids", "/exploration/views/0",
+                 "/exploration/views/1"):
+        assert viewer.has_node(node), node
     assert not layer.void.visible  # voids start hidden
     layer.step(0)
     assert layer.frusta[0].visible and not layer.frusta[1].visible

@@ -252,9 +252,9 @@ class Viewer:
         cam.fov = np.radians(50)
 
     # -- life ----------------------------------------------------------------------------------------
-    def node_names(self) -> list[str]:
-        """Names of the scene tree's nodes as the server holds them."""
-        return sorted(self.scene._handle_from_node_name)  # viser keeps its scene state here
+    def has_node(self, name: str) -> bool:
+        """Whether the scene tree holds a node `name` (as the server holds it)."""
+        return self.scene.get_handle_by_name(name) is not None
 
     def wait_for_click(self, timeout: float) -> dict | None:
         """Waits up to `timeout` s for the next cell click; returns `selected` (None on timeout)."""
