@@ -84,7 +84,7 @@ class Viewer:
         elif len(polygon) >= 3:
             self.note("the surface map records its surface polygon only: the surface is drawn as a "
                       f"{surface_thickness * 100:.0f} cm slab, without the obstacles it was built with (table legs, "
-                      "boxes); pass surface= to draw them")
+                      "boxes); in Python, view(..., surface=the Surface) draws them")
         self.surface_map = SurfaceMapLayer(self.scene, smap)
         self._watch_clicks(self.surface_map)
         if robot is None and smap.robot_name:
