@@ -1,16 +1,37 @@
 """Viewer benchmark: how fast a PR2 capability map and surface map open in the browser, and how fast the
 theta slider updates (issue 14: under 3 s to open at 0.05 m, under 200 ms per slider move).
 
-Prints JSON. For each map: seconds to load the file, to build the scene on the server (every message
-queued), and until headless Chromium shows a steady scene (from the page request); for the surface map,
-the slider: server-side update time per theta bin and the time until the page's pixels change. The
-reference measured in the same run is an empty viewer page (browser start-up and page load alone).
+Prints JSON. Each scene is timed in parts:
+  load_s       reading the map file (compiled loader)
+  scene_s      building the scene on the server (numpy, colour maps, robot meshes, viser messages queued)
+  wire_bytes   the scene's messages as viser encodes them (its .viser recording, uncompressed size);
+  serialise_s  the time of that recording (msgpack + zstd level 12: an upper bound of the wire's level 1)
+  boot_s       page request until the page's websocket is open (page load and viser's client start-up; JS
+               clock from here on, synchronised with the server's through Date.now)
+  transfer_s   open until the last scene message reached the page (sent, decoded in viser's worker, posted)
+  draw_s       last message until the first frame drawing the whole scene (as many triangles as the steady
+               scene) has been drawn: its 1-pixel read-back returned (JS timing injected into the page)
+  page_s       page request until then (boot_s + transfer_s + draw_s); open_s = load_s + scene_s + page_s
+  js_frames_s  main-thread time of the animation frames from connect to drawn (React commits, three.js
+               set-up, shader compiles, GL calls); first_frame_js_s: that of the first full frame alone
+  triangles    triangles the steady scene draws per frame
+  shader_programs, shader_compile_wait_s   programs the page linked (three.js: one per material kind) and
+               the main thread's waits for their compiles (SwiftShader compiles each in a few hundred ms)
+The slider: per theta move, the server-side time and the time until the first frame whose pixels differ
+from the frame before the move has been drawn (frames are read back whole while the slider is timed, which
+adds the read-back to each frame: an upper bound).
 
-Maps: --capability FILE --surface FILE, or --build RES to build the PR2's right-arm capability map (with
-solutions) and the two-arm table surface map at RES into --cache (0.05 m: about a minute per arm).
+References measured in the same run: an empty viewer page (boot and draw of nothing), the capability map
+drawn the old way (every voxel below the cut, one instance each), the slider the old way (the surface map's
+node re-sent on every move), and the robot meshes the old way (trimesh, in a fresh process: its import and
+the PR2's meshes).
+
+Maps: --capability FILE --surface FILE, or --build RES to build the PR2's right-arm capability map and the
+two-arm table surface map at RES into --cache (0.05 m: about a minute per arm).
 
     .venv/bin/python benchmarks/viewer.py --build 0.05
-    .venv/bin/python benchmarks/viewer.py --capability demo_out/x.orcm --surface demo_out/table_either_arm.orsm
+    .venv/bin/python benchmarks/viewer.py --capability build/viewer_bench/pr2_right_arm_0.05.orcm \\
+        --surface build/viewer_bench/pr2_table_either_arm_0.05.orsm
 """
 from __future__ import annotations
 
@@ -18,16 +39,87 @@ import argparse
 import json
 import os
 import platform
+import subprocess
+import sys
+import threading
 import time
 
 import numpy as np
 
 import octoreach
-from octoreach import arms
-from octoreach.viewer import Viewer, files
+from octoreach import arms, map_files
+from octoreach.viewer import Viewer, cells, colours
 from octoreach.viewer.browser import Browser
+from octoreach.viewer.capability_map import CapabilityMapLayer
 
 TARGETS = {"open_s": 3.0, "slider_s": 0.2}
+
+# Injected before the page's own scripts (epoch ms, synchronised with Date.now()): when viser's websocket worker
+# hands each message batch to the page; per animation frame with draws: start, end of its main-thread work,
+# draw calls, triangles, and `finished`, when a 1-pixel read-back returned (the GPU process, SwiftShader here,
+# has drawn the frame; taken on frames that draw more triangles than before). While `watch` is set, every
+# frame is read back whole and `hash` records a digest of its pixels (the slider: the first frame that differs).
+TIMING_JS = r"""
+(() => {
+  const T = window.__octoreach_timing = {messages: [], frames: [], watch: false};
+  const offset = Date.now() - performance.now();
+  const now = () => offset + performance.now();
+  const W = window.Worker;
+  window.Worker = class extends W {
+    constructor(...args) { super(...args); this.addEventListener('message', () => T.messages.push(now())); }
+  };
+  let cur = null, curGl = null, maxTris = 0, buf = null;
+  const P = WebGL2RenderingContext.prototype;
+  const wrap = (name, count) => {
+    const g = P[name];
+    P[name] = function (...a) {
+      if (cur) { cur.draws += 1; cur.tris += count(a); curGl = this; }
+      return g.apply(this, a);
+    };
+  };
+  wrap('drawElements', (a) => a[1] / 3);
+  wrap('drawArrays', (a) => a[2] / 3);
+  wrap('drawElementsInstanced', (a) => a[1] / 3 * a[4]);
+  wrap('drawArraysInstanced', (a) => a[2] / 3 * a[3]);
+  // Shader programs linked, and the main thread's waits for their compiles (three.js reads their logs).
+  T.programs = 0; T.compile_ms = 0;
+  const link = P.linkProgram;
+  P.linkProgram = function (...a) { T.programs += 1; return link.apply(this, a); };
+  for (const name of ['getShaderInfoLog', 'getProgramInfoLog', 'getProgramParameter', 'getShaderParameter']) {
+    const g = P[name];
+    P[name] = function (...a) { const s = performance.now(); const r = g.apply(this, a); T.compile_ms += performance.now() - s; return r; };
+  }
+  const raf = window.requestAnimationFrame.bind(window);
+  window.requestAnimationFrame = (cb) => raf((t) => {
+    const f = cur = {start: now(), draws: 0, tris: 0};
+    curGl = null;
+    try { cb(t); } finally {
+      cur = null;
+      f.end = now();
+      const gl = curGl;  // the context that drew this frame
+      if (f.draws) {
+        if (gl && T.watch) {
+          const n = gl.drawingBufferWidth * gl.drawingBufferHeight * 4;
+          if (!buf || buf.length !== n) buf = new Uint8Array(n);
+          const bound = gl.getParameter(gl.READ_FRAMEBUFFER_BINDING);
+          gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);  // the canvas, not the last render target
+          gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, buf);
+          gl.bindFramebuffer(gl.READ_FRAMEBUFFER, bound);
+          f.finished = now();
+          let h = 0;
+          for (let i = 0; i < n; i += 61) h = (h * 31 + buf[i]) >>> 0;
+          f.hash = h;
+        } else if (gl && f.tris > maxTris) {
+          gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+          f.finished = now();
+        }
+        maxTris = Math.max(maxTris, f.tris);
+        T.frames.push(f);
+      }
+    }
+  });
+})();
+"""
 
 
 def build_maps(res: float, cache: str) -> tuple[str, str]:
@@ -50,66 +142,140 @@ def build_maps(res: float, cache: str) -> tuple[str, str]:
     return cap_path, sm_path
 
 
-def page_time(browser: Browser, viewer: Viewer, poll: float = 0.05, timeout: float = 60.0) -> float:
-    """Seconds from the page request until the scene is drawn and steady (the first of two equal frames)."""
-    t0 = time.perf_counter()
-    browser.driver.get(viewer.url)
-    last, t_last = None, None
-    while time.perf_counter() - t0 < timeout:
-        px = browser.pixels().astype(np.int16)
-        now = time.perf_counter()
-        if last is not None and np.abs(px - last).mean() < 0.05 and px.std() > 5:
-            return t_last - t0
-        last, t_last = px, now
-        time.sleep(poll)
-    raise TimeoutError("no steady scene")
+class AllVoxels(CapabilityMapLayer):
+    """The reference: the capability map drawn the old way, every voxel below the cut one instance."""
+
+    def cut(self, z: float) -> None:
+        self.z = float(z)
+        self.shown = self.drawn = np.flatnonzero(self.centres[:, 2] <= self.z + 1e-9)
+        self.handle = cells.add_cells(self.scene, f"{self.name}/voxels", self.centres[self.shown],
+                                      self.colours[self.shown], self.edge * 0.9)
 
 
-def open_map(kind: str, path: str | None, browser: Browser) -> dict:
+def old_show(layer, k: int) -> None:
+    """The reference slider move: the surface map's node re-sent with the cells shown at theta bin k."""
+    rs = layer.values[:, k]
+    shown = np.flatnonzero(rs > 0)
+    layer.handle = cells.add_cells(layer.scene, layer.name, layer.centres[shown],
+                                   colours.scale(rs[shown], layer.vmax), layer.edge * 0.92, layer.tile_height)
+
+
+def _timing(browser: Browser) -> dict:
+    T = browser.driver.execute_script("return window.__octoreach_timing;")
+    for f in T["frames"]:
+        for k in ("start", "end", "finished"):
+            if k in f:
+                f[k] /= 1000.0
+    T["messages"] = [m / 1000.0 for m in T["messages"]]
+    return T
+
+
+def open_scene(browser: Browser, build, name: str, quiet: float = 1.5, timeout: float = 60.0) -> tuple[dict, Viewer]:
+    """Builds a scene with build(viewer) (a dict of facts; load_s: the file's share of the time), opens it in the
+    browser and times the parts (see the docstring). Drawn: the first frame, after the last scene message, that
+    draws as many triangles as the steady scene (no message and no new frame size for `quiet` s), finished."""
     t0 = time.perf_counter()
     v = Viewer(port=0, verbose=False)
-    try:
-        if path is None:
-            loaded, obj = 0.0, None
-        else:
-            _, obj = files.load(path)
-            loaded = time.perf_counter() - t0
-        t1 = time.perf_counter()
-        if kind == "surface_map":
-            layer = v.add_surface_map(obj)
-            cells = len(layer.centres)
-        elif kind == "capability_map":
-            layer = v.add_capability_map(obj)
-            cells = len(layer.centres)
-        else:
-            layer, cells = None, 0
-        scene = time.perf_counter() - t1
-        page = page_time(browser, v)
-        out = {"map": path, "cells": cells, "load_s": round(loaded, 3), "scene_s": round(scene, 3),
-               "page_s": round(page, 3), "open_s": round(loaded + scene + page, 3)}
-        if kind == "capability_map":
-            out["cells_total"] = int(obj.stats.get("reachable_cells", 0)) if hasattr(obj, "stats") else None
-        if kind == "surface_map":
-            out["slider"] = slider_times(v, browser, obj.theta_bins)
-        return out
-    finally:
-        v.close()
+    connected = threading.Event()
+    v.server.on_client_connect(lambda _client: connected.set())
+
+    info = build(v)
+    load = info.pop("load_s", 0.0)
+    scene = time.perf_counter() - t0 - load
+    t1 = time.perf_counter()
+    recording = v.server.get_scene_serializer().serialize()
+    serialise = time.perf_counter() - t1
+    wire_bytes = int.from_bytes(recording[:8], "little")
+    t_request = time.time()
+    browser.driver.get(v.url)
+    if not connected.wait(timeout):
+        raise TimeoutError(f"{name}: the page did not connect")
+    while True:
+        time.sleep(0.25)
+        T = _timing(browser)
+        if not T["messages"]:
+            continue
+        last = max(T["messages"])
+        after = [f for f in T["frames"] if f["start"] >= last]
+        if after and time.time() - last > quiet:
+            tris = max(f["tris"] for f in after)
+            first = next(f for f in after if f["tris"] == tris)
+            if "finished" in first:
+                break
+        if time.time() - t_request > timeout:
+            raise TimeoutError(f"{name}: no steady scene")
+    t_drawn = first["finished"]
+    t_open = T["messages"][0]  # the worker's first message to the page: "connected"
+    frames = sum(f["end"] - f["start"] for f in T["frames"] if t_open <= f["start"] <= t_drawn)
+    out = dict(info, load_s=round(load, 3), scene_s=round(scene, 3), wire_bytes=wire_bytes,
+               serialise_s=round(serialise, 3), boot_s=round(t_open - t_request, 3),
+               transfer_s=round(last - t_open, 3), draw_s=round(t_drawn - last, 3),
+               page_s=round(t_drawn - t_request, 3), js_frames_s=round(frames, 3),
+               first_frame_js_s=round(first["end"] - first["start"], 3), triangles=int(tris),
+               shader_programs=T["programs"], shader_compile_wait_s=round(T["compile_ms"] / 1000.0, 3))
+    out["open_s"] = round(out["load_s"] + out["scene_s"] + out["page_s"], 3)
+    return out, v
 
 
-def slider_times(v: Viewer, browser: Browser, bins: int) -> dict:
+def slider_times(v: Viewer, browser: Browser, old: bool) -> dict:
+    """Theta moves over 8 bins: the server-side time of each, and the time until the page's first frame whose
+    pixels differ from the frame before the move has been drawn (read back whole while watching)."""
+    layer = v.surface_map
+    bins = layer.smap.theta_bins
+    browser.driver.execute_script("window.__octoreach_timing.watch = true;")
     server, page = [], []
     for k in range(0, bins, max(1, bins // 8)):
-        before = browser.pixels().astype(np.int16)
-        t0 = time.perf_counter()
-        server.append(v.show_theta(k))
-        while time.perf_counter() - t0 < 5.0:
-            if np.abs(browser.pixels().astype(np.int16) - before).mean() > 0.05:
-                break
-        page.append(time.perf_counter() - t0)
-        time.sleep(0.3)  # let the frame settle before the next move
-    return {"moves": len(server), "server_s_max": round(max(server), 4), "server_s_median": round(float(np.median(server)), 4),
-            "page_s_max": round(max(page), 3), "page_s_median": round(float(np.median(page)), 3),
-            "note": "page_s includes one screenshot of the headless page (software WebGL), an upper bound"}
+        time.sleep(1.5)  # an idle frame or two to read the scene before the move
+        before = [f for f in _timing(browser)["frames"] if "hash" in f]
+        t0 = time.time()
+        t = time.perf_counter()
+        if old:
+            old_show(layer, k)
+        else:
+            layer.show(k)
+        server.append(time.perf_counter() - t)
+        changed = None
+        while changed is None and time.time() - t0 < 15.0:
+            time.sleep(0.1)
+            frames = [f for f in _timing(browser)["frames"] if "hash" in f and f["start"] >= t0]
+            changed = next((f for f in frames if before and f["hash"] != before[-1]["hash"]), None)
+        page.append((changed["finished"] if changed else float("nan")) - t0)
+    browser.driver.execute_script("window.__octoreach_timing.watch = false;")
+    n = len(layer.centres)
+    # Arrays a move sends: colours (3 bytes) and scales (4 bytes) a cell, or the whole node again (positions,
+    # orientations, colours of the cells shown, and the box's vertices and triangles).
+    sent = n * 7 if not old else int(np.median([(layer.values[:, k] > 0).sum() for k in range(bins)])) * (12 + 16 + 3) + 8 * 12 + 12 * 12
+    return {"moves": len(server), "bytes_per_move": sent, "server_s_max": round(max(server), 4),
+            "server_s_median": round(float(np.median(server)), 4), "page_s_max": round(max(page), 3),
+            "page_s_median": round(float(np.median(page)), 3), "page_s": [round(p, 3) for p in page]}
+
+
+def trimesh_reference() -> dict:
+    """Seconds a fresh process (octoreach imported, the PR2 loaded) takes to import trimesh and read the PR2's
+    visual meshes with it (the viewer's old way), and to read them now (RobotMeshes through mesh_files)."""
+    code = "import time, octoreach; r = octoreach.robots.pr2(); t = time.perf_counter(); {}; print(time.perf_counter() - t)"
+    old = ("import trimesh; from octoreach.viewer.robot_meshes import robot_files; import re; "
+           "u, d = robot_files('pr2'); from octoreach.viewer.robot_meshes import resolve_uri; "
+           "[trimesh.load(resolve_uri(f, d, ''), force='mesh') for f in "
+           "set(re.findall('filename=\"([^\"]+)\"', open(u).read()))]")
+    new = "from octoreach.viewer.robot_meshes import RobotMeshes; RobotMeshes(r)"
+    times = [float(subprocess.run([sys.executable, "-c", code.format(c)], capture_output=True, text=True,
+                                  check=True).stdout.split()[-1]) for c in (old, new)]
+    return {"trimesh_import_and_meshes_s": round(times[0], 3), "mesh_files_meshes_s": round(times[1], 3)}
+
+
+def import_times() -> dict:
+    """Seconds a fresh process takes to import octoreach, and then viser (not in the open times below)."""
+    code = ("import time; t = time.perf_counter(); import octoreach; u = time.perf_counter(); import viser; "
+            "print(u - t, time.perf_counter() - u)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    return {"octoreach_s": round(float(out[-2]), 3), "viser_s": round(float(out[-1]), 3)}
+
+
+def _timed_load(path: str):
+    t = time.perf_counter()
+    m = map_files.load(path)
+    return m, time.perf_counter() - t
 
 
 def main() -> None:
@@ -119,16 +285,54 @@ def main() -> None:
     p.add_argument("--build", type=float, help="build PR2 maps at this resolution into --cache instead")
     p.add_argument("--cache", default=os.path.join("build", "viewer_bench"), help="folder for --build maps")
     args = p.parse_args()
-    cap, sm = args.capability, args.surface
+    cap_path, sm_path = args.capability, args.surface
     if args.build:
-        cap, sm = build_maps(args.build, args.cache)
-    result = {"machine": platform.processor() or platform.machine(), "cpus": os.cpu_count(), "targets": TARGETS}
+        cap_path, sm_path = build_maps(args.build, args.cache)
+    result = {"machine": platform.processor() or platform.machine(), "cpus": os.cpu_count(),
+              "browser": "headless Chromium, software WebGL (SwiftShader)", "window": [1280, 800],
+              "targets": TARGETS, "note": "shared 2-core machine, other jobs running: figures vary from run to run"}
+    result["imports_in_a_fresh_process"] = import_times()
+    import viser  # noqa: F401  (imported before the timings: a running viewer has it)
+
     with Browser(1280, 800) as b:
-        result["reference_empty_page"] = open_map("empty", None, b)
-        if cap:
-            result["capability_map"] = open_map("capability_map", cap, b)
-        if sm:
-            result["surface_map"] = open_map("surface_map", sm, b)
+        b.driver.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": TIMING_JS})
+        empty, v = open_scene(b, lambda v: {}, "empty")
+        v.close()
+        result["reference_empty_page"] = empty
+        result["reference_empty_page"]["note"] = "no map: page load, viser start-up, drawing the empty scene"
+        result["reference_robot_meshes_trimesh_s"] = trimesh_reference()
+        if cap_path:
+            for key, layer_class in (("reference_capability_map_all_voxels", AllVoxels),
+                                     ("capability_map", CapabilityMapLayer)):
+                def build_cap(v, layer_class=layer_class):
+                    cap, load = _timed_load(cap_path)
+                    layer = v.capability_map = layer_class(v.scene, cap)
+                    v.frame_camera(layer.centres)
+                    return {"map": cap_path, "voxels": len(layer.centres), "cells": int(cap.stats["reachable_cells"])
+                            if "reachable_cells" in cap.stats else None, "below_cut": len(layer.shown),
+                            "drawn": len(layer.drawn), "load_s": load}
+
+                out, v = open_scene(b, build_cap, key)
+                v.close()
+                result[key] = out
+        if sm_path:
+            for key, old in (("reference_surface_map_slider_resend", True), ("surface_map", False)):
+                def build_sm(v):
+                    sm, load = _timed_load(sm_path)
+                    layer = v.add_surface_map(sm)
+                    return {"map": sm_path, "cells": len(layer.centres), "theta_bins": sm.theta_bins,
+                            "load_s": load}
+
+                out, v = open_scene(b, build_sm, key)
+                try:
+                    slider = slider_times(v, b, old=old)
+                finally:
+                    v.close()
+                if old:
+                    result[key] = {"slider": slider}
+                else:
+                    out["slider"] = slider
+                    result[key] = out
     print(json.dumps(result, indent=2))
 
 

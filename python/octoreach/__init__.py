@@ -38,7 +38,7 @@ from ._core import set_progress_factory as _set_progress_factory
 _set_progress_factory(_progress.make_progress)  # how progress=True is drawn by the compiled builds
 
 from . import robots  # noqa: F401
-from . import arms, surface_maps  # noqa: F401
+from . import arms, map_files, surface_maps  # noqa: F401
 from . import rooms  # noqa: F401
 from .rooms import Room  # noqa: F401
 from ._core import (  # noqa: F401
@@ -68,6 +68,6 @@ __all__ = ["Arm", "Cancelled", "CapabilityMap", "CapabilityMapOptions", "Chain",
            "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
            "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
            "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis",
-           "rooms", "Room"]
+           "rooms", "Room", "map_files"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore", "view"]

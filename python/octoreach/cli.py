@@ -173,22 +173,10 @@ def _cmd_surface(args) -> int:
     return 0
 
 
-def _load_any_map(path):
-    from ._core import CapabilityMap, InversePointMap, SurfaceMap
-
-    errors = []
-    for cls in (SurfaceMap, CapabilityMap, InversePointMap):
-        try:
-            return cls.load(path)
-        except OSError as e:
-            if "holds a" not in str(e):
-                raise
-            errors.append(str(e))
-    raise OSError(errors[-1])
-
-
 def _cmd_info(args) -> int:
-    m = _load_any_map(args.map)
+    from . import map_files
+
+    m = map_files.load(args.map)
     print(repr(m))
     for k, v in sorted(m.parameters.items()):
         print(f"  {k}: {v}")
@@ -202,7 +190,9 @@ def _cmd_info(args) -> int:
 
 
 def _cmd_export(args) -> int:
-    m = _load_any_map(args.map)
+    from . import map_files
+
+    m = map_files.load(args.map)
     m.export_octovis(args.out)
     print(f"wrote {args.out} (open with octovis)")
     return 0

@@ -1,7 +1,8 @@
 """Robots shipped by the PyPI package example-robot-data (URDF, SRDF and meshes).
 
 ``octoreach.robots.pr2()`` returns the PR2; ``octoreach.robots.load(name)`` any robot
-of that package by name (for example "panda", "tiago", "talos", "kinova"), ``available()`` lists them.
+of that package by name (for example "panda", "tiago", "talos", "kinova"), ``available()`` lists them,
+``files(name)`` gives the URDF, SRDF and package folders load(name) reads (the viewer draws the URDF's meshes).
 Robots without a complete SRDF get their allowed-collision matrix sampled (cached on disk).
 The project's own robots (``urdf/`` in the source tree) are found by ``project_urdf(name)``.
 """
@@ -92,10 +93,26 @@ def available() -> list[str]:
         return []
 
 
-def _package_dirs(root: Path) -> list[str]:
-    # package://example-robot-data/robots/... resolves against share/, and package://X_description/...
-    # against robots/ for URDFs that name their description package.
+def package_dirs(root: Path | None = None) -> list[str]:
+    """Folders that example-robot-data's package:// mesh URIs resolve against (root: data_dir()):
+    package://example-robot-data/robots/... against share/, package://X_description/... against robots/."""
+    root = data_dir() if root is None else Path(root)
     return [str(root.parent), str(root / "robots")]
+
+
+def files(name: str) -> tuple[Path, Path | None, list[str]]:
+    """(URDF, SRDF or None, package_dirs) of robot `name` of example-robot-data, the files load(name) reads.
+    An unknown name: ValueError with the nearest names."""
+    index = _index()
+    if name not in index:
+        qualified = [n for n in index if n.endswith("/" + name)]
+        if qualified:
+            raise ValueError(f"robot name {name!r} is ambiguous: {', '.join(qualified)}")
+        close = difflib.get_close_matches(name, list(index), n=3, cutoff=0.5)
+        hint = f"; did you mean {', '.join(map(repr, close))}?" if close else ""
+        raise ValueError(f"unknown robot {name!r}{hint} Available: {', '.join(sorted(index))}")
+    urdf_path, srdf_path = index[name]
+    return urdf_path, srdf_path, package_dirs()
 
 
 def complete_allowed_collisions(robot: Robot, srdf_given: bool = True, options=None, progress=False, **kwargs) -> Robot:
@@ -125,25 +142,16 @@ def load(name: str, srdf: bool = True, allowed_collisions: str = "auto") -> Robo
     """Robot `name` of example-robot-data (see available()) with its SRDF when it has one (groups, end
     effectors, disabled collisions); allowed_collisions as in from_urdf ("auto" samples the allowed-collision
     matrix, cached, when the SRDF is missing or incomplete)."""
-    root = data_dir()
-    index = _index()
-    if name not in index:
-        qualified = [n for n in index if n.endswith("/" + name)]
-        if qualified:
-            raise ValueError(f"robot name {name!r} is ambiguous: {', '.join(qualified)}")
-        close = difflib.get_close_matches(name, list(index), n=3, cutoff=0.5)
-        hint = f"; did you mean {', '.join(map(repr, close))}?" if close else ""
-        raise ValueError(f"unknown robot {name!r}{hint} Available: {', '.join(sorted(index))}")
-    urdf_path, srdf_path = index[name]
+    urdf_path, srdf_path, dirs = files(name)
     if not srdf:
         srdf_path = None
     try:
-        return from_urdf(urdf_path, _package_dirs(root), srdf_path, allowed_collisions)
+        return from_urdf(urdf_path, dirs, srdf_path, allowed_collisions)
     except ValueError as e:
         if srdf_path is None or "does not match the URDF" not in str(e):
             raise
         warnings.warn(f"{name}: {srdf_path.name} left out: {e}", stacklevel=2)
-        return from_urdf(urdf_path, _package_dirs(root), None, allowed_collisions)
+        return from_urdf(urdf_path, dirs, None, allowed_collisions)
 
 
 def pr2(srdf: bool = True) -> Robot:

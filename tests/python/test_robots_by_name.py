@@ -43,7 +43,7 @@ def test_ambiguous_and_unknown_robot_names():
 
 def test_path_and_string_with_package_dirs_keep_working():
     urdf, srdf = robots._index()["panda"]
-    dirs = robots._package_dirs(robots.data_dir())
+    dirs = robots.package_dirs()
     by_path = Robot.from_urdf(str(urdf), package_dirs=dirs, srdf=str(srdf))
     by_text = Robot.from_urdf(urdf.read_text(), package_dirs=dirs, srdf=srdf.read_text())
     assert by_path.model_hash == by_text.model_hash
@@ -107,7 +107,7 @@ def test_srdf_that_disagrees_with_the_urdf_says_which():
     srdf = """<robot name="panda"><group name="arm"><chain base_link="panda_link0" tip_link="panda_hnd"/></group>
               <group name="x"><joint name="panda_joint9"/></group></robot>"""
     with pytest.raises(ValueError, match=r"link 'panda_hnd'.*did you mean 'panda_hand'.*joint 'panda_joint9'"):
-        Robot.from_urdf(str(urdf), package_dirs=robots._package_dirs(robots.data_dir()), srdf=srdf)
+        Robot.from_urdf(str(urdf), package_dirs=robots.package_dirs(), srdf=srdf)
 
 
 def _srdf_pairs(robot, path):
@@ -196,5 +196,5 @@ def test_cli_robot_by_name_prints_links_joints_groups_end_effectors_and_arms(tmp
     assert "  arm: joints panda_joint1, panda_joint2" in text and "  arm_and_hand: subgroups arm, hand" in text
     assert "end effector end_effector: parent link panda_hand_tcp, group arm" in text
     assert "  arm: panda_link0 -> panda_hand_tcp, approach axis (0.0, 0.0, 1.0) (+z of 'panda_hand_tcp'" in text
-    assert Robot.from_urdf(str(robots._index()["panda"][0]), package_dirs=robots._package_dirs(robots.data_dir()),
+    assert Robot.from_urdf(str(robots._index()["panda"][0]), package_dirs=robots.package_dirs(),
                            srdf=str(out)).srdf_groups["arm"]["joints"][0] == "panda_joint1"

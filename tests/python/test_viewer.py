@@ -60,34 +60,81 @@ def _near(pixels: np.ndarray, colour, tol: int) -> np.ndarray:
 def test_scene_nodes_and_theta_slider(arm_map, viewer):
     robot, _, sm = arm_map
     layer = viewer.add_surface_map(sm, samples=3)  # the robot comes from the map's robot name
-    names = viewer.node_names()
     for node in ("/robot", "/robot/base_link", "/robot/tool0" if "tool0" in viewer.robot_layer.links else
                  "/robot/wrist_3_link", "/surface", "/surface_map", "/samples/footprints", "/samples/headings"):
-        assert node in names, (node, names)
+        assert viewer.has_node(node), node
     centres, values = sm.voxels()
+    values = np.asarray(values)
     # Best theta: every voxel with R_S > 0 is shown; one theta bin: exactly the voxels with R_S > 0 there.
     assert len(layer.shown) == len(centres)
+    handle = layer.handle
     for k in (0, 5):
         viewer.show_theta(k)
-        assert set(layer.shown) == set(np.flatnonzero(np.asarray(values)[:, k] > 0))
-        i = int(np.argmax(np.asarray(values)[layer.shown, k]))
+        assert set(layer.shown) == set(np.flatnonzero(values[:, k] > 0))
+        # A move recolours the one node: same node, its colours those of bin k, cells with R_S = 0 scaled to 0.
+        assert layer.handle is handle and viewer.scene.get_handle_by_name("/surface_map") is handle
+        assert np.array_equal(handle.batched_colors, colours.scale(values[:, k], layer.vmax))
+        assert np.array_equal(handle.batched_scales > 0, values[:, k] > 0)
+        i = int(layer.shown[np.argmax(values[layer.shown, k])])
         pose = layer.cell_pose(i)
         assert pose[3] == pytest.approx(2 * np.pi * k / sm.theta_bins)
         sel = viewer.select_cell(i)
         assert sel["rs"] == pytest.approx(float(sm.reachability(pose[None, :])[0]))
-        assert sel["rs"] == pytest.approx(float(np.asarray(values)[layer.shown[i], k]), abs=1e-6)
+        assert sel["rs"] == pytest.approx(float(values[i, k]), abs=1e-6)
         # The robot stands at the clicked pose: its root link (= the map's reference frame) there.
         assert np.allclose(viewer.robot_layer.base_pose, octoreach.base_pose(pose))
+    with pytest.raises(ValueError, match="theta bin"):
+        layer.show(sm.theta_bins)
 
 
 def test_capability_map_slice(arm_map, viewer):
     _, cap, _ = arm_map
     layer = viewer.add_capability_map(cap)
-    centres, _ = cap.voxels()
-    z = float(np.median(np.asarray(centres)[:, 2]))
+    centres = np.asarray(cap.voxels()[0])
+    z = float(np.median(centres[:, 2]))
     layer.cut(z)
-    assert len(layer.shown) == int((np.asarray(centres)[:, 2] <= z + 1e-9).sum()) > 0
-    assert layer.value(0) == pytest.approx(float(cap.reachability(np.asarray(centres)[layer.shown[:1]])[0]))
+    assert len(layer.shown) == int((centres[:, 2] <= z + 1e-9).sum()) > 0
+    # Drawn: exactly the voxels below the cut with a face neighbour missing (brute force over the set).
+    below = {tuple(np.floor(c / cap.resolution).astype(int)) for c in centres[layer.shown]}
+    steps = [np.eye(3, dtype=int)[a] * s for a in range(3) for s in (-1, 1)]
+    outer = [i for i in layer.shown
+             if any(tuple(np.floor(centres[i] / cap.resolution).astype(int) + d) not in below for d in steps)]
+    assert sorted(layer.drawn) == outer and 0 < len(outer) <= len(layer.shown)
+    assert len(layer.handle.batched_positions) == len(layer.drawn)
+    assert np.allclose(layer.handle.batched_positions, centres[layer.drawn], atol=1e-6)
+    sel = viewer._select_voxel(0)  # what a click on instance 0 reports
+    assert sel["index"] == layer.drawn[0]
+    assert sel["value"] == pytest.approx(float(cap.reachability(centres[layer.drawn[:1]])[0]))
+
+
+def test_surface_obstacles_drawn_or_said_missing(arm_map, viewer):
+    robot, cap, sm = arm_map
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)
+    table.add_legs()
+    viewer.add_surface_map(sm, samples=0, surface=table)
+    assert len(table.boxes) == 4 and all(viewer.has_node(f"/surface/boxes/{i}") for i in range(4))
+    assert not viewer.has_node("/surface/boxes/4")
+    assert not viewer.notes
+    other = Viewer(port=_free_port(), verbose=False)
+    try:
+        other.add_surface_map(sm, samples=0)  # as from a file: the polygon only, and a note saying so
+        assert not other.has_node("/surface/boxes") and not other.has_node("/surface/boxes/0")
+        assert any("polygon only" in n for n in other.notes)
+    finally:
+        other.close()
+
+
+def test_map_files_load_any_kind(arm_map, tmp_path):
+    from octoreach import map_files
+
+    _, cap, sm = arm_map
+    cap.save(str(tmp_path / "a.orcm"))
+    sm.save(str(tmp_path / "b.orsm"))
+    assert isinstance(map_files.load(tmp_path / "a.orcm"), octoreach.CapabilityMap)
+    assert isinstance(map_files.load(str(tmp_path / "b.orsm")), octoreach.SurfaceMap)
+    (tmp_path / "c.orsm").write_text("not a map\n")
+    with pytest.raises(OSError, match="not an octoreach map"):
+        map_files.load(tmp_path / "c.orsm")
 
 
 def test_static_html(arm_map, viewer, tmp_path):
@@ -157,6 +204,13 @@ def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_p
         layer.handle.visible = True
         px = _changed(b, no_map)
 
+        # A theta move (colours and visibilities of the one node) reaches the page; then back to the best theta.
+        k = int(np.argmin([(layer.values[:, j] > 0).sum() for j in range(sm.theta_bins)]))
+        viewer.show_theta(k)
+        moved = _changed(b, px)
+        viewer.show_theta(-1)
+        px = _changed(b, moved)
+
         # A real click on a cell: aim at the cell nearest the camera (least likely to be hidden).
         client = next(iter(viewer.server.get_clients().values()))
         canvas = b.canvas()
@@ -165,8 +219,9 @@ def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_p
         pix = np.array([b.project(client.camera, p) for p in top])
         ok = (pix[:, 0] > 40) & (pix[:, 0] < 0.6 * w) & (pix[:, 1] > 40) & (pix[:, 1] < h - 40)
         assert ok.any()
-        target = int(np.flatnonzero(ok)[np.argmax(pix[ok, 1])])
-        b.click(*pix[target])
+        nearest = int(np.flatnonzero(ok)[np.argmax(pix[ok, 1])])
+        target = int(layer.shown[nearest])  # the click's instance index: the cell's index in layer.centres
+        b.click(*pix[nearest])
         sel = viewer.wait_for_click(10.0)
         assert sel is not None, "the click reached no cell"
         assert sel["index"] == target
@@ -196,9 +251,9 @@ def test_exploration_layers(viewer):
     assert layer.counts["frontier"] == len(emap.cells("frontier"))
     assert layer.counts["void"] == len(emap.cells("void"))
     assert layer.counts["ellipsoids"] == len(emap.void_clusters())
-    names = viewer.node_names()
-    assert {"/exploration/occupied", "/exploration/frontiers", "/exploration/voids", "/exploration/views/0",
-            "/exploration/views/1"} <= set(names)
+    for node in ("/exploration/occupied", "/exploration/frontiers", "/exploration/voids", "/exploration/views/0",
+                 "/exploration/views/1"):
+        assert viewer.has_node(node), node
     assert not layer.void.visible  # voids start hidden
     layer.step(0)
     assert layer.frusta[0].visible and not layer.frusta[1].visible
@@ -230,3 +285,16 @@ def test_empty_surface_map_warns(arm_map, viewer, capsys):
     layer = viewer.add_surface_map(empty, samples=3)
     assert len(layer.shown) == 0 and len(viewer.samples.poses) == 0
     assert "empty surface map" in capsys.readouterr().err
+
+
+def test_surface_slab_faces_outwards():
+    from octoreach.viewer.surfaces import slab
+
+    square = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]
+    for poly in (square, square[::-1]):  # counter-clockwise and clockwise seen from above
+        v, f = slab(poly, 0.1)
+        a, b, c = (v[f[:, i]].astype(float) for i in range(3))
+        volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0  # > 0 when every face points outwards
+        assert volume == pytest.approx(0.1)
+        normals = np.cross(b - a, c - a)
+        assert (normals[:, 2] > 0).sum() == 2 and (normals[:, 2] < 0).sum() == 2  # top up, bottom down

@@ -4,7 +4,8 @@
 
 One concept per file: robot_meshes (the URDF's visual meshes at link poses), surfaces (the work surface),
 surface_map (cells per theta), capability_map (voxels and slice plane), samples (footprints and arrows),
-exploration (cells, frontiers, voids, ellipsoids, frusta), cells (batched boxes and picking), colours,
+exploration (cells, frontiers, voids, ellipsoids, frusta), cells (batched boxes, outer shells, picking),
+mesh_files (STL with numpy, URDF primitives), colours,
 files (what can be opened), app (the server and its controls), export (static HTML), browser (headless
 Chromium screenshots and clicks).
 """

@@ -20,7 +20,7 @@ from .exploration import ExplorationLayer
 from .robot_meshes import RobotLayer, RobotMeshes
 from .samples import SamplesLayer, sample_poses
 from .surface_map import BEST, SurfaceMapLayer
-from .surfaces import add_surface
+from .surfaces import add_boxes, add_surface
 
 
 def _import_viser():
@@ -40,8 +40,10 @@ class Viewer:
         self.server.gui.configure_theme(control_width="medium", show_share_button=False)
         self.scene = self.server.scene
         self.url = f"http://{host}:{self.server.get_port()}"
+        self.verbose = verbose
         if verbose:
             print(f"octoreach: viewer at {self.url}", flush=True)
+        self.notes: list[str] = []
         self.robot_layer = None
         self.surface_map = None
         self.capability_map = None
@@ -64,14 +66,25 @@ class Viewer:
         self.robot_layer = RobotLayer(self.scene, meshes, q=q, base_pose=base_pose)
         return self.robot_layer
 
-    def add_surface_map(self, smap, robot=None, samples: int = 5, seed: int = 1, q=None, surface_thickness=0.03):
-        """A surface map: its polygon, cells (theta slider), `samples` sampled poses and the robot standing at
-        the first of them (robot: a Robot, a name, or None for the robot the map was built for)."""
+    def add_surface_map(self, smap, robot=None, samples: int = 5, seed: int = 1, q=None, surface=None,
+                        surface_thickness=0.03):
+        """A surface map: its surface, cells (theta slider), `samples` sampled poses and the robot standing at
+        the first of them (robot: a Robot, a name, or None for the robot the map was built for). `surface`:
+        the Surface the map was built on, to draw (and sample against) its obstacle boxes too; a map file
+        records the polygon only, drawn as a slab `surface_thickness` thick, and the viewer says so."""
         from .._core import Surface
 
-        polygon = np.asarray(smap.polygon, float)
+        polygon = np.asarray(smap.polygon if surface is None else surface.vertices, float)
+        if surface is not None:
+            surface_thickness = float(surface.thickness)
         if len(polygon) >= 3:
             add_surface(self.scene, polygon, surface_thickness)
+        if surface is not None:
+            add_boxes(self.scene, surface.boxes)
+        elif len(polygon) >= 3:
+            self.note("the surface map records its surface polygon only: the surface is drawn as a "
+                      f"{surface_thickness * 100:.0f} cm slab, without the obstacles it was built with (table legs, "
+                      "boxes); in Python, view(..., surface=the Surface) draws them")
         self.surface_map = SurfaceMapLayer(self.scene, smap)
         self._watch_clicks(self.surface_map)
         if robot is None and smap.robot_name:
@@ -89,7 +102,8 @@ class Viewer:
             samples = 0
         footprint = self.robot_layer.meshes.footprint(self.robot_layer.q) if self.robot_layer else \
             np.array([[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]])
-        obstacles = Surface(polygon, surface_thickness).obstacles() if len(polygon) >= 3 else None
+        obstacles = surface.obstacles() if surface is not None else \
+            Surface(polygon, surface_thickness).obstacles() if len(polygon) >= 3 else None
         poses, rs = sample_poses(smap, samples, seed=seed, robot=robot, obstacles=obstacles,
                                  reference=self.robot_layer.q if self.robot_layer else None)
         layer = self.surface_map
@@ -99,7 +113,7 @@ class Viewer:
         if self.robot_layer is not None and len(poses):
             self.stand(poses[0], smap.reference_frame)
         self._surface_controls(smap)
-        self._frame_camera(np.vstack([polygon, self.surface_map.centres]) if len(polygon) else self.surface_map.centres)
+        self.frame_camera(np.vstack([polygon, self.surface_map.centres]) if len(polygon) else self.surface_map.centres)
         return self.surface_map
 
     def add_capability_map(self, cap, base_pose=None):
@@ -112,10 +126,10 @@ class Viewer:
         @slider.on_update
         def _(_event) -> None:
             layer.cut(slider.value)
-            self._watch_clicks(layer)
+            self._watch_clicks(layer)  # cut() makes a new node
 
         self._watch_clicks(layer)
-        self._frame_camera(layer.centres)
+        self.frame_camera(layer.centres)
         return layer
 
     def add_exploration(self, source, steps=None):
@@ -139,8 +153,15 @@ class Viewer:
 
         occupied = np.asarray(layer.map.cells("occupied"), float).reshape(-1, 3)
         views = np.array([T[:3, 3] for T in layer.poses]).reshape(-1, 3)
-        self._frame_camera(np.vstack([occupied, views, np.zeros((0 if len(occupied) else 1, 3))]), distance=1.3)
+        self.frame_camera(np.vstack([occupied, views, np.zeros((0 if len(occupied) else 1, 3))]), distance=1.3)
         return layer
+
+    def note(self, text: str) -> None:
+        """Says something about what the scene shows (or leaves out): in the control panel and on stderr."""
+        self.notes.append(text)
+        self.server.gui.add_markdown(f"*Note: {text}.*")
+        if self.verbose:
+            print(f"octoreach: note: {text}", file=sys.stderr, flush=True)
 
     # -- interaction ---------------------------------------------------------------------------------
     def show_view(self, view: int) -> None:
@@ -161,7 +182,8 @@ class Viewer:
         layer.set_base_pose(T)
 
     def select_cell(self, index: int) -> dict:
-        """What a click on shown surface-map cell `index` does: report its R_S and stand the robot there."""
+        """What a click on surface-map cell `index` (an index into the layer's centres, as the click's instance
+        index) does: report its R_S and stand the robot there."""
         layer = self.surface_map
         pose = layer.cell_pose(index)
         rs = layer.reachability(index)
@@ -173,11 +195,12 @@ class Viewer:
         self._clicked.set()
         return self.selected
 
-    def _select_voxel(self, index: int) -> dict:
+    def _select_voxel(self, instance: int) -> dict:
         layer = self.capability_map
+        index = layer.voxel(instance)
         value = layer.value(index)
-        c = layer.centres[layer.shown[index]]
-        self.selected = {"kind": "capability_map", "index": int(index), "centre": c, "value": value}
+        c = layer.centres[index]
+        self.selected = {"kind": "capability_map", "index": index, "centre": c, "value": value}
         self._info.content = f"**reachability index = {value:.3f}** at {np.round(c, 3).tolist()}"
         self._clicked.set()
         return self.selected
@@ -212,10 +235,9 @@ class Viewer:
         """Shows the surface map at theta bin `theta_bin` (BEST = -1: best theta); returns the seconds taken."""
         t = time.perf_counter()
         self.surface_map.show(theta_bin)
-        self._watch_clicks(self.surface_map)
         return time.perf_counter() - t
 
-    def _frame_camera(self, points, distance: float = 1.0) -> None:
+    def frame_camera(self, points, distance: float = 1.0) -> None:
         """Initial camera: looking at the points' box from the front left, `distance` times its diagonal."""
         pts = np.asarray(points, float).reshape(-1, 3)
         if not len(pts):
@@ -230,9 +252,9 @@ class Viewer:
         cam.fov = np.radians(50)
 
     # -- life ----------------------------------------------------------------------------------------
-    def node_names(self) -> list[str]:
-        """Names of the scene tree's nodes as the server holds them."""
-        return sorted(self.scene._handle_from_node_name)  # viser keeps its scene state here
+    def has_node(self, name: str) -> bool:
+        """Whether the scene tree holds a node `name` (as the server holds it)."""
+        return self.scene.get_handle_by_name(name) is not None
 
     def wait_for_click(self, timeout: float) -> dict | None:
         """Waits up to `timeout` s for the next cell click; returns `selected` (None on timeout)."""
@@ -268,12 +290,13 @@ class Viewer:
 
 def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
          host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
-         steps=None, verbose: bool = True) -> Viewer:
+         steps=None, surface=None, verbose: bool = True) -> Viewer:
     """Shows maps and explorations in the browser: each item is a file path (.orsm, .orcm, .bt), a SurfaceMap,
     CapabilityMap, ExplorationMap or an explore() result. `robot` (Robot or name) defaults to the one a surface
     map records; its configuration is `q`, else the map's reference posture (other arm tucked) or home, with
     `joints` ({name: value}) set on top. `steps`: an ExplorationRecorder for an explore() result (the map after
-    each view on the view slider). `html`/`png` also write the scene as a static page / a screenshot.
+    each view on the view slider). `surface`: the Surface a surface map was built on (its obstacle boxes are
+    drawn; map files record the polygon only). `html`/`png` also write the scene as a static page / a screenshot.
     block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
     loaded = [files.load(item) for item in items]
     if not loaded:
@@ -282,7 +305,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
     try:
         for kind, obj in loaded:
             if kind == "surface_map":
-                v.add_surface_map(obj, robot=robot, samples=samples, seed=seed, q=q)
+                v.add_surface_map(obj, robot=robot, samples=samples, seed=seed, q=q, surface=surface)
             elif kind == "capability_map":
                 v.add_capability_map(obj)
             else:
@@ -296,7 +319,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
         if layer is not None and rl is not None and rl.meshes.robot.has_link(layer.cap.base_link):
             T = rl.base_pose @ rl.meshes.robot.link_poses(rl.q)[layer.cap.base_link]
             layer.place(T)  # on the robot's arm
-            v._frame_camera(layer.centres @ T[:3, :3].T + T[:3, 3])
+            v.frame_camera(layer.centres @ T[:3, :3].T + T[:3, 3])
         if html:
             print(f"octoreach: wrote {v.save_html(html)}", flush=True)
         if png:

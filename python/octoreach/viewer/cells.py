@@ -1,4 +1,5 @@
-"""Coloured cubes for voxels: one batched mesh per layer (one draw call), and ray picking of its cells."""
+"""Coloured cubes for voxels: one batched mesh per layer (one draw call), the outer shell of a voxel set (what
+can be seen of it), and ray picking of its cells."""
 from __future__ import annotations
 
 import numpy as np
@@ -14,17 +15,46 @@ def cube(edge: float, height: float | None = None) -> tuple[np.ndarray, np.ndarr
     return v, f
 
 
-def add_cells(scene, name: str, centres: np.ndarray, colours: np.ndarray, edge: float, height=None, opacity=None):
-    """A batched mesh of boxes (edge x edge x height, default cubes) at `centres` with per-box `colours`;
-    click events carry the box's index as `instance_index`."""
+def add_cells(scene, name: str, centres: np.ndarray, colours: np.ndarray, edge: float, height=None, opacity=None,
+              scales=None):
+    """A batched mesh of boxes (edge x edge x height, default cubes) at `centres` with per-box `colours` and
+    optional per-box `scales` (N,) (0 hides a box without re-sending the others); click events carry the box's
+    index as `instance_index`."""
     v, f = cube(edge, height)
     centres = np.asarray(centres, dtype=np.float32).reshape(-1, 3)
     n = len(centres)
     wxyz = np.tile(np.array([1.0, 0.0, 0.0, 0.0], dtype=np.float32), (n, 1))
     return scene.add_batched_meshes_simple(name, v, f, batched_wxyzs=wxyz, batched_positions=centres,
+                                           batched_scales=None if scales is None else np.asarray(scales, np.float32),
                                            batched_colors=np.asarray(colours, dtype=np.uint8).reshape(-1, 3),
                                            lod="off", opacity=opacity, cast_shadow=False,
                                            receive_shadow=False)
+
+
+def grid_keys(centres: np.ndarray, edge: float) -> np.ndarray:
+    """Integer grid coordinates (N, 3) of voxel centres on a grid of `edge` (from their minimum)."""
+    c = np.asarray(centres, dtype=float).reshape(-1, 3)
+    if not len(c):
+        return np.zeros((0, 3), dtype=np.int64)
+    return np.round((c - c.min(axis=0)) / edge).astype(np.int64)
+
+
+def shell(keys: np.ndarray) -> np.ndarray:
+    """Mask of the voxels (integer grid keys (N, 3), distinct) with at least one of their six face neighbours
+    missing from the set: the only ones that can be seen from outside it."""
+    keys = np.asarray(keys, dtype=np.int64).reshape(-1, 3)
+    if not len(keys):
+        return np.zeros(0, dtype=bool)
+    k = keys - keys.min(axis=0) + 1  # a free layer around the set
+    grid = np.zeros(tuple(k.max(axis=0) + 2), dtype=bool)
+    grid[k[:, 0], k[:, 1], k[:, 2]] = True
+    inner = np.ones(len(k), dtype=bool)
+    for axis in range(3):
+        for step in (-1, 1):
+            n = k.copy()
+            n[:, axis] += step
+            inner &= grid[n[:, 0], n[:, 1], n[:, 2]]
+    return ~inner
 
 
 def first_hit(origin, direction, centres: np.ndarray, edge: float, height=None) -> int | None:

@@ -24,9 +24,9 @@ def load(item):
         raise OSError(f"{path}: no such file")
     if path.endswith(".bt"):
         return "exploration", ExplorationMap.from_file(path)
-    from ..cli import _load_any_map  # the command line's loader: tries every map kind, one error if none
+    from .. import map_files
 
-    m = _load_any_map(path)
+    m = map_files.load(path)
     if isinstance(m, InversePointMap):
         raise ValueError(f"{path}: an inverse point map; the viewer shows surface and capability maps")
     return ("surface_map" if isinstance(m, SurfaceMap) else "capability_map"), m

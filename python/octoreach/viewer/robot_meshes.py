@@ -1,6 +1,7 @@
 """The robot's visual geometry from its URDF, drawn at a configuration and base pose.
 
-Shapes are the URDF's <visual> elements (meshes through trimesh, boxes, cylinders, spheres), or its
+Shapes are the URDF's <visual> elements (meshes read by mesh_files: STL with numpy, other formats through
+trimesh; boxes, cylinders, spheres), or its
 <collision> elements for links without visuals (the project's test arm has only those), one merged mesh
 per link in the link's frame. Mesh URIs (package://, file://, relative) are resolved by the rule of
 the C++ robot loader (cpp/src/urdf.cpp: resolve_mesh). Link poses come from the compiled
@@ -8,14 +9,12 @@ the C++ robot loader (cpp/src/urdf.cpp: resolve_mesh). Link poses come from the 
 """
 from __future__ import annotations
 
-import glob
 import os
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import numpy as np
 
-from . import colours
+from . import colours, mesh_files
 
 
 def robot_files(name: str) -> tuple[str, list[str]]:
@@ -28,16 +27,8 @@ def robot_files(name: str) -> tuple[str, list[str]]:
         return str(robots.project_urdf(own)), []
     except ValueError:
         pass
-    root = robots.data_dir()
-    if name in robots._KNOWN:
-        folder, urdf, _ = robots._KNOWN[name]
-        path = root / "robots" / folder / "urdf" / urdf
-    else:
-        matches = glob.glob(str(root / "robots" / "*" / "urdf" / f"{name}.urdf"))
-        if not matches:
-            raise ValueError(f"unknown robot {name!r}; available: {', '.join(robots.available())}")
-        path = Path(matches[0])
-    return str(path), robots._package_dirs(root)
+    urdf, _, dirs = robots.files(name)
+    return str(urdf), dirs
 
 
 def resolve_uri(uri: str, package_dirs, urdf_dir: str) -> str:
@@ -64,16 +55,10 @@ def resolve_uri(uri: str, package_dirs, urdf_dir: str) -> str:
 
 
 def _origin(el) -> np.ndarray:
-    import trimesh
-
-    T = np.eye(4)
     o = el.find("origin") if el is not None else None
-    if o is not None:
-        xyz = [float(v) for v in o.get("xyz", "0 0 0").split()]
-        rpy = [float(v) for v in o.get("rpy", "0 0 0").split()]
-        T = trimesh.transformations.euler_matrix(rpy[0], rpy[1], rpy[2], "sxyz")
-        T[:3, 3] = xyz
-    return T
+    if o is None:
+        return np.eye(4)
+    return mesh_files.rpy_matrix(o.get("xyz", "0 0 0").split(), o.get("rpy", "0 0 0").split())
 
 
 def _rgba(visual, materials: dict):
@@ -87,27 +72,23 @@ def _rgba(visual, materials: dict):
 
 
 def _geometry(geom, package_dirs, urdf_dir, cache: dict):
-    import trimesh
-
     shape = geom[0] if len(geom) else None
     if shape is None:
         return None
     if shape.tag == "mesh":
         path = resolve_uri(shape.get("filename", ""), package_dirs, urdf_dir)
         if path not in cache:
-            loaded = trimesh.load(path, force="mesh")
-            cache[path] = loaded
-        mesh = cache[path].copy()
+            cache[path] = mesh_files.read_mesh(path)
+        mesh = cache[path]
         if shape.get("scale"):
-            mesh.apply_scale([float(v) for v in shape.get("scale").split()])
+            mesh = mesh.scaled([float(v) for v in shape.get("scale").split()])
         return mesh
     if shape.tag == "box":
-        return trimesh.creation.box(extents=[float(v) for v in shape.get("size").split()])
+        return mesh_files.box([float(v) for v in shape.get("size").split()])
     if shape.tag == "cylinder":
-        return trimesh.creation.cylinder(radius=float(shape.get("radius")), height=float(shape.get("length")),
-                                         sections=24)
+        return mesh_files.cylinder(float(shape.get("radius")), float(shape.get("length")))
     if shape.tag == "sphere":
-        return trimesh.creation.icosphere(subdivisions=2, radius=float(shape.get("radius")))
+        return mesh_files.sphere(float(shape.get("radius")))
     return None
 
 
@@ -115,8 +96,6 @@ class RobotMeshes:
     """Visual meshes of a robot, one per link (link frame), and their colours."""
 
     def __init__(self, robot, urdf: str | None = None, package_dirs=None):
-        import trimesh
-
         if urdf is None:
             urdf, default_dirs = robot_files(robot.name)
             package_dirs = default_dirs if package_dirs is None else package_dirs
@@ -133,7 +112,7 @@ class RobotMeshes:
                 materials[m.get("name")] = [float(v) for v in c.get("rgba").split()]
         urdf_dir = os.path.dirname(os.path.abspath(urdf))
         cache: dict = {}
-        self.meshes: dict[str, "trimesh.Trimesh"] = {}
+        self.meshes: dict[str, mesh_files.Mesh] = {}
         self.colours: dict[str, tuple] = {}
         for link in root.findall("link"):
             parts, rgba = [], None
@@ -142,11 +121,10 @@ class RobotMeshes:
                 mesh = _geometry(geom, package_dirs or [], urdf_dir, cache) if geom is not None else None
                 if mesh is None or len(mesh.faces) == 0:
                     continue
-                mesh.apply_transform(_origin(visual))
-                parts.append(mesh)
+                parts.append(mesh.transformed(_origin(visual)))
                 rgba = rgba or _rgba(visual, materials)
             if parts:
-                self.meshes[link.get("name")] = trimesh.util.concatenate(parts)
+                self.meshes[link.get("name")] = mesh_files.concatenate(parts)
                 grey = rgba is None or (max(rgba[:3]) - min(rgba[:3]) < 0.05 and rgba[0] < 0.25)
                 self.colours[link.get("name")] = colours.ROBOT if grey else tuple(int(255 * c) for c in rgba[:3])
 
