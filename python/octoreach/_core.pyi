@@ -225,6 +225,11 @@ class Robot:
         """
         {link name: 4x4 pose in the root link frame}.
         """
+    def lowest_point(self, q: typing.Any) -> tuple[float, typing.Any]:
+        """
+        (z, link): the lowest point of the collision geometry at q in the root link frame and the link holding it
+        ((inf, None) without geometry). A surface map refuses a robot that would stand in the floor.
+        """
     def sample_allowed_collisions(self, options: typing.Any = None, progress: typing.Any = False, **kwargs) -> dict:
         """
         MoveIt setup-assistant pairs among the checked ones: {'never', 'always', 'default': [(a, b)], 'from_cache',
