@@ -36,18 +36,44 @@ def _ray():
 
 
 def _check_reachable(address: str, timeout: float) -> None:
-    """ConnectionError unless a TCP connection to the address's host and port opens within `timeout` s."""
+    """ConnectionError unless the address answers within `timeout` s: a TCP connection to its host and port,
+    then (for a GCS address, not ray://) a Ray GCS that answers a client (a proxy or another service does not)."""
+    import threading
+
     hostport = address.split("://", 1)[-1].rstrip("/")
     host, sep, port = hostport.rpartition(":")
     if not sep or not port.isdigit():
         raise ValueError(f"cluster address must be 'local', 'none', 'auto' or HOST:PORT, got {address!r}")
+    hint = "start one with `ray start --head` there, or use --cluster local"
+    t0 = time.monotonic()
     try:
         with socket.create_connection((host.strip("[]"), int(port)), timeout=timeout):
             pass
     except OSError as e:
         reason = "timed out" if isinstance(e, socket.timeout) else (e.strerror or str(e))
-        raise ConnectionError(f"cannot reach the Ray cluster at {address} within {timeout:g} s ({reason}); start one "
-                              f"with `ray start --head` there, or use --cluster local") from None
+        raise ConnectionError(f"cannot reach the Ray cluster at {address} within {timeout:g} s ({reason}); {hint}") from None
+    if address.startswith("ray://"):
+        return
+    try:
+        from ray._raylet import GcsClient  # Ray's own client of the head's GCS (a private module: optional)
+    except ImportError:
+        return
+    answer: dict = {}
+
+    def probe():
+        try:
+            GcsClient(address=hostport)
+            answer["ok"] = True
+        except Exception as e:  # noqa: BLE001  (any failure means: not a Ray head)
+            answer["error"] = " ".join(str(e).split())[:200]
+
+    thread = threading.Thread(target=probe, daemon=True)
+    thread.start()
+    thread.join(max(0.5, timeout - (time.monotonic() - t0)))
+    if not answer.get("ok"):
+        reason = answer.get("error", "no answer from a Ray GCS")
+        raise ConnectionError(f"cannot reach the Ray cluster at {address} within {timeout:g} s: something answers "
+                              f"there but not a Ray head ({reason}); {hint}")
 
 
 def connect(cluster: str | None = "local", num_cpus: int | None = None, timeout: float = 5.0) -> str:
