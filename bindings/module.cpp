@@ -23,7 +23,8 @@ bool python_interrupted() {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "octoreach compiled core: robot model, IK, collision, reachability maps, exploration";
   m.attr("__version__") = octoreach::version();
-  m.attr("map_format_version") = octoreach::map_format_version();
+  m.def("map_format_version", &octoreach::map_format_version,
+        "Version of the map file format this library writes and reads (part of a map cache key).");
   py::register_exception<octoreach::Cancelled>(m, "Cancelled", PyExc_KeyboardInterrupt);
   g_main_thread = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
   octoreach::set_cancel_check(&python_interrupted);

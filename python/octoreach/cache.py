@@ -99,7 +99,7 @@ def capability_key_fields(robot: Robot, arm: Arm, options: CapabilityMapOptions)
 
 def key_of(fields: dict) -> str:
     """The content key of a map: SHA-256 of its key fields, the file format version and the library version."""
-    text = json.dumps({"fields": _plain(fields), "format": map_format_version, "octoreach": __version__},
+    text = json.dumps({"fields": _plain(fields), "format": map_format_version(), "octoreach": __version__},
                       sort_keys=True, separators=(",", ":"))
     return hashlib.sha256(text.encode()).hexdigest()[:40]
 
@@ -203,7 +203,7 @@ class MapCache:
 
     def _note(self, kind: str, key: str, fields: dict) -> None:
         note = {"kind": kind, "key": key, "fields": _plain(fields), "octoreach": __version__,
-                "format": map_format_version, "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+                "format": map_format_version(), "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
         write_atomically(self.directory / f"{kind}-{key}.json", json.dumps(note, indent=1).encode())
 
     def store_bytes(self, kind: str, fields: dict, data: bytes) -> bool:
