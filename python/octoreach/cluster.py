@@ -205,26 +205,28 @@ def build_many(job, cluster: str | None = "local", out=None, cache=True, progres
     bar = _Progress(len(plan), "build-many", progress, on_progress)
     pending: dict = {}  # reference -> (kind, job)
     cap_refs = []
-    for cj in plan.capability:
-        data = store.lookup_bytes("capability", cj.fields) if store else None
+
+    def cached(kind, j):
+        """The cached bytes of a map of the job, written to its output file; None on a miss."""
+        data = store.lookup_bytes(kind, j.fields) if store else None
         if data is not None:
             report.cache_hits += 1
-            _store(cj.out, data)
-            report.files[cj.name] = str(cj.out)
+            _store(j.out, data)
+            report.files[j.name] = str(j.out)
+            bar.step(j.name + " (cache)")
+        return data
+
+    for cj in plan.capability:
+        data = cached("capability", cj)
+        if data is not None:
             cap_refs.append(ex.put(data))
-            bar.step(cj.name + " (cache)")
             continue
         ref = ex.submit("capability_task", cj.spec, int(cj.robot.model_hash), cj.arm_tuple, cj.options,
                         num_returns=2)
         cap_refs.append(ref[0])
         pending[ref[1]] = ("capability", cj, ref[0])
     for sj in plan.surfaces:
-        data = store.lookup_bytes("surface", sj.fields) if store else None
-        if data is not None:
-            report.cache_hits += 1
-            _store(sj.out, data)
-            report.files[sj.name] = str(sj.out)
-            bar.step(sj.name + " (cache)")
+        if cached("surface", sj) is not None:
             continue
         cj = plan.capability[sj.capability]
         ref = ex.submit("surface_task", cj.spec, int(cj.robot.model_hash), cap_refs[sj.capability], sj.room,
