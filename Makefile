@@ -32,7 +32,7 @@ $(VENV)/.build-deps: $(VENV)/.created pyproject.toml
 
 $(BUILD)/.installed: $(VENV)/.build-deps $(SOURCES)
 	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PIP) install --no-build-isolation \
-	  -Cbuild-dir=$(BUILD) -Ccmake.define.BUILD_TESTING=ON ".[robots,test,viewer]"
+	  -Cbuild-dir=$(BUILD) -Ccmake.define.BUILD_TESTING=ON ".[robots,test,viewer,cluster]"
 	@touch $@
 
 install: sysdeps $(BUILD)/.installed

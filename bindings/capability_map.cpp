@@ -33,6 +33,9 @@ void wrap_options(py::module_& m) {
       .def_readwrite("position_tolerance", &O::position_tolerance, "IK tolerance at the voxel centre (m).")
       .def_readwrite("orientation_tolerance", &O::orientation_tolerance, "IK tolerance (rad).")
       .def_readwrite("keep_solutions", &O::keep_solutions, "Keep one joint solution per reachable cell.")
+      .def_readwrite("block_size", &O::block_size,
+                     "0: one flood over the whole box; n: blocks of n voxels per edge, each flooded on its own\n"
+                     "(CapabilityBlocks: built anywhere, merged into the same bytes).")
       .def_readwrite("threads", &O::threads, "0: every core.");
   def_reference<O>(cls, "Robot configuration off the chain; None: default_reference(robot, chain).");
 }

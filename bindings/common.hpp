@@ -220,6 +220,7 @@ void wrap_robot(py::module_& m);
 void wrap_orientation_set(py::module_& m);
 void wrap_arm(py::module_& m);
 void wrap_capability_map(py::module_& m);
+void wrap_capability_blocks(py::module_& m);
 void wrap_point_map(py::module_& m);
 void wrap_surface(py::module_& m);
 void wrap_surface_map(py::module_& m);

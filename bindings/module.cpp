@@ -23,6 +23,8 @@ bool python_interrupted() {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "octoreach compiled core: robot model, IK, collision, reachability maps, exploration";
   m.attr("__version__") = octoreach::version();
+  m.def("map_format_version", &octoreach::map_format_version,
+        "Version of the map file format this library writes and reads (part of a map cache key).");
   py::register_exception<octoreach::Cancelled>(m, "Cancelled", PyExc_KeyboardInterrupt);
   g_main_thread = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
   octoreach::set_cancel_check(&python_interrupted);
@@ -42,6 +44,7 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_orientation_set(m);
   octoreach::py_bindings::wrap_arm(m);
   octoreach::py_bindings::wrap_capability_map(m);
+  octoreach::py_bindings::wrap_capability_blocks(m);
   octoreach::py_bindings::wrap_point_map(m);
   octoreach::py_bindings::wrap_surface(m);
   octoreach::py_bindings::wrap_surface_map(m);

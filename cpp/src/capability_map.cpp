@@ -15,6 +15,7 @@
 #include "map_io.hpp"
 #include "maps/batch.hpp"
 #include "maps/capability_build.hpp"
+#include "octoreach/capability_blocks.hpp"
 #include "octoreach/arm.hpp"
 #include "octoreach/chain.hpp"
 
@@ -26,6 +27,7 @@ void CapabilityMap::set_parameters_(const CapabilityMapOptions& o) {
   self_collision_ = o.self_collision;
   seed_ = o.seed;
   exhaustive_ = o.exhaustive;
+  block_size_ = std::max(0, o.block_size);
   position_tolerance_ = o.position_tolerance;
   orientation_tolerance_ = o.orientation_tolerance;
 }
@@ -41,16 +43,16 @@ void check_options(const Chain& chain, const CapabilityMapOptions& o) {
   if (chain.dof() == 0) throw std::invalid_argument("the chain has no moving joints");
   if (!(o.position_tolerance > 0) || !(o.orientation_tolerance > 0))
     throw std::invalid_argument("IK tolerances must be positive");
+  if (o.block_size < 0 || o.block_size > 4096)
+    throw std::invalid_argument("block_size must be 0 (one flood over the whole box) or voxels per block edge "
+                                "(1 to 4096), got " + std::to_string(o.block_size));
 }
 
 }  // namespace
 
-CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOptions& o, const ProgressCallback& progress) {
-  detail::CancellableScope cancellable;
+CapabilityMap CapabilityMap::shell_(const Chain& chain, const CapabilityMapOptions& o, Eigen::VectorXd& reference) {
   check_options(chain, o);
-  const auto t_start = std::chrono::steady_clock::now();
   const Robot& robot = chain.robot();
-
   CapabilityMap m;
   m.set_parameters_(o);
   m.orientations_ = OrientationSet::sphere(o.directions, o.rolls, o.symmetry);
@@ -60,11 +62,10 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   m.base_link_ = chain.base_link();
   m.tip_link_ = chain.tip_link();
   m.dof_ = chain.dof();
-  const int O = m.orientations_.size();
-  m.words_ = (O + 63) / 64;
+  m.words_ = (m.orientations_.size() + 63) / 64;
   m.tree_ = std::make_shared<VoxelOcTree>(o.resolution);
 
-  const Eigen::VectorXd reference = reference_or_default(robot, chain, o.reference);
+  reference = reference_or_default(robot, chain, o.reference);
   if (o.self_collision) {
     std::vector<std::pair<int, int>> moving, fixed;
     chain.split_collision_pairs(moving, fixed);
@@ -81,42 +82,61 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
           "posture (reference=...)");
     }
   }
+  return m;
+}
+
+void CapabilityMap::add_voxel_(const octomap::OcTreeKey& key, const std::uint64_t* bits, const float* solutions) {
+  std::size_t count = 0;
+  for (int i = 0; i < words_; ++i) count += std::bitset<64>(bits[i]).count();
+  VoxelNode* leaf = tree_->touch(key);
+  leaf->payload = static_cast<std::uint32_t>(sol_offset_.size());
+  leaf->setValue(static_cast<float>(count) / orientations_.size());
+  bits_.insert(bits_.end(), bits, bits + words_);
+  sol_offset_.push_back(stats_.reachable_cells);
+  if (solutions) solutions_.insert(solutions_.end(), solutions, solutions + count * dof_);
+  stats_.reachable_cells += count;
+}
+
+void CapabilityMap::finish_build_(std::size_t samples, std::size_t ik_calls, std::size_t cells, double seconds) {
+  tree_->update_inner_values();
+  finish_();
+  fk_samples_ = samples;
+  stats_.fk_samples = samples;
+  stats_.ik_calls = ik_calls;
+  stats_.cells = cells;
+  stats_.voxels = sol_offset_.size();
+  stats_.seconds = seconds;
+}
+
+CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOptions& o, const ProgressCallback& progress) {
+  detail::CancellableScope cancellable;
+  if (o.block_size > 0) return CapabilityBlocks(chain, o).build(progress);  // the block build (capability_blocks.hpp)
+  const auto t_start = std::chrono::steady_clock::now();
+  Eigen::VectorXd reference;
+  CapabilityMap m = shell_(chain, o, reference);
+  const int O = m.orientations_.size();
   const detail::CellBox box = detail::CellBox::around_workspace(chain, *m.tree_, O, o.seed);
   detail::CapabilityBuilder builder(chain, o, m.orientations_, m.approach_axis_, reference, box, progress);
   const std::size_t samples = builder.sample();
   builder.solve();
 
-  // The octree and the per-voxel records.
-  std::size_t reachable_cells = 0;
+  // The octree and the per-voxel records, in voxel order.
+  std::vector<std::uint64_t> bits(m.words_);
+  std::vector<float> sols;
   for (std::size_t v = 0; v < box.voxels; ++v) {
-    int count = 0;
-    for (int oi = 0; oi < O; ++oi) count += builder.reachable(v * O + oi);
-    if (!count) continue;
-    VoxelNode* leaf = m.tree_->touch(box.key(v));
-    std::uint32_t rec = static_cast<std::uint32_t>(m.sol_offset_.size());
-    leaf->payload = rec;
-    leaf->setValue(static_cast<float>(count) / O);
-    m.bits_.resize(m.bits_.size() + m.words_, 0);
-    m.sol_offset_.push_back(reachable_cells);
+    std::fill(bits.begin(), bits.end(), 0);
+    sols.clear();
+    bool any = false;
     for (int oi = 0; oi < O; ++oi)
       if (builder.reachable(v * O + oi)) {
-        m.bits_[static_cast<std::size_t>(rec) * m.words_ + (oi >> 6)] |= 1ULL << (oi & 63);
-        if (o.keep_solutions) {
-          const float* q = builder.solution(v * O + oi);
-          m.solutions_.insert(m.solutions_.end(), q, q + m.dof_);
-        }
-        ++reachable_cells;
+        any = true;
+        bits[oi >> 6] |= 1ULL << (oi & 63);
+        if (o.keep_solutions) sols.insert(sols.end(), builder.solution(v * O + oi), builder.solution(v * O + oi) + m.dof_);
       }
+    if (any) m.add_voxel_(box.key(v), bits.data(), o.keep_solutions ? sols.data() : nullptr);
   }
-  m.tree_->update_inner_values();
-  m.finish_();
-  m.fk_samples_ = samples;
-  m.stats_.fk_samples = samples;
-  m.stats_.ik_calls = builder.ik_calls();
-  m.stats_.cells = box.cells;
-  m.stats_.reachable_cells = reachable_cells;
-  m.stats_.voxels = m.sol_offset_.size();
-  m.stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  m.finish_build_(samples, builder.ik_calls(), box.cells,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
   builder.report(1.0, 0.0, 1.0);
   return m;
 }
@@ -239,8 +259,8 @@ std::vector<std::pair<std::string, std::string>> CapabilityMap::parameters() con
           {"exhaustive", exhaustive_ ? "1" : "0"},
           {"position_tolerance", format_number(position_tolerance_)},
           {"orientation_tolerance", format_number(orientation_tolerance_)},
+          {"block_size", std::to_string(block_size_)},
           {"voxels", std::to_string(voxel_count())},
-          {"build_seconds", format_number(stats_.seconds)},
           {"octoreach_version", version()}};
 }
 
@@ -304,7 +324,9 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   m.exhaustive_ = header_int(h, "exhaustive", path) != 0;
   m.position_tolerance_ = header_double(h, "position_tolerance", path);
   m.orientation_tolerance_ = header_double(h, "orientation_tolerance", path);
-  m.stats_.seconds = header_double(h, "build_seconds", path);
+  // Files hold no timing (the same build gives the same bytes); files of older versions recorded one.
+  m.stats_.seconds = h.count("build_seconds") ? header_double(h, "build_seconds", path) : 0.0;
+  m.block_size_ = h.count("block_size") ? static_cast<int>(std::clamp<long long>(header_int(h, "block_size", path), 0, 1 << 20)) : 0;
   bool sols = header_int(h, "solutions", path) != 0;
   m.orientations_ = OrientationSet::sphere(dirs, rolls, sym);
   if (m.orientations_.directions() != dirs) throw FileError("'" + path + "' has an inconsistent direction count");

@@ -14,6 +14,10 @@
 #include <octomap/ColorOcTree.h>
 #include <zlib.h>
 
+namespace octoreach {
+int map_format_version() { return static_cast<int>(detail::kFormatVersion); }
+}  // namespace octoreach
+
 namespace octoreach::detail {
 namespace {
 const char kMagic[] = "OCTOREACH-MAP\n";

@@ -217,8 +217,7 @@ std::map<std::string, std::string> InversePointMap::parameters() const {
           {"reference_to_arm", detail::format_vector(T.reshaped<Eigen::RowMajor>())},
           {"grasp_set", grasp_name_},
           {"grasp_orientations", g.str()},
-          {"used_symmetry", used_symmetry_ ? "1" : "0"},
-          {"build_seconds", format_number(seconds_)}};
+          {"used_symmetry", used_symmetry_ ? "1" : "0"}};  // no timing: the same build gives the same bytes
 }
 
 void InversePointMap::save(const std::string& path) const { map_.save(path, "point", parameters()); }
@@ -254,7 +253,7 @@ InversePointMap InversePointMap::load(const std::string& path) {
     while (s >> g) m.grasp_orientations_.push_back(g);
   }
   m.used_symmetry_ = detail::header_int(h, "used_symmetry", path) != 0;
-  m.seconds_ = detail::header_double(h, "build_seconds", path);
+  m.seconds_ = h.count("build_seconds") ? detail::header_double(h, "build_seconds", path) : 0.0;  // older files
   return m;
 }
 

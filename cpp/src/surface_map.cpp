@@ -461,8 +461,7 @@ std::map<std::string, std::string> SurfaceMap::parameters() const {
           {"arm_rejections", std::to_string(stats_.arm_rejections)},
           {"z_max", detail::format_number(z_max_)},
           {"candidate_poses", std::to_string(stats_.candidate_poses)},
-          {"valid_poses", std::to_string(stats_.valid_poses)},
-          {"build_seconds", detail::format_number(stats_.seconds)}};
+          {"valid_poses", std::to_string(stats_.valid_poses)}};  // no timing: the same build gives the same bytes
 }
 
 void SurfaceMap::save(const std::string& path) const { map_.save(path, "surface", parameters()); }
@@ -483,7 +482,7 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   // Files written before the approach axis was recorded have no such line.
   if (auto it = h.find("approach_axes"); it != h.end()) m.approach_axes_ = it->second;
   m.grasp_name_ = header_string(h, "grasp_set", path);
-  m.stats_.seconds = detail::header_double(h, "build_seconds", path);
+  m.stats_.seconds = h.count("build_seconds") ? detail::header_double(h, "build_seconds", path) : 0.0;  // older files
   m.z_min_ = detail::header_double(h, "z_min", path);
   m.grasp_height_ = detail::header_double(h, "grasp_height", path);
   m.checks_ = header_string(h, "checks", path);

@@ -10,6 +10,7 @@ from ._core import (  # noqa: F401
     AllowedCollisionOptions,
     Arm,
     Cancelled,
+    CapabilityBlocks,
     CapabilityMap,
     CapabilityMapOptions,
     Chain,
@@ -40,6 +41,7 @@ _set_progress_factory(_progress.make_progress)  # how progress=True is drawn by 
 from . import robots  # noqa: F401
 from . import arms, map_files, surface_maps  # noqa: F401
 from . import rooms  # noqa: F401
+from . import cache  # noqa: F401  (octoreach.cluster and octoreach.jobs load on use: Ray is optional)
 from .rooms import Room  # noqa: F401
 from ._core import (  # noqa: F401
     CameraIntrinsics,
@@ -64,10 +66,10 @@ def view(*items, **kwargs):
     return _view(*items, **kwargs)
 
 
-__all__ = ["Arm", "Cancelled", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
+__all__ = ["Arm", "Cancelled", "CapabilityBlocks", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
            "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
            "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
            "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis",
-           "rooms", "Room", "map_files"]
+           "rooms", "Room", "map_files", "cache"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
             "exploration", "explore", "view"]

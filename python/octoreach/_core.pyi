@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'look_at', 'next_best_view', 'set_progress_factory', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'look_at', 'map_format_version', 'next_best_view', 'set_progress_factory', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
 class Obstacles:
@@ -422,6 +422,15 @@ class CapabilityMapOptions:
     def approach_axis(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> None:
         ...
     @property
+    def block_size(self) -> int:
+        """
+        0: one flood over the whole box; n: blocks of n voxels per edge, each flooded on its own
+        (CapabilityBlocks: built anywhere, merged into the same bytes).
+        """
+    @block_size.setter
+    def block_size(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
     def directions(self) -> int:
         """
         Approach directions on the sphere.
@@ -624,6 +633,62 @@ class CapabilityMap:
     @property
     def voxel_count(self) -> int:
         ...
+class CapabilityBlocks:
+    """
+    The block build of a capability map (block_size voxels per block edge, default 16): one FK sampling
+    of the whole workspace box, then each block's IK waves, flood fill and retry pass on its own cells,
+    then a merge. A block's result depends on its seeds alone, so blocks built on any machine merge into
+    the bytes CapabilityMap.build gives for the same options (block_size included). Seeds and results are
+    bytes that carry a fingerprint of the plan; every machine must run the same octoreach build.
+    """
+    @staticmethod
+    def seed_count(seeds: bytes) -> int:
+        """
+        Seeds in a seed list (the work of its block).
+        """
+    def __init__(self, robot: Robot, arm: typing.Any, options: typing.Any = None, **kwargs) -> None:
+        """
+        Plans the block build of an arm (name, Arm or (base, tip[, approach_axis]) tuple); keywords set
+        CapabilityMapOptions fields (block_size 0 becomes 16).
+        """
+    def __repr__(self) -> str:
+        ...
+    def build(self, progress: typing.Any = True) -> CapabilityMap:
+        """
+        The three steps in this process (as CapabilityMap.build with block_size).
+        """
+    def build_block(self, block: typing.SupportsInt | typing.SupportsIndex, seeds: bytes, progress: typing.Any = False) -> bytes:
+        """
+        Step 2: block `block` from its seed list; its reachable cells and solutions (bytes).
+        """
+    def merge(self, results: typing.Any) -> CapabilityMap:
+        """
+        Step 3: the CapabilityMap from every block's result, in block order.
+        """
+    def sample(self, progress: typing.Any = False) -> list:
+        """
+        Step 1: the FK sampling of the whole box as one seed list (bytes) per block.
+        """
+    @property
+    def block_size(self) -> int:
+        """
+        Voxels per block edge.
+        """
+    @property
+    def count(self) -> int:
+        """
+        Number of blocks.
+        """
+    @property
+    def fingerprint(self) -> int:
+        """
+        Fingerprint of the plan (robot model, options, reference posture, box).
+        """
+    @property
+    def options(self) -> CapabilityMapOptions:
+        """
+        Options of the map built (block_size set).
+        """
 class PointMapOptions:
     """
     Build parameters of an inverse point map (defaults defined once, in C++).
@@ -1502,6 +1567,10 @@ def look_at(eye: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]
     """
     Camera pose (4x4 camera -> world) at `eye` looking at `target` (world frame), rolled by `roll` radians
     about the optical axis (+z); at roll 0 the image +y points down.
+    """
+def map_format_version() -> int:
+    """
+    Version of the map file format this library writes and reads (part of a map cache key).
     """
 def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any = None, **kwargs) -> dict:
     """

@@ -27,10 +27,16 @@ def default_reference(robot: Robot, arm) -> np.ndarray:
     return _default_reference(robot, robot.chain(a.base_link, a.tip_link))
 
 
-def capability_map(robot: Robot, arm, progress=True, approach_axis=None, **kwargs) -> CapabilityMap:
+def capability_map(robot: Robot, arm, progress=True, approach_axis=None, cache=None, **kwargs) -> CapabilityMap:
     """Builds the capability map of an arm (name, Arm or tuple) with its approach axis (inferred from the gripper
     unless approach_axis=(x, y, z) is given), keeping joint solutions for surface maps; keywords set
-    CapabilityMapOptions fields (resolution, directions, seed, reference...)."""
+    CapabilityMapOptions fields (resolution, directions, seed, reference...). cache: True (the default cache
+    directory), a directory or an octoreach.cache.MapCache looks the map up first and stores it after a build."""
+    from . import cache as _cache
+
+    store = _cache.resolve(cache)
+    if store is not None:
+        return store.capability_map(robot, arm, progress=progress, approach_axis=approach_axis, **kwargs)
     if approach_axis is not None:
         kwargs["approach_axis"] = approach_axis
     return CapabilityMap.build_for_arm(robot, arm, progress=progress, **kwargs)

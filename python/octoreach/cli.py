@@ -122,12 +122,67 @@ def _cmd_capability(args) -> int:
     arm = _arm_arg(args, robot)
     if not args.quiet:
         print(f"arm {arm.base_link} -> {arm.tip_link}: approach axis {arm.reason}", file=sys.stderr)
-    cap = arms.capability_map(robot, arm, resolution=args.resolution, directions=args.directions,
-                              seed=args.seed, progress=not args.quiet)
+    import time
+
+    t0 = time.perf_counter()
+    cache = None if args.no_cache else (args.cache_dir or True)
+    if args.cluster:  # blocks of voxels on a cluster's workers, merged (the bytes of the one-process block build)
+        from . import cluster
+
+        cap = cluster.build_capability_split(robot, arm, cluster=args.cluster, block_size=args.block_size or 16,
+                                             cache=cache, progress=not args.quiet, robot_spec=_robot_spec(args),
+                                             resolution=args.resolution, directions=args.directions, seed=args.seed)
+    else:
+        cap = arms.capability_map(robot, arm, resolution=args.resolution, directions=args.directions, seed=args.seed,
+                                  block_size=args.block_size, progress=not args.quiet, cache=cache)
     cap.save(args.out, with_solutions=args.with_solutions)
     if args.octovis:
         cap.export_octovis(args.octovis)
-    print(f"{cap!r}: {cap.stats['reachable_cells']} reachable cells in {cap.stats['seconds']:.1f} s -> {args.out}")
+    print(f"{cap!r}: {cap.stats['reachable_cells']} reachable cells in {time.perf_counter() - t0:.1f} s -> {args.out}")
+    return 0
+
+
+def _robot_spec(args) -> dict:
+    """How a cluster's workers load the robot of --robot/--urdf (they check its model hash)."""
+    import os
+
+    if args.urdf:
+        return {"urdf": os.path.abspath(args.urdf), "srdf": os.path.abspath(args.srdf) if args.srdf else None,
+                "package_dirs": [os.path.abspath(p) for p in args.package_dir or []],
+                "allowed_collisions": args.allowed_collisions}
+    return {"name": getattr(args, "name", None) or args.robot, "allowed_collisions": args.allowed_collisions}
+
+
+def _cmd_cache(args) -> int:
+    from .cache import MapCache
+
+    store = MapCache(args.cache_dir)
+    if args.action == "clear":
+        print(f"deleted {store.clear()} maps from {store.directory}")
+        return 0
+    entries = store.entries()
+    print(f"{store.directory}: {len(entries)} maps, {sum(e['bytes'] for e in entries) / 1e6:.1f} MB")
+    for e in entries:
+        f = e["fields"]
+        arm = f.get("arm") or f.get("capability", {}).get("arm", {})
+        what = f"{f.get('robot') or f.get('capability', {}).get('robot', '?')} {arm.get('base_link', '?')} -> " \
+               f"{arm.get('tip_link', '?')}"
+        res = (f.get("options") or {}).get("resolution") or f.get("capability", {}).get("options", {}).get("resolution")
+        extra = f" surface {f['surface']} z {f['height']:g}" if e["kind"] == "surface" else ""
+        print(f"  {e['kind']:10s} {e['key'][:12]}  {what} at {res} m{extra}  {e['bytes'] / 1e3:.0f} KB  {e['created']}")
+    return 0
+
+
+def _cmd_build_many(args) -> int:
+    from . import cluster
+
+    report = cluster.build_many(args.job, cluster=args.cluster, out=args.out,
+                                cache=None if args.no_cache else (args.cache_dir or True), progress=not args.quiet,
+                                task_cpus=args.task_cpus)
+    built = len(report.files) - report.cache_hits
+    print(f"{len(report.files)} maps ({built} built, {report.cache_hits} from the cache) in {report.seconds:.1f} s")
+    for name, path in report.files.items():
+        print(f"  {name} -> {path}")
     return 0
 
 
@@ -319,6 +374,11 @@ def _add_build_commands(sub):
     _arm_args(sp)
     sp.add_argument("--with-solutions", action="store_true", help="store joint solutions (needed for surface maps)")
     sp.add_argument("--out", required=True, help="output map file (.orcm)")
+    sp.add_argument("--block-size", type=int, default=0,
+                    help="build in blocks of this many voxels per edge (0: one flood over the whole box; part of the map)")
+    sp.add_argument("--cluster", help="build the blocks on a Ray cluster: local, auto or HOST:PORT (needs the cluster "
+                                      "extra); the same bytes as --block-size in one process (default size 16)")
+    _cache_args(sp)
     sp.set_defaults(func=_cmd_capability)
 
     sp = sub.add_parser("surface", help="build a surface map for a table or shelf polygon")
@@ -343,6 +403,32 @@ def _add_build_commands(sub):
     sp.add_argument("--out", required=True, help="output map file (.orsm); with --scene a folder (one NAME.orsm per "
                                                  "surface, '/' in names written as '_')")
     sp.set_defaults(func=_cmd_surface)
+
+
+def _cache_args(sp):
+    sp.add_argument("--cache-dir", help="map cache folder (default $OCTOREACH_CACHE_DIR or ~/.cache/octoreach/maps)")
+    sp.add_argument("--no-cache", action="store_true", help="neither look maps up in the cache nor store them")
+
+
+def _add_scale_commands(sub):
+    """cache, build-many: the map cache and many maps on a cluster."""
+    sp = sub.add_parser("cache", help="list or clear the map cache")
+    sp.add_argument("action", choices=["list", "clear"], help="list the cached maps, or delete them all")
+    sp.add_argument("--cache-dir", help="map cache folder (default $OCTOREACH_CACHE_DIR or ~/.cache/octoreach/maps)")
+    sp.set_defaults(func=_cmd_cache)
+
+    sp = sub.add_parser("build-many", help="build many maps (robots x arms x surfaces x resolutions) as tasks on a "
+                                           "Ray cluster (the cluster extra); see octoreach.jobs for the job file")
+    sp.add_argument("job", help="job file (YAML or JSON): robots, arms, resolutions, capability, surfaces, surface, "
+                                "base_heights, out")
+    sp.add_argument("--cluster", default="local",
+                    help="local (default: Ray on this machine), none (in this process, no Ray), auto (the cluster "
+                         "this machine joined) or HOST:PORT of a Ray head")
+    sp.add_argument("--out", help="output folder (default: the job file's 'out', else build_many_out)")
+    sp.add_argument("--task-cpus", type=int, default=1, help="CPUs (and threads) per task (default 1)")
+    sp.add_argument("--quiet", action="store_true", help="no progress line")
+    _cache_args(sp)
+    sp.set_defaults(func=_cmd_build_many)
 
 
 def _add_file_commands(sub):
@@ -406,6 +492,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_build_commands(sub)
     _add_file_commands(sub)
     _add_view_and_experiment_commands(sub)
+    _add_scale_commands(sub)
     return p
 
 
@@ -413,7 +500,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (ValueError, OSError, RuntimeError) as e:
+    except (ValueError, OSError, RuntimeError, ImportError) as e:  # ConnectionError is an OSError
         print(f"octoreach: error: {e}", file=sys.stderr)
         return 2
 

@@ -1,8 +1,14 @@
 """Shared fixtures of the Python tests: robots, chains, reachable targets and pose errors."""
 from __future__ import annotations
 
+import os
+import tempfile
+
 import numpy as np
 import pytest
+
+# The CLI looks maps up in the map cache: the tests keep theirs out of the user's cache directory.
+os.environ.setdefault("OCTOREACH_CACHE_DIR", tempfile.mkdtemp(prefix="octoreach-test-cache-"))
 
 from octoreach import robots
 

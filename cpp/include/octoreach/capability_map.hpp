@@ -31,6 +31,10 @@ struct CapabilityMapOptions {
   double position_tolerance = 1e-3;   ///< IK tolerance at the voxel centre (m)
   double orientation_tolerance = 1e-2;  ///< IK tolerance (rad)
   bool keep_solutions = true;         ///< keep one joint solution per reachable cell
+  /// Block build (capability_blocks.hpp): 0 floods the whole workspace box at once; n > 0 cuts it into
+  /// cubes of n voxels, each flooded on its own from the one FK sampling, so blocks can be built on
+  /// different machines and merged into the same bytes. Part of the map's definition (recorded in files).
+  int block_size = 0;
   int threads = 0;                    ///< 0: every core
 };
 
@@ -50,6 +54,8 @@ struct BuildStats {
 /// A cell (voxel, orientation) is reachable when IK finds a solution inside the joint limits (and
 /// free of self-collision) for the voxel centre and that orientation. Positions are in the chain's
 /// base link frame. Immutable after build or load; queries are thread-safe.
+class CapabilityBlocks;
+
 class CapabilityMap {
  public:
   /// \brief Builds the map: forward-kinematics sampling finds candidate cells and IK seeds, IK at
@@ -113,7 +119,16 @@ class CapabilityMap {
   std::vector<std::pair<std::string, std::string>> parameters() const;
 
  private:
+  friend class CapabilityBlocks;  // assembles a map from blocks with the steps below
   CapabilityMap() = default;
+  /// The empty map of a build of `chain` (parameters, orientations, robot, tree) after checking the options
+  /// and that the reference posture (returned in `reference`) is free of self-collision.
+  static CapabilityMap shell_(const Chain& chain, const CapabilityMapOptions& o, Eigen::VectorXd& reference);
+  /// Appends the voxel at `key`: its orientation bits (words_ words, not all zero) and, when solutions are
+  /// kept, one row of dof_ floats per set bit, in bit order.
+  void add_voxel_(const octomap::OcTreeKey& key, const std::uint64_t* bits, const float* solutions);
+  /// Completes a build: inner node values, query tables and the figures.
+  void finish_build_(std::size_t samples, std::size_t ik_calls, std::size_t cells, double seconds);
   /// Record of the voxel holding p, or DenseIndex::kNone.
   std::uint32_t record(const Eigen::Vector3d& p) const {
     if (index_.active()) return index_.find(*tree_, p.x(), p.y(), p.z());
@@ -143,6 +158,7 @@ class CapabilityMap {
   std::uint64_t seed_ = 0;
   std::size_t fk_samples_ = 0;
   bool exhaustive_ = false;
+  int block_size_ = 0;
   double position_tolerance_ = 1e-3, orientation_tolerance_ = 1e-2;
   BuildStats stats_;
 };

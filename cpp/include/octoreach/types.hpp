@@ -53,5 +53,7 @@ class FileNotFound : public FileError {
 
 /// \brief Library version string.
 inline const char* version() { return OCTOREACH_VERSION; }
+/// \brief Version of the map file format this library writes and reads (part of a map cache key).
+int map_format_version();
 
 }  // namespace octoreach

@@ -47,6 +47,16 @@ class CapabilityBuilder {
   /// The solution (dof floats) of a reachable cell.
   const float* solution(std::size_t cell) const { return sol_pool_.data() + static_cast<std::size_t>(sol_row_[cell]) * dof_; }
   std::size_t ik_calls() const { return ik_calls_; }
+  /// The block build's hooks (maps/capability_blocks.cpp): a cell's seed from sample() (dof floats, or
+  /// nullptr), and a seed given to a cell before solve(), as sample() gives them (first one kept).
+  const float* seed(std::size_t cell) const {
+    return seed_row_[cell] < 0 ? nullptr : seed_pool_.data() + static_cast<std::size_t>(seed_row_[cell]) * dof_;
+  }
+  void add_seed(std::uint32_t cell, const float* q) {
+    if (seed_row_[cell] >= 0) return;
+    seed_row_[cell] = static_cast<std::int32_t>(seed_pool_.size() / dof_);
+    seed_pool_.insert(seed_pool_.end(), q, q + dof_);
+  }
   /// Reports progress: this stage starts at `start` (fraction of the build) and owns `share` of it.
   void report(double start, double share, double fraction) const;
 

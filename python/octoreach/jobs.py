@@ -1,0 +1,370 @@
+"""Job files of ``octoreach build-many``: many maps (robots x arms x surfaces x resolutions x base heights).
+
+A job file is YAML (or JSON)::
+
+    robots: [pr2, {name: tiago, arms: [arm_right]}, {urdf: my_robot.urdf, srdf: my_robot.srdf}]
+    arms: [right_arm]             # the arms of every robot that names none
+    resolutions: [0.1]            # m
+    capability: {directions: 100, seed: 0}    # CapabilityMapOptions fields (not resolution)
+    surfaces:
+      - {name: table, rectangle: {size: [1.4, 0.65], height: 0.72}, legs: 0.05}   # a room file's surface entry
+      - {room: kitchen.yaml}      # every surface of a room file, each with the room's other obstacles
+    surface: {theta_bins: 16}     # SurfaceMapOptions fields (not obstacles, z range, resolution, threads)
+    base_heights: [0.0]           # z of the robot's reference frame (m): one surface map per height
+    out: maps                     # output folder (relative to the job file; --out overrides)
+
+Each (robot, arm, resolution) is one capability map, each (capability map, surface, base height) one
+surface map. ``read_job`` checks the whole file before any work starts: it loads every robot, resolves
+every arm and surface, and names the entry and key of the first problem. The task functions here
+(``capability_task``, ``surface_task``, ``block_task``...) are plain functions of plain data, run in this
+process or by a cluster's workers (``octoreach.cluster``).
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+import resource
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import cache as _cache
+from ._core import Arm, CapabilityBlocks, CapabilityMap, Robot, SurfaceMap, SurfaceMapOptions
+
+_JOB_KEYS = {"robots", "arms", "resolutions", "capability", "surfaces", "surface", "base_heights", "out"}
+_ROBOT_KEYS = {"name", "urdf", "srdf", "package_dirs", "allowed_collisions", "arms"}
+_SURFACE_OPTION_EXCLUDED = {"obstacles", "z_range", "z_min", "z_max", "resolution", "threads"}
+
+
+class JobError(ValueError):
+    """A job file that cannot be run; the message names the entry and the key."""
+
+
+# ---------------------------------------------------------------------------------------------- robots
+_robots: dict[str, Robot] = {}  # per process: a worker loads each robot once
+
+
+def load_robot(spec: dict) -> Robot:
+    """The robot of a spec: {"name": N} (example-robot-data, or a project URDF such as test_arm) or
+    {"urdf": path, "srdf": path, "package_dirs": [...], "allowed_collisions": "auto"}; loaded once per process."""
+    from . import robots
+
+    key = repr(sorted(spec.items()))
+    if key not in _robots:
+        if "urdf" in spec:
+            _robots[key] = robots.from_urdf(spec["urdf"], spec.get("package_dirs", ()), spec.get("srdf"),
+                                            spec.get("allowed_collisions", "auto"))
+        else:
+            name = spec["name"]
+            try:
+                path = robots.project_urdf(name)
+            except ValueError:
+                path = None
+            _robots[key] = (Robot.from_urdf(str(path)) if path is not None else
+                            robots.load(name, allowed_collisions=spec.get("allowed_collisions", "auto")))
+    return _robots[key]
+
+
+def _checked_robot(spec: dict, model_hash: int) -> Robot:
+    robot = load_robot(spec)
+    if int(robot.model_hash) != int(model_hash):
+        raise RuntimeError(f"robot {spec} loads with model hash {robot.model_hash} on this machine, the job was "
+                           f"planned for {model_hash}: every machine needs the same robot files and octoreach build")
+    return robot
+
+
+# ---------------------------------------------------------------------------------------------- map bytes
+def map_bytes(m, with_solutions: bool = False) -> bytes:
+    """The file bytes of a map (written by its own atomic save into a temporary folder)."""
+    with tempfile.TemporaryDirectory(prefix="octoreach-") as d:
+        path = os.path.join(d, "map")
+        if isinstance(m, CapabilityMap):
+            m.save(path, with_solutions=with_solutions)
+        else:
+            m.save(path)
+        return Path(path).read_bytes()
+
+
+def map_from_bytes(kind: str, data: bytes):
+    """A map loaded from file bytes (the loader checks the checksum)."""
+    with tempfile.TemporaryDirectory(prefix="octoreach-") as d:
+        path = os.path.join(d, "map")
+        Path(path).write_bytes(data)
+        return (CapabilityMap if kind == "capability" else SurfaceMap).load(path)
+
+
+def _task_info(t0: float) -> dict:
+    """Seconds, node and the process's peak memory (MB) of a task, for the job report."""
+    node = ""
+    try:
+        import ray
+
+        if ray.is_initialized():
+            node = ray.get_runtime_context().get_node_id()
+    except ImportError:
+        pass
+    return {"seconds": time.perf_counter() - t0, "node": node, "pid": os.getpid(),
+            "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
+
+
+# ---------------------------------------------------------------------------------------------- tasks
+def capability_task(spec: dict, model_hash: int, arm: tuple, options: dict, threads: int = 0):
+    """(file bytes with solutions, info) of a capability map."""
+    t0 = time.perf_counter()
+    robot = _checked_robot(spec, model_hash)
+    o = _cache.capability_options(None, **options)
+    o.threads = threads
+    m = CapabilityMap.build_for_arm(robot, arm, o, progress=False)
+    return map_bytes(m, with_solutions=True), _task_info(t0)
+
+
+def surface_task(spec: dict, model_hash: int, capability: bytes, room: dict, base_dir: str, surface: str,
+                 height: float, options: dict, threads: int = 0):
+    """(file bytes, info) of the surface map of one surface of a room, base at `height`."""
+    from .rooms import Room
+
+    t0 = time.perf_counter()
+    robot = _checked_robot(spec, model_hash)
+    cap = map_from_bytes("capability", capability)
+    r = Room(room, base_dir=base_dir)
+    obstacles = r.obstacles(without=surface)
+    m = SurfaceMap.build(robot, cap, r.surfaces[surface], obstacles=obstacles if len(obstacles) else None,
+                         z_range=(height, height), threads=threads, progress=False, **options)
+    return map_bytes(m), _task_info(t0)
+
+
+def blocks_plan(spec: dict, model_hash: int, arm: tuple, options: dict) -> CapabilityBlocks:
+    return CapabilityBlocks(_checked_robot(spec, model_hash), arm, _cache.capability_options(None, **options))
+
+
+def sample_task(spec: dict, model_hash: int, arm: tuple, options: dict, threads: int = 0):
+    """[info, seed counts, seeds of block 0, 1, ...]: step 1 of a block build."""
+    t0 = time.perf_counter()
+    plan = blocks_plan(spec, model_hash, arm, {**options, "threads": threads})
+    seeds = plan.sample()
+    return [_task_info(t0), [CapabilityBlocks.seed_count(s) for s in seeds], *seeds]
+
+
+def block_task(spec: dict, model_hash: int, arm: tuple, options: dict, block: int, seeds: bytes, threads: int = 0):
+    """(result bytes, info) of one block: step 2 of a block build."""
+    t0 = time.perf_counter()
+    plan = blocks_plan(spec, model_hash, arm, {**options, "threads": threads})
+    return plan.build_block(block, seeds), _task_info(t0)
+
+
+# ---------------------------------------------------------------------------------------------- job files
+@dataclass
+class CapabilityJob:
+    """One capability map of a job."""
+    name: str                # "<robot>/<arm>/<resolution>"
+    robot: Robot
+    spec: dict
+    arm: Arm
+    options: dict            # CapabilityMapOptions fields (without threads)
+    fields: dict             # cache key fields
+    out: Path
+
+    @property
+    def arm_tuple(self) -> tuple:
+        return (self.arm.base_link, self.arm.tip_link, tuple(float(v) for v in self.arm.approach_axis))
+
+
+@dataclass
+class SurfaceJob:
+    """One surface map of a job."""
+    name: str
+    capability: int          # index into Job.capability
+    room: dict
+    base_dir: str
+    surface: str
+    height: float
+    options: dict
+    fields: dict
+    out: Path
+
+
+@dataclass
+class Job:
+    capability: list[CapabilityJob] = field(default_factory=list)
+    surfaces: list[SurfaceJob] = field(default_factory=list)
+    out: Path = Path("build_many_out")
+
+    def __len__(self) -> int:
+        return len(self.capability) + len(self.surfaces)
+
+
+def _err(where: str, message: str) -> JobError:
+    return JobError(f"{where}: {message}")
+
+
+def _numbers(value, where: str, positive: bool) -> list[float]:
+    values = value if isinstance(value, list) else [value]
+    out = []
+    for i, v in enumerate(values):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or (positive and v <= 0):
+            raise _err(f"{where}[{i}]", f"must be a {'positive ' if positive else ''}number (m), got {v!r}")
+        out.append(float(v))
+    if not out:
+        raise _err(where, "must list at least one value")
+    return out
+
+
+def _safe(name: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_." else "_" for c in str(name))
+
+
+def _file_digests(description: dict, base_dir: Path) -> dict:
+    """sha256 of every file a room description names (meshes, OctoMaps): part of a surface map's key."""
+    out = {}
+
+    def walk(node):
+        if isinstance(node, dict):
+            if isinstance(node.get("path"), str):
+                p = Path(node["path"])
+                p = p if p.is_absolute() else base_dir / p
+                try:
+                    out[str(p)] = hashlib.sha256(p.read_bytes()).hexdigest()
+                except OSError:
+                    out[str(p)] = "unreadable"
+            for v in node.values():
+                walk(v)
+        elif isinstance(node, list):
+            for v in node:
+                walk(v)
+
+    walk(description)
+    return out
+
+
+def _robot_specs(data: dict, where: str, base: Path) -> list[tuple[dict, list, str]]:
+    robots_ = data.get("robots")
+    if not isinstance(robots_, list) or not robots_:
+        raise _err(f"{where}: robots", "must list at least one robot (a name or {name: ..., arms: [...]})")
+    default_arms = data.get("arms")
+    out = []
+    for i, entry in enumerate(robots_):
+        w = f"{where}: robots[{i}]"
+        if isinstance(entry, str):
+            entry = {"name": entry}
+        if not isinstance(entry, dict):
+            raise _err(w, f"must be a robot name or a mapping, got {entry!r}")
+        unknown = set(entry) - _ROBOT_KEYS
+        if unknown:
+            raise _err(w, f"unknown key {sorted(unknown)[0]!r} (known: {', '.join(sorted(_ROBOT_KEYS))})")
+        if ("name" in entry) == ("urdf" in entry):
+            raise _err(w, "give exactly one of 'name' and 'urdf'")
+        spec = {k: v for k, v in entry.items() if k != "arms"}
+        for k in ("urdf", "srdf"):
+            if k in spec:
+                p = Path(spec[k])
+                spec[k] = str(p if p.is_absolute() else (base / p).resolve())
+        if "package_dirs" in spec:
+            spec["package_dirs"] = [str(p if Path(p).is_absolute() else (base / p).resolve()) for p in spec["package_dirs"]]
+        arms_ = entry.get("arms", default_arms)
+        if not isinstance(arms_, list) or not arms_ or not all(isinstance(a, (str, list)) for a in arms_):
+            raise _err(w, "'arms' must list arm names (or [base, tip] pairs); give 'arms' here or at the top")
+        out.append((spec, arms_, w))
+    return out
+
+
+def _surfaces(data: dict, where: str, base: Path) -> list[tuple[dict, str, str, str]]:
+    """(room description, base dir, surface name, where) of every surface of the job."""
+    from .rooms import Room, _read_data
+
+    entries = data.get("surfaces", [])
+    if not isinstance(entries, list):
+        raise _err(f"{where}: surfaces", "must be a list")
+    out = []
+    for i, entry in enumerate(entries):
+        w = f"{where}: surfaces[{i}]"
+        try:
+            if isinstance(entry, dict) and set(entry) == {"room"}:
+                path = Path(entry["room"])
+                path = path if path.is_absolute() else base / path
+                description, room_base = _read_data(path, "room file"), path.parent.resolve()
+            else:
+                description, room_base = {"surfaces": [entry]}, base.resolve()
+            room = Room(description, base_dir=room_base)
+        except (ValueError, TypeError, OSError) as e:
+            raise _err(w, str(e)) from None
+        if not room.surfaces:
+            raise _err(w, "holds no surface")
+        for name in room.surfaces:
+            out.append((room.description, str(room_base), name, w))
+    names = [s[2] for s in out]
+    for n in names:
+        if names.count(n) > 1:
+            raise _err(f"{where}: surfaces", f"the surface name {n!r} is used twice (output files are named after it)")
+    return out
+
+
+def _options(data: dict, key: str, where: str, make, excluded: set) -> dict:
+    entry = data.get(key, {})
+    if not isinstance(entry, dict):
+        raise _err(f"{where}: {key}", "must be a mapping of option names to values")
+    probe = make()
+    for name, value in entry.items():
+        if name in excluded or name.startswith("_") or not hasattr(probe, name) or callable(getattr(probe, name)):
+            raise _err(f"{where}: {key}.{name}", "unknown or not settable here" +
+                       (f" (excluded: {', '.join(sorted(excluded))})" if excluded else ""))
+        try:
+            setattr(probe, name, value)
+        except (TypeError, ValueError) as e:
+            raise _err(f"{where}: {key}.{name}", f"bad value {value!r} ({e})") from None
+    return dict(entry)
+
+
+def read_job(job, out: str | os.PathLike | None = None) -> Job:
+    """A checked job from a job file (YAML or JSON) or a dict; raises JobError naming the entry and key."""
+    from .rooms import _read_data
+
+    if isinstance(job, dict):
+        data, where, base = job, "job", Path(".")
+    else:
+        path = Path(job)
+        try:
+            data = _read_data(path, "job file")
+        except (OSError, ValueError) as e:
+            raise JobError(str(e)) from None
+        where, base = f"job file {str(path)!r}", path.parent
+    if not isinstance(data, dict):
+        raise JobError(f"{where}: must be a mapping with 'robots', 'arms', 'resolutions', 'surfaces'...")
+    unknown = set(data) - _JOB_KEYS
+    if unknown:
+        raise _err(where, f"unknown key {sorted(unknown)[0]!r} (known: {', '.join(sorted(_JOB_KEYS))})")
+    resolutions = _numbers(data.get("resolutions", [0.05]), f"{where}: resolutions", True)
+    heights = _numbers(data.get("base_heights", [0.0]), f"{where}: base_heights", False)
+    cap_options = _options(data, "capability", where, _cache.capability_options, {"resolution", "threads", "approach_axis"})
+    surf_options = _options(data, "surface", where, SurfaceMapOptions, _SURFACE_OPTION_EXCLUDED)
+    surfaces = _surfaces(data, where, base)
+    out_dir = Path(out) if out is not None else base / str(data.get("out", "build_many_out"))
+    result = Job(out=out_dir)
+    for spec, arm_names, w in _robot_specs(data, where, base):
+        try:
+            robot = load_robot(spec)
+        except (ValueError, OSError, RuntimeError) as e:
+            raise _err(f"{w}", f"cannot load the robot: {e}") from None
+        rname = _safe(spec.get("name") or Path(spec["urdf"]).stem)
+        for j, arm_name in enumerate(arm_names):
+            try:
+                arm = Arm.resolve(robot, arm_name if isinstance(arm_name, str) else tuple(arm_name))
+            except (ValueError, TypeError) as e:
+                raise _err(f"{w}: arms[{j}]", str(e)) from None
+            for res in resolutions:
+                options = {**cap_options, "resolution": res, "keep_solutions": True}
+                fields = _cache.capability_key_fields(robot, arm, _cache.capability_options(None, **options))
+                folder = out_dir / rname / _safe(arm_name if isinstance(arm_name, str) else arm.tip_link) / f"res{res:g}"
+                cap = CapabilityJob(f"{rname}/{arm.tip_link}/{res:g}", robot, spec, arm, options, fields,
+                                    folder / "capability.orcm")
+                result.capability.append(cap)
+                for room, room_base, sname, _sw in surfaces:
+                    for h in heights:
+                        suffix = "" if len(heights) == 1 and h == 0 else f"@z{h:g}"
+                        sfields = {"kind": "surface", "capability": fields, "room": room, "surface": sname,
+                                   "files": _file_digests(room, Path(room_base)), "height": h, "options": surf_options}
+                        result.surfaces.append(SurfaceJob(f"{cap.name}/{sname}{suffix}", len(result.capability) - 1,
+                                                          room, room_base, sname, h, surf_options, sfields,
+                                                          folder / f"{_safe(sname)}{suffix}.orsm"))
+    return result
