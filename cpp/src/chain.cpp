@@ -76,22 +76,89 @@ Chain Robot::chain(const std::string& base_link, const std::string& tip_link) co
       cur = joints_[pj].parent_link;
     }
   }
+  for (const Chain::Segment& s : c.segments_) {
+    std::int8_t kind = -1;
+    for (int k = 0; k < 3; ++k) {
+      if (s.axis == Eigen::Vector3d::Unit(k)) kind = static_cast<std::int8_t>(k);
+      if (s.axis == -Eigen::Vector3d::Unit(k)) kind = static_cast<std::int8_t>(3 + k);
+    }
+    c.axis_kind_.push_back(kind);
+  }
   c.lower_ = Eigen::Map<Eigen::VectorXd>(lo.data(), lo.size());
   c.upper_ = Eigen::Map<Eigen::VectorXd>(hi.data(), hi.size());
   return c;
 }
 
 
+namespace {
+
+// R <- R * Rot(axis, angle) for a joint axis along a frame axis (kind 0-5, see axis_kind_): two
+// columns of R mix; any other axis takes the general rotation.
+inline void rotate_about(Eigen::Matrix3d& R, int kind, const Eigen::Vector3d& axis, double angle) {
+  if (kind < 0) {
+    R = R * Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    return;
+  }
+  const int k = kind % 3;
+  const double c = std::cos(angle), s = kind < 3 ? std::sin(angle) : -std::sin(angle);
+  const int a = (k + 1) % 3, b = (k + 2) % 3;  // Rot(e_k, t): e_a -> c e_a + s e_b, e_b -> -s e_a + c e_b
+  const Eigen::Vector3d ca = R.col(a), cb = R.col(b);
+  R.col(a) = c * ca + s * cb;
+  R.col(b) = c * cb - s * ca;
+}
+
+}  // namespace
+
+Pose Chain::fk_jacobian(const double* q, double* jacobian) const {
+  const int n = dof();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  // Joint origins and axes (base frame) for the Jacobian: a short chain keeps them on the stack.
+  constexpr int kStack = 16;
+  Eigen::Vector3d o_stack[kStack], a_stack[kStack];
+  std::vector<Eigen::Vector3d> o_heap, a_heap;
+  Eigen::Vector3d* origins = o_stack;
+  Eigen::Vector3d* axes = a_stack;
+  if (jacobian && n > kStack) {
+    o_heap.resize(n);
+    a_heap.resize(n);
+    origins = o_heap.data();
+    axes = a_heap.data();
+  }
+  for (int i = 0; i < n; ++i) {
+    const Segment& s = segments_[i];
+    p += R * s.origin.translation();
+    R = R * s.origin.linear();
+    const int kind = axis_kind_[i];
+    if (jacobian) {
+      origins[i] = p;
+      axes[i] = kind < 0 ? Eigen::Vector3d(R * s.axis) : kind < 3 ? Eigen::Vector3d(R.col(kind)) : Eigen::Vector3d(-R.col(kind - 3));
+    }
+    if (s.type == JointType::Prismatic) p += R * (s.axis * q[i]);
+    else rotate_about(R, kind, s.axis, q[i]);
+  }
+  Pose T = Pose::Identity();
+  T.translation() = p + R * tip_offset_.translation();
+  T.linear() = R * tip_offset_.linear();
+  if (jacobian) {
+    const Eigen::Vector3d tip = T.translation();
+    for (int i = 0; i < n; ++i) {
+      Eigen::Map<Eigen::Matrix<double, 6, 1>> col(jacobian + 6 * i);
+      if (segments_[i].type == JointType::Prismatic) {
+        col.head<3>() = axes[i];
+        col.tail<3>().setZero();
+      } else {
+        col.head<3>() = axes[i].cross(tip - origins[i]);
+        col.tail<3>() = axes[i];
+      }
+    }
+  }
+  return T;
+}
+
 Pose Chain::fk(const Eigen::VectorXd& q) const {
   check_joint_vector(*this, q);
-  Pose T = Pose::Identity();
-  for (std::size_t i = 0; i < segments_.size(); ++i) {
-    const Segment& s = segments_[i];
-    T = T * s.origin;
-    if (s.type == JointType::Prismatic) T.translate(s.axis * q[i]);
-    else T.rotate(Eigen::AngleAxisd(q[i], s.axis));
-  }
-  return T * tip_offset_;
+  return fk_jacobian(q.data(), nullptr);
 }
 
 std::vector<Pose> Chain::fk_batch(const Eigen::MatrixXd& q_rows) const {
@@ -105,32 +172,8 @@ std::vector<Pose> Chain::fk_batch(const Eigen::MatrixXd& q_rows) const {
 
 Pose Chain::fk_jacobian(const Eigen::VectorXd& q, Eigen::Matrix<double, 6, Eigen::Dynamic>& J) const {
   check_joint_vector(*this, q);
-  const int n = dof();
-  J.resize(6, n);
-  thread_local std::vector<Eigen::Vector3d> origins, axes;
-  origins.resize(n);
-  axes.resize(n);
-  Pose T = Pose::Identity();
-  for (int i = 0; i < n; ++i) {
-    const Segment& s = segments_[i];
-    T = T * s.origin;
-    origins[i] = T.translation();
-    axes[i] = T.linear() * s.axis;
-    if (s.type == JointType::Prismatic) T.translate(s.axis * q[i]);
-    else T.rotate(Eigen::AngleAxisd(q[i], s.axis));
-  }
-  T = T * tip_offset_;
-  const Eigen::Vector3d p = T.translation();
-  for (int i = 0; i < n; ++i) {
-    if (segments_[i].type == JointType::Prismatic) {
-      J.col(i).head<3>() = axes[i];
-      J.col(i).tail<3>().setZero();
-    } else {
-      J.col(i).head<3>() = axes[i].cross(p - origins[i]);
-      J.col(i).tail<3>() = axes[i];
-    }
-  }
-  return T;
+  J.resize(6, dof());
+  return fk_jacobian(q.data(), J.data());
 }
 
 bool Chain::within_limits(const Eigen::VectorXd& q, double tol) const {

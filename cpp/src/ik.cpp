@@ -49,26 +49,74 @@ std::optional<Eigen::VectorXd> rigid_chain_ik(const Chain& c, const Pose& target
   return std::nullopt;
 }
 
-// One IK call: Levenberg-Marquardt descents from the seed and from random restarts. Matrices have
-// a fixed upper size (no heap traffic in the loop); MaxDof = Eigen::Dynamic serves longer chains.
+// What IK needs to check its solutions of one chain at one reference posture for collisions: the
+// robot's checked pairs split into those the chain moves and those it never moves, and the link
+// poses at the reference. Per thread, the set-up of the last call is kept and reused by the next call
+// for the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so
+// a robot built at the address of a freed one never matches). Checking a solution then recomputes
+// only the links the chain moves (the joints in `moved`, parents first).
+struct CollisionSetup {
+  std::weak_ptr<const Robot> robot;
+  std::string base, tip;
+  Eigen::VectorXd reference;
+  std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
+  std::vector<int> moved;  // joints whose child link the chain moves, in the robot's (parents-first) order
+  std::vector<Pose> poses;
+
+  static CollisionSetup& of(const Chain& c, const Eigen::VectorXd& reference) {
+    thread_local CollisionSetup s;
+    const std::shared_ptr<const Robot> r = c.robot_ptr();
+    const bool same = !s.robot.expired() && !s.robot.owner_before(r) && !r.owner_before(s.robot) &&
+                      s.base == c.base_link() && s.tip == c.tip_link() && s.reference.size() == reference.size() &&
+                      s.reference == reference;
+    if (same) return s;
+    s.robot = r;
+    s.base = c.base_link();
+    s.tip = c.tip_link();
+    s.reference = reference;
+    c.split_collision_pairs(s.moving_pairs, s.fixed_pairs);
+    s.moved.clear();
+    for (std::size_t j = 0; j < r->joints().size(); ++j)
+      if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
+    r->link_poses(reference, s.poses);
+    return s;
+  }
+
+  // Link poses at the robot configuration `full`, which differs from the reference only in the chain.
+  void place(const Robot& robot, const Eigen::VectorXd& full) {
+    for (int ji : moved) {
+      const Joint& j = robot.joints()[ji];
+      double v = 0.0;
+      if (j.index >= 0) v = full[j.index];
+      else if (j.mimic >= 0) v = full[robot.joints()[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
+      Pose m = Pose::Identity();
+      if (j.type == JointType::Prismatic) m.translation() = j.axis * v;
+      else if (j.type == JointType::Revolute || j.type == JointType::Continuous)
+        m.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+      poses[j.child_link] = poses[j.parent_link] * j.origin * m;
+    }
+  }
+};
+
+// One IK call: Levenberg-Marquardt descents from the seed and from random restarts. N is the
+// chain's dof when it is known at compile time (6, 7: fixed-size matrices, no heap traffic and
+// unrolled products), else Eigen::Dynamic with at most MaxDof columns (MaxDof Dynamic: any chain).
 // A solver is the per-call workspace: built, solved once, dropped.
-template <int MaxDof>
+template <int N, int MaxDof = N>
 class LmIk {
  public:
-  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaxDof, 1>;
-  using Jac = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, MaxDof>;
-  using Sq = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxDof, MaxDof>;
-  using Res = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
-  using ResJac = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, MaxDof>;
+  using Vec = Eigen::Matrix<double, N, 1, 0, MaxDof, 1>;
+  using Jac = Eigen::Matrix<double, 6, N, 0, 6, MaxDof>;
+  using Sq = Eigen::Matrix<double, N, N, 0, MaxDof, MaxDof>;
+  using Res = Eigen::Matrix<double, 6, 1>;
 
   LmIk(const Chain& chain, const Pose& target, const IkOptions& o)
-      : c_(chain), target_(target), o_(o), n_(chain.dof()), rng_(o.seed), J_(6, n_), q_(n_), q_new_(n_), dq_(n_),
-        g_(n_), A_(n_, n_) {
+      : c_(chain), target_(target), o_(o), n_(chain.dof()), rng_(o.seed), J_(6, n_), J_new_(6, n_), Jr_(6, n_),
+        q_(n_), q_new_(n_), dq_(n_), g_(n_), A_(n_, n_) {
     approach_tip_ = o.approach_axis.normalized();
     approach_goal_ = target.linear() * approach_tip_;
     need_full_ = o.check_self_collision || o.obstacles;
-    if (need_full_) reference_ = o.reference.size() ? o.reference : c_.robot().home();
-    if (o.check_self_collision) c_.split_collision_pairs(moving_pairs_, fixed_pairs_);
+    if (need_full_) setup_ = &CollisionSetup::of(c_, o.reference.size() ? o.reference : c_.robot().home());
     fixed_state_ = o.check_fixed_pairs ? -1 : 0;
   }
 
@@ -92,13 +140,19 @@ class LmIk {
  private:
   // Orientation error is weighted so that one radian counts like this many metres.
   static constexpr double kRotWeight = 0.25;
+  static constexpr int kMaxWindow = 16;
 
-  // Error vector (3 or 6 rows) and, when asked, the matching Jacobian rows; plus convergence test.
+  // Error vector (6 rows; the rotation rows are zero in Position mode) and, when asked, the
+  // matching rows of the Jacobian J_ in Jr_; plus the convergence test.
   void residual(const Pose& T, bool with_jacobian, Res& err, bool& converged) {
     Eigen::Vector3d ep = target_.translation() - T.translation();
+    err.template head<3>() = ep;
     if (o_.mode == IkMode::Position) {
-      err = ep;
-      if (with_jacobian) Jr_ = J_.template topRows<3>();
+      err.template tail<3>().setZero();
+      if (with_jacobian) {
+        Jr_.template topRows<3>() = J_.template topRows<3>();
+        Jr_.template bottomRows<3>().setZero();
+      }
       converged = ep.norm() < o_.position_tolerance;
       return;
     }
@@ -118,13 +172,10 @@ class LmIk {
       else er.setZero();
       P -= a * a.transpose();  // roll about the approach axis does not matter
     }
-    err.resize(6);
-    err.template head<3>() = ep;
     err.template tail<3>() = kRotWeight * er;
     if (with_jacobian) {
-      Jr_.resize(6, n_);
       Jr_.template topRows<3>() = J_.template topRows<3>();
-      Jr_.template bottomRows<3>() = kRotWeight * (P * J_.template bottomRows<3>());
+      Jr_.template bottomRows<3>().noalias() = kRotWeight * (P * J_.template bottomRows<3>());
     }
     converged = ep.norm() < o_.position_tolerance && rot_err < o_.orientation_tolerance;
   }
@@ -140,33 +191,59 @@ class LmIk {
     }
   }
 
+  // A joint sitting on a limit that the step dq_ would push past it is held there: its row and
+  // column leave the system (A_, g_), so the next solve gives the other joints the whole step.
+  // (Clamping alone leaves them a share of a step planned with the held joint moving: the descent
+  // then crawls, with linear convergence.) True when a joint was held.
+  bool hold_limits() {
+    bool held = false;
+    for (int i = 0; i < n_; ++i) {
+      if (c_.continuous()[i]) continue;
+      if ((q_[i] <= c_.lower()[i] && dq_[i] < 0) || (q_[i] >= c_.upper()[i] && dq_[i] > 0)) {
+        A_.row(i).setZero();
+        A_.col(i).setZero();
+        A_(i, i) = 1.0;
+        g_[i] = 0.0;
+        held = true;
+      }
+    }
+    return held;
+  }
+
   // One descent from q_; true when it converged (q_ then holds the solution).
   bool descend() {
     // Errors this small are left to finish; above it, slow progress means a local minimum.
     const double tol2 = o_.position_tolerance * o_.position_tolerance;
     bool converged = false;
-    Pose T = c_.fk_jacobian(q_, Jfull_);
-    J_ = Jfull_;
+    Pose T = c_.fk_jacobian(q_.data(), J_.data());
     residual(T, true, e_, converged);
     double err = e_.squaredNorm();
     double lambda = 1e-3;
     int slow = 0;
+    // err at the last stall_window iterations (ring); a stalled descent is stopped.
+    double history[kMaxWindow];
+    const int window = std::min(o_.stall_window, kMaxWindow);
     for (int it = 0; it < o_.max_iterations && !converged; ++it) {
+      if (window > 0) {
+        if (it >= window && err > 4 * tol2 && err > 0.9 * history[it % window]) break;  // stalled
+        history[it % window] = err;
+      }
       // Levenberg-Marquardt step: (J^T J + lambda (I + diag J^T J)) dq = J^T e
-      A_.noalias() = Jr_.transpose() * Jr_;
+      A_.noalias() = Jr_.transpose().lazyProduct(Jr_);
       g_.noalias() = Jr_.transpose() * e_;
       A_.diagonal().array() += lambda * (1.0 + A_.diagonal().array());
       dq_ = A_.llt().solve(g_);  // A is symmetric positive definite
+      if (hold_limits()) dq_ = A_.llt().solve(g_);
       q_new_ = q_ + dq_;
       clamp(q_new_);
       bool conv_new = false;
-      Pose T_new = c_.fk_jacobian(q_new_, Jfull_);
-      J_ = Jfull_;
+      Pose T_new = c_.fk_jacobian(q_new_.data(), J_new_.data());
       residual(T_new, false, e_new_, conv_new);
       double err_new = e_new_.squaredNorm();
       if (err_new < err) {
         slow = (err - err_new < 0.01 * err && err_new > 100 * tol2) ? slow + 1 : 0;
         q_ = q_new_;
+        J_.swap(J_new_);
         err = err_new;
         residual(T_new, true, e_, converged);
         lambda = std::max(lambda * 0.3, 1e-9);
@@ -186,15 +263,15 @@ class LmIk {
     if (!c_.within_limits(sol, 1e-9)) return false;
     if (!need_full_) return true;
     const Robot& robot = c_.robot();
-    Eigen::VectorXd full = c_.to_robot_configuration(sol, reference_);
-    robot.link_poses(full, poses_);
-    if (o_.obstacles && robot.links_in_collision(poses_, *o_.obstacles, o_.base_pose,
+    CollisionSetup& s = *setup_;
+    s.place(robot, c_.to_robot_configuration(sol, s.reference));
+    if (o_.obstacles && robot.links_in_collision(s.poses, *o_.obstacles, o_.base_pose,
                                                  o_.obstacle_links.empty() ? nullptr : &o_.obstacle_links))
       return false;
     if (o_.check_self_collision) {
-      if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(poses_, fixed_pairs_) ? 1 : 0;
+      if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
       if (fixed_state_ == 1) return false;
-      if (robot.in_self_collision_poses(poses_, moving_pairs_)) return false;
+      if (robot.in_self_collision_poses(s.poses, s.moving_pairs)) return false;
     }
     return true;
   }
@@ -205,17 +282,13 @@ class LmIk {
   const int n_;
   Eigen::Vector3d approach_tip_, approach_goal_;
   std::mt19937_64 rng_;
-  Jac J_;  // Jacobian at the latest evaluated configuration
+  Jac J_, J_new_, Jr_;  // Jacobian at q_ and at q_new_; rows weighted as the residual
   Vec q_, q_new_, dq_, g_;
   Sq A_;
   Res e_, e_new_;
-  ResJac Jr_;
-  Eigen::Matrix<double, 6, Eigen::Dynamic> Jfull_;
-  Eigen::VectorXd reference_;
+  CollisionSetup* setup_ = nullptr;  // this thread's, while the call lasts
   bool need_full_ = false;
-  std::vector<std::pair<int, int>> moving_pairs_, fixed_pairs_;
   int fixed_state_ = -1;  // fixed pairs: -1 unknown, 0 free, 1 colliding
-  std::vector<Pose> poses_;
 };
 
 }  // namespace
@@ -224,8 +297,10 @@ std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o,
   check_ik_request(*this, target, o, seed);
   detail::CancellableScope cancellable;
   if (dof() == 0) return rigid_chain_ik(*this, target, o);
-  if (dof() <= 12) return LmIk<12>(*this, target, o).solve(seed);
-  return LmIk<Eigen::Dynamic>(*this, target, o).solve(seed);
+  if (dof() == 7) return LmIk<7>(*this, target, o).solve(seed);
+  if (dof() == 6) return LmIk<6>(*this, target, o).solve(seed);
+  if (dof() <= 12) return LmIk<Eigen::Dynamic, 12>(*this, target, o).solve(seed);
+  return LmIk<Eigen::Dynamic, Eigen::Dynamic>(*this, target, o).solve(seed);
 }
 
 void Chain::ik_batch(const std::vector<Pose>& targets, const IkOptions& options, Eigen::MatrixXd& solutions,

@@ -36,6 +36,9 @@ struct IkOptions {
   double orientation_tolerance = 1e-3;  ///< radians
   int max_iterations = 100;             ///< per attempt (stalled attempts stop early)
   int attempts = 20;                    ///< seed (or first random start) plus random restarts
+  /// Stop a descent whose error fell by less than 10 % over this many iterations while still above
+  /// the tolerances (0: never; the capability-map build, which tries many unreachable cells, uses 3).
+  int stall_window = 0;
   std::uint64_t seed = 0;               ///< random restarts are deterministic for a seed
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tip-frame axis used in Approach mode
   bool check_self_collision = false;    ///< reject solutions in self-collision
@@ -85,6 +88,9 @@ class Chain {
   std::vector<Pose> fk_batch(const Eigen::MatrixXd& q_rows) const;
   /// \brief Pose of the tip and its 6 x dof geometric Jacobian (rows: linear, angular), base frame.
   Pose fk_jacobian(const Eigen::VectorXd& q, Eigen::Matrix<double, 6, Eigen::Dynamic>& jacobian) const;
+  /// \brief The same without checks or allocation (the IK's inner loop): q holds dof() values; the
+  /// Jacobian is written column-major to `jacobian` (6 x dof doubles) unless it is null.
+  Pose fk_jacobian(const double* q, double* jacobian) const;
   /// \brief True when q has dof entries, all finite and inside the limits (continuous joints excepted).
   bool within_limits(const Eigen::VectorXd& q, double tolerance = 1e-9) const;
   /// \brief Wraps continuous joints into [-pi, pi) and revolute joints by 2 pi into their limits where possible.
@@ -125,6 +131,7 @@ class Chain {
   Eigen::VectorXd lower_, upper_;
   std::vector<bool> continuous_;
   std::vector<std::uint64_t> link_masks_;  // per robot link: bit i set if chain joint i moves it
+  std::vector<std::int8_t> axis_kind_;     // per joint: 0-2 = +x, +y, +z; 3-5 = -x, -y, -z; -1 any other axis
 };
 
 template <class Rng>

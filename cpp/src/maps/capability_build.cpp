@@ -92,6 +92,7 @@ CapabilityBuilder::CapabilityBuilder(const Chain& chain, const CapabilityMapOpti
   base_ik_.check_fixed_pairs = false;  // checked once by CapabilityMap::build
   base_ik_.reference = reference;
   base_ik_.max_iterations = 25;  // seeds are near: a cell that needs more is almost always unreachable
+  base_ik_.stall_window = 3;     // most cells tried are unreachable: stop their descents once they stall
 }
 
 void CapabilityBuilder::report(double start, double share, double fraction) const {
