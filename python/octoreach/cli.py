@@ -266,7 +266,8 @@ def _cmd_experiment(args) -> int:
         except ImportError as e:  # PlannerMissing: says which extra to install
             raise RuntimeError(str(e)) from None
         experiments.tidy_up(runs=args.runs, runs_table_two=args.runs_table2, objects=tuple(args.objects),
-                            scenes=scenes, seed=args.seed, resolution=args.resolution, budget=args.budget,
+                            scenes=scenes, seed=args.seed, resolution=args.resolution, directions=args.directions,
+                            budget=args.budget,
                             plot_path=args.plot, progress=not args.quiet)
         if args.plot:
             print(f"plot: {args.plot}")
@@ -417,6 +418,7 @@ def _add_view_and_experiment_commands(sub):
     sp.add_argument("--scenes", nargs="+", help="tidy-up: scenes of the scene table (default all: paper chairs corners "
                     "shelf l_table narrow)")
     sp.add_argument("--resolution", type=float, default=0.1, help="tidy-up: map resolution in m (default 0.1)")
+    sp.add_argument("--directions", type=int, help="tidy-up: capability-map directions (default 100, the experiment's)")
     sp.add_argument("--budget", type=int, default=8, help="tidy-up: sampled poses per surface and task (default 8)")
     sp.add_argument("--plot", default="tidy_up.png", help="tidy-up: PNG to write (default tidy_up.png)")
     sp.add_argument("--scene", type=int, default=1, help="exploration: paper scene 1 or 2 (default 1)")

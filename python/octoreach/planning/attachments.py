@@ -49,8 +49,8 @@ class Attachments:
     caps: dict
     maps: dict
     seed: int = 0
-    attempts: int = 8
-    candidates: int = 40
+    attempts: int = 8  # IK restarts per grasp of the reachability check (the map tests use 20)
+    candidates: int | None = None  # PoseSampler candidates per sample (None: its default, the paper's 40)
     _samplers: dict = field(default_factory=dict, repr=False)
     _checks: dict = field(default_factory=dict, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
@@ -58,13 +58,15 @@ class Attachments:
     pruned: int = 0
 
     @classmethod
-    def build(cls, robot: Robot, room, resolution: float = 0.1, directions: int = 100, caps: dict = None,
+    def build(cls, robot: Robot, room, resolution: float = 0.1, directions: int | None = None, caps: dict = None,
               seed: int = 0, progress: bool = False, **kwargs) -> "Attachments":
-        """Capability maps of every arm of the robot (unless `caps` gives them) and one combined surface map
-        per surface of `room`, each built with the room's other obstacles (``Room.surface_maps``)."""
+        """Capability maps of every arm of the robot (unless `caps` gives them; `directions` None: the
+        CapabilityMapOptions default) and one combined surface map per surface of `room`, each built with the
+        room's other obstacles (``Room.surface_maps``)."""
         if caps is None:
-            caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, directions=directions,
-                                                   seed=seed, progress=progress) for arm in _arms.find_arms(robot)}
+            extra = {} if directions is None else {"directions": directions}
+            caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, seed=seed, progress=progress,
+                                                   **extra) for arm in _arms.find_arms(robot)}
         if not caps:
             raise ValueError("the robot has no arm to grasp with")
         per_arm = [room.surface_maps(robot, cap, progress=progress, resolution=resolution, z_range=(0, 0),
@@ -91,9 +93,9 @@ class Attachments:
             arm = next(iter(self.caps))
             reference = _arms.default_reference(self.robot, arm)
             index = list(self.maps).index(surface) if surface in self.maps else 0
-            self._samplers[surface] = PoseSampler(self._map(surface), candidates=self.candidates,
-                                                  seed=self.seed * 1009 + index,
-                                                  in_collision=(self.robot, self.room.obstacles(), reference))
+            extra = {} if self.candidates is None else {"candidates": self.candidates}
+            self._samplers[surface] = PoseSampler(self._map(surface), seed=self.seed * 1009 + index,
+                                                  in_collision=(self.robot, self.room.obstacles(), reference), **extra)
         return self._samplers[surface]
 
     def ground(self, surface: str, k: int = 1) -> np.ndarray:

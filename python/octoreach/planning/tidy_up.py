@@ -27,6 +27,7 @@ __all__ = ["prepare", "table_one", "table_two", "scene_table", "format_table_one
            "format_scene_table", "plot", "tidy_up", "PAPER_TABLE_ONE", "PAPER_TABLE_TWO"]
 
 STRATEGIES = (1, 2, 3, 4, "sampling")
+DIRECTIONS = 100  # capability-map approach directions of the experiment (half the library's default: faster)
 
 #: The paper's Table I (minutes; None: not solved) and Table II averages, for printing beside ours.
 PAPER_TABLE_ONE = {1: (7.9, None, None, None), 2: (8.6, 19.5, None, None), 3: (10.7, 31.4, 43.0, None),
@@ -43,10 +44,11 @@ class Prepared:
     attachments: Attachments
 
 
-def prepare(scenes=tuple(SCENES), resolution: float = 0.1, directions: int = 100, seed: int = 0, robot=None,
+def prepare(scenes=tuple(SCENES), resolution: float = 0.1, directions: int | None = None, seed: int = 0, robot=None,
             progress: bool = False) -> dict:
     """{scene name: Prepared}: the PR2, its capability maps (built once) and each scene's surface maps."""
     robot = _robots.pr2() if robot is None else robot
+    directions = DIRECTIONS if directions is None else directions
     caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, directions=directions, seed=seed,
                                            progress=progress) for arm in _arms.find_arms(robot)}
     out = {}
@@ -210,7 +212,7 @@ def plot(one: dict, two: dict, path) -> None:
 
 
 def tidy_up(runs: int = 2, runs_table_two: int = 7, objects=(1, 2, 3, 4), scenes=tuple(SCENES), seed: int = 0,
-            resolution: float = 0.1, budget: int = 8, plot_path=None, progress: bool = False,
+            resolution: float = 0.1, directions: int | None = None, budget: int = 8, plot_path=None, progress: bool = False,
             verbose: bool = True) -> dict:
     """Runs Table I (paper's room), Table II (paper's room, 3 objects) and the scene table; prints them when
     `verbose`; writes the plot to `plot_path`. Returns {'table_one', 'table_two', 'scenes'} of RunRecords."""
@@ -222,7 +224,8 @@ def tidy_up(runs: int = 2, runs_table_two: int = 7, objects=(1, 2, 3, 4), scenes
     unknown = [s for s in scenes if s not in SCENES]
     if unknown:
         raise ValueError(f"unknown scene(s) {', '.join(map(repr, unknown))} (scenes: {', '.join(SCENES)})")
-    prepared = prepare(tuple(dict.fromkeys(("paper", *scenes))), resolution=resolution, seed=seed, progress=progress)
+    prepared = prepare(tuple(dict.fromkeys(("paper", *scenes))), resolution=resolution, directions=directions, seed=seed,
+                       progress=progress)
     one = table_one(prepared["paper"], objects, runs, seed, budget, progress)
     two = table_two(prepared["paper"], runs_table_two, 3, seed + 1, budget, progress)
     sc = scene_table({k: v for k, v in prepared.items() if k in scenes}, 3, runs, seed + 2, budget, progress)
