@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,9 +11,9 @@ experiments = pytest.importorskip("octoreach.experiments")
 
 
 def run(*args):
-    script = Path(sys.executable).with_name("octoreach")
-    command = [str(script)] if script.is_file() else [sys.executable, "-m", "octoreach.cli"]
-    return subprocess.run(command + [str(a) for a in args], capture_output=True, text=True, timeout=300)
+    # the interpreter running the tests (an `octoreach` script beside it may belong to another environment)
+    return subprocess.run([sys.executable, "-m", "octoreach.cli"] + [str(a) for a in args], capture_output=True,
+                          text=True, timeout=300)
 
 
 def test_cli_tidy_up_tiny_run(pr2, tmp_path):
