@@ -12,6 +12,7 @@ objects and the same random stream for grasp failures. ``octoreach experiment ti
 """
 from __future__ import annotations
 
+import json
 import sys
 from dataclasses import dataclass
 
@@ -51,12 +52,15 @@ def prepare(scenes=tuple(SCENES), resolution: float = 0.1, directions: int | Non
     directions = DIRECTIONS if directions is None else directions
     caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, directions=directions, seed=seed,
                                            progress=progress) for arm in _arms.find_arms(robot)}
-    out = {}
+    out, built = {}, {}
     for name in scenes:
         sc = _scene(name)
-        if progress:
-            print(f"tidy-up: surface maps of scene {name!r}", file=sys.stderr, flush=True)
-        out[name] = Prepared(sc, Attachments.build(robot, sc.room, resolution=resolution, caps=caps, seed=seed))
+        key = json.dumps(sc.room.description, sort_keys=True)  # scenes in the same room share its maps
+        if key not in built:
+            if progress:
+                print(f"tidy-up: surface maps of scene {name!r}", file=sys.stderr, flush=True)
+            built[key] = Attachments.build(robot, sc.room, resolution=resolution, caps=caps, seed=seed)
+        out[name] = Prepared(sc, built[key])
     return out
 
 
