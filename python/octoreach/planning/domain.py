@@ -8,7 +8,9 @@ Types: pose, surface, item, arm. Actions (costs are the durations of ``durations
   inspected from yet, the head camera looks at the surface: it is searched (the planner's optimistic belief:
   the simulation says afterwards what was really seen);
 * ``pickup-object(?p ?o ?s ?a)``: a free arm grasps a known item on a surface, from a pose where that arm
-  reaches it (reachability attachment: IK, asked only where the condition holds);
+  reaches it (reachability attachment: IK, asked only where the condition holds); its cost is the expected
+  duration with retries after failed grasps (``expected_pickup_duration``: harder grasps cost more, so the
+  planner prefers a pose from which the grasp is easy, as the paper's cost attachments do);
 * ``inspect-object(?o ?a)``: the held item is held in front of the camera;
 * ``putdown-object(?p ?o ?s ?a)``: the item goes back where it was (reached by that arm from that pose).
 
@@ -69,6 +71,7 @@ class Task:
     held: dict = field(default_factory=dict)
     inspected: set = field(default_factory=set)
     positions: dict = field(default_factory=dict)  # item -> (3,) where it lies (the continuous state)
+    pick_costs: dict = field(default_factory=dict)  # (pose, item, arm) -> expected pickup seconds (cost attachment)
 
     def done(self) -> bool:
         return (set(self.surfaces) <= self.searched and set(self.items) <= self.inspected
@@ -90,6 +93,7 @@ def build_problem(task: Task):
         "reach": {"p": Pose, "o": Item, "a": Arm}, "free": {"a": Arm}, "holding": {"a": Arm, "o": Item},
         "inspected": {"o": Item}}.items()}
     move_cost = up.Fluent("move_cost", up.IntType(), a=Pose, b=Pose)
+    pick_cost = up.Fluent("pick_cost", up.IntType(), p=Pose, o=Item, a=Arm)
 
     move = up.InstantaneousAction("move_robot", a=Pose, b=Pose)
     a, b = move.parameters
@@ -130,6 +134,7 @@ def build_problem(task: Task):
     for fl in f.values():
         problem.add_fluent(fl, default_initial_value=False)
     problem.add_fluent(move_cost, default_initial_value=0)
+    problem.add_fluent(pick_cost, default_initial_value=int(round(duration("pickup-object"))))
     for action in (move, look, pick, inspect, put):
         problem.add_action(action)
 
@@ -169,6 +174,8 @@ def build_problem(task: Task):
             problem.set_initial_value(f["inspected"](O[on]), True)
     for pn, on, an in task.reach:
         problem.set_initial_value(f["reach"](P[pn], O[on], A[an]), True)
+        if (pn, on, an) in task.pick_costs:
+            problem.set_initial_value(pick_cost(P[pn], O[on], A[an]), int(round(task.pick_costs[(pn, on, an)])))
     for an in task.arms:
         if not task.held.get(an):
             problem.set_initial_value(f["free"](A[an]), True)
@@ -180,7 +187,8 @@ def build_problem(task: Task):
         problem.add_goal(f["on"](O[on], S[sn]))
 
     a, b = move.parameters
-    costs = {move: move_cost(a, b), look: duration("inspect-surface"), pick: duration("pickup-object"),
+    p, o, _, arm = pick.parameters
+    costs = {move: move_cost(a, b), look: duration("inspect-surface"), pick: pick_cost(p, o, arm),
              inspect: duration("inspect-object"), put: duration("putdown-object")}
     problem.add_quality_metric(up.MinimizeActionCosts({k: (v if not isinstance(v, float) else int(round(v)))
                                                         for k, v in costs.items()}))

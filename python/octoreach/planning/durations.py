@@ -44,3 +44,23 @@ def move_duration(start, goal) -> float:
     dx, dy = float(goal[0]) - float(start[0]), float(goal[1]) - float(start[1])
     turn = abs((float(goal[3]) - float(start[3]) + math.pi) % (2 * math.pi) - math.pi)
     return DURATIONS["move-robot"][0] + math.hypot(dx, dy) / BASE_SPEED + turn / TURN_SPEED
+
+
+# Grasp failures (the simulation draws them; the planner's cost attachment expects them): a grasp fails with
+# FAIL_BASE + FAIL_RP * max(0, 1 - R_P / RP_EASY) + FAIL_FAR * clip((d - NEAR) / (FAR - NEAR), 0, 1), at most
+# FAIL_MAX, R_P being the share of grasps the arm reaches from the pose and d the horizontal base-object
+# distance: easy grasps fail 5 % of the time, grasps at the edge of the workspace up to 55 % [ours].
+FAIL_BASE, FAIL_RP, FAIL_FAR, FAIL_MAX = 0.05, 0.35, 0.15, 0.6
+RP_EASY = 0.5  # share of grasps from which a grasp counts as easy
+NEAR, FAR = 0.55, 0.95  # m, horizontal base-object distances where the distance term starts and saturates
+
+
+def grasp_failure_probability(rp: float, distance: float) -> float:
+    """Probability that a grasp with grasp share `rp` at horizontal distance `distance` (m) fails."""
+    p = FAIL_BASE + FAIL_RP * max(0.0, 1.0 - rp / RP_EASY) + FAIL_FAR * min(1.0, max(0.0, (distance - NEAR) / (FAR - NEAR)))
+    return min(FAIL_MAX, p)
+
+
+def expected_pickup_duration(rp: float, distance: float) -> float:
+    """Expected seconds until a grasp succeeds (retrying after each failure): duration / (1 - p_fail)."""
+    return duration("pickup-object") / (1.0 - grasp_failure_probability(rp, distance))

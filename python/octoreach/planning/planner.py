@@ -18,6 +18,7 @@ import numpy as np
 
 from .attachments import Attachments
 from .domain import SEARCH, Task, solve
+from .durations import expected_pickup_duration
 
 __all__ = ["Planner", "Unsolvable", "PlanResult"]
 
@@ -53,16 +54,20 @@ class Planner:
     # ------------------------------------------------------------------ facts
     def write_facts(self, task: Task) -> None:
         """usable (condition attachment) for every pose and surface, reach (reachability attachment, asked
-        only where the condition holds) for every pose, known object and arm."""
+        only where the condition holds) for every pose, known object and arm, and the expected pickup duration
+        of each reach (cost attachment)."""
         task.usable = {(p, s) for p, pose in task.poses.items() for s in task.surfaces
                        if self.att.condition(pose, s) > 0.0}
-        task.reach = set()
+        task.reach, task.pick_costs = set(), {}
         for o, s in task.items.items():
+            point = np.asarray(task.positions[o], float)
             for p, pose in task.poses.items():
                 if (p, s) not in task.usable:
                     continue
-                for arm in self.att.reach(pose, task.positions[o], s):
+                for arm, rp in self.att.reach(pose, point, s).items():
                     task.reach.add((p, o, arm))
+                    distance = float(np.hypot(point[0] - pose[0], point[1] - pose[1]))
+                    task.pick_costs[(p, o, arm)] = expected_pickup_duration(rp, distance)
 
     def _missing(self, task: Task) -> tuple[list, dict]:
         """Surfaces that need a new pose, and {surface: object} of the objects no pose reaches."""

@@ -6,12 +6,9 @@ continual planner acts in. Seeded and deterministic: the same scene, objects and
   (``head_camera.py``: range and line of sight past the room's obstacles), so objects are unknown until then;
   the surface counts as searched once SEEN_SHARE of its grid points (0.1 m) have been seen from the poses
   inspected so far. New objects, or a surface still partly unseen, are surprises.
-* **Execution failures**: a grasp fails with probability
-  ``FAIL_BASE + FAIL_RP * max(0, 1 - R_P / RP_EASY) + FAIL_FAR * clip((d - NEAR) / (FAR - NEAR), 0, 1)``
-  (at most FAIL_MAX), where R_P is the share of grasps the arm reaches from the pose (the reachability
-  attachment's answer) and d the horizontal distance from the base centre to the object: easy grasps fail
-  5 % of the time, a grasp at the edge of the workspace up to 55 %. A failed grasp leaves the object where it
-  was and is a surprise. Moves and the other actions always succeed.
+* **Execution failures**: a grasp fails with ``durations.grasp_failure_probability`` (growing as R_P, the
+  reachability attachment's share of grasps, falls and as the object lies farther from the base). A failed
+  grasp leaves the object where it was and is a surprise. Moves and the other actions always succeed.
 """
 from __future__ import annotations
 
@@ -22,24 +19,15 @@ import numpy as np
 from .. import arms as _arms
 from .attachments import Attachments
 from .domain import Task
-from .durations import duration, move_duration
+from .durations import duration, grasp_failure_probability, move_duration
 from .head_camera import HeadCamera
 from .scenes import Scene
 
-__all__ = ["Simulation", "grasp_failure_probability"]
+__all__ = ["Simulation"]
 
-FAIL_BASE, FAIL_RP, FAIL_FAR, FAIL_MAX = 0.05, 0.35, 0.15, 0.6
-RP_EASY = 0.5  # share of grasps from which a grasp counts as easy
-NEAR, FAR = 0.55, 0.95  # m, horizontal base-object distances where the distance term starts and saturates
 SEEN_SHARE = 0.9
 SEEN_RESOLUTION = 0.1  # m, grid of the surface points the camera must see
 OBJECT_TOP = 0.04  # m above the surface: the point of an object the camera must see
-
-
-def grasp_failure_probability(rp: float, distance: float) -> float:
-    """Probability that a grasp with grasp share `rp` at horizontal distance `distance` (m) fails."""
-    p = FAIL_BASE + FAIL_RP * max(0.0, 1.0 - rp / RP_EASY) + FAIL_FAR * min(1.0, max(0.0, (distance - NEAR) / (FAR - NEAR)))
-    return min(FAIL_MAX, p)
 
 
 @dataclass
