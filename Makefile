@@ -32,7 +32,7 @@ $(VENV)/.build-deps: $(VENV)/.created pyproject.toml
 
 $(BUILD)/.installed: $(VENV)/.build-deps $(SOURCES)
 	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PIP) install --no-build-isolation \
-	  -Cbuild-dir=$(BUILD) -Ccmake.define.BUILD_TESTING=ON ".[robots,test,viewer,cluster]"
+	  -Cbuild-dir=$(BUILD) -Ccmake.define.BUILD_TESTING=ON ".[robots,test,viewer,cluster,planning]"
 	@touch $@
 
 install: sysdeps $(BUILD)/.installed
@@ -88,6 +88,7 @@ benchmarks: install
 	$(PY) benchmarks/surface_map.py
 	$(PY) benchmarks/exploration.py
 	$(PY) benchmarks/robustness.py
+	$(PY) benchmarks/planning.py
 
 # Regenerates the type stubs of the compiled module (python/octoreach/_core.pyi); review the diff.
 stubs: install

@@ -296,13 +296,26 @@ def _cmd_experiment(args) -> int:
     from . import experiments
 
     if args.name == "tidy-up":
-        if args.tables not in (1, 2):
-            raise ValueError(f"--tables must be 1 or 2, got {args.tables}")
-        if args.trials < 1:
-            raise ValueError(f"--trials must be at least 1, got {args.trials}")
-        rows = experiments.tidy_up(trials=args.trials, objects=tuple(args.objects), tables=args.tables,
-                                   seed=args.seed, progress=not args.quiet)
-        print(experiments.format_tidy_up(rows))
+        from .planning import SCENES, require_planner
+
+        for flag in ("runs", "runs_table2", "budget"):
+            if getattr(args, flag) < (0 if flag == "budget" else 1):
+                raise ValueError(f"--{flag.replace('_', '-')} must be at least {0 if flag == 'budget' else 1}, "
+                                 f"got {getattr(args, flag)}")
+        scenes = tuple(args.scenes or SCENES)
+        unknown = [s for s in scenes if s not in SCENES]
+        if unknown:
+            raise ValueError(f"--scenes: unknown scene {unknown[0]!r} (scenes: {', '.join(SCENES)})")
+        try:
+            require_planner()
+        except ImportError as e:  # PlannerMissing: says which extra to install
+            raise RuntimeError(str(e)) from None
+        experiments.tidy_up(runs=args.runs, runs_table_two=args.runs_table2, objects=tuple(args.objects),
+                            scenes=scenes, seed=args.seed, resolution=args.resolution, directions=args.directions,
+                            budget=args.budget,
+                            plot_path=args.plot, progress=not args.quiet)
+        if args.plot:
+            print(f"plot: {args.plot}")
         return 0
     if args.scene not in (1, 2):
         raise ValueError(f"--scene must be 1 or 2, got {args.scene}")
@@ -475,9 +488,15 @@ def _add_view_and_experiment_commands(sub):
 
     sp = sub.add_parser("experiment", help="paper experiments: tidy-up (surface maps) or exploration (frontier voids)")
     sp.add_argument("name", choices=["tidy-up", "exploration"], help="which experiment")
-    sp.add_argument("--trials", type=int, default=100, help="tidy-up: tasks per object count (default 100)")
-    sp.add_argument("--tables", type=int, default=1, help="tidy-up: 1 or 2 tables (default 1)")
-    sp.add_argument("--objects", type=int, nargs="+", default=[1, 2, 3, 4], help="tidy-up: object counts (default 1 2 3 4)")
+    sp.add_argument("--runs", type=int, default=2, help="tidy-up: runs per Table I cell and per scene (default 2)")
+    sp.add_argument("--runs-table2", type=int, default=7, help="tidy-up: runs per strategy in Table II (default 7)")
+    sp.add_argument("--objects", type=int, nargs="+", default=[1, 2, 3, 4], help="tidy-up: Table I object counts (default 1 2 3 4)")
+    sp.add_argument("--scenes", nargs="+", help="tidy-up: scenes of the scene table (default all: paper chairs corners "
+                    "shelf l_table narrow)")
+    sp.add_argument("--resolution", type=float, default=0.1, help="tidy-up: map resolution in m (default 0.1)")
+    sp.add_argument("--directions", type=int, help="tidy-up: capability-map directions (default 100, the experiment's)")
+    sp.add_argument("--budget", type=int, default=8, help="tidy-up: sampled poses per surface and task (default 8)")
+    sp.add_argument("--plot", default="tidy_up.png", help="tidy-up: PNG to write (default tidy_up.png)")
     sp.add_argument("--scene", type=int, default=1, help="exploration: paper scene 1 or 2 (default 1)")
     sp.add_argument("--views", type=int, default=10, help="exploration: view budget (default 10)")
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")

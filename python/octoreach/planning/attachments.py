@@ -1,0 +1,160 @@
+"""The semantic attachments of Section III-C of the surface-map paper, planner-independent.
+
+* **condition** (``condition(pose, surface)`` -> R_S): may the robot work at a surface from a base pose?
+  One lookup in the surface's combined (either arm) surface map; R_S = 0 discards the pose before any
+  inverse kinematics.
+* **grounding** (``ground(surface, k)`` -> (k, 4)): new base poses for the planning state, drawn from the
+  surface map by ``octoreach.PoseSampler``, each discounted (eq. 3) against every pose drawn for that surface
+  so far, across calls (one sampler per surface lives as long as the attachments; ``reset()`` starts a new
+  task).
+* **reachability** (``reach(pose, point, surface)`` -> {arm: R_P}): can an arm grasp an object at `point`
+  from `pose`? For each arm the share of grasps that inverse kinematics reaches free of collision with the
+  surface and the room (``octoreach.surface_maps.GraspCheck``, the brute-force check the map tests use),
+  asked only when the condition holds and the arm's capability map has a reachable direction in the point's
+  voxel; results are cached per (pose, point).
+
+Example (any planner can call these three)::
+
+    att = Attachments.build(robot, room, resolution=0.1)
+    if att.condition(pose, "table") > 0:            # cheap: one map lookup
+        rp = att.reach(pose, obj_xyz, "table")      # expensive: IK of both arms
+    new_poses = att.ground("table", 2)              # (2, 4), spread out by eq. (3)
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .. import arms as _arms
+from .._core import CapabilityMap, PoseSampler, Robot, SurfaceMap
+from ..surface_maps import GraspCheck
+
+__all__ = ["Attachments", "OBJECT_HEIGHT"]
+
+OBJECT_HEIGHT = 0.05  # grasp point above the surface (the surface maps' grasp_height)
+
+
+@dataclass
+class Attachments:
+    """Condition, grounding and reachability attachments over the surfaces of one room.
+
+    robot, room (``octoreach.rooms.Room``), caps {arm: CapabilityMap with solutions}, maps {surface: combined
+    SurfaceMap (either arm)}. ``Attachments.build`` makes the maps. Counters: ``ik_calls`` (IK targets solved
+    by the reachability attachment), ``condition_calls``, ``pruned`` (reachability questions answered by the
+    condition alone)."""
+
+    robot: Robot
+    room: object
+    caps: dict
+    maps: dict
+    seed: int = 0
+    attempts: int = 8  # IK restarts per grasp of the reachability check (the map tests use 20)
+    candidates: int | None = None  # PoseSampler candidates per sample (None: its default, the paper's 40)
+    _samplers: dict = field(default_factory=dict, repr=False)
+    _checks: dict = field(default_factory=dict, repr=False)
+    _cache: dict = field(default_factory=dict, repr=False)
+    condition_calls: int = 0
+    pruned: int = 0
+
+    @classmethod
+    def build(cls, robot: Robot, room, resolution: float = 0.1, directions: int | None = None, caps: dict = None,
+              seed: int = 0, progress: bool = False, **kwargs) -> "Attachments":
+        """Capability maps of every arm of the robot (unless `caps` gives them; `directions` None: the
+        CapabilityMapOptions default) and one combined surface map per surface of `room`, each built with the
+        room's other obstacles (``Room.surface_maps``)."""
+        if caps is None:
+            extra = {} if directions is None else {"directions": directions}
+            caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, seed=seed, progress=progress,
+                                                   **extra) for arm in _arms.find_arms(robot)}
+        if not caps:
+            raise ValueError("the robot has no arm to grasp with")
+        per_arm = [room.surface_maps(robot, cap, progress=progress, resolution=resolution, z_range=(0, 0),
+                                     grasp_height=OBJECT_HEIGHT) for cap in caps.values()]
+        maps = {name: SurfaceMap.combine([m[name] for m in per_arm], "max") for name in room.surfaces}
+        return cls(robot=robot, room=room, caps=dict(caps), maps=maps, seed=seed, **kwargs)
+
+    # ------------------------------------------------------------------ condition
+    def condition(self, pose, surface: str) -> float:
+        """R_S of base pose (x, y, z, theta) at `surface` (0: the robot cannot work at it from there)."""
+        self.condition_calls += 1
+        return float(self._map(surface).reachability(np.asarray(pose, float).reshape(1, 4))[0])
+
+    def _map(self, surface: str) -> SurfaceMap:
+        try:
+            return self.maps[surface]
+        except KeyError:
+            raise KeyError(f"no surface {surface!r} (surfaces: {', '.join(self.maps)})") from None
+
+    # ------------------------------------------------------------------ grounding
+    def sampler(self, surface: str) -> PoseSampler:
+        """The surface's PoseSampler (made on first use, kept: its history is every pose drawn so far)."""
+        if surface not in self._samplers:
+            arm = next(iter(self.caps))
+            reference = _arms.default_reference(self.robot, arm)
+            index = list(self.maps).index(surface) if surface in self.maps else 0
+            extra = {} if self.candidates is None else {"candidates": self.candidates}
+            self._samplers[surface] = PoseSampler(self._map(surface), seed=self.seed * 1009 + index,
+                                                  in_collision=(self.robot, self.room.obstacles(), reference), **extra)
+        return self._samplers[surface]
+
+    def ground(self, surface: str, k: int = 1) -> np.ndarray:
+        """k new base poses (k, 4) for `surface`, discounted against every pose drawn for it so far (fewer rows
+        when the sampler finds no valid candidate: a surface no pose reaches gives (0, 4))."""
+        if k < 1:
+            raise ValueError(f"k must be at least 1, got {k!r}")
+        sampler = self.sampler(surface)
+        out = []
+        for _ in range(k):
+            pose = sampler.sample()
+            if pose is None:
+                break
+            out.append(np.asarray(pose, float))
+        return np.array(out).reshape(-1, 4)
+
+    def reset(self, seed: int | None = None) -> None:
+        """A new task: forget the poses drawn so far (with a `seed`, the samplers start new random streams from
+        it). The reachability answers stay cached: they depend on the pose and point only."""
+        if seed is not None:
+            self.seed = int(seed)
+            self._samplers.clear()
+        for sampler in self._samplers.values():
+            sampler.reset()
+
+    # ------------------------------------------------------------------ reachability
+    def reach(self, pose, point, surface: str) -> dict:
+        """{arm: R_P} of grasping an object at `point` (x, y, z of its base on `surface`, world frame) from base
+        pose `pose`: the share of grasps each arm reaches by IK. Empty when the condition attachment rejects
+        the pose (R_S = 0 at that surface): no IK is run then."""
+        pose = np.asarray(pose, float).reshape(4)
+        key = (tuple(np.round(pose, 6)), tuple(np.round(np.asarray(point, float), 6)), surface)
+        if key in self._cache:
+            return self._cache[key]
+        if self.condition(pose, surface) <= 0.0:
+            self.pruned += 1
+            self._cache[key] = {}
+            return {}
+        target = np.asarray(point, float).reshape(1, 3) + OBJECT_HEIGHT * np.asarray(self.room.surfaces[surface].normal)
+        out = {}
+        for arm, cap in self.caps.items():
+            check = self._check(arm, surface)
+            in_arm = check.frames(pose)[1] @ np.append(target[0], 1.0)
+            if cap.reachability(in_arm[None, :3])[0] <= 0.0:  # no reachable direction in its voxel: skip IK
+                continue
+            share = float(check.shares(pose, target)[0])
+            if share > 0.0:
+                out[arm] = share
+        self._cache[key] = out
+        return out
+
+    def _check(self, arm: str, surface: str) -> GraspCheck:
+        if (arm, surface) not in self._checks:
+            self._checks[(arm, surface)] = GraspCheck(self.robot, self.caps[arm], self.room.surfaces[surface],
+                                                      attempts=self.attempts, seed=self.seed,
+                                                      obstacles=self.room.obstacles(without=surface))
+        return self._checks[(arm, surface)]
+
+    @property
+    def ik_calls(self) -> int:
+        """IK targets solved by the reachability attachment so far."""
+        return sum(c.ik_calls for c in self._checks.values())
