@@ -56,7 +56,7 @@ fuzz: install
 # Sanitizer builds, each in its own build directory: AddressSanitizer + UndefinedBehaviorSanitizer
 # (the library, the C++ tests and the Python module; ctest, then the fuzz suite and the robustness
 # tests with the ASan runtime preloaded into the interpreter), and ThreadSanitizer (the C++ threads test).
-SAN_CMAKE = cmake -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBUILD_TESTING=ON \
+SAN_CMAKE = cmake -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" -DBUILD_TESTING=ON \
   -Dpybind11_DIR=$$($(PY) -c 'import pybind11; print(pybind11.get_cmake_dir())') -DPython_EXECUTABLE=$(PY)
 test-sanitize: install
 	$(SAN_CMAKE) -S . -B build/asan -DOCTOREACH_SANITIZE=address -DOCTOREACH_PYTHON=ON

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import octoreach
-from robust_util import absurd_bt, forge, interrupt_latency, read_map, run_python, write_map
+from robust_util import absurd_bt, bt_file, forge, interrupt_latency, read_map, run_python, write_map
 
 NAN, INF = float("nan"), float("inf")
 
@@ -54,43 +54,77 @@ def test_exploration_map_concurrent_insert_and_reads_do_not_crash():
     assert child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
 
+ISSUE_REPRODUCER = ("import threading,numpy as np,octoreach as o;m=o.ExplorationMap(resolution=0.05);"
+                    "p=np.random.default_rng(0).uniform([1,-1,0],[2,1,1],(20000,3));"
+                    "t=threading.Thread(target=lambda:[m.insert(p+0.01*i,[0,0,.5]) for i in range(40)]);t.start();"
+                    "[(m.snapshot(),m.cells('frontier')) for _ in iter(t.is_alive,False)]")
+
+
+def test_issue_reproducer_of_the_exploration_map_crash():
+    # The reproducer of issue 12, verbatim: SIGABRT (malloc(): invalid size) or SIGSEGV before the map had a lock.
+    child = run_python(ISSUE_REPRODUCER + "\nprint('OK')", timeout=600)
+    assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"
+    assert not child.hung and child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
+
+
 def test_next_best_view_runs_while_another_thread_inserts():
+    # next_best_view and accumulate_utility read the map (GIL released) while inserts rewrite it: two
+    # inserting threads with big clouds keep the map changing under every view search.
     child = run_python("""
         import threading, numpy as np, octoreach as o
-        m = o.ExplorationMap(resolution=0.05)
+        m = o.ExplorationMap(resolution=0.04)
         rng = np.random.default_rng(1)
-        p = rng.uniform([1, -1, 0], [2, 1, 1], (6000, 3))
+        p = rng.uniform([1, -1, 0], [2, 1, 1], (20000, 3))
         m.insert(p, [0, 0, .5])
         cam = o.DepthCamera(32, 24, 1.0, 3.0)
-        t = threading.Thread(target=lambda: [m.insert(p + 0.01 * i, [0, 0, .5]) for i in range(10)])
-        t.start()
-        while t.is_alive():
-            o.next_best_view(m, cam)
+        def inserts(k):
+            for i in range(25):
+                m.insert(p + 0.013 * i * k, [0, 0.1 * k, .5])
+        ts = [threading.Thread(target=inserts, args=(k,)) for k in (1, -1)]
+        for t in ts: t.start()
+        n = 0
+        while any(t.is_alive() for t in ts):
+            o.next_best_view(m, cam, max_valid_poses=20)
             o._core.accumulate_utility(m, 2.0)
-        t.join()
-        print('OK')
-    """, timeout=300)
+            n += 1
+        for t in ts: t.join()
+        s, r = m.snapshot(), m.recompute_from_scratch()
+        assert np.array_equal(s['frontier_cells'], r['frontier_cells'])
+        print('OK', n)
+    """, timeout=600)
+    assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"
     assert child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
 
 def test_scene_add_while_capturing_is_safe():
+    # add_mesh rebuilds the scene's ray-cast structure; captures (GIL released, every core) read it at the
+    # same time. Big meshes make that structure large (freed memory goes back to the system at once).
     child = run_python("""
         import threading, numpy as np, octoreach as o
         s = o.Scene()
         s.add_box([1, -1, 0], [1.2, 1, 1])
-        cam = o.DepthCamera(64, 48, 1.0, 4.0, 0.001)
+        cam = o.DepthCamera(160, 120, 1.0, 4.0, 0.001)
         pose = o._core.look_at([0, 0, 0.5], [1, 0, 0.5])
+        g = np.linspace(0, 1, 60)
+        yy, zz = np.meshgrid(g, g)
+        grid = np.column_stack([np.zeros(yy.size), yy.ravel() - 0.5, zz.ravel()])
+        idx = np.arange(60 * 60).reshape(60, 60)
+        tris = np.concatenate([np.stack([idx[:-1, :-1], idx[1:, :-1], idx[:-1, 1:]], -1).reshape(-1, 3),
+                               np.stack([idx[1:, 1:], idx[:-1, 1:], idx[1:, :-1]], -1).reshape(-1, 3)])
         def add():
-            for i in range(300):
-                s.add_box([1.5 + 0.01 * i, -1, 0], [1.6 + 0.01 * i, 1, 1])
-                s.add_mesh(np.array([[2, 0, 0], [2, 1, 0], [2, 0, 1.0]]) + 0.001 * i, np.array([[0, 1, 2]]))
+            for i in range(60):
+                s.add_mesh(grid + [1.5 + 0.02 * i, 0, 0], tris)
+                s.add_box([1.5 + 0.01 * i, -1, 0], [1.51 + 0.01 * i, -0.9, 1])
         t = threading.Thread(target=add)
         t.start()
+        n = 0
         while t.is_alive():
             cam.capture(s, pose)
+            n += 1
         t.join()
-        print('OK')
-    """, timeout=300)
+        print('OK', n, s.triangle_count)
+    """, timeout=600)
+    assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"
     assert child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
 
@@ -154,6 +188,54 @@ def test_from_file_cell_limit_is_stated_and_adjustable(tmp_path):
     again = octoreach.ExplorationMap.from_file(str(tmp_path / "m.bt"), max_cells=total)
     d = again.occupancy_digest()  # .bt keeps the classes, not the exact log-odds
     assert (d["free"], d["occupied"]) == (n["free"], n["occupied"])
+
+
+def test_one_flipped_bit_in_a_small_valid_bt_is_rejected_not_expanded(tmp_path):
+    # A valid .bt of a few hundred bytes; each single-bit flip of its root node turns a subtree into a
+    # leaf at depth 1 (2^45 cells) or back: the old loader expanded such leaves cell by cell (bad_alloc
+    # after gigabytes). Every variant must load or raise OSError, in bounded memory.
+    m = octoreach.ExplorationMap(resolution=0.1)
+    m.insert(np.random.default_rng(3).uniform([1, -0.4, 0], [1.4, 0.4, 0.4], (60, 3)), [0, 0, 0.2])
+    m.write_bt(str(tmp_path / "ok.bt"))
+    data = (tmp_path / "ok.bt").read_bytes()
+    assert len(data) < 4000
+    root = data.index(b"data\n") + 5
+    paths = []
+    for bit in range(16):
+        b = bytearray(data)
+        b[root + bit // 8] ^= 1 << (bit % 8)
+        paths.append(str(tmp_path / f"flip{bit}.bt"))
+        open(paths[-1], "wb").write(bytes(b))
+    child = run_python(f"""
+        import octoreach as o
+        for p in {paths!r}:
+            try:
+                o.ExplorationMap.from_file(p)
+                print('loaded')
+            except OSError as e:
+                print('OSError', e)
+    """, timeout=120, mem_bytes=2 << 30)
+    assert not child.hung and not child.crashed, child.stderr[-2000:]
+    assert child.returncode == 0, child.stderr[-2000:]
+    lines = child.stdout.splitlines()
+    assert len(lines) == 16 and any("cells" in line for line in lines), child.stdout
+
+
+def test_forged_direction_count_is_rejected_quickly(small_maps, tmp_path):
+    # directions=100000 in a forged header: the old loader built that OrientationSet quadratically (minutes)
+    # before finding that the payload does not match.
+    _, _, _, d = small_maps
+    forge(d / "cap.orcm", tmp_path / "dirs.orcm", directions=100000)
+    child = run_python(f"""
+        import octoreach as o
+        try:
+            o.CapabilityMap.load({str(tmp_path / 'dirs.orcm')!r})
+            print('loaded')
+        except OSError as e:
+            print('OSError', e)
+    """, timeout=120)
+    assert not child.hung, "CapabilityMap.load of a forged direction count did not return"
+    assert child.returncode == 0 and "OSError" in child.stdout, child.stderr[-2000:]
 
 
 def test_bt_with_absurd_resolution_is_rejected(tmp_path):
@@ -298,6 +380,33 @@ except o.Cancelled:
     assert latency < 3.0
 
 
+def big_bt(path, chain_depth: int = 9) -> None:
+    """A valid .bt: a chain of inner nodes, then 4 occupied and 4 free leaves at depth chain_depth + 1
+    (depth 10: 8 x 2^18 = 2.1 M cells at the finest resolution, under the default cell limit)."""
+    path.write_bytes(bt_file([b"\x03\x00"] * chain_depth + [b"\xaa\x55"], size=chain_depth + 9, res=0.02))
+
+
+def test_from_file_stops_on_ctrl_c(tmp_path):
+    big_bt(tmp_path / "big.bt")
+    code = f"""
+import sys, time, octoreach as o
+print('READY', flush=True)
+t0 = time.monotonic()
+try:
+    m = o.ExplorationMap.from_file({str(tmp_path / 'big.bt')!r})
+    print('FINISHED', time.monotonic() - t0, flush=True)
+except KeyboardInterrupt as e:
+    print('CANCELLED', type(e).__name__, flush=True)
+    sys.exit(3)
+"""
+    child, latency = interrupt_latency(code, delay=0.3, timeout=120)
+    assert child.returncode is not None, "from_file still running 120 s after Ctrl-C"
+    assert "FINISHED" not in child.stdout, f"from_file finished before the signal: {child.stdout}"
+    assert child.returncode == 3 and "CANCELLED" in child.stdout, (child.returncode, child.stderr[-2000:])
+    print(f"from_file: exit {latency:.3f} s after SIGINT")
+    assert latency < 3.0, f"{latency:.2f} s from Ctrl-C to exit"  # interrupted before completion (target 0.5 s)
+
+
 def test_cancelled_is_a_keyboard_interrupt():
     assert issubclass(octoreach.Cancelled, KeyboardInterrupt)
 
@@ -354,7 +463,8 @@ print('TEMPS', [f for f in os.listdir(os.path.dirname({str(path)!r})) if '.tmp.'
 """
 
 
-@pytest.mark.parametrize("kind", ["write_bt", "capability_octovis", "capability_save"])
+@pytest.mark.parametrize("kind", ["write_bt", "capability_octovis", "capability_save", "surface_octovis",
+                                  "point_octovis"])
 def test_full_disk_raises_and_keeps_the_old_file(kind, tmp_path):
     path = tmp_path / "out.bin"
     setup = {
@@ -368,6 +478,15 @@ write = c.export_octovis""",
         "capability_save": """
 c = o.CapabilityMap.build(o.robots.test_arm().chain('base_link', 'tool0'), resolution=0.05, directions=24, progress=False)
 write = lambda p: c.save(p, with_solutions=True)""",
+        "surface_octovis": """
+r = o.robots.test_arm()
+c = o.CapabilityMap.build(r.chain('base_link', 'tool0'), resolution=0.1, directions=24, progress=False)
+s = o.SurfaceMap.build(r, c, o.Surface.rectangle(2.0, 2.0, 0.4), resolution=0.02, z_range=(0, 0), progress=False)
+write = s.export_octovis""",
+        "point_octovis": """
+r = o.robots.test_arm()
+c = o.CapabilityMap.build(r.chain('base_link', 'tool0'), resolution=0.05, directions=24, progress=False)
+write = o.InversePointMap.build(r, c, theta_bins=8, progress=False).export_octovis""",
     }[kind]
     code = setup + f"\nopen({str(path)!r}, 'wb').write(b'old contents')\n"
     child = run_python(_fsize_child(code, path), timeout=120)
@@ -378,6 +497,7 @@ write = lambda p: c.save(p, with_solutions=True)""",
 def test_forged_headers_are_rejected(small_maps, tmp_path):
     robot, cap, sm, d = small_maps
     cases = [
+        ("cap.orcm", dict(dof="5"), octoreach.CapabilityMap.load),  # the stored solutions have 6 joints
         ("cap.orcm", dict(approach_axis="0 0 0"), octoreach.CapabilityMap.load),
         ("cap.orcm", dict(approach_axis="nan 0 1"), octoreach.CapabilityMap.load),
         ("cap.orcm", dict(approach_axis="0 0 2"), octoreach.CapabilityMap.load),
