@@ -105,7 +105,7 @@ void wrap_chain(py::module_& m) {
              return c.random_configuration(rng);
            }, py::arg("seed") = 0)
       .def("to_robot_configuration", [](const Chain& c, const py::object& q, const py::object& reference) {
-             Eigen::VectorXd ref = reference.is_none() ? Eigen::VectorXd() : robot_q(c.robot(), reference);
+             Eigen::VectorXd ref = reference.is_none() ? Eigen::VectorXd() : robot_q(c.robot(), reference, "reference");
              return c.to_robot_configuration(q_from(c, q), ref);
            }, py::arg("q"), py::arg("reference") = py::none(),
            "Full robot configuration with this chain's joints set to q, the rest from `reference` (default home).")
@@ -113,7 +113,7 @@ void wrap_chain(py::module_& m) {
                     double rt, int attempts, int iters, std::uint64_t rng_seed, const Eigen::Vector3d& axis,
                     bool self_col, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
                     const py::object& reference, const py::object& obstacle_links) -> py::object {
-             Pose target = pose_from(T, "target");
+             Pose target = pose_from(T, "T (the target pose)");
              IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
                                         base_pose, reference, obstacle_links);
              Eigen::VectorXd s;

@@ -44,6 +44,8 @@ void def_workspace(py::class_<NbvOptions>& cls) {
         return o.workspace.filter ? py::cast(o.workspace.filter) : py::object(py::none());
       }, [](NbvOptions& o, const py::object& fn) {
         if (fn.is_none()) return void(o.workspace.filter = nullptr);
+        if (!PyCallable_Check(fn.ptr()))
+          throw py::type_error("workspace must be a callable (N, 3) -> (N,) bools or None, got " + type_name(fn));
         o.workspace.filter = [fn](const std::vector<Eigen::Vector3d>& pts) {
           py::gil_scoped_acquire gil;
           py::object r = fn(to_points(pts));

@@ -33,26 +33,31 @@ def small_maps(tmp_path_factory):
 # ---- 1. threads ----
 
 def test_exploration_map_concurrent_insert_and_reads_do_not_crash():
-    # The reproducer of the issue (shortened): insert in one thread, snapshot/cells/frontier_voids in another.
+    # Insert in one thread, every reading method in another (three maps in turn).
     child = run_python("""
         import threading, numpy as np, octoreach as o
-        m = o.ExplorationMap(resolution=0.05)
-        p = np.random.default_rng(0).uniform([1, -1, 0], [2, 1, 1], (8000, 3))
-        t = threading.Thread(target=lambda: [m.insert(p + 0.01 * i, [0, 0, .5]) for i in range(15)])
-        t.start()
+        p = np.random.default_rng(0).uniform([1, -1, 0], [2, 1, 1], (20000, 3))
         n = 0
-        while t.is_alive():
-            m.snapshot(); m.cells('frontier'); m.frontier_voids(); m.void_clusters(); m.changed_keys()
-            m.occupancy_digest(); m.inside_hull([1.5, 0, 0.5]); m.state(p[:100])
-            n += 1
-        t.join()
-        s = m.snapshot(); r = m.recompute_from_scratch()
-        assert np.array_equal(s['frontier_cells'], r['frontier_cells'])
+        for _ in range(3):
+            m = o.ExplorationMap(resolution=0.05)
+            t = threading.Thread(target=lambda: [m.insert(p + 0.01 * i, [0, 0, .5]) for i in range(30)])
+            t.start()
+            while t.is_alive():
+                m.snapshot(); m.cells('frontier'); m.frontier_voids(); m.void_clusters(); m.changed_keys()
+                m.occupancy_digest(); m.inside_hull([1.5, 0, 0.5]); m.state(p[:100])
+                n += 1
+            t.join()
+            s = m.snapshot(); r = m.recompute_from_scratch()
+            assert np.array_equal(s['frontier_cells'], r['frontier_cells'])
         print('OK', n)
-    """, timeout=300)
+    """, timeout=300, env=UNMAP_FREED)
     assert not child.crashed and not child.hung, child.stderr[-2000:]
     assert child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
+
+# glibc returns every block of 64 KiB or more to the system when it is freed (no dynamic threshold): a
+# reader still using a freed buffer faults at once instead of reading stale memory.
+UNMAP_FREED = {"MALLOC_MMAP_THRESHOLD_": "65536"}
 
 ISSUE_REPRODUCER = ("import threading,numpy as np,octoreach as o;m=o.ExplorationMap(resolution=0.05);"
                     "p=np.random.default_rng(0).uniform([1,-1,0],[2,1,1],(20000,3));"
@@ -61,8 +66,9 @@ ISSUE_REPRODUCER = ("import threading,numpy as np,octoreach as o;m=o.Exploration
 
 
 def test_issue_reproducer_of_the_exploration_map_crash():
-    # The reproducer of issue 12, verbatim: SIGABRT (malloc(): invalid size) or SIGSEGV before the map had a lock.
-    child = run_python(ISSUE_REPRODUCER + "\nprint('OK')", timeout=600)
+    # The reproducer of issue 12, verbatim, three times (each with a new map): SIGABRT (malloc(): invalid size)
+    # or SIGSEGV before the map had a lock (about one run in two crashed).
+    child = run_python("for _ in range(3):\n    " + ISSUE_REPRODUCER + "\nprint('OK')", timeout=600)
     assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"
     assert not child.hung and child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
@@ -91,30 +97,32 @@ def test_next_best_view_runs_while_another_thread_inserts():
         s, r = m.snapshot(), m.recompute_from_scratch()
         assert np.array_equal(s['frontier_cells'], r['frontier_cells'])
         print('OK', n)
-    """, timeout=600)
+    """, timeout=600, env=UNMAP_FREED)
     assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"
     assert child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
 
 def test_scene_add_while_capturing_is_safe():
-    # add_mesh rebuilds the scene's ray-cast structure; captures (GIL released, every core) read it at the
-    # same time. Big meshes make that structure large (freed memory goes back to the system at once).
+    # add_mesh rebuilds the scene's ray-cast structure while a capture (GIL released, every core) reads it:
+    # the adding thread runs whenever the capture has released the GIL, so every capture sees many rebuilds.
     child = run_python("""
         import threading, numpy as np, octoreach as o
         s = o.Scene()
-        s.add_box([1, -1, 0], [1.2, 1, 1])
-        cam = o.DepthCamera(160, 120, 1.0, 4.0, 0.001)
-        pose = o._core.look_at([0, 0, 0.5], [1, 0, 0.5])
-        g = np.linspace(0, 1, 60)
+        s.add_box([3.5, -2, 0], [3.7, 2, 1])  # a wall behind the patches: every ray goes through the mesh structure
+        cam = o.DepthCamera(320, 240, 1.2, 4.0, 0.001)
+        pose = np.array([[0, 0, 1, 0], [-1, 0, 0, 0], [0, -1, 0, 0.5], [0, 0, 0, 1.0]])  # at (0, 0, 0.5) looking along +x
+        g = np.linspace(0, 0.3, 8)
         yy, zz = np.meshgrid(g, g)
-        grid = np.column_stack([np.zeros(yy.size), yy.ravel() - 0.5, zz.ravel()])
-        idx = np.arange(60 * 60).reshape(60, 60)
+        patch = np.column_stack([np.zeros(yy.size), yy.ravel(), zz.ravel()])
+        idx = np.arange(64).reshape(8, 8)
         tris = np.concatenate([np.stack([idx[:-1, :-1], idx[1:, :-1], idx[:-1, 1:]], -1).reshape(-1, 3),
                                np.stack([idx[1:, 1:], idx[:-1, 1:], idx[1:, :-1]], -1).reshape(-1, 3)])
+        rng = np.random.default_rng(0)
         def add():
-            for i in range(60):
-                s.add_mesh(grid + [1.5 + 0.02 * i, 0, 0], tris)
-                s.add_box([1.5 + 0.01 * i, -1, 0], [1.51 + 0.01 * i, -0.9, 1])
+            for i in range(300):
+                s.add_mesh(patch + [rng.uniform(1.3, 3), rng.uniform(-1.5, 1.2), rng.uniform(0, 0.8)], tris)
+                if i % 10 == 0:
+                    s.add_box([3.4, -1 + 0.005 * i, 0], [3.41, -0.99 + 0.005 * i, 1])
         t = threading.Thread(target=add)
         t.start()
         n = 0
@@ -123,7 +131,7 @@ def test_scene_add_while_capturing_is_safe():
             n += 1
         t.join()
         print('OK', n, s.triangle_count)
-    """, timeout=600)
+    """, timeout=600, env=UNMAP_FREED)
     assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"
     assert child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
@@ -137,6 +145,12 @@ def test_chain_wrap_and_ik_do_not_hang_on_huge_values(arm_chain):
         for v in (1e17, -1e17, 1e300, np.inf, -np.inf):
             q = c.wrap(np.full(c.dof, v))
             assert q.shape == (c.dof,)
+        T0 = c.fk(np.zeros(c.dof))
+        for v in (1e17, 1e300):  # a huge seed: wrapped into the limits or refused, never looped over
+            try:
+                c.ik(T0, seed=np.full(c.dof, v), attempts=1)
+            except ValueError:
+                pass
         T = np.eye(4); T[:3, 3] = (1e20, 0, 0)
         assert c.ik(T, attempts=3) is None
         assert c.ik_batch(np.stack([T, T]), attempts=2)[1].sum() == 0
@@ -190,35 +204,38 @@ def test_from_file_cell_limit_is_stated_and_adjustable(tmp_path):
     assert (d["free"], d["occupied"]) == (n["free"], n["occupied"])
 
 
-def test_one_flipped_bit_in_a_small_valid_bt_is_rejected_not_expanded(tmp_path):
-    # A valid .bt of a few hundred bytes; each single-bit flip of its root node turns a subtree into a
-    # leaf at depth 1 (2^45 cells) or back: the old loader expanded such leaves cell by cell (bad_alloc
-    # after gigabytes). Every variant must load or raise OSError, in bounded memory.
+def test_one_changed_byte_in_a_small_valid_bt_is_rejected_not_expanded(tmp_path):
+    # A valid .bt of 290 bytes; one byte of its node data replaced can turn unknown children into leaves
+    # near the root (2^42 cells and more): the old loader expanded them cell by cell (MemoryError after
+    # gigabytes). Every variant must load or raise OSError, in bounded memory.
     m = octoreach.ExplorationMap(resolution=0.1)
     m.insert(np.random.default_rng(3).uniform([1, -0.4, 0], [1.4, 0.4, 0.4], (60, 3)), [0, 0, 0.2])
     m.write_bt(str(tmp_path / "ok.bt"))
     data = (tmp_path / "ok.bt").read_bytes()
     assert len(data) < 4000
     root = data.index(b"data\n") + 5
-    paths = []
-    for bit in range(16):
-        b = bytearray(data)
-        b[root + bit // 8] ^= 1 << (bit % 8)
-        paths.append(str(tmp_path / f"flip{bit}.bt"))
-        open(paths[-1], "wb").write(bytes(b))
     child = run_python(f"""
         import octoreach as o
-        for p in {paths!r}:
-            try:
-                o.ExplorationMap.from_file(p)
-                print('loaded')
-            except OSError as e:
-                print('OSError', e)
-    """, timeout=120, mem_bytes=2 << 30)
+        data = open({str(tmp_path / 'ok.bt')!r}, 'rb').read()
+        counts = dict(loaded=0, oserror=0, cells=0, other=[])
+        for pos in range({root}, len(data)):
+            for v in (0x0f, 0xf0, 0x30, 0x03):
+                b = bytearray(data); b[pos] = v
+                open({str(tmp_path / 'f.bt')!r}, 'wb').write(bytes(b))
+                try:
+                    o.ExplorationMap.from_file({str(tmp_path / 'f.bt')!r})
+                    counts['loaded'] += 1
+                except OSError as e:
+                    counts['oserror'] += 1
+                    counts['cells'] += 'cells' in str(e)
+                except BaseException as e:
+                    counts['other'].append((pos, v, type(e).__name__))
+        print(counts)
+    """, timeout=300, mem_bytes=2 << 30)
     assert not child.hung and not child.crashed, child.stderr[-2000:]
     assert child.returncode == 0, child.stderr[-2000:]
-    lines = child.stdout.splitlines()
-    assert len(lines) == 16 and any("cells" in line for line in lines), child.stdout
+    counts = eval(child.stdout.strip().splitlines()[-1])
+    assert counts["other"] == [] and counts["cells"] > 0, counts
 
 
 def test_forged_direction_count_is_rejected_quickly(small_maps, tmp_path):
@@ -332,7 +349,7 @@ o.InversePointMap.build(robot, cap, theta_bins=64, resolution=0.02, progress=Fal
     "ik_batch": """
 T = chain.fk_batch(np.zeros((1, chain.dof)))[0].copy(); T[0, 3] += 5.0
 print('READY', flush=True)
-chain.ik_batch(np.repeat(T[None], 200000, axis=0), attempts=50)""",
+chain.ik_batch(np.repeat(T[None], 200000, axis=0), attempts=2000)""",
     "ik_many_attempts": """
 T = chain.fk_batch(np.zeros((1, chain.dof)))[0].copy(); T[0, 3] += 5.0
 print('READY', flush=True)
