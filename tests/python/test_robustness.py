@@ -377,7 +377,7 @@ except KeyboardInterrupt as e:  # octoreach.Cancelled inside a call, KeyboardInt
     assert latency < 3.0, f"{case}: {latency:.2f} s from Ctrl-C to exit"
 
 
-def test_pose_sampler_and_from_file_stop_on_ctrl_c(small_maps, tmp_path):
+def test_pose_sampler_stops_on_ctrl_c(small_maps, tmp_path):
     _, _, sm, d = small_maps
     code = f"""
 import sys, octoreach as o
