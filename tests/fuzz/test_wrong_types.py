@@ -38,22 +38,12 @@ WRONG = Wrong()
 # ---- a valid world: one instance of each class, and valid values by argument name ----
 
 @pytest.fixture(scope="module")
-def world(tmp_path_factory):
+def sweep(world, tmp_path_factory):
     d = tmp_path_factory.mktemp("wrong_types")
-    robot = o.robots.test_arm()
-    chain = robot.chain("base_link", "tool0")
-    cap = o.CapabilityMap.build(chain, resolution=0.2, directions=16, progress=False, seed=1)
-    surface = o.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)
-    sm = o.SurfaceMap.build(robot, cap, surface, resolution=0.2, theta_bins=8, z_range=(0, 0), progress=False)
-    pm = o.InversePointMap.build(robot, cap, theta_bins=8, progress=False)
-    m = o.ExplorationMap(resolution=0.1)
-    m.insert(np.random.default_rng(0).uniform([1, -0.5, 0], [1.6, 0.5, 0.6], (800, 3)), [0, 0, 0.3])
+    robot, chain, cap, surface, sm, pm, m, scene, obs = (world[k] for k in ("robot", "chain", "cap", "surface", "sm",
+                                                                            "pm", "m", "scene", "obs"))
     m.write_bt(str(d / "m.bt"))
     cap.save(str(d / "cap.orcm"))
-    scene = o.Scene()
-    scene.add_box([1, -1, 0], [1.2, 1, 1])
-    obs = o.Obstacles()
-    obs.add_box([0.2, 0.2, 0.2], np.eye(4))
     cam = o.DepthCamera(16, 12, 1.0, 3.0)
     arm = o.Arm.from_links(robot, "base_link", "tool0")
     clusters = m.void_clusters()
@@ -148,9 +138,9 @@ def public_callables():
 
 # ---- values ----
 
-def valid_value(world, fname: str, pname: str, ann: str):
-    bn = world["by_name"]
-    inst = world["instances"]
+def valid_value(sweep, fname: str, pname: str, ann: str):
+    bn = sweep["by_name"]
+    inst = sweep["instances"]
     for cls, v in inst.items():
         if ann == cls or ann.endswith("." + cls):
             return v
@@ -211,7 +201,7 @@ def _call(target, args, kwargs):
     return target(*args, **kwargs)
 
 
-def _target(world, owner, attr):
+def _target(sweep, owner, attr):
     if owner is None:
         return getattr(_core, attr), False
     v = vars(owner)[attr]
@@ -219,16 +209,16 @@ def _target(world, owner, attr):
         return owner, False
     if isinstance(v, staticmethod) or type(v).__name__ == "builtin_function_or_method":
         return getattr(owner, attr), False
-    inst = world["instances"].get(owner.__name__)
+    inst = sweep["instances"].get(owner.__name__)
     if inst is None:
         return None, True
     return getattr(inst, attr), False
 
 
-def sweep_core(world):
+def sweep_core(sweep):
     """Yields (label, pname, ann, exception or None, wrong value) for every argument of every callable."""
     for label, owner, attr in public_callables():
-        target, skip = _target(world, owner, attr)
+        target, skip = _target(sweep, owner, attr)
         if skip or target is None:
             continue
         doc_owner = vars(owner)[attr] if owner is not None else target
@@ -239,7 +229,7 @@ def sweep_core(world):
                 for w in wrong_values(ann):
                     args = []
                     for j, (qn, qa, qd) in enumerate(params[: max(i + 1, _required(params))]):
-                        args.append(w if j == i else valid_value(world, label, qn, qa))
+                        args.append(w if j == i else valid_value(sweep, label, qn, qa))
                     try:
                         _call(target, args, {})
                         err = None
@@ -274,8 +264,8 @@ def _collect(results):
     return n, findings, accepted
 
 
-def test_every_bound_argument_rejects_a_wrong_type(world):
-    n, findings, accepted = _collect(sweep_core(world))
+def test_every_bound_argument_rejects_a_wrong_type(sweep):
+    n, findings, accepted = _collect(sweep_core(sweep))
     print(f"swept {n} calls")
     assert n > 500
     assert not findings, "\n".join(findings[:40])
@@ -294,20 +284,20 @@ KWARG_OPTIONS = {
 }
 
 
-def test_every_options_keyword_and_field_rejects_a_wrong_type(world):
+def test_every_options_keyword_and_field_rejects_a_wrong_type(sweep):
     def results():
         for (cls, fn), (opts, args) in KWARG_OPTIONS.items():
-            target = getattr(world["instances"]["Robot"], fn) if cls == "Robot" else getattr(getattr(_core, cls), fn)
+            target = getattr(sweep["instances"]["Robot"], fn) if cls == "Robot" else getattr(getattr(_core, cls), fn)
             fields = [k for k, v in vars(getattr(_core, opts)).items() if isinstance(v, property) and v.fset]
             assert fields, opts
             for field in fields:
                 for w in (WRONG, [WRONG]):
-                    yield f"{cls}.{fn}", field, "", _run(lambda: target(*args(world), progress=False, **{field: w})), w
+                    yield f"{cls}.{fn}", field, "", _run(lambda: target(*args(sweep), progress=False, **{field: w})), w
         # the options classes themselves: every settable field
         for cname, obj in vars(_core).items():
             if not inspect.isclass(obj):
                 continue
-            inst = world["instances"].get(cname)
+            inst = sweep["instances"].get(cname)
             for field, v in vars(obj).items():
                 if isinstance(v, property) and v.fset is not None and inst is not None:
                     for w in (WRONG, [WRONG]):
@@ -321,10 +311,10 @@ def test_every_options_keyword_and_field_rejects_a_wrong_type(world):
 
 # ---- the Python entry points ----
 
-def python_entry_points(world):
+def python_entry_points(sweep):
     """(label, callable, [(name, valid value)]) of every public function of the Python modules users call."""
-    robot, chain, cap, surface = (world["by_name"][k] for k in ("robot", "chain", "capability_map", "surface"))
-    urdf = world["by_name"]["urdf"]
+    robot, chain, cap, surface = (sweep["by_name"][k] for k in ("robot", "chain", "capability_map", "surface"))
+    urdf = sweep["by_name"]["urdf"]
     valid = {"robot": robot, "arm": ("base_link", "tool0"), "chain": chain, "capability_map": cap, "surface": surface,
              "poses": np.zeros((1, 4)), "urdf": urdf, "package_dirs": [], "srdf": None, "allowed_collisions": "srdf",
              "srdf_given": True, "name": "t", "size_x": 1.0, "size_y": 0.8, "height": 0.7, "width": 1.0, "depth": 0.4,
@@ -346,8 +336,8 @@ def python_entry_points(world):
          ("grasps", "upper_hemisphere"), ("resolution", 0.3), ("grasp_height", 0.05), ("attempts", 2), ("seed", 0),
          ("obstacles", None)]
     yield "rooms.Room", o.rooms.Room, [("description", None), ("base_dir", ".")]
-    yield "rooms.Room.load", o.rooms.Room.load, [("path", world["dir"] / "room.json")]
-    yield "rooms.surface_from_file", o.rooms.surface_from_file, [("path", world["dir"] / "room.json")]
+    yield "rooms.Room.load", o.rooms.Room.load, [("path", sweep["dir"] / "room.json")]
+    yield "rooms.surface_from_file", o.rooms.surface_from_file, [("path", sweep["dir"] / "room.json")]
     for meth, params in (("add_table", ["name", "size_x", "size_y", "height"]),
                          ("add_surface", ["name", "vertices"]),
                          ("add_shelf", ["name", "width", "depth", "boards"]),
@@ -355,14 +345,14 @@ def python_entry_points(world):
                          ("save", ["path"]),
                          ("obstacles", [])):
         yield f"rooms.Room.{meth}", (lambda m: lambda **k: getattr(o.rooms.Room(), m)(**k))(meth), \
-            [(p, valid[p] if p != "path" else str(world["dir"] / "saved.json")) for p in params]
+            [(p, valid[p] if p != "path" else str(sweep["dir"] / "saved.json")) for p in params]
 
 
-def test_python_entry_points_reject_wrong_types(world):
-    (world["dir"] / "room.json").write_text('{"surfaces": [{"name": "t", "rectangle": {"size": [1, 1]}, "height": 0.7}]}')
+def test_python_entry_points_reject_wrong_types(sweep):
+    (sweep["dir"] / "room.json").write_text('{"surfaces": [{"name": "t", "rectangle": {"size": [1, 1]}, "height": 0.7}]}')
 
     def results():
-        for label, f, params in python_entry_points(world):
+        for label, f, params in python_entry_points(sweep):
             for i, (pname, _) in enumerate(params):
                 for w in (WRONG, [WRONG]):
                     if w != WRONG and pname in ("package_dirs", "boards", "vertices", "size", "xyz", "rpy", "poses",

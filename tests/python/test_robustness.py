@@ -11,7 +11,9 @@ import numpy as np
 import pytest
 
 import octoreach
-from robust_util import absurd_bt, bt_file, forge, interrupt_latency, read_map, run_python, write_map
+from robust_util import SANITIZED, absurd_bt, bt_file, forge, interrupt_latency, read_map, run_python, write_map
+
+REPEATS = 1 if SANITIZED else 3  # thread hammer tests: how many times the whole race is run
 
 NAN, INF = float("nan"), float("inf")
 
@@ -34,13 +36,13 @@ def small_maps(tmp_path_factory):
 
 def test_exploration_map_concurrent_insert_and_reads_do_not_crash():
     # Insert in one thread, every reading method in another (three maps in turn).
-    child = run_python("""
+    child = run_python(f"""
         import threading, numpy as np, octoreach as o
         p = np.random.default_rng(0).uniform([1, -1, 0], [2, 1, 1], (20000, 3))
         n = 0
-        for _ in range(3):
+        for _ in range({REPEATS}):
             m = o.ExplorationMap(resolution=0.05)
-            t = threading.Thread(target=lambda: [m.insert(p + 0.01 * i, [0, 0, .5]) for i in range(30)])
+            t = threading.Thread(target=lambda: [m.insert(p + 0.01 * i, [0, 0, .5]) for i in range({10 * REPEATS})])
             t.start()
             while t.is_alive():
                 m.snapshot(); m.cells('frontier'); m.frontier_voids(); m.void_clusters(); m.changed_keys()
@@ -68,7 +70,7 @@ ISSUE_REPRODUCER = ("import threading,numpy as np,octoreach as o;m=o.Exploration
 def test_issue_reproducer_of_the_exploration_map_crash():
     # The reproducer of issue 12, verbatim, three times (each with a new map): SIGABRT (malloc(): invalid size)
     # or SIGSEGV before the map had a lock (about one run in two crashed).
-    child = run_python("for _ in range(3):\n    " + ISSUE_REPRODUCER + "\nprint('OK')", timeout=600)
+    child = run_python(f"for _ in range({REPEATS}):\n    " + ISSUE_REPRODUCER + "\nprint('OK')", timeout=600)
     assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"
     assert not child.hung and child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
 
@@ -76,7 +78,7 @@ def test_issue_reproducer_of_the_exploration_map_crash():
 def test_next_best_view_runs_while_another_thread_inserts():
     # next_best_view and accumulate_utility read the map (GIL released) while inserts rewrite it: two
     # inserting threads with big clouds keep the map changing under every view search.
-    child = run_python("""
+    child = run_python(f"""
         import threading, numpy as np, octoreach as o
         m = o.ExplorationMap(resolution=0.04)
         rng = np.random.default_rng(1)
@@ -84,7 +86,7 @@ def test_next_best_view_runs_while_another_thread_inserts():
         m.insert(p, [0, 0, .5])
         cam = o.DepthCamera(32, 24, 1.0, 3.0)
         def inserts(k):
-            for i in range(25):
+            for i in range({8 * REPEATS + 1}):
                 m.insert(p + 0.013 * i * k, [0, 0.1 * k, .5])
         ts = [threading.Thread(target=inserts, args=(k,)) for k in (1, -1)]
         for t in ts: t.start()
