@@ -22,7 +22,7 @@ void wrap_arm(py::module_& m) {
                   "The arm called `name` (find_arms, else a serial SRDF group); ValueError listing the arms otherwise.")
       .def_static("from_links", [](const Robot& robot, const std::string& base, const std::string& tip, const py::object& axis) {
                     return axis.is_none() ? Arm::from_links(robot, base, tip)
-                                          : Arm::from_links(robot, base, tip, axis.cast<Eigen::Vector3d>());
+                                          : Arm::from_links(robot, base, tip, cast_arg<Eigen::Vector3d>(axis, "approach_axis", "3 numbers (x, y, z)"));
                   }, py::arg("robot"), py::arg("base_link"), py::arg("tip_link"), py::arg("approach_axis") = py::none(),
                   "The arm base_link -> tip_link; the approach axis inferred from the gripper unless given.")
       .def("with_approach_axis", &Arm::with_approach_axis, py::arg("approach_axis"))

@@ -51,8 +51,8 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
         return out;
       }, py::arg("points"), "Reachability index D (N,) of points (N, 3) in the base link frame; 0 outside.")
       .def("reachable", [](const CapabilityMap& cm, const py::object& poses) {
-        Array a = Array::ensure(poses);
-        if (!a || a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+        Array a = array_arg(poses, "poses", "an (N, 4, 4) array");
+        if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
           throw std::invalid_argument("poses must have shape (N, 4, 4)");
         py::array_t<bool> out(a.shape(0));
         const double* p = a.data();

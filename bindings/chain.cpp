@@ -22,7 +22,7 @@ IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, 
                        const py::object& reference, const py::object& obstacle_links) {
   IkOptions o;
   if (!obstacle_links.is_none())
-    for (const auto& name : obstacle_links.cast<std::vector<std::string>>())
+    for (const auto& name : cast_arg<std::vector<std::string>>(obstacle_links, "obstacle_links", "a list of link names"))
       o.obstacle_links.push_back(c.robot().link_index(name));
   o.mode = parse_mode(mode);
   o.position_tolerance = pos_tol;
@@ -36,7 +36,7 @@ IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, 
   o.obstacles = obstacles;
   if (!base_pose.is_none()) o.base_pose = pose_from(base_pose, "base_pose");
   if (!reference.is_none()) {
-    o.reference = reference.cast<Eigen::VectorXd>();
+    o.reference = cast_arg<Eigen::VectorXd>(reference, "reference", "a vector of joint values");
     if (o.reference.size() != c.robot().dof())
       throw std::invalid_argument("reference must have " + std::to_string(c.robot().dof()) + " entries (the robot's dof)");
   }
@@ -44,8 +44,8 @@ IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, 
 }
 
 Eigen::VectorXd q_from(const Chain& c, const py::handle& q, const char* what = "q") {
-  Array a = Array::ensure(q);
-  if (!a || a.ndim() != 1 || a.shape(0) != c.dof())
+  Array a = array_arg(q, what, "a vector of " + std::to_string(c.dof()) + " joint values");
+  if (a.ndim() != 1 || a.shape(0) != c.dof())
     throw std::invalid_argument(std::string(what) + " must be a vector of " + std::to_string(c.dof()) + " joint values");
   return Eigen::Map<const Eigen::VectorXd>(a.data(), c.dof());
 }
@@ -105,7 +105,7 @@ void wrap_chain(py::module_& m) {
              return c.random_configuration(rng);
            }, py::arg("seed") = 0)
       .def("to_robot_configuration", [](const Chain& c, const py::object& q, const py::object& reference) {
-             Eigen::VectorXd ref = reference.is_none() ? Eigen::VectorXd() : robot_q(c.robot(), reference);
+             Eigen::VectorXd ref = reference.is_none() ? Eigen::VectorXd() : robot_q(c.robot(), reference, "reference");
              return c.to_robot_configuration(q_from(c, q), ref);
            }, py::arg("q"), py::arg("reference") = py::none(),
            "Full robot configuration with this chain's joints set to q, the rest from `reference` (default home).")
@@ -113,7 +113,7 @@ void wrap_chain(py::module_& m) {
                     double rt, int attempts, int iters, std::uint64_t rng_seed, const Eigen::Vector3d& axis,
                     bool self_col, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
                     const py::object& reference, const py::object& obstacle_links) -> py::object {
-             Pose target = pose_from(T, "target");
+             Pose target = pose_from(T, "T (the target pose)");
              IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
                                         base_pose, reference, obstacle_links);
              Eigen::VectorXd s;

@@ -41,9 +41,22 @@ inline Pose checked_pose(const Eigen::Matrix4d& m, const char* what = "pose") {
   return T;
 }
 
+/// The name of `obj`'s type, for messages.
+inline std::string type_name(const py::handle& obj) {
+  return py::str(py::type::handle_of(obj).attr("__name__"));
+}
+
+/// `obj` as a float64 array (numpy's conversion), or TypeError "<what> must be <expected>, got <type>"
+/// when it is None or not numbers at all; the caller checks the shape (ValueError).
+inline Array array_arg(const py::handle& obj, const std::string& what, const std::string& expected) {
+  Array a = obj.is_none() ? Array() : Array::ensure(obj);
+  if (!a) throw py::type_error(what + " must be " + expected + ", got " + type_name(obj));
+  return a;
+}
+
 inline Pose pose_from(const py::handle& obj, const char* what = "pose") {
-  Array a = Array::ensure(obj);
-  if (!a || a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
+  Array a = array_arg(obj, what, "a 4x4 array");
+  if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
     throw std::invalid_argument(std::string(what) + " must be a 4x4 array");
   Eigen::Matrix4d m;
   auto r = a.unchecked<2>();
@@ -53,8 +66,8 @@ inline Pose pose_from(const py::handle& obj, const char* what = "pose") {
 }
 
 inline std::vector<Pose> poses_from(const py::handle& obj, const char* what = "poses") {
-  Array a = Array::ensure(obj);
-  if (!a || a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+  Array a = array_arg(obj, what, "an (N, 4, 4) array");
+  if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
     throw std::invalid_argument(std::string(what) + " must have shape (N, 4, 4)");
   auto r = a.unchecked<3>();
   std::vector<Pose> out(a.shape(0));
@@ -86,8 +99,8 @@ inline py::array_t<double> poses_to_array(const std::vector<Pose>& Ts) {
 
 /// (N, cols) float64 array as a row-major Eigen matrix; ValueError naming the shape otherwise.
 inline RowMatrixXd matrix_from(const py::handle& obj, py::ssize_t cols, const char* what) {
-  Array a = Array::ensure(obj);
-  if (!a || a.ndim() != 2 || (cols >= 0 && a.shape(1) != cols))
+  Array a = array_arg(obj, what, "an (N, " + (cols >= 0 ? std::to_string(cols) : std::string("M")) + ") array");
+  if (a.ndim() != 2 || (cols >= 0 && a.shape(1) != cols))
     throw std::invalid_argument(std::string(what) + " must have shape (N, " + (cols >= 0 ? std::to_string(cols) : "M") + ")");
   return Eigen::Map<const RowMatrixXd>(a.data(), a.shape(0), a.shape(1));
 }
@@ -113,8 +126,10 @@ using IndexTriples = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// (M, 3) integer array of vertex indices, each checked against [0, vertices) at full 64-bit width
 /// before it is narrowed to int; ValueError naming the first bad entry.
 inline IndexTriples index_triples_from(const py::handle& obj, std::size_t vertices, const char* what) {
-  auto a = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
-  if (!a || a.ndim() != 2 || a.shape(1) != 3) throw std::invalid_argument(std::string(what) + " must have shape (M, 3)");
+  auto a = obj.is_none() ? decltype(py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj))()
+                         : py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a) throw py::type_error(std::string(what) + " must be an (M, 3) array of vertex indices, got " + type_name(obj));
+  if (a.ndim() != 2 || a.shape(1) != 3) throw std::invalid_argument(std::string(what) + " must have shape (M, 3)");
   IndexTriples t(a.shape(0), 3);
   const std::int64_t* d = a.data();
   for (py::ssize_t i = 0; i < a.shape(0) * 3; ++i) {
@@ -132,8 +147,7 @@ T cast_arg(const py::handle& obj, const char* what, const char* expected) {
   try {
     return obj.cast<T>();
   } catch (const py::cast_error&) {
-    throw py::type_error(std::string(what) + " must be " + expected + ", got " +
-                         std::string(py::str(py::type::of(obj).attr("__name__"))));
+    throw py::type_error(std::string(what) + " must be " + expected + ", got " + type_name(obj));
   }
 }
 
@@ -178,6 +192,10 @@ inline py::type_error wrong_keyword_type(const char* call, const std::string& ke
 /// keyword raises TypeError naming it and the call.
 template <class Options>
 Options options_from(const py::object& options, const py::kwargs& kwargs, const char* call) {
+  if (!options.is_none() && !py::isinstance<Options>(options))
+    throw py::type_error(std::string(call) + "(): options must be " +
+                         std::string(py::str(py::type::of<Options>().attr("__name__"))) + " or None, got " +
+                         type_name(options));
   py::object o = options.is_none() ? py::cast(Options()) : py::cast(Options(options.cast<const Options&>()));
   for (auto item : kwargs) {
     std::string key = py::str(item.first);
@@ -208,7 +226,7 @@ inline void grasps_arg(const py::object& grasps, std::vector<int>& indices, std:
 /// A z_range argument: None keeps the defaults, else (min, max) in metres.
 inline void z_range_arg(const py::object& z_range, double& z_min, double& z_max) {
   if (z_range.is_none()) return;
-  auto zr = z_range.cast<std::pair<double, double>>();
+  auto zr = cast_arg<std::pair<double, double>>(z_range, "z_range", "None or (min, max) in metres");
   z_min = zr.first;
   z_max = zr.second;
 }

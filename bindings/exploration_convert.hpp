@@ -11,14 +11,11 @@ namespace octoreach::py_bindings {
 
 /// Rows of an (N, 3) array; ValueError naming `what` and the shape it got otherwise.
 inline std::vector<Eigen::Vector3d> points_from(const py::handle& obj, const char* what) {
-  Array a = Array::ensure(obj);
-  if (!a || a.ndim() != 2 || a.shape(1) != 3) {
-    std::string shape = "?";
-    if (a) {
-      shape = "(";
-      for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
-      shape += a.ndim() == 1 ? ",)" : ")";
-    }
+  Array a = array_arg(obj, what, "an (N, 3) array");
+  if (a.ndim() != 2 || a.shape(1) != 3) {
+    std::string shape = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
+    shape += a.ndim() == 1 ? ",)" : ")";
     throw std::invalid_argument(std::string(what) + " must have shape (N, 3), got " + shape);
   }
   auto r = a.unchecked<2>();
@@ -28,8 +25,8 @@ inline std::vector<Eigen::Vector3d> points_from(const py::handle& obj, const cha
 }
 
 inline Eigen::Vector3d vec3_from(const py::handle& obj, const char* what) {
-  Array a = Array::ensure(obj);
-  if (!a || a.size() != 3) throw std::invalid_argument(std::string(what) + " must have 3 entries");
+  Array a = array_arg(obj, what, "3 numbers");
+  if (a.size() != 3) throw std::invalid_argument(std::string(what) + " must have 3 entries");
   const double* d = a.data();
   return {d[0], d[1], d[2]};
 }

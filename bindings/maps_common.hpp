@@ -18,9 +18,11 @@ inline Arm arm_from(const Robot& robot, const py::handle& arm) {
   if (py::isinstance<Arm>(arm)) return arm.cast<Arm>();
   if ((py::isinstance<py::tuple>(arm) || py::isinstance<py::list>(arm)) && (py::len(arm) == 2 || py::len(arm) == 3)) {
     py::sequence s = py::reinterpret_borrow<py::sequence>(arm);
+    auto base = cast_arg<std::string>(s[0], "arm[0] (base_link)", "a link name (str)");
+    auto tip = cast_arg<std::string>(s[1], "arm[1] (tip_link)", "a link name (str)");
     if (py::len(s) == 3 && !s[2].is_none())
-      return Arm::from_links(robot, s[0].cast<std::string>(), s[1].cast<std::string>(), s[2].cast<Eigen::Vector3d>());
-    return Arm::from_links(robot, s[0].cast<std::string>(), s[1].cast<std::string>());
+      return Arm::from_links(robot, base, tip, cast_arg<Eigen::Vector3d>(s[2], "arm[2] (approach_axis)", "3 numbers (x, y, z)"));
+    return Arm::from_links(robot, base, tip);
   }
   throw py::type_error("arm must be a name, an Arm, a (base_link, tip_link[, approach_axis]) tuple or a CapabilityMap, got " +
                        std::string(py::repr(arm)));
@@ -41,8 +43,9 @@ inline Arm arm_from(const Robot& robot, const py::handle& arm, const py::object&
 /// Rows (N, cols) of a float64 array as a C-contiguous array; ValueError naming the shape otherwise.
 /// (The C++ lookups reject rows with a NaN or an infinity themselves, inside their parallel loop.)
 inline Array rows_arg(const py::object& obj, py::ssize_t cols, const char* message) {
-  Array a = Array::ensure(obj);
-  if (!a || a.ndim() != 2 || a.shape(1) != cols) throw std::invalid_argument(message);
+  const std::string name(message, std::string(message).find(' '));  // the argument: the message's first word
+  Array a = array_arg(obj, name, "an (N, " + std::to_string(cols) + ") array");
+  if (a.ndim() != 2 || a.shape(1) != cols) throw std::invalid_argument(message);
   return a;
 }
 
@@ -115,14 +118,14 @@ template <class Options, class Class>
 void def_reference(Class& cls, const char* doc) {
   cls.def_property("reference",
       [](const Options& o) -> py::object { return o.reference.size() ? py::cast(o.reference) : py::none(); },
-      [](Options& o, const py::object& q) { o.reference = q.is_none() ? Eigen::VectorXd() : q.cast<Eigen::VectorXd>(); }, doc);
+      [](Options& o, const py::object& q) { o.reference = q.is_none() ? Eigen::VectorXd() : cast_arg<Eigen::VectorXd>(q, "reference", "a vector of joint values or None"); }, doc);
 }
 
 /// Binds `resolution` of point/surface map options: metres, 0 or None for the capability map's.
 template <class Options, class Class>
 void def_map_resolution(Class& cls) {
   cls.def_property("resolution", [](const Options& o) { return o.resolution; },
-                   [](Options& o, const py::object& r) { o.resolution = r.is_none() ? 0.0 : r.cast<double>(); },
+                   [](Options& o, const py::object& r) { o.resolution = r.is_none() ? 0.0 : cast_arg<double>(r, "resolution", "a float or None"); },
                    "Voxel edge (m); 0 or None: the capability map's resolution.");
 }
 

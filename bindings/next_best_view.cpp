@@ -12,7 +12,7 @@ namespace {
 CameraIntrinsics intrinsics_from(const py::object& camera) {
   if (py::isinstance<DepthCamera>(camera)) return camera.cast<const DepthCamera&>().intrinsics();
   if (py::isinstance<CameraIntrinsics>(camera)) return camera.cast<CameraIntrinsics>();
-  throw std::invalid_argument("camera must be a DepthCamera or CameraIntrinsics");
+  throw py::type_error("camera must be a DepthCamera or CameraIntrinsics, got " + type_name(camera));
 }
 
 py::object optional_pose(const Pose& T) { return T.matrix().isIdentity(0) ? py::object(py::none()) : py::object(pose_to_array(T)); }
@@ -34,15 +34,18 @@ void def_workspace(py::class_<NbvOptions>& cls) {
         return py::make_tuple(*o.workspace.sphere_center, o.workspace.sphere_radius);
       }, [](NbvOptions& o, const py::object& sphere) {
         if (sphere.is_none()) return o.workspace.sphere_center.reset();
-        auto t = sphere.cast<py::tuple>();
-        if (t.size() != 2) throw std::invalid_argument("workspace_sphere must be (center, radius)");
+        if (!py::isinstance<py::sequence>(sphere) || py::isinstance<py::str>(sphere) || py::len(sphere) != 2)
+          throw py::type_error("workspace_sphere must be (center, radius) or None, got " + type_name(sphere));
+        auto t = py::reinterpret_borrow<py::sequence>(sphere);
         o.workspace.sphere_center = vec3_from(t[0], "workspace_sphere center");
-        o.workspace.sphere_radius = t[1].cast<double>();
+        o.workspace.sphere_radius = cast_arg<double>(t[1], "workspace_sphere radius", "a float");
       }, "Sensor positions within (center, radius) of a point (map frame), or None.")
       .def_property("workspace", [](const NbvOptions& o) -> py::object {
         return o.workspace.filter ? py::cast(o.workspace.filter) : py::object(py::none());
       }, [](NbvOptions& o, const py::object& fn) {
         if (fn.is_none()) return void(o.workspace.filter = nullptr);
+        if (!PyCallable_Check(fn.ptr()))
+          throw py::type_error("workspace must be a callable (N, 3) -> (N,) bools or None, got " + type_name(fn));
         o.workspace.filter = [fn](const std::vector<Eigen::Vector3d>& pts) {
           py::gil_scoped_acquire gil;
           py::object r = fn(to_points(pts));

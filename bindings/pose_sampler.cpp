@@ -33,7 +33,7 @@ void wrap_pose_sampler(py::module_& m) {
              if (py::isinstance<CostMap>(is_free)) s.set_cost_map(is_free.cast<CostMap>());
              else if (!is_free.is_none()) {
                if (!PyCallable_Check(is_free.ptr()))
-                 throw std::invalid_argument("is_free must be a CostMap or a callable (pose (4,)) -> bool");
+                 throw py::type_error("is_free must be a CostMap or a callable (pose (4,)) -> bool, got " + type_name(is_free));
                py::function f = is_free;
                s.set_is_free([f](const Eigen::Vector4d& c) {
                  py::gil_scoped_acquire gil;
@@ -52,7 +52,8 @@ void wrap_pose_sampler(py::module_& m) {
                                ref);
              } else if (!in_collision.is_none()) {
                if (!PyCallable_Check(in_collision.ptr()))
-                 throw std::invalid_argument("in_collision must be a callable or a tuple (robot, obstacles[, reference])");
+                 throw py::type_error("in_collision must be a callable or a tuple (robot, obstacles[, reference]), got " +
+                                      type_name(in_collision));
                py::function f = in_collision;
                s.set_in_collision([f](const Eigen::Vector4d& c) {
                  py::gil_scoped_acquire gil;

@@ -16,8 +16,7 @@ ProgressCallback progress_arg(const py::object& progress, const char* label) {
   if (factory() && !factory().is_none()) return progress_from(factory()(progress, label));
   if (progress.is_none() || py::isinstance<py::bool_>(progress)) return nullptr;
   if (PyCallable_Check(progress.ptr())) return progress_from(progress);
-  throw std::invalid_argument("progress must be True, False or a callable (done, total), got " +
-                              std::string(py::repr(progress)));
+  throw py::type_error("progress must be True, False or a callable (done, total), got " + type_name(progress));
 }
 
 void wrap_progress(py::module_& m) {

@@ -124,7 +124,7 @@ void wrap_robot_collision(py::class_<Robot, std::shared_ptr<Robot>>& c) {
              Pose base = base_pose.is_none() ? Pose::Identity() : pose_from(base_pose, "base_pose");
              std::vector<int> only;
              if (!links.is_none())
-               for (const auto& name : links.cast<std::vector<std::string>>()) only.push_back(r.link_index(name));
+               for (const auto& name : cast_arg<std::vector<std::string>>(links, "links", "a list of link names")) only.push_back(r.link_index(name));
              py::gil_scoped_release release;
              return r.in_collision(v, obstacles, base, self, links.is_none() ? nullptr : &only);
            }, py::arg("q"), py::arg("obstacles"), py::arg("base_pose") = py::none(), py::arg("self_collision") = false,
@@ -140,7 +140,7 @@ void wrap_robot_collision(py::class_<Robot, std::shared_ptr<Robot>>& c) {
            "A new Robot, this one with the (link_a, link_b) pairs added to its allowed collisions (its own\n"
            "model_hash); this robot is left as it is.")
       .def("compute_allowed_collisions", [](const Robot& r, int samples, std::uint64_t seed, const py::object& progress) {
-             auto cb = progress_from(progress);
+             auto cb = progress_arg(progress, "allowed collisions");
              std::vector<std::pair<int, int>> pairs;
              {
                py::gil_scoped_release release;

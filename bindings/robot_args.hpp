@@ -6,12 +6,12 @@
 namespace octoreach::py_bindings {
 
 /// A robot configuration (dof,) from a 1-D array; ValueError naming the expected size or a non-finite entry.
-inline Eigen::VectorXd robot_q(const Robot& r, const py::handle& q) {
-  Array a = Array::ensure(q);
-  if (!a || a.ndim() != 1 || a.shape(0) != r.dof())
-    throw std::invalid_argument("q must be a vector of " + std::to_string(r.dof()) + " joint values (robot.joint_names)");
+inline Eigen::VectorXd robot_q(const Robot& r, const py::handle& q, const std::string& what = "q") {
+  Array a = array_arg(q, what, "a vector of " + std::to_string(r.dof()) + " joint values");
+  if (a.ndim() != 1 || a.shape(0) != r.dof())
+    throw std::invalid_argument(what + " must be a vector of " + std::to_string(r.dof()) + " joint values (robot.joint_names)");
   Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(a.data(), r.dof());
-  if (!v.allFinite()) throw std::invalid_argument("q must be finite");
+  if (!v.allFinite()) throw std::invalid_argument(what + " must be finite");
   return v;
 }
 

@@ -17,8 +17,7 @@ void wrap_options(py::module_& m) {
           [](O& o, const py::object& obs) {
             if (obs.is_none()) o.obstacles = nullptr;
             else if (py::isinstance<Obstacles>(obs)) o.obstacles = obs.cast<std::shared_ptr<Obstacles>>();
-            else throw py::type_error("obstacles must be an octoreach.Obstacles or None, got " +
-                                      std::string(py::str(py::type::of(obs).attr("__name__"))));
+            else throw py::type_error("obstacles must be an octoreach.Obstacles or None, got " + type_name(obs));
           }, "The rest of the room (Obstacles, world frame) or None: checked against the body and the arm.")
       .def_readwrite("check_body", &O::check_body, "Reject base poses where the body touches the surface, boxes or obstacles.")
       .def_readwrite("check_arm", &O::check_arm,
@@ -41,8 +40,8 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
   for (auto item : kw) {
     std::string key = py::str(item.first);
     if (key == "approach_axis") approach_axis = py::reinterpret_borrow<py::object>(item.second);
-    else if (key == "directions") co.directions = item.second.cast<int>();
-    else if (key == "seed") co.seed = item.second.cast<std::uint64_t>();
+    else if (key == "directions") co.directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
+    else if (key == "seed") co.seed = cast_arg<std::uint64_t>(item.second, "SurfaceMap.build(): keyword 'seed'", "an int");
     else rest[item.first] = item.second;
   }
   SurfaceMapOptions o = options_from<SurfaceMapOptions>(options, rest, "SurfaceMap.build");

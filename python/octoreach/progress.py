@@ -46,4 +46,4 @@ def make_progress(progress, label: str):
         return None
     if callable(progress):
         return progress
-    raise ValueError(f"progress must be True, False or a callable (done, total), got {progress!r}")
+    raise TypeError(f"progress must be True, False or a callable (done, total), got {progress!r}")

@@ -17,6 +17,7 @@ import sysconfig
 from pathlib import Path
 
 from ._core import Robot
+from ._checks import PATH, check_paths, check_type
 
 # name -> (description folder, URDF file, SRDF file or None)
 _KNOWN = {
@@ -119,6 +120,8 @@ def complete_allowed_collisions(robot: Robot, srdf_given: bool = True, options=N
     """The robot with the sampled allowed-collision matrix (MoveIt setup assistant's method, cached on disk by
     model hash) added when no SRDF was given or its list is incomplete (the home posture is in self-collision);
     else the robot itself. Keywords set AllowedCollisionOptions fields (samples, seed, cache_dir, ...)."""
+    check_type(robot, Robot, "robot", "an octoreach.Robot")
+    check_type(srdf_given, bool, "srdf_given", "a bool")
     if srdf_given and not robot.self_collisions(robot.home()):
         return robot
     return robot.with_sampled_collisions(options, progress=progress, **kwargs)
@@ -128,7 +131,11 @@ def from_urdf(urdf, package_dirs=(), srdf=None, allowed_collisions: str = "auto"
     """Robot from a URDF (path or XML) with its SRDF; allowed_collisions: "auto" samples the allowed-collision
     matrix when the SRDF is missing or incomplete (complete_allowed_collisions), "sample" always adds the
     sampled pairs, "srdf" keeps what the URDF and SRDF say."""
-    robot = Robot.from_urdf(str(urdf), package_dirs=[str(p) for p in package_dirs], srdf=None if srdf is None else str(srdf))
+    check_type(urdf, PATH, "urdf", "a path or URDF text (str or os.PathLike)")
+    check_type(srdf, PATH + (type(None),), "srdf", "a path or SRDF text (str or os.PathLike) or None")
+    check_type(allowed_collisions, str, "allowed_collisions", "'auto', 'sample' or 'srdf'")
+    dirs = check_paths(package_dirs, "package_dirs")
+    robot = Robot.from_urdf(str(urdf), package_dirs=dirs, srdf=None if srdf is None else str(srdf))
     if allowed_collisions == "auto":
         return complete_allowed_collisions(robot, srdf_given=srdf is not None)
     if allowed_collisions == "sample":
@@ -142,6 +149,9 @@ def load(name: str, srdf: bool = True, allowed_collisions: str = "auto") -> Robo
     """Robot `name` of example-robot-data (see available()) with its SRDF when it has one (groups, end
     effectors, disabled collisions); allowed_collisions as in from_urdf ("auto" samples the allowed-collision
     matrix, cached, when the SRDF is missing or incomplete)."""
+    check_type(name, str, "name", "a robot name (str; see available())")
+    check_type(srdf, bool, "srdf", "a bool")
+    check_type(allowed_collisions, str, "allowed_collisions", "'auto', 'sample' or 'srdf'")
     urdf_path, srdf_path, dirs = files(name)
     if not srdf:
         srdf_path = None
@@ -161,6 +171,7 @@ def pr2(srdf: bool = True) -> Robot:
 
 def project_urdf(name: str) -> Path:
     """Path of a URDF the project owns (``urdf/NAME.urdf``), installed with the package."""
+    check_type(name, str, "name", "a URDF name (str)")
     here = Path(__file__).resolve().parent
     for candidate in (here / "urdf" / f"{name}.urdf", here.parent.parent / "urdf" / f"{name}.urdf"):
         if candidate.is_file():

@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from ._core import CapabilityMap, Obstacles, Robot, Surface, SurfaceMap
+from ._checks import PATH, check_type
 
 _SURFACE_KEYS = {"name", "rectangle", "vertices", "thickness", "legs", "boxes", "meshes"}
 _RECTANGLE_KEYS = {"size", "height", "x", "y", "yaw"}
@@ -91,6 +92,11 @@ def _pose(entry: dict, where: str) -> np.ndarray:
     return T
 
 
+def _listed(value):
+    """Tuples and arrays as lists, anything else as it is (the description's checks name what is wrong)."""
+    return list(value.tolist() if isinstance(value, np.ndarray) else value) if isinstance(value, (tuple, list, np.ndarray)) else value
+
+
 def _list(value, key: str, where: str) -> list:
     if value is None:
         return []
@@ -124,6 +130,8 @@ class Room:
     builds a description (see the module docstring); ``Room.load(path)`` reads a JSON or YAML file."""
 
     def __init__(self, description: dict | None = None, base_dir: str | os.PathLike = "."):
+        check_type(base_dir, PATH, "base_dir", "a folder path (str or os.PathLike)")
+        check_type(description, (dict, type(None)), "description", "a room description (dict) or None")
         self._base = Path(base_dir)
         self._description: dict = {}
         self._surfaces: dict[str, Surface] = {}
@@ -146,6 +154,7 @@ class Room:
     @classmethod
     def load(cls, path: str | os.PathLike) -> "Room":
         """Reads a room file: JSON, or YAML where PyYAML is installed."""
+        check_type(path, PATH, "path", "a path (str or os.PathLike)")
         path = Path(path)
         data = _read_data(path, "room file")
         try:
@@ -155,6 +164,7 @@ class Room:
 
     def save(self, path: str | os.PathLike) -> None:
         """Writes the description as JSON (YAML for a .yaml/.yml name), atomically."""
+        check_type(path, PATH, "path", "a path (str or os.PathLike)")
         path = Path(path)
         if path.suffix in (".yaml", ".yml"):
             import yaml
@@ -185,28 +195,29 @@ class Room:
 
     def add_surface(self, name: str, vertices, thickness: float = 0.03) -> Surface:
         """A polygon surface (vertices (N, 3), world frame)."""
-        return self._add_surface({"name": name, "vertices": np.asarray(vertices, float).tolist(), "thickness": thickness})
+        vertices = vertices.tolist() if isinstance(vertices, np.ndarray) else vertices
+        return self._add_surface({"name": name, "vertices": vertices, "thickness": thickness})
 
     def add_shelf(self, name: str, width: float, depth: float, boards, x: float = 0.0, y: float = 0.0,
                   yaw: float = 0.0, thickness: float = 0.02, panels: bool = True) -> list[Surface]:
         """A shelf of `width` (local x) by `depth` (local y, open towards +y) with boards at the given heights (m),
         turned by `yaw` (rad) about its centre (x, y); `panels` adds two side panels and a back panel."""
-        return self._add_shelf({"name": name, "size": [width, depth], "boards": list(boards), "x": x, "y": y, "yaw": yaw,
+        return self._add_shelf({"name": name, "size": [width, depth], "boards": list(boards) if isinstance(boards, (tuple, np.ndarray)) else boards, "x": x, "y": y, "yaw": yaw,
                                 "thickness": thickness, "panels": panels})
 
     def add_box(self, name: str, size, xyz, rpy=(0.0, 0.0, 0.0)) -> None:
         """An obstacle box (a wall, a cupboard): extents `size`, centre at xyz, orientation rpy (rad)."""
-        self._add_box({"name": name, "size": list(map(float, size)), "xyz": list(map(float, xyz)),
-                       "rpy": list(map(float, rpy))})
+        self._add_box({"name": name, "size": _listed(size), "xyz": _listed(xyz), "rpy": _listed(rpy)})
 
     def add_mesh(self, name: str, path: str, xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0), scale=(1.0, 1.0, 1.0)) -> None:
         """An obstacle mesh file (STL, DAE, OBJ...)."""
-        self._add_mesh({"name": name, "path": str(path), "xyz": list(map(float, xyz)), "rpy": list(map(float, rpy)),
-                        "scale": list(map(float, scale))})
+        check_type(path, PATH, "path", "a mesh file path (str or os.PathLike)")
+        self._add_mesh({"name": name, "path": str(path), "xyz": _listed(xyz), "rpy": _listed(rpy), "scale": _listed(scale)})
 
     def add_octomap(self, name: str, path: str, xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> None:
         """The occupied cells of an OctoMap file (.bt or .ot) as obstacles."""
-        self._add_octomap({"name": name, "path": str(path), "xyz": list(map(float, xyz)), "rpy": list(map(float, rpy))})
+        check_type(path, PATH, "path", "an OctoMap file path (str or os.PathLike)")
+        self._add_octomap({"name": name, "path": str(path), "xyz": _listed(xyz), "rpy": _listed(rpy)})
 
     # ------------------------------------------------------------------ reading
     @property
@@ -381,6 +392,7 @@ class Room:
 def surface_from_file(path: str | os.PathLike) -> tuple[Surface, Obstacles]:
     """A polygon file: a list of [x, y, z] vertices, or one surface entry of a room file ({"vertices": ...,
     "thickness", "legs", "boxes", "meshes"}). Returns the surface and the obstacles of its meshes."""
+    check_type(path, PATH, "path", "a path (str or os.PathLike)")
     path = Path(path)
     data = _read_data(path, "polygon file")
     if isinstance(data, list):

@@ -57,23 +57,6 @@ def expect_answer_or_rejection(f, x, n_rows_out=None):
     return out
 
 
-@pytest.fixture(scope="module")
-def world():
-    robot = o.robots.test_arm()
-    chain = robot.chain("base_link", "tool0")
-    cap = o.CapabilityMap.build(chain, resolution=0.2, directions=16, progress=False, seed=1)
-    surface = o.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)
-    sm = o.SurfaceMap.build(robot, cap, surface, resolution=0.2, theta_bins=8, z_range=(0, 0), progress=False)
-    pm = o.InversePointMap.build(robot, cap, theta_bins=8, progress=False)
-    m = o.ExplorationMap(resolution=0.1)
-    m.insert(np.random.default_rng(0).uniform([1, -0.5, 0], [1.6, 0.5, 0.6], (800, 3)), [0, 0, 0.3])
-    scene = o.Scene()
-    scene.add_box([1, -1, 0], [1.2, 1, 1])
-    obs = o.Obstacles()
-    obs.add_box([0.2, 0.2, 0.2], np.eye(4))
-    return dict(robot=robot, chain=chain, cap=cap, surface=surface, sm=sm, pm=pm, m=m, scene=scene, obs=obs)
-
-
 @given(array_like(3))
 def test_surface_contains(world, x):
     expect_answer_or_rejection(world["surface"].contains, x, n_rows_out=True)

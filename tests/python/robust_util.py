@@ -39,6 +39,11 @@ if _cap:
 """
 
 
+# Under AddressSanitizer (make test-sanitize preloads it) every call is several times slower and a memory
+# error is caught at its first occurrence: the thread hammer tests repeat less there.
+SANITIZED = "asan" in os.environ.get("LD_PRELOAD", "")
+
+
 def run_python(code: str, timeout: float = 60.0, mem_bytes: int = 3 << 30, env: dict | None = None) -> Child:
     """Runs `code` in a fresh interpreter with the test's sys.path; address space capped at mem_bytes."""
     if "asan" in os.environ.get("LD_PRELOAD", ""):
