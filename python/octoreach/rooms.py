@@ -131,7 +131,6 @@ class Room:
 
     def __init__(self, description: dict | None = None, base_dir: str | os.PathLike = "."):
         check_type(base_dir, PATH, "base_dir", "a folder path (str or os.PathLike)")
-        check_type(description, (dict, type(None)), "description", "a room description (dict) or None")
         self._base = Path(base_dir)
         self._description: dict = {}
         self._surfaces: dict[str, Surface] = {}

@@ -22,7 +22,7 @@ CAST_MESSAGES = ("Unable to cast", "C++ type", "'?'", "cast Python instance")
 OVERLOAD_MESSAGES = ("incompatible function arguments", "incompatible constructor arguments")
 # Arguments whose message names the field of the description they become (Room.add_table(size_x=...) ->
 # "surfaces[0] ('t').rectangle: 'size' must be a list of 2 numbers").
-ALIASES = {"size_x": "size", "size_y": "size", "width": "size", "depth": "size"}
+ALIASES = {"size_x": "size", "size_y": "size", "width": "size", "depth": "size", "description": "room"}
 
 
 class Wrong:

