@@ -65,14 +65,22 @@ def run_python(code: str, timeout: float = 60.0, mem_bytes: int = 3 << 30, env: 
         return Child(None, out, err, time.monotonic() - t0)
 
 
+def _default_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT])
+
+
 def interrupt_latency(code: str, ready_marker: str = "READY", delay: float = 0.3, timeout: float = 60.0) -> tuple[Child, float]:
     """Starts `code` (which prints `ready_marker` and flushes just before the long call), sends SIGINT
     `delay` seconds after the marker and returns the child and the seconds from the signal to its exit."""
     full = textwrap.dedent(code)
     e = dict(os.environ)
     e["PYTHONPATH"] = os.pathsep.join(p for p in sys.path if p)
+    # The child gets Ctrl-C as an interactive Python does, whatever earlier tests or libraries in this
+    # process did to SIGINT (an ignored or blocked signal is inherited across exec, and a Python started
+    # with SIGINT ignored never raises KeyboardInterrupt).
     p = subprocess.Popen([sys.executable, "-u", "-c", full], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=e,
-                         text=True)
+                         text=True, preexec_fn=_default_sigint)
     t_start = time.monotonic()
     line = ""
     while ready_marker not in line:
