@@ -105,15 +105,6 @@ inline RowMatrixXd matrix_from(const py::handle& obj, py::ssize_t cols, const ch
   return Eigen::Map<const RowMatrixXd>(a.data(), a.shape(0), a.shape(1));
 }
 
-/// ValueError naming the first NaN or infinite entry of `a` (as "<what> i").
-inline void check_finite(const Array& a, const char* what) {
-  const double* d = a.data();
-  const py::ssize_t n = a.size(), per = a.ndim() > 1 ? a.size() / std::max<py::ssize_t>(1, a.shape(0)) : 1;
-  for (py::ssize_t i = 0; i < n; ++i)
-    if (!std::isfinite(d[i]))
-      throw std::invalid_argument(std::string(what) + " " + std::to_string(i / per) + " is not finite (NaN or inf)");
-}
-
 /// matrix_from, and ValueError when an entry is NaN or infinite.
 inline RowMatrixXd finite_matrix_from(const py::handle& obj, py::ssize_t cols, const char* what) {
   RowMatrixXd m = matrix_from(obj, cols, what);
