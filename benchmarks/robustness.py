@@ -16,21 +16,21 @@ from __future__ import annotations
 
 import json
 import platform
-import statistics
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
 import octoreach as o
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from capability_map import median_seconds  # noqa: E402  (the same median timing)
+
 
 def timed(f, repeat=5):
-    ts = []
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
+    """Median seconds of `repeat` calls (the one timing rule of the benchmarks: capability_map.median_seconds)."""
+    return median_seconds(f, repeats=repeat)
 
 
 def brute_neighbours(d: np.ndarray, k: int = 6) -> np.ndarray:
