@@ -85,8 +85,8 @@ class Viewer:
             self.note("the surface map records its surface polygon only: the surface is drawn as a "
                       f"{surface_thickness * 100:.0f} cm slab, without the obstacles it was built with (table legs, "
                       "boxes); in Python, view(..., surface=the Surface) draws them")
-        self.surface_map = SurfaceMapLayer(self.scene, smap)
-        self._watch_clicks(self.surface_map)
+        self.surface_map = SurfaceMapLayer(self.scene, smap, atomic=self.server.atomic)
+        self._watch_surface_clicks(self.surface_map)
         if robot is None and smap.robot_name:
             robot = smap.robot_name
         if isinstance(robot, str):
@@ -206,15 +206,21 @@ class Viewer:
         return self.selected
 
     def _watch_clicks(self, layer) -> None:
-        select = self.select_cell if layer is self.surface_map else self._select_voxel
-
         @layer.handle.on_click
         def _(event) -> None:
-            index = event.instance_index
-            if index is None:
-                index = layer.pick(event.ray_origin, event.ray_direction) if hasattr(layer, "pick") else None
-            if index is not None:
-                select(int(index))
+            if event.instance_index is not None:
+                self._select_voxel(int(event.instance_index))
+
+    def _watch_surface_clicks(self, layer) -> None:
+        for k, handle in layer.handles.items():
+            @handle.on_click
+            def _(event, k=k) -> None:
+                if event.instance_index is not None:
+                    index = layer.cell_of(k, int(event.instance_index))
+                else:
+                    index = layer.pick(event.ray_origin, event.ray_direction)
+                if index is not None:
+                    self.select_cell(int(index))
 
     def _surface_controls(self, smap) -> None:
         gui = self.server.gui
