@@ -8,6 +8,8 @@
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import sys
 import threading
 import time
@@ -36,7 +38,8 @@ class Viewer:
 
     def __init__(self, port: int = 8080, host: str = "127.0.0.1", verbose: bool = True):
         viser = _import_viser()
-        self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        with contextlib.redirect_stdout(io.StringIO()):  # viser's banner: the URL is printed below
+            self.server = viser.ViserServer(host=host, port=port, verbose=False)
         self.server.gui.configure_theme(control_width="medium", show_share_button=False)
         self.scene = self.server.scene
         self.url = f"http://{host}:{self.server.get_port()}"
