@@ -9,22 +9,32 @@ Prints JSON. Each scene is timed in parts:
   boot_s       page request until the page's websocket is open (page load and viser's client start-up; JS
                clock from here on, synchronised with the server's through Date.now)
   transfer_s   open until the last scene message reached the page (sent, decoded in viser's worker, posted)
-  draw_s       last message until the first frame drawing the whole scene (as many triangles as the steady
-               scene) has been drawn: its 1-pixel read-back returned (JS timing injected into the page)
+  draw_s       last message that frame shows until the first frame drawing the whole scene (as many
+               triangles as the steady scene's last frame) has been drawn: its 1-pixel read-back returned (JS
+               timing injected into the page)
   page_s       page request until then (boot_s + transfer_s + draw_s); open_s = load_s + scene_s + page_s
   js_frames_s  main-thread time of the animation frames from connect to drawn (React commits, three.js
                set-up, shader compiles, GL calls); first_frame_js_s: that of the first full frame alone
   triangles    triangles the steady scene draws per frame
   shader_programs, shader_compile_wait_s   programs the page linked (three.js: one per material kind) and
-               the main thread's waits for their compiles (SwiftShader compiles each in a few hundred ms)
-The slider: per theta move, the server-side time and the time until the first frame whose pixels differ
-from the frame before the move has been drawn (frames are read back whole while the slider is timed, which
-adds the read-back to each frame: an upper bound).
+               the main thread's waits for their compiles
+Each scene is opened --repeat times (a new viewer and page each time); the JSON holds the medians and every
+page_s. The slider: --moves theta moves per opening, each timed from the server-side call to the first frame
+whose pixels differ from the frame before the move has been drawn (frames are read back whole while the slider
+is timed, which adds the read-back to each frame: an upper bound); frame_js_s / frame_gpu_s split that
+frame into its main-thread part and the wait for SwiftShader to draw it (plus the read-back).
 
-References measured in the same run: an empty viewer page (boot and draw of nothing), the capability map
-drawn the old way (every voxel below the cut, one instance each), the slider the old way (the surface map's
-node re-sent on every move), and the robot meshes the old way (trimesh, in a fresh process: its import and
-the PR2's meshes).
+Two configurations, interleaved opening by opening, each in its own headless Chromium (1280 x 800):
+  before  main before this round: Chromium's earlier flags (PREVIOUS_FLAGS: the page composited on
+          SwiftShader, the GPU in its own process), the slider re-sending one node's colours and scales
+          (RecolourLayer) and the sampled poses labelled in 3D text
+  after   the viewer's flags (browser.FLAGS: software compositing, GPU thread in-process) and one node a theta
+          selection; also the recolour slider under these flags (surface_map_recolour_slider), which splits
+          the slider's gain between the flags and the nodes.
+  after_no_antialiasing   the surface map under the viewer's flags with WebGL's multisampling off (not the
+          viewer's setting: jagged edges): antialiasing's share of a software-rendered frame.
+Both include the empty page (viser's start-up and drawing nothing: the floor under every scene). Also the
+robot meshes the old way (trimesh, in a fresh process: its import and the PR2's meshes).
 
 Maps: --capability FILE --surface FILE, or --build RES to build the PR2's right-arm capability map and the
 two-arm table surface map at RES into --cache (0.05 m: about a minute per arm).
@@ -57,6 +67,9 @@ from octoreach.viewer.surface_map import BEST, SurfaceMapLayer
 TARGETS = {"open_s": 3.0, "slider_s": 0.2}
 # Chromium's flags before this round: the page composited on SwiftShader too, the GPU in its own process.
 PREVIOUS_FLAGS = tuple(f for f in FLAGS if f not in ("--disable-gpu-compositing", "--in-process-gpu"))
+# Not the viewer's: WebGL without multisampling (jagged edges, which screenshots for docs should not have); timed
+# to show antialiasing's share of each software-rendered frame.
+NO_MSAA = ("--webgl-antialiasing-mode=none",)
 
 # Injected before the page's own scripts (epoch ms, synchronised with Date.now()): when viser's websocket worker
 # hands each message batch to the page; per animation frame with draws: start, end of its main-thread work,
@@ -283,6 +296,7 @@ def _median(rows: list) -> dict:
             out[key] = round(float(np.median([r[key] for r in rows])), 4)
     out["repetitions"] = len(rows)
     out["page_s_all"] = [r["page_s"] for r in rows]
+    out["open_s_all"] = [r["open_s"] for r in rows]
     return out
 
 
@@ -295,12 +309,14 @@ def main() -> None:
     p.add_argument("--repeat", type=int, default=5, help="openings of each scene (medians reported)")
     p.add_argument("--moves", type=int, default=4, help="theta moves timed per opening of the surface map")
     args = p.parse_args()
+    json_out, sys.stdout = sys.stdout, sys.stderr  # viser prints to stdout from its threads: the JSON alone there
     cap_path, sm_path = args.capability, args.surface
     if args.build:
         cap_path, sm_path = build_maps(args.build, args.cache)
     result = {"machine": platform.processor() or platform.machine(), "cpus": os.cpu_count(),
               "browser": "headless Chromium, software WebGL (SwiftShader)", "window": [1280, 800],
-              "flags": {"before": list(PREVIOUS_FLAGS), "after": list(FLAGS)},
+              "flags": {"before": list(PREVIOUS_FLAGS), "after": list(FLAGS),
+                        "after_no_antialiasing": list(FLAGS + NO_MSAA)},
               "targets": TARGETS, "note": "shared 2-core machine, other jobs running: figures vary from run to run"}
     result["imports_in_a_fresh_process"] = import_times()
     result["reference_robot_meshes_trimesh_s"] = trimesh_reference()
@@ -318,14 +334,22 @@ def main() -> None:
         layer = v.add_surface_map(sm)
         return {"cells": len(layer.centres), "theta_bins": sm.theta_bins, "load_s": load}
 
+    def build_sm_labelled(v):  # main's scene: each sampled pose labelled with its R_S in 3D text
+        info = build_sm(v)
+        lift = v.samples.lift
+        for i, (q, r) in enumerate(zip(v.samples.poses, v.samples.rs)):
+            v.scene.add_label(f"/samples/label_{i}", f"R_S {r:.2f}", position=(q[0], q[1], q[2] + lift + 0.08))
+        return info
+
     # Scenes of each configuration: (key, build, surface-map layer class or None). "before": main before this
     # round (Chromium compositing on SwiftShader, the recolour slider); "after": software compositing, one node a
     # theta; "after_flags_recolour_slider" separates the two changes' shares of the slider time.
     configs = {"before": (PREVIOUS_FLAGS, [("empty_page", None, None), ("capability_map", build_cap, None),
-                                           ("surface_map", build_sm, RecolourLayer)]),
+                                           ("surface_map", build_sm_labelled, RecolourLayer)]),
                "after": (FLAGS, [("empty_page", None, None), ("capability_map", build_cap, None),
                                  ("surface_map", build_sm, SurfaceMapLayer),
-                                 ("surface_map_recolour_slider", build_sm, RecolourLayer)])}
+                                 ("surface_map_recolour_slider", build_sm, RecolourLayer)]),
+               "after_no_antialiasing": (FLAGS + NO_MSAA, [("surface_map", build_sm, SurfaceMapLayer)])}
     rows = {c: {key: [] for key, _, _ in scenes} for c, (_, scenes) in configs.items()}
     moves = {c: {key: [] for key, build, cls in scenes if cls} for c, (_, scenes) in configs.items()}
     browsers = {c: Browser(1280, 800, flags=flags) for c, (flags, _) in configs.items()}
@@ -361,7 +385,7 @@ def main() -> None:
                                                                   for f in m[0]},
                                             "page_s_max": round(max(x["page_s"] for x in m), 3),
                                             "page_s_all": [round(x["page_s"], 3) for x in m]}
-    print(json.dumps(result, indent=2))
+    print(json.dumps(result, indent=2), file=json_out)
 
 
 if __name__ == "__main__":

@@ -64,6 +64,10 @@ def test_scene_nodes_and_theta_slider(arm_map, viewer):
                  "/robot/wrist_3_link", "/surface", "/surface_map", "/surface_map/best", "/surface_map/theta_00",
                  f"/surface_map/theta_{sm.theta_bins - 1:02d}", "/samples/footprints", "/samples/headings"):
         assert viewer.has_node(node), node
+    # The sampled poses' R_S (the map's own lookup) listed in the control panel, one line a pose.
+    samples = viewer.samples
+    assert len(samples.poses) == 3 and np.allclose(samples.rs, sm.reachability(samples.poses))
+    assert all(f"{i + 1}. R_S = {r:.2f} at" in samples.table() for i, r in enumerate(samples.rs))
     centres, values = sm.voxels()
     centres, values = np.asarray(centres), np.asarray(values)
     # Best theta: every voxel with R_S > 0 is shown; one theta bin: exactly the voxels with R_S > 0 there.

@@ -112,7 +112,7 @@ class Viewer:
         layer = self.surface_map
         top = float(layer.centres[:, 2].max() + layer.tile_height / 2) if len(layer.centres) else 0.0
         lift = max(top - (float(poses[:, 2].min()) if len(poses) else 0.0), 0.0) + 0.02
-        self.samples = SamplesLayer(self.scene, poses, rs, footprint, lift=lift, vmax=layer.vmax)
+        self.samples = SamplesLayer(self.scene, poses, rs, footprint, lift=lift)
         if len(poses):
             self.server.gui.add_markdown(self.samples.table())
         if self.robot_layer is not None and len(poses):

@@ -7,6 +7,7 @@ import numpy as np
 ROBOT = (170, 174, 182)
 SURFACE = (150, 105, 60)
 FOOTPRINT = (20, 20, 20)
+ARROW = (230, 30, 120)
 SELECTED = (255, 0, 255)
 OCCUPIED = (90, 90, 100)
 FRONTIER = (255, 140, 0)
