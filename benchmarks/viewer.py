@@ -9,22 +9,32 @@ Prints JSON. Each scene is timed in parts:
   boot_s       page request until the page's websocket is open (page load and viser's client start-up; JS
                clock from here on, synchronised with the server's through Date.now)
   transfer_s   open until the last scene message reached the page (sent, decoded in viser's worker, posted)
-  draw_s       last message until the first frame drawing the whole scene (as many triangles as the steady
-               scene) has been drawn: its 1-pixel read-back returned (JS timing injected into the page)
+  draw_s       last message that frame shows until the first frame drawing the whole scene (as many
+               triangles as the steady scene's last frame) has been drawn: its 1-pixel read-back returned (JS
+               timing injected into the page)
   page_s       page request until then (boot_s + transfer_s + draw_s); open_s = load_s + scene_s + page_s
   js_frames_s  main-thread time of the animation frames from connect to drawn (React commits, three.js
                set-up, shader compiles, GL calls); first_frame_js_s: that of the first full frame alone
   triangles    triangles the steady scene draws per frame
   shader_programs, shader_compile_wait_s   programs the page linked (three.js: one per material kind) and
-               the main thread's waits for their compiles (SwiftShader compiles each in a few hundred ms)
-The slider: per theta move, the server-side time and the time until the first frame whose pixels differ
-from the frame before the move has been drawn (frames are read back whole while the slider is timed, which
-adds the read-back to each frame: an upper bound).
+               the main thread's waits for their compiles
+Each scene is opened --repeat times (a new viewer and page each time); the JSON holds the medians and every
+page_s. The slider: --moves theta moves per opening, each timed from the server-side call to the first frame
+whose pixels differ from the frame before the move has been drawn (frames are read back whole while the slider
+is timed, which adds the read-back to each frame: an upper bound); frame_js_s / frame_gpu_s split that
+frame into its main-thread part and the wait for SwiftShader to draw it (plus the read-back).
 
-References measured in the same run: an empty viewer page (boot and draw of nothing), the capability map
-drawn the old way (every voxel below the cut, one instance each), the slider the old way (the surface map's
-node re-sent on every move), and the robot meshes the old way (trimesh, in a fresh process: its import and
-the PR2's meshes).
+Two configurations, interleaved opening by opening, each in its own headless Chromium (1280 x 800):
+  before  main before this round: Chromium's earlier flags (PREVIOUS_FLAGS: the page composited on
+          SwiftShader, the GPU in its own process), the slider re-sending one node's colours and scales
+          (RecolourLayer) and the sampled poses labelled in 3D text
+  after   the viewer's flags (browser.FLAGS: software compositing, GPU thread in-process) and one node a theta
+          selection; also the recolour slider under these flags (surface_map_recolour_slider), which splits
+          the slider's gain between the flags and the nodes.
+  after_no_antialiasing   the surface map under the viewer's flags with WebGL's multisampling off (not the
+          viewer's setting: jagged edges): antialiasing's share of a software-rendered frame.
+Both include the empty page (viser's start-up and drawing nothing: the floor under every scene). Also the
+robot meshes the old way (trimesh, in a fresh process: its import and the PR2's meshes).
 
 Maps: --capability FILE --surface FILE, or --build RES to build the PR2's right-arm capability map and the
 two-arm table surface map at RES into --cache (0.05 m: about a minute per arm).
@@ -49,15 +59,22 @@ import numpy as np
 import octoreach
 from octoreach import arms, map_files
 from octoreach.viewer import Viewer, cells, colours
-from octoreach.viewer.browser import Browser
+from octoreach.viewer import app
+from octoreach.viewer.browser import FLAGS, Browser
 from octoreach.viewer.capability_map import CapabilityMapLayer
+from octoreach.viewer.surface_map import BEST, SurfaceMapLayer
 
 TARGETS = {"open_s": 3.0, "slider_s": 0.2}
+# Chromium's flags before this round: the page composited on SwiftShader too, the GPU in its own process.
+PREVIOUS_FLAGS = tuple(f for f in FLAGS if f not in ("--disable-gpu-compositing", "--in-process-gpu"))
+# Not the viewer's: WebGL without multisampling (jagged edges, which screenshots for docs should not have); timed
+# to show antialiasing's share of each software-rendered frame.
+NO_MSAA = ("--webgl-antialiasing-mode=none",)
 
 # Injected before the page's own scripts (epoch ms, synchronised with Date.now()): when viser's websocket worker
 # hands each message batch to the page; per animation frame with draws: start, end of its main-thread work,
 # draw calls, triangles, and `finished`, when a 1-pixel read-back returned (the GPU process, SwiftShader here,
-# has drawn the frame; taken on frames that draw more triangles than before). While `watch` is set, every
+# has drawn the frame). While `watch` is set, every
 # frame is read back whole and `hash` records a digest of its pixels (the slider: the first frame that differs).
 TIMING_JS = r"""
 (() => {
@@ -68,7 +85,7 @@ TIMING_JS = r"""
   window.Worker = class extends W {
     constructor(...args) { super(...args); this.addEventListener('message', () => T.messages.push(now())); }
   };
-  let cur = null, curGl = null, maxTris = 0, buf = null;
+  let cur = null, curGl = null, buf = null;
   const P = WebGL2RenderingContext.prototype;
   const wrap = (name, count) => {
     const g = P[name];
@@ -109,11 +126,10 @@ TIMING_JS = r"""
           let h = 0;
           for (let i = 0; i < n; i += 61) h = (h * 31 + buf[i]) >>> 0;
           f.hash = h;
-        } else if (gl && f.tris > maxTris) {
+        } else if (gl) {
           gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
           f.finished = now();
         }
-        maxTris = Math.max(maxTris, f.tris);
         T.frames.push(f);
       }
     }
@@ -142,22 +158,22 @@ def build_maps(res: float, cache: str) -> tuple[str, str]:
     return cap_path, sm_path
 
 
-class AllVoxels(CapabilityMapLayer):
-    """The reference: the capability map drawn the old way, every voxel below the cut one instance."""
+class RecolourLayer(SurfaceMapLayer):
+    """The reference slider (main before per-theta nodes): one node holds every cell; a move re-sends its colours
+    (3 bytes a cell) and scales (4 bytes a cell, 0 hides a cell), which the page applies to every instance."""
 
-    def cut(self, z: float) -> None:
-        self.z = float(z)
-        self.shown = self.drawn = np.flatnonzero(self.centres[:, 2] <= self.z + 1e-9)
-        self.handle = cells.add_cells(self.scene, f"{self.name}/voxels", self.centres[self.shown],
-                                      self.colours[self.shown], self.edge * 0.9)
+    def _add_nodes(self) -> None:
+        n, bins = self.values.shape
+        rs = np.vstack([self.values.T, self.values.max(axis=1, initial=0.0)[None, :]])  # row BEST = -1: best
+        self._colours = colours.scale(rs.reshape(-1), self.vmax).reshape(bins + 1, n, 3)
+        self._scales = (rs > 0).astype(np.float32)
+        self._node = cells.add_cells(self.scene, self.name + "/all", self.centres, self._colours[BEST],
+                                     self.edge * 0.92, self.tile_height, scales=self._scales[BEST])
 
-
-def old_show(layer, k: int) -> None:
-    """The reference slider move: the surface map's node re-sent with the cells shown at theta bin k."""
-    rs = layer.values[:, k]
-    shown = np.flatnonzero(rs > 0)
-    layer.handle = cells.add_cells(layer.scene, layer.name, layer.centres[shown],
-                                   colours.scale(rs[shown], layer.vmax), layer.edge * 0.92, layer.tile_height)
+    def show(self, theta_bin: int) -> None:
+        self.theta_bin = k = int(theta_bin)
+        self._node.batched_colors = self._colours[k]
+        self._node.batched_scales = self._scales[k]
 
 
 def _timing(browser: Browser) -> dict:
@@ -193,19 +209,18 @@ def open_scene(browser: Browser, build, name: str, quiet: float = 1.5, timeout: 
     while True:
         time.sleep(0.25)
         T = _timing(browser)
-        if not T["messages"]:
-            continue
-        last = max(T["messages"])
-        after = [f for f in T["frames"] if f["start"] >= last]
-        if after and time.time() - last > quiet:
-            tris = max(f["tris"] for f in after)
-            first = next(f for f in after if f["tris"] == tris)
-            if "finished" in first:
-                break
+        if T["messages"] and time.time() - max(T["messages"]) > quiet:
+            t_open, last = T["messages"][0], max(T["messages"])
+            frames = [f for f in T["frames"] if f["start"] >= t_open]
+            if frames:  # the steady scene: what the last frame drew; drawn: the first frame that drew as much
+                tris = frames[-1]["tris"]
+                first = next(f for f in frames if f["tris"] == tris)
+                if "finished" in first:
+                    break
         if time.time() - t_request > timeout:
             raise TimeoutError(f"{name}: no steady scene")
     t_drawn = first["finished"]
-    t_open = T["messages"][0]  # the worker's first message to the page: "connected"
+    last = max(m for m in T["messages"] if m <= first["start"])  # the last message the drawn frame shows
     frames = sum(f["end"] - f["start"] for f in T["frames"] if t_open <= f["start"] <= t_drawn)
     out = dict(info, load_s=round(load, 3), scene_s=round(scene, 3), wire_bytes=wire_bytes,
                serialise_s=round(serialise, 3), boot_s=round(t_open - t_request, 3),
@@ -217,37 +232,32 @@ def open_scene(browser: Browser, build, name: str, quiet: float = 1.5, timeout: 
     return out, v
 
 
-def slider_times(v: Viewer, browser: Browser, old: bool) -> dict:
-    """Theta moves over 8 bins: the server-side time of each, and the time until the page's first frame whose
-    pixels differ from the frame before the move has been drawn (read back whole while watching)."""
+def slider_times(v: Viewer, browser: Browser, moves: int) -> list:
+    """`moves` theta moves spread over the bins: per move the server-side time and the time until the page's
+    first frame whose pixels differ from the frame before the move has been drawn (read back whole while
+    watching)."""
     layer = v.surface_map
     bins = layer.smap.theta_bins
     browser.driver.execute_script("window.__octoreach_timing.watch = true;")
-    server, page = [], []
-    for k in range(0, bins, max(1, bins // 8)):
-        time.sleep(1.5)  # an idle frame or two to read the scene before the move
+    out = []
+    for k in range(0, bins, max(1, bins // moves)):
+        time.sleep(1.0)  # an idle frame or two to read the scene before the move
         before = [f for f in _timing(browser)["frames"] if "hash" in f]
         t0 = time.time()
         t = time.perf_counter()
-        if old:
-            old_show(layer, k)
-        else:
-            layer.show(k)
-        server.append(time.perf_counter() - t)
+        layer.show(k)
+        server = time.perf_counter() - t
         changed = None
         while changed is None and time.time() - t0 < 15.0:
             time.sleep(0.1)
             frames = [f for f in _timing(browser)["frames"] if "hash" in f and f["start"] >= t0]
             changed = next((f for f in frames if before and f["hash"] != before[-1]["hash"]), None)
-        page.append((changed["finished"] if changed else float("nan")) - t0)
+        if changed is None:
+            raise TimeoutError(f"theta bin {k}: the page did not change")
+        out.append({"server_s": server, "page_s": changed["finished"] - t0,
+                    "frame_js_s": changed["end"] - changed["start"], "frame_gpu_s": changed["finished"] - changed["end"]})
     browser.driver.execute_script("window.__octoreach_timing.watch = false;")
-    n = len(layer.centres)
-    # Arrays a move sends: colours (3 bytes) and scales (4 bytes) a cell, or the whole node again (positions,
-    # orientations, colours of the cells shown, and the box's vertices and triangles).
-    sent = n * 7 if not old else int(np.median([(layer.values[:, k] > 0).sum() for k in range(bins)])) * (12 + 16 + 3) + 8 * 12 + 12 * 12
-    return {"moves": len(server), "bytes_per_move": sent, "server_s_max": round(max(server), 4),
-            "server_s_median": round(float(np.median(server)), 4), "page_s_max": round(max(page), 3),
-            "page_s_median": round(float(np.median(page)), 3), "page_s": [round(p, 3) for p in page]}
+    return out
 
 
 def trimesh_reference() -> dict:
@@ -278,62 +288,104 @@ def _timed_load(path: str):
     return m, time.perf_counter() - t
 
 
+def _median(rows: list) -> dict:
+    """Field-wise medians of timing dicts (numbers), the page times listed; other fields from the first row."""
+    out = dict(rows[0])
+    for key, value in rows[0].items():
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            out[key] = round(float(np.median([r[key] for r in rows])), 4)
+    out["repetitions"] = len(rows)
+    out["page_s_all"] = [r["page_s"] for r in rows]
+    out["open_s_all"] = [r["open_s"] for r in rows]
+    return out
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--capability", help="capability map file (.orcm)")
     p.add_argument("--surface", help="surface map file (.orsm)")
     p.add_argument("--build", type=float, help="build PR2 maps at this resolution into --cache instead")
     p.add_argument("--cache", default=os.path.join("build", "viewer_bench"), help="folder for --build maps")
+    p.add_argument("--repeat", type=int, default=5, help="openings of each scene (medians reported)")
+    p.add_argument("--moves", type=int, default=4, help="theta moves timed per opening of the surface map")
     args = p.parse_args()
+    json_out, sys.stdout = sys.stdout, sys.stderr  # viser prints to stdout from its threads: the JSON alone there
     cap_path, sm_path = args.capability, args.surface
     if args.build:
         cap_path, sm_path = build_maps(args.build, args.cache)
     result = {"machine": platform.processor() or platform.machine(), "cpus": os.cpu_count(),
               "browser": "headless Chromium, software WebGL (SwiftShader)", "window": [1280, 800],
+              "flags": {"before": list(PREVIOUS_FLAGS), "after": list(FLAGS),
+                        "after_no_antialiasing": list(FLAGS + NO_MSAA)},
               "targets": TARGETS, "note": "shared 2-core machine, other jobs running: figures vary from run to run"}
     result["imports_in_a_fresh_process"] = import_times()
+    result["reference_robot_meshes_trimesh_s"] = trimesh_reference()
     import viser  # noqa: F401  (imported before the timings: a running viewer has it)
 
-    with Browser(1280, 800) as b:
-        b.driver.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": TIMING_JS})
-        empty, v = open_scene(b, lambda v: {}, "empty")
-        v.close()
-        result["reference_empty_page"] = empty
-        result["reference_empty_page"]["note"] = "no map: page load, viser start-up, drawing the empty scene"
-        result["reference_robot_meshes_trimesh_s"] = trimesh_reference()
-        if cap_path:
-            for key, layer_class in (("reference_capability_map_all_voxels", AllVoxels),
-                                     ("capability_map", CapabilityMapLayer)):
-                def build_cap(v, layer_class=layer_class):
-                    cap, load = _timed_load(cap_path)
-                    layer = v.capability_map = layer_class(v.scene, cap)
-                    v.frame_camera(layer.centres)
-                    return {"map": cap_path, "voxels": len(layer.centres), "cells": int(cap.stats["reachable_cells"])
-                            if "reachable_cells" in cap.stats else None, "below_cut": len(layer.shown),
-                            "drawn": len(layer.drawn), "load_s": load}
+    def build_cap(v):
+        cap, load = _timed_load(cap_path)
+        layer = v.capability_map = CapabilityMapLayer(v.scene, cap)
+        v.frame_camera(layer.centres)
+        return {"voxels": len(layer.centres), "below_cut": len(layer.shown), "drawn": len(layer.drawn),
+                "load_s": load}
 
-                out, v = open_scene(b, build_cap, key)
-                v.close()
-                result[key] = out
-        if sm_path:
-            for key, old in (("reference_surface_map_slider_resend", True), ("surface_map", False)):
-                def build_sm(v):
-                    sm, load = _timed_load(sm_path)
-                    layer = v.add_surface_map(sm)
-                    return {"map": sm_path, "cells": len(layer.centres), "theta_bins": sm.theta_bins,
-                            "load_s": load}
+    def build_sm(v):
+        sm, load = _timed_load(sm_path)
+        layer = v.add_surface_map(sm)
+        return {"cells": len(layer.centres), "theta_bins": sm.theta_bins, "load_s": load}
 
-                out, v = open_scene(b, build_sm, key)
-                try:
-                    slider = slider_times(v, b, old=old)
-                finally:
-                    v.close()
-                if old:
-                    result[key] = {"slider": slider}
-                else:
-                    out["slider"] = slider
-                    result[key] = out
-    print(json.dumps(result, indent=2))
+    def build_sm_labelled(v):  # main's scene: each sampled pose labelled with its R_S in 3D text
+        info = build_sm(v)
+        lift = v.samples.lift
+        for i, (q, r) in enumerate(zip(v.samples.poses, v.samples.rs)):
+            v.scene.add_label(f"/samples/label_{i}", f"R_S {r:.2f}", position=(q[0], q[1], q[2] + lift + 0.08))
+        return info
+
+    # Scenes of each configuration: (key, build, surface-map layer class or None). "before": main before this
+    # round (Chromium compositing on SwiftShader, the recolour slider); "after": software compositing, one node a
+    # theta; "after_flags_recolour_slider" separates the two changes' shares of the slider time.
+    configs = {"before": (PREVIOUS_FLAGS, [("empty_page", None, None), ("capability_map", build_cap, None),
+                                           ("surface_map", build_sm_labelled, RecolourLayer)]),
+               "after": (FLAGS, [("empty_page", None, None), ("capability_map", build_cap, None),
+                                 ("surface_map", build_sm, SurfaceMapLayer),
+                                 ("surface_map_recolour_slider", build_sm, RecolourLayer)]),
+               "after_no_antialiasing": (FLAGS + NO_MSAA, [("surface_map", build_sm, SurfaceMapLayer)])}
+    rows = {c: {key: [] for key, _, _ in scenes} for c, (_, scenes) in configs.items()}
+    moves = {c: {key: [] for key, build, cls in scenes if cls} for c, (_, scenes) in configs.items()}
+    browsers = {c: Browser(1280, 800, flags=flags) for c, (flags, _) in configs.items()}
+    try:
+        for b in browsers.values():
+            b.driver.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": TIMING_JS})
+        for _ in range(args.repeat):  # configurations interleaved: the machine's load drifts alike for both
+            for c, (_, scenes) in configs.items():
+                for key, build, cls in scenes:
+                    if build is None:
+                        build = lambda v: {}  # noqa: E731
+                    elif (build is build_cap and not cap_path) or (build is build_sm and not sm_path):
+                        continue
+                    app.SurfaceMapLayer = cls or SurfaceMapLayer
+                    try:
+                        out, v = open_scene(browsers[c], build, f"{c}/{key}")
+                        try:
+                            if cls is not None:
+                                moves[c][key] += slider_times(v, browsers[c], args.moves)
+                        finally:
+                            v.close()
+                    finally:
+                        app.SurfaceMapLayer = SurfaceMapLayer
+                    rows[c][key].append(out)
+    finally:
+        for b in browsers.values():
+            b.close()
+    for c in configs:
+        result[c] = {key: _median(r) for key, r in rows[c].items() if r}
+        for key, m in moves[c].items():
+            if m:
+                result[c][key]["slider"] = {"moves": len(m), **{f"{f}_median": round(float(np.median([x[f] for x in m])), 4)
+                                                                  for f in m[0]},
+                                            "page_s_max": round(max(x["page_s"] for x in m), 3),
+                                            "page_s_all": [round(x["page_s"], 3) for x in m]}
+    print(json.dumps(result, indent=2), file=json_out)
 
 
 if __name__ == "__main__":

@@ -61,20 +61,29 @@ def test_scene_nodes_and_theta_slider(arm_map, viewer):
     robot, _, sm = arm_map
     layer = viewer.add_surface_map(sm, samples=3)  # the robot comes from the map's robot name
     for node in ("/robot", "/robot/base_link", "/robot/tool0" if "tool0" in viewer.robot_layer.links else
-                 "/robot/wrist_3_link", "/surface", "/surface_map", "/samples/footprints", "/samples/headings"):
+                 "/robot/wrist_3_link", "/surface", "/surface_map", "/surface_map/best", "/surface_map/theta_00",
+                 f"/surface_map/theta_{sm.theta_bins - 1:02d}", "/samples/footprints", "/samples/headings"):
         assert viewer.has_node(node), node
+    # The sampled poses' R_S (the map's own lookup) listed in the control panel, one line a pose.
+    samples = viewer.samples
+    assert len(samples.poses) == 3 and np.allclose(samples.rs, sm.reachability(samples.poses))
+    assert all(f"{i + 1}. R_S = {r:.2f} at" in samples.table() for i, r in enumerate(samples.rs))
     centres, values = sm.voxels()
-    values = np.asarray(values)
+    centres, values = np.asarray(centres), np.asarray(values)
     # Best theta: every voxel with R_S > 0 is shown; one theta bin: exactly the voxels with R_S > 0 there.
     assert len(layer.shown) == len(centres)
-    handle = layer.handle
     for k in (0, 5):
         viewer.show_theta(k)
         assert set(layer.shown) == set(np.flatnonzero(values[:, k] > 0))
-        # A move recolours the one node: same node, its colours those of bin k, cells with R_S = 0 scaled to 0.
-        assert layer.handle is handle and viewer.scene.get_handle_by_name("/surface_map") is handle
-        assert np.array_equal(handle.batched_colors, colours.scale(values[:, k], layer.vmax))
-        assert np.array_equal(handle.batched_scales > 0, values[:, k] > 0)
+        # A move shows bin k's node (its cells: those with R_S > 0 at k, in its colours) and hides the others.
+        handle = layer.handle
+        assert handle is viewer.scene.get_handle_by_name(f"/surface_map/theta_{k:02d}")
+        assert [h.visible for h in layer.handles.values()].count(True) == 1 and handle.visible
+        shown = np.flatnonzero(values[:, k] > 0)
+        assert np.allclose(handle.batched_positions, centres[shown], atol=1e-6)
+        assert np.array_equal(handle.batched_colors, colours.scale(values[shown, k], layer.vmax))
+        assert np.array_equal(layer.colours_at(k)[shown], handle.batched_colors)
+        assert [layer.cell_of(k, j) for j in range(len(shown))] == list(shown)  # a click's instance -> cell
         i = int(layer.shown[np.argmax(values[layer.shown, k])])
         pose = layer.cell_pose(i)
         assert pose[3] == pytest.approx(2 * np.pi * k / sm.theta_bins)
@@ -197,14 +206,14 @@ def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_p
         viewer.robot_layer.root.visible = False
         no_robot = _changed(b, px)
         assert grey_pixels(px) - grey_pixels(no_robot) > 500, (grey_pixels(px), grey_pixels(no_robot))
-        layer.handle.visible = False
+        layer.root.visible = False
         no_map = _changed(b, no_robot)
         assert map_pixels(no_robot) - map_pixels(no_map) > 2000, (map_pixels(no_robot), map_pixels(no_map))
         viewer.robot_layer.root.visible = True
-        layer.handle.visible = True
+        layer.root.visible = True
         px = _changed(b, no_map)
 
-        # A theta move (colours and visibilities of the one node) reaches the page; then back to the best theta.
+        # A theta move (the bin's node shown, the best theta's hidden) reaches the page; then back to the best theta.
         k = int(np.argmin([(layer.values[:, j] > 0).sum() for j in range(sm.theta_bins)]))
         viewer.show_theta(k)
         moved = _changed(b, px)

@@ -8,6 +8,8 @@
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import sys
 import threading
 import time
@@ -36,7 +38,8 @@ class Viewer:
 
     def __init__(self, port: int = 8080, host: str = "127.0.0.1", verbose: bool = True):
         viser = _import_viser()
-        self.server = viser.ViserServer(host=host, port=port, verbose=False)
+        with contextlib.redirect_stdout(io.StringIO()):  # viser's banner: the URL is printed below
+            self.server = viser.ViserServer(host=host, port=port, verbose=False)
         self.server.gui.configure_theme(control_width="medium", show_share_button=False)
         self.scene = self.server.scene
         self.url = f"http://{host}:{self.server.get_port()}"
@@ -85,8 +88,8 @@ class Viewer:
             self.note("the surface map records its surface polygon only: the surface is drawn as a "
                       f"{surface_thickness * 100:.0f} cm slab, without the obstacles it was built with (table legs, "
                       "boxes); in Python, view(..., surface=the Surface) draws them")
-        self.surface_map = SurfaceMapLayer(self.scene, smap)
-        self._watch_clicks(self.surface_map)
+        self.surface_map = SurfaceMapLayer(self.scene, smap, atomic=self.server.atomic)
+        self._watch_surface_clicks(self.surface_map)
         if robot is None and smap.robot_name:
             robot = smap.robot_name
         if isinstance(robot, str):
@@ -110,6 +113,8 @@ class Viewer:
         top = float(layer.centres[:, 2].max() + layer.tile_height / 2) if len(layer.centres) else 0.0
         lift = max(top - (float(poses[:, 2].min()) if len(poses) else 0.0), 0.0) + 0.02
         self.samples = SamplesLayer(self.scene, poses, rs, footprint, lift=lift)
+        if len(poses):
+            self.server.gui.add_markdown(self.samples.table())
         if self.robot_layer is not None and len(poses):
             self.stand(poses[0], smap.reference_frame)
         self._surface_controls(smap)
@@ -206,15 +211,21 @@ class Viewer:
         return self.selected
 
     def _watch_clicks(self, layer) -> None:
-        select = self.select_cell if layer is self.surface_map else self._select_voxel
-
         @layer.handle.on_click
         def _(event) -> None:
-            index = event.instance_index
-            if index is None:
-                index = layer.pick(event.ray_origin, event.ray_direction) if hasattr(layer, "pick") else None
-            if index is not None:
-                select(int(index))
+            if event.instance_index is not None:
+                self._select_voxel(int(event.instance_index))
+
+    def _watch_surface_clicks(self, layer) -> None:
+        for k, handle in layer.handles.items():
+            @handle.on_click
+            def _(event, k=k) -> None:
+                if event.instance_index is not None:
+                    index = layer.cell_of(k, int(event.instance_index))
+                else:
+                    index = layer.pick(event.ray_origin, event.ray_direction)
+                if index is not None:
+                    self.select_cell(int(index))
 
     def _surface_controls(self, smap) -> None:
         gui = self.server.gui

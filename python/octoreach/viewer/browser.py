@@ -32,10 +32,20 @@ def _png_pixels(data: bytes) -> np.ndarray:
     return (image.imread(io.BytesIO(data), format="png")[..., :3] * 255).round().astype(np.uint8)
 
 
+# WebGL on SwiftShader (software, no GPU needed); the page itself composited in software and the GPU thread in
+# the browser process: with SwiftShader compositing the page too, the GPU process's one thread is busy with
+# the page's layers while WebGL waits for it (an empty viewer page took 1.2 s to draw instead of 0.7 s, and its
+# shader compiles waited 10x longer).
+FLAGS = ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--use-angle=swiftshader",
+         "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist", "--hide-scrollbars", "--disable-gpu-compositing",
+         "--in-process-gpu")
+
+
 class Browser:
     """One headless Chromium window of width x height pixels."""
 
-    def __init__(self, width: int = 1280, height: int = 800):
+    def __init__(self, width: int = 1280, height: int = 800, flags=None):
+        """`flags`: Chromium command-line flags instead of FLAGS (the window size is added)."""
         reason = chromium_missing()
         if reason:
             raise RuntimeError(reason)
@@ -45,9 +55,7 @@ class Browser:
         opts = webdriver.ChromeOptions()
         binary = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
         opts.binary_location = binary
-        for a in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--use-angle=swiftshader",
-                  "--enable-unsafe-swiftshader", "--ignore-gpu-blocklist", f"--window-size={width},{height}",
-                  "--hide-scrollbars"):
+        for a in (*(FLAGS if flags is None else flags), f"--window-size={width},{height}"):
             opts.add_argument(a)
         self.driver = webdriver.Chrome(options=opts, service=Service(shutil.which("chromedriver")))
         self.driver.set_window_size(width, height)

@@ -16,7 +16,7 @@ def cube(edge: float, height: float | None = None) -> tuple[np.ndarray, np.ndarr
 
 
 def add_cells(scene, name: str, centres: np.ndarray, colours: np.ndarray, edge: float, height=None, opacity=None,
-              scales=None):
+              scales=None, visible: bool = True):
     """A batched mesh of boxes (edge x edge x height, default cubes) at `centres` with per-box `colours` and
     optional per-box `scales` (N,) (0 hides a box without re-sending the others); click events carry the box's
     index as `instance_index`."""
@@ -28,7 +28,7 @@ def add_cells(scene, name: str, centres: np.ndarray, colours: np.ndarray, edge: 
                                            batched_scales=None if scales is None else np.asarray(scales, np.float32),
                                            batched_colors=np.asarray(colours, dtype=np.uint8).reshape(-1, 3),
                                            lod="off", opacity=opacity, cast_shadow=False,
-                                           receive_shadow=False)
+                                           receive_shadow=False, visible=visible)
 
 
 def grid_keys(centres: np.ndarray, edge: float) -> np.ndarray:

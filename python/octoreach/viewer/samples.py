@@ -1,4 +1,6 @@
-"""Sampled base poses in the scene: the robot's footprint at each pose, an arrow along its heading, R_S."""
+"""Sampled base poses in the scene: the robot's footprint at each pose and an arrow along its heading; their R_S
+listed in the control panel (`table`). No text in the 3D scene: the browser rasterises label glyphs a few per
+frame, which cost a software-rendering browser up to a second of extra frames when the page opens."""
 from __future__ import annotations
 
 import numpy as np
@@ -17,12 +19,13 @@ def outline_segments(footprint: np.ndarray, pose4, lift: float = 0.04) -> np.nda
 
 
 class SamplesLayer:
-    """Poses (N, 4) drawn as footprints plus arrows, each labelled with its R_S."""
+    """Poses (N, 4) drawn as footprints plus arrows; `table()` lists them with their R_S."""
 
     def __init__(self, scene, poses, rs, footprint: np.ndarray, name: str = "/samples", lift: float = 0.04):
         """`lift`: height above each pose at which outlines and arrows are drawn (above the map's tiles)."""
         from .._core import base_pose
 
+        self.lift = lift
         self.poses = np.asarray(poses, dtype=float).reshape(-1, 4)
         self.rs = np.asarray(rs, dtype=float).reshape(-1)
         if len(self.poses) == 0:
@@ -38,8 +41,12 @@ class SamplesLayer:
         scene.add_arrows(f"{name}/headings", np.asarray(arrows, dtype=np.float32),
                          np.tile(np.array(colours.ARROW, np.uint8), (len(arrows), 1)),
                          shaft_radius=0.015, head_radius=0.04, head_length=0.08)
-        for i, (p, r) in enumerate(zip(self.poses, self.rs)):
-            scene.add_label(f"{name}/label_{i}", f"R_S {r:.2f}", position=(p[0], p[1], p[2] + lift + 0.08))
+
+    def table(self) -> str:
+        """The poses and their R_S as a markdown list (for the control panel)."""
+        return "\n".join([f"**Sampled poses** ({len(self.poses)}, the arrows):", ""] + [
+            f"{i + 1}. R_S = {r:.2f} at x = {p[0]:+.2f}, y = {p[1]:+.2f} m, theta = {np.degrees(p[3]):.0f} deg"
+            for i, (p, r) in enumerate(zip(self.poses, self.rs))])
 
 
 def sample_poses(smap, count: int, seed: int = 1, robot=None, obstacles=None, reference=None):

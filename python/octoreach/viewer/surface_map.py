@@ -4,11 +4,14 @@ Every number comes from the compiled map: cells and their R_S per theta bin from
 the R_S of a clicked cell from ``SurfaceMap.reachability``; theta bin k is centred on 2 pi k / theta_bins
 (pose_map.hpp).
 
-All cells are one batched mesh sent once; the colours and visibilities of every theta selection are computed
-when the layer is made, so a slider move sends one node's colours (3 bytes a cell) and visibilities (a scale of
-0 or 1, 4 bytes a cell) and nothing else.
+Every theta selection (each bin, and the best theta) is its own batched mesh of the cells with R_S > 0 there,
+coloured for it, all sent when the layer is made and all but the selected one hidden: a slider move flips two
+nodes' visibility (one atomic message pair, a few bytes) and the browser draws one frame; nothing is re-sent or
+recomputed in the page.
 """
 from __future__ import annotations
+
+import contextlib
 
 import numpy as np
 
@@ -18,11 +21,13 @@ BEST = -1  # theta selection: the best theta of each cell
 
 
 class SurfaceMapLayer:
-    """Cells of a SurfaceMap under `name`; `show(theta_bin)` recolours them, `pick(ray)` finds a cell. Cell
-    indices (clicks, `shown`, `cell_pose`) index `centres`, the map's voxels, whatever theta is shown."""
+    """Cells of a SurfaceMap under `name`; `show(theta_bin)` shows another theta selection, `pick(ray)` finds a
+    cell. Cell indices (clicks, `shown`, `cell_pose`) index `centres`, the map's voxels, whatever theta is shown.
+    `atomic`: the viser server's `atomic` (a move's two visibility changes reach the page together)."""
 
-    def __init__(self, scene, smap, name: str = "/surface_map"):
+    def __init__(self, scene, smap, name: str = "/surface_map", atomic=None):
         self.scene, self.smap, self.name = scene, smap, name
+        self._atomic = atomic or contextlib.nullcontext
         centres, values = smap.voxels()
         self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
         self.values = np.asarray(values, dtype=float).reshape(len(self.centres), smap.theta_bins)
@@ -31,33 +36,64 @@ class SurfaceMapLayer:
         self.tile_height = self.edge * 0.2
         n, bins = self.values.shape
         self.best_bins = self.values.argmax(axis=1) if n else np.zeros(0, dtype=int)
-        # Row k: R_S at theta bin k; the last row (index BEST = -1): each cell's best R_S.
-        rs = np.vstack([self.values.T, self.values.max(axis=1, initial=0.0)[None, :]])
-        self._colours = colours.scale(rs.reshape(-1), self.vmax).reshape(bins + 1, n, 3)
-        self._scales = (rs > 0).astype(np.float32)
+        # Selection k (0 .. bins - 1, and BEST): the cells with R_S > 0 there and their R_S.
+        self.cells: dict[int, np.ndarray] = {}
+        self.rs: dict[int, np.ndarray] = {}
+        for k in [BEST, *range(bins)]:
+            rs = self.values.max(axis=1, initial=0.0) if k == BEST else self.values[:, k]
+            self.cells[k] = np.flatnonzero(rs > 0)
+            self.rs[k] = rs[self.cells[k]]
         self.theta_bin = BEST
-        self.shown = np.flatnonzero(self._scales[BEST])
-        # Flat tiles (a fifth of the edge high) keep the robot's footprint and the floor visible.
-        self.handle = cells.add_cells(scene, name, self.centres, self._colours[BEST], self.edge * 0.92,
-                                      self.tile_height, scales=self._scales[BEST])
+        self.root = scene.add_frame(name, show_axes=False)
+        self.handles: dict = {}
+        self._add_nodes()
+
+    def _add_nodes(self) -> None:
+        """One node a selection, coloured for it; only the best theta's visible. Flat tiles (a fifth of the edge
+        high) keep the robot's footprint and the floor visible."""
+        for k, shown in self.cells.items():
+            self.handles[k] = cells.add_cells(self.scene, self.node_name(k), self.centres[shown],
+                                              colours.scale(self.rs[k], self.vmax), self.edge * 0.92,
+                                              self.tile_height, visible=k == self.theta_bin)
+
+    def node_name(self, theta_bin: int) -> str:
+        return f"{self.name}/best" if theta_bin == BEST else f"{self.name}/theta_{theta_bin:02d}"
+
+    @property
+    def shown(self) -> np.ndarray:
+        """Indices (into `centres`) of the cells shown: R_S > 0 at the selected theta."""
+        return self.cells[self.theta_bin]
+
+    @property
+    def handle(self):
+        """The node of the selected theta."""
+        return self.handles[self.theta_bin]
 
     def colours_at(self, theta_bin: int) -> np.ndarray:
-        """(N, 3) uint8 colours of the cells at theta bin `theta_bin` (BEST: each cell's best R_S)."""
-        return self._colours[int(theta_bin)]
+        """(N, 3) uint8 colours of all cells at theta bin `theta_bin` (BEST: each cell's best R_S)."""
+        rs = self.values.max(axis=1, initial=0.0) if theta_bin == BEST else self.values[:, int(theta_bin)]
+        return colours.scale(rs, self.vmax)
 
     def theta_of_bin(self, k: int) -> float:
         return 2.0 * np.pi * k / self.smap.theta_bins
 
     def show(self, theta_bin: int) -> None:
-        """Shows the cells with R_S > 0 at theta bin `theta_bin` (BEST: each cell's best theta): updates the
-        node's colours and visibilities only."""
+        """Shows the cells with R_S > 0 at theta bin `theta_bin` (BEST: each cell's best theta): hides the node
+        shown and shows that selection's."""
         k = int(theta_bin)
         if k != BEST and not 0 <= k < self.smap.theta_bins:
             raise ValueError(f"theta bin {k} out of range 0..{self.smap.theta_bins - 1} (or BEST = -1)")
+        if k == self.theta_bin:
+            return
+        with self._atomic():
+            self.handles[self.theta_bin].visible = False
+            self.handles[k].visible = True
         self.theta_bin = k
-        self.shown = np.flatnonzero(self._scales[k])
-        self.handle.batched_colors = self._colours[k]
-        self.handle.batched_scales = self._scales[k]
+
+    def cell_of(self, theta_bin: int, instance: int) -> int:
+        """Cell index (into `centres`) of instance `instance` of selection `theta_bin`'s node (a click's
+        instance index)."""
+        return int(self.cells[int(theta_bin)][instance])
 
     def cell_bin(self, index: int) -> int:
         """Theta bin of cell `index` in the current selection (its best bin under BEST)."""
