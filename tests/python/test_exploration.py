@@ -3,7 +3,7 @@ bad inputs. Coarse resolutions and small images keep this under a minute on two 
 import numpy as np
 import pytest
 
-from octoreach import DepthCamera, ExplorationMap, Scene, next_best_view, view_utility
+from octoreach import DepthCamera, ExplorationMap, Scene, next_best_view, score_views, view_gains, view_utility
 from octoreach import exploration as ex
 
 FOV = np.deg2rad(58.0)
@@ -71,7 +71,8 @@ def test_closed_box_one_void_behind_one_frontier_and_the_view_looks_in():
     assert fv[0]["utility"] == pytest.approx(v.size * 0.04 ** 3)
     r = next_best_view(emap, cam, workspace_sphere=((0.8, 0.0, 0.3), 1.0), min_distance=0.05)
     assert r["void_cells"] > 100 and r["ranked"][0]["void_cells"] == r["void_cells"]
-    assert r["utility_dm3"] == pytest.approx(r["void_cells"] * 0.04 ** 3 * 1000)
+    assert 0 < r["expected_void"] <= r["void_cells"] and r["expected_gain"] == r["expected_void"]
+    assert r["utility_dm3"] == pytest.approx(r["expected_void"] * 0.04 ** 3 * 1000)
     P = r["best_pose"]
     eye, axis = P[:3, 3], P[:3, 2]
     assert not (np.all(eye > lo) and np.all(eye < hi))  # the camera is outside the box
@@ -80,10 +81,12 @@ def test_closed_box_one_void_behind_one_frontier_and_the_view_looks_in():
     # the optical axis passes through the opening and ends on an inner wall
     assert np.all(hit > lo - 0.03) and np.all(hit < hi + 0.03)
     assert axis[1] < -0.7  # looking into the +y opening
-    # the ranked list is ordered and its scores are what view_utility gives
-    counts = [c["void_cells"] for c in r["ranked"]]
-    assert counts == sorted(counts, reverse=True)
+    # the ranked list is ordered by the expected gain and its scores are what view_gains / view_utility give
+    gains = [c["gain"] for c in r["ranked"]]
+    assert gains == sorted(gains, reverse=True)
     assert view_utility(emap, cam, P)[0] == r["void_cells"]
+    g = view_gains(emap, cam, P)
+    assert g["void_cells"] == r["void_cells"] and g["expected_void"] == pytest.approx(r["expected_void"])
 
 
 def test_exploration_observes_the_crate_interiors():
