@@ -309,6 +309,7 @@ std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& pat
     for (CellKey k : v.void_cells) {
       S.grid.at(k) |= kVoidFlag;
       S.void_set.insert(k);
+      S.void_added.push_back(k);
     }
   }
   return m;

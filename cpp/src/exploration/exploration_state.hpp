@@ -13,6 +13,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "cell_sets.hpp"
 #include "common/shared_mutex.hpp"
 #include "hull.hpp"
 #include "octoreach/exploration.hpp"
@@ -162,6 +163,13 @@ struct ExplorationState {
   mutable std::vector<std::vector<CellKey>> clusters;
   mutable std::unordered_map<int, int> label_to_cluster;
   mutable std::vector<VoidCluster> void_clusters;
+  // What the incremental void clustering keeps between inserts (void_clusters.cpp): each cluster's
+  // seed cell, cell -> cluster index, the void cells in seed-priority order, and the void cells added
+  // and removed since the clusters were last brought up to date (written by insert).
+  mutable std::vector<CellKey> void_seeds;
+  mutable KeyTable<int> void_cluster_of;
+  mutable std::vector<std::pair<std::uint64_t, CellKey>> void_order;
+  mutable std::vector<CellKey> void_added, void_removed;
 
   CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }
   Eigen::Vector3d center(CellKey k) const {
