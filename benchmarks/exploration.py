@@ -26,13 +26,11 @@ from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, next_b
 from octoreach import exploration as ex
 
 
-def _void_cluster_sequence(scene, cam, res, rng, views=8):
-    """Incremental void clusters against from scratch after each insert of a sequence of nearby views."""
+def _void_cluster_sequence(scene, cam, res, rng, poses):
+    """Incremental void clusters against from scratch after each insert of a sequence of views."""
     emap = ExplorationMap(resolution=res)
     inc_s, scratch_s, voids, equal = [], [], [], True
-    for i in range(views):
-        a = 2 * np.pi * i / views
-        T = ex.look_at((-0.8 + 0.3 * np.cos(a), 0.3 * np.sin(a), 1.2), (1.5, 0.0, 0.0))
+    for T in poses:
         emap.insert(cam.capture(scene, T), T[:3, 3], rng)
         t0 = time.perf_counter()
         inc = emap.void_clusters()
@@ -42,10 +40,22 @@ def _void_cluster_sequence(scene, cam, res, rng, views=8):
         scratch_s.append(time.perf_counter() - t0)
         voids.append(emap.void_cell_count)
         equal &= len(inc) == len(ref) and all(np.array_equal(x.keys, y.keys) for x, y in zip(inc, ref))
-    return {"views": views, "void_cells": voids, "incremental_s": inc_s, "from_scratch_s": scratch_s,
+    return {"views": len(poses), "void_cells": voids, "incremental_s": inc_s, "from_scratch_s": scratch_s,
             "median_incremental_s_after_first": statistics.median(inc_s[1:]),
             "median_from_scratch_s_after_first": statistics.median(scratch_s[1:]),
             "equal_to_from_scratch_every_insert": bool(equal)}
+
+
+def _void_cluster_runs(scene, cam, res, rng):
+    """Two sequences after the same overview: views circling near it (their changes reach most of the
+    voids) and close views of single crates and boxes (local changes)."""
+    first = ex.look_at((-0.8, 0.0, 1.2), (1.5, 0.0, 0.0))
+    circling = [first] + [ex.look_at((-0.8 + 0.3 * np.cos(a), 0.3 * np.sin(a), 1.2), (1.5, 0.0, 0.0))
+                          for a in np.linspace(0, 2 * np.pi, 8)[1:]]
+    local = [first] + [ex.look_at((x - 0.35, y + 0.2, 0.75), (x + 0.2, y + 0.2, 0.15))
+                       for x, y in ((0.5, -1.2), (1.1, -0.4), (1.7, 0.4), (2.3, -1.2), (0.5, 0.4), (1.7, -1.2))]
+    return {"circling": _void_cluster_sequence(scene, cam, res, rng, circling),
+            "local": _void_cluster_sequence(scene, cam, res, rng, local)}
 
 
 def main() -> int:
@@ -81,7 +91,7 @@ def main() -> int:
         for k in ("seconds_vectors", "seconds_prune", "seconds_score"):
             nbv_parts.setdefault(k, []).append(nbv[k])
     med = statistics.median
-    inc = _void_cluster_sequence(scene, cam, res, rng)
+    inc = _void_cluster_runs(scene, cam, res, rng)
     # the search with the safe-view rule off (the cost of the unknown-cell obstacles and clearance)
     loose_s = [next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
                               unknown_is_obstacle=False)["seconds"] for _ in range(a.repeats)]

@@ -163,12 +163,13 @@ struct ExplorationState {
   mutable std::vector<std::vector<CellKey>> clusters;
   mutable std::unordered_map<int, int> label_to_cluster;
   mutable std::vector<VoidCluster> void_clusters;
-  // What the incremental void clustering keeps between inserts (void_clusters.cpp): each cluster's
-  // seed cell, cell -> cluster index, the void cells in seed-priority order, and the void cells added
-  // and removed since the clusters were last brought up to date (written by insert).
-  mutable std::vector<CellKey> void_seeds;
-  mutable KeyTable<int> void_cluster_of;
-  mutable std::vector<std::pair<std::uint64_t, CellKey>> void_order;
+  // What the incremental void clustering keeps between inserts (void_clusters.cpp): the clusters in
+  // slots that keep their index while the cluster lives (a free slot has no cells), each slot's seed
+  // cell, cell -> slot + 1 (0: none), and the void cells added and removed since the clusters were
+  // last brought up to date (written by insert).
+  mutable std::vector<VoidCluster> void_slots;
+  mutable std::vector<CellKey> void_slot_seed;
+  mutable KeyTable<int> void_slot_of;
   mutable std::vector<CellKey> void_added, void_removed;
 
   CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }

@@ -1,18 +1,24 @@
 // Void clustering: ellipsoid region growing (eq. 2, see VoidCluster), kept up to date incrementally
 // after each insert, and frontier-voids.
 //
-// Seeds are taken in a fixed priority order of the cells (mix of the key and the map's seed), so the
-// clustering of a set of void cells does not depend on how it came about. After an insert only the
-// clusters the changes can reach are grown again: the order is replayed, a cluster whose seed comes up
-// and which is not "dirty" is reused as it was, every other one is grown anew. A cluster is dirty when
-// one of its cells or their 26-neighbours is "marked": a void cell added or removed, a cell that joins
-// a cluster with another seed than before, or a cell of an old cluster not in its successor when that
-// old cluster's seed comes up in the order. The growth of a cluster reads only its cells, their
-// neighbours and whether those were void and taken by a cluster of an earlier seed; none of that can
-// change for a cluster that is not dirty when its seed comes up, so the result equals the clustering
-// from scratch (void_clusters_from_scratch), cluster for cluster, in the same order.
+// Seeds are taken in a fixed priority order of the cells (a mix of the key and the map's seed): a
+// cluster is grown from the first cell in that order no cluster holds yet. So the clustering of a set
+// of void cells does not depend on how it came about, and after an insert only the clusters the
+// changes can reach are grown again. The seed positions are replayed in priority order (a heap of the
+// old seeds, the added cells and the cells of every cluster that became dirty); a cluster whose seed
+// comes up and which is not dirty is reused as it was, every other one is grown anew. A cluster becomes
+// dirty (while its seed has not come up) when one of its cells or their 26-neighbours is marked: a
+// void cell added or removed, a cell that joins a cluster of another seed than before, or a cell of an
+// old cluster missing from its successor when that old cluster's seed comes up. The growth of a cluster
+// reads only its cells, their neighbours, whether those are void and whether a cluster of an earlier
+// seed holds them; none of that can have changed for a cluster that is not dirty when its seed comes
+// up, so the result equals the clustering from scratch (void_clusters_from_scratch), cluster for
+// cluster, in the same order. Cost: the changed region and the clusters it touches, plus copying the
+// clusters out (no pass over every void cell's hash entry).
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <queue>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -47,28 +53,25 @@ struct Moments {
   }
 };
 
-using Order = std::vector<std::pair<std::uint64_t, CellKey>>;
-
 std::uint64_t priority(CellKey k, std::uint64_t seed) { return detail::mix64(seed, k); }
 
-// Grows cluster `cid` from seed s over void 26-neighbours not taken yet while the score stays >=
-// threshold. taken / tried: cluster index + 1 of the cell's cluster / of the last cluster that
-// rejected it. Returns the members (seed first, in the order they joined).
-std::vector<CellKey> grow(const detail::GridReader& g, CellKey s, int cid, double threshold,
-                          detail::KeyTable<int>& taken, detail::KeyTable<int>& tried, Moments& m, double& score) {
+// Grows a cluster from seed s over void 26-neighbours that are still free while the score stays >=
+// threshold. is_free(k) / take(k): whether a cell is taken by no cluster yet / takes it; tried: the
+// cluster number (+1) that last rejected a cell. Returns the members (seed first, in joining order).
+template <class IsFree, class Take>
+std::vector<CellKey> grow(const detail::GridReader& g, CellKey s, int cid, double threshold, IsFree&& is_free,
+                          Take&& take, detail::KeyTable<int>& tried, Moments& m, double& score) {
   auto rel = [&](CellKey k) {
     return Eigen::Vector3d(int(key_x(k)) - int(key_x(s)), int(key_y(k)) - int(key_y(s)), int(key_z(k)) - int(key_z(s)));
   };
-  taken.at(s) = cid + 1;
+  take(s);
   std::vector<CellKey> members{s};
   score = m.score();
   for (std::size_t qi = 0; qi < members.size(); ++qi) {  // members double as the queue
     const CellKey k = members[qi];
     for (const auto& d : detail::kN26.d) {
       CellKey nb;
-      if (!detail::neighbour(k, d[0], d[1], d[2], nb) || !(g.get(nb) & detail::kVoidFlag)) continue;
-      const int* t = taken.find(nb);
-      if (t && *t) continue;
+      if (!detail::neighbour(k, d[0], d[1], d[2], nb) || !(g.get(nb) & detail::kVoidFlag) || !is_free(nb)) continue;
       const int* r = tried.find(nb);
       if (r && *r == cid + 1) continue;
       Moments next = m.plus(rel(nb));
@@ -76,7 +79,7 @@ std::vector<CellKey> grow(const detail::GridReader& g, CellKey s, int cid, doubl
       if (sc >= threshold) {
         m = next;
         score = sc;
-        taken.at(nb) = cid + 1;
+        take(nb);
         members.push_back(nb);
       } else {
         tried.at(nb) = cid + 1;
@@ -103,121 +106,153 @@ VoidCluster make_cluster(const detail::ExplorationState& st, CellKey seed, std::
   return vc;
 }
 
-// The clusters before an update (empty: from scratch) and the new ones being made.
-struct Clustering {
-  // before
-  const std::vector<VoidCluster>& old_clusters;
-  const std::vector<CellKey>& old_seeds;
-  const detail::KeyTable<int>& old_of;  // cell -> old cluster index + 1
-  std::vector<char> dirty;
-  // after
-  std::vector<VoidCluster> clusters;
-  std::vector<CellKey> seeds;
-  detail::KeyTable<int> taken, tried;  // cell -> new cluster index + 1
-  std::size_t reused = 0;
+// The clusters kept in slots (the map's, or empty ones for a clustering from scratch).
+struct Slots {
+  std::vector<VoidCluster>& cluster;
+  std::vector<CellKey>& seed;
+  detail::KeyTable<int>& of;  // cell -> slot + 1 (0: none)
+};
 
-  int old_index(CellKey k) const {
-    const int* i = old_of.find(k);
-    return i ? *i - 1 : -1;
+// One update of the kept clusters: the seed positions are replayed in priority order from a heap that
+// holds the old seeds, the added cells and the cells of every cluster that became dirty.
+class Replay {
+ public:
+  Replay(const detail::ExplorationState& I, const ExplorationOptions& o, double res, Slots slots)
+      : I_(I), g_(I.grid), o_(o), res_(res), s_(slots), dirty_(slots.cluster.size(), 0),
+        passed_(slots.cluster.size(), 0), reused_(slots.cluster.size(), 0) {
+    for (std::size_t j = 0; j < s_.cluster.size(); ++j)
+      if (!s_.cluster[j].cells.empty()) push(s_.seed[j]);
   }
-  // The old clusters holding k or a 26-neighbour of k become dirty.
+  void added(CellKey k) {
+    push(k);
+    mark(k);
+  }
+  void removed(CellKey k) { mark(k); }
+  // Runs the replay and stores the result in the slots; returns the clusters in seed order.
+  std::vector<VoidCluster> run();
+  std::size_t reused() const { return std::size_t(std::count(reused_.begin(), reused_.end(), 1)); }
+
+ private:
+  using Entry = std::pair<std::uint64_t, CellKey>;
+  void push(CellKey k) { heap_.emplace(priority(k, o_.seed), k); }
+  int old_slot(CellKey k) const {
+    const int* j = s_.of.find(k);
+    return j ? *j - 1 : -1;
+  }
+  // The old clusters holding k or a 26-neighbour of k whose seed has not come up yet become dirty;
+  // their cells may now start clusters, so they join the heap.
   void mark(CellKey k) {
-    if (old_clusters.empty()) return;
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           CellKey nb;
           if (!detail::neighbour(k, dx, dy, dz, nb)) continue;
-          const int j = old_index(nb);
-          if (j >= 0) dirty[std::size_t(j)] = 1;
+          const int j = old_slot(nb);
+          if (j < 0 || dirty_[std::size_t(j)] || passed_[std::size_t(j)]) continue;
+          dirty_[std::size_t(j)] = 1;
+          for (CellKey c : s_.cluster[std::size_t(j)].cells) push(c);
         }
   }
-  // The seed of the new cluster holding k (~0 when none).
-  CellKey new_seed(CellKey k) const {
-    const int* t = taken.find(k);
-    return t && *t ? seeds[std::size_t(*t - 1)] : ~CellKey(0);
+  // The seed of the cluster holding k now (~0: none yet).
+  CellKey seed_now(CellKey k) const {
+    if (const int* n = now_.find(k); n && *n) return new_seed_[std::size_t(*n - 1)];
+    const int j = old_slot(k);
+    return j >= 0 && reused_[std::size_t(j)] ? s_.seed[std::size_t(j)] : ~CellKey(0);
   }
+  bool intact(std::size_t j) const {  // a safeguard: the replay's argument says it always holds
+    for (CellKey k : s_.cluster[j].cells)
+      if (seed_now(k) != ~CellKey(0) || !(g_.get(k) & detail::kVoidFlag)) return false;
+    return true;
+  }
+  void grow_from(CellKey s);
+
+  const detail::ExplorationState& I_;
+  const detail::GridReader g_;
+  const ExplorationOptions& o_;
+  const double res_;
+  Slots s_;
+  std::vector<char> dirty_, passed_, reused_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
+  detail::KeyTable<int> now_, tried_;  // cell -> new cluster + 1; cell -> rejecting cluster + 1
+  std::vector<VoidCluster> new_clusters_;
+  std::vector<CellKey> new_seed_;
 };
 
-// At the position of seed s in the order: reuse its old cluster or grow a new one.
-void seed_at(const detail::ExplorationState& I, const detail::GridReader& g, const ExplorationOptions& o, double res,
-             CellKey s, Clustering& c) {
-  const int cid = int(c.clusters.size());
-  const int j = c.old_index(s);
-  auto intact = [&](const VoidCluster& v) {  // a safeguard: the argument above says it always holds
-    for (CellKey k : v.cells) {
-      const int* t = c.taken.find(k);
-      if ((t && *t) || !(g.get(k) & detail::kVoidFlag)) return false;
-    }
-    return true;
-  };
-  if (j >= 0 && c.old_seeds[std::size_t(j)] == s && !c.dirty[std::size_t(j)] && intact(c.old_clusters[std::size_t(j)])) {
-    for (CellKey k : c.old_clusters[std::size_t(j)].cells) c.taken.at(k) = cid + 1;
-    c.clusters.push_back(c.old_clusters[std::size_t(j)]);
-    c.seeds.push_back(s);
-    ++c.reused;
-    return;
-  }
+void Replay::grow_from(CellKey s) {
+  const int cid = int(new_clusters_.size());
+  new_seed_.push_back(s);
   Moments m;
   double score = 0;
-  c.seeds.push_back(s);
-  std::vector<CellKey> members = grow(g, s, cid, o.void_fit_threshold, c.taken, c.tried, m, score);
+  std::vector<CellKey> members =
+      grow(g_, s, cid, o_.void_fit_threshold, [&](CellKey k) { return seed_now(k) == ~CellKey(0); },
+           [&](CellKey k) { now_.at(k) = cid + 1; }, tried_, m, score);
   for (CellKey k : members) {  // cells that joined a cluster of another seed than before
-    const int oj = c.old_index(k);
-    if (oj < 0 || c.old_seeds[std::size_t(oj)] != s) c.mark(k);
+    const int j = old_slot(k);
+    if (j < 0 || s_.seed[std::size_t(j)] != s) mark(k);
   }
-  c.clusters.push_back(make_cluster(I, s, std::move(members), m, score, res));
+  new_clusters_.push_back(make_cluster(I_, s, std::move(members), m, score, res_));
 }
 
-// Brings the kept clusters up to date with the void cells added and removed since (all of them when
-// there were none before).
-void update_clusters(const detail::ExplorationState& I, const ExplorationOptions& o, double res) {
-  const detail::GridReader g(I.grid);
-  // the void cells in priority order: the old order without the cells no longer void, plus the new ones
-  Order add;
-  for (CellKey k : I.void_added)
-    if (g.get(k) & detail::kVoidFlag) add.emplace_back(priority(k, o.seed), k);
-  std::sort(add.begin(), add.end());
-  Order order;
-  order.reserve(I.void_order.size() + add.size());
-  for (const auto& e : I.void_order)
-    if (g.get(e.second) & detail::kVoidFlag) order.push_back(e);
-  const std::size_t mid = order.size();
-  order.insert(order.end(), add.begin(), add.end());
-  std::inplace_merge(order.begin(), order.begin() + std::ptrdiff_t(mid), order.end());
-  order.erase(std::unique(order.begin(), order.end()), order.end());
-
-  Clustering c{I.void_clusters, I.void_seeds, I.void_cluster_of, std::vector<char>(I.void_clusters.size(), 0),
-               {}, {}, detail::KeyTable<int>(order.size()), detail::KeyTable<int>(order.size() / 4)};
-  for (CellKey k : I.void_added) c.mark(k);
-  for (CellKey k : I.void_removed) c.mark(k);
-  // the old seeds in priority order: at each one's position, its cells not in its successor are marked
-  Order old;
-  for (CellKey s : I.void_seeds) old.emplace_back(priority(s, o.seed), s);
-  std::sort(old.begin(), old.end());
-  std::size_t oi = 0;
-  auto close_old = [&](const std::pair<std::uint64_t, CellKey>& upto, bool inclusive) {
-    for (; oi < old.size() && (old[oi] < upto || (inclusive && old[oi] == upto)); ++oi) {
-      const CellKey s = old[oi].second;
-      for (CellKey k : I.void_clusters[std::size_t(c.old_index(s))].cells)
-        if (c.new_seed(k) != s) c.mark(k);
+std::vector<VoidCluster> Replay::run() {
+  Entry last{0, ~CellKey(0)};
+  bool first = true;
+  while (!heap_.empty()) {
+    const Entry e = heap_.top();
+    heap_.pop();
+    if (!first && e == last) continue;
+    first = false;
+    last = e;
+    const CellKey k = e.second;
+    const int j = old_slot(k);
+    const bool old_seed = j >= 0 && s_.seed[std::size_t(j)] == k && !s_.cluster[std::size_t(j)].cells.empty();
+    if (old_seed) passed_[std::size_t(j)] = 1;
+    if ((g_.get(k) & detail::kVoidFlag) && seed_now(k) == ~CellKey(0)) {
+      if (old_seed && !dirty_[std::size_t(j)] && intact(std::size_t(j)))
+        reused_[std::size_t(j)] = 1;
+      else
+        grow_from(k);
     }
-  };
-  for (const auto& e : order) {
-    close_old(e, false);  // old seeds before this cell
-    const int* t = c.taken.find(e.second);
-    if (!(t && *t)) seed_at(I, g, o, res, e.second, c);
-    close_old(e, true);
+    if (old_seed && !reused_[std::size_t(j)]) {  // its cells not in its successor are marked
+      if (!dirty_[std::size_t(j)]) {  // (only when the safeguard failed) its cells may start clusters
+        dirty_[std::size_t(j)] = 1;
+        for (CellKey c : s_.cluster[std::size_t(j)].cells) push(c);
+      }
+      for (CellKey c : s_.cluster[std::size_t(j)].cells)
+        if (seed_now(c) != k) mark(c);
+    }
   }
-  I.void_clusters = std::move(c.clusters);
-  I.void_seeds = std::move(c.seeds);
-  detail::KeyTable<int> of(order.size());
-  for (std::size_t i = 0; i < I.void_clusters.size(); ++i)
-    for (CellKey k : I.void_clusters[i].cells) of.at(k) = int(i) + 1;
-  I.void_cluster_of = std::move(of);
-  I.void_order = std::move(order);
-  I.void_added.clear();
-  I.void_removed.clear();
+  // the slots: free the clusters not reused, then place the new ones
+  std::vector<int> free;
+  for (std::size_t j = 0; j < s_.cluster.size(); ++j) {
+    if (reused_[j]) continue;
+    for (CellKey c : s_.cluster[j].cells) s_.of.at(c) = 0;
+    s_.cluster[j] = VoidCluster();
+    free.push_back(int(j));
+  }
+  std::reverse(free.begin(), free.end());
+  for (std::size_t i = 0; i < new_clusters_.size(); ++i) {
+    int j;
+    if (free.empty()) {
+      j = int(s_.cluster.size());
+      s_.cluster.emplace_back();
+      s_.seed.push_back(0);
+    } else {
+      j = free.back();
+      free.pop_back();
+    }
+    for (CellKey c : new_clusters_[i].cells) s_.of.at(c) = j + 1;
+    s_.cluster[std::size_t(j)] = std::move(new_clusters_[i]);
+    s_.seed[std::size_t(j)] = new_seed_[i];
+  }
+  // the clusters in seed order (the order of a clustering from scratch)
+  std::vector<Entry> order;
+  for (std::size_t j = 0; j < s_.cluster.size(); ++j)
+    if (!s_.cluster[j].cells.empty()) order.emplace_back(priority(s_.seed[j], o_.seed), CellKey(j));
+  std::sort(order.begin(), order.end());
+  std::vector<VoidCluster> out;
+  out.reserve(order.size());
+  for (const auto& e : order) out.push_back(s_.cluster[std::size_t(e.second)]);
+  return out;
 }
 
 }  // namespace
@@ -229,28 +264,25 @@ std::vector<VoidCluster> ExplorationMap::void_clusters() const {
 
 std::vector<VoidCluster> ExplorationMap::void_clusters_from_scratch() const {
   detail::MapGuard guard(*state_, false);
-  const auto& I = *state_;
-  const detail::GridReader g(I.grid);
-  Order order;
-  for (CellKey k : I.void_set) order.emplace_back(priority(k, options_.seed), k);
-  std::sort(order.begin(), order.end());
-  const std::vector<VoidCluster> none;
-  const std::vector<CellKey> no_seeds;
-  const detail::KeyTable<int> no_cells;
-  Clustering c{none, no_seeds, no_cells, {}, {}, {}, detail::KeyTable<int>(order.size()),
-               detail::KeyTable<int>(order.size() / 4)};
-  for (const auto& e : order) {
-    const int* t = c.taken.find(e.second);
-    if (!(t && *t)) seed_at(I, g, options_, resolution_, e.second, c);
-  }
-  return std::move(c.clusters);
+  std::vector<VoidCluster> clusters;
+  std::vector<CellKey> seeds;
+  detail::KeyTable<int> of;
+  Replay r(*state_, options_, resolution_, Slots{clusters, seeds, of});
+  for (CellKey k : state_->void_set) r.added(k);
+  return r.run();
 }
 
 const std::vector<VoidCluster>& detail::cached_void_clusters(const ExplorationMap& map) {
   auto& I = detail::state(map);
   std::lock_guard<std::mutex> lock(I.cache_mutex);
   if (!I.voids_dirty) return I.void_clusters;
-  update_clusters(I, map.options(), map.resolution());
+  Replay r(I, map.options(), map.resolution(), Slots{I.void_slots, I.void_slot_seed, I.void_slot_of});
+  for (CellKey k : I.void_added)
+    if (I.grid.get(k) & detail::kVoidFlag) r.added(k);
+  for (CellKey k : I.void_removed) r.removed(k);
+  I.void_clusters = r.run();
+  I.void_added.clear();
+  I.void_removed.clear();
   I.voids_dirty = false;
   return I.void_clusters;
 }
