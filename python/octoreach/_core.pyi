@@ -1293,10 +1293,11 @@ class ExplorationMap:
     occupied cells), clustered into ellipsoids. Map frame, metres.
     """
     @staticmethod
-    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, max_cells: typing.SupportsInt | typing.SupportsIndex = 16777216) -> ExplorationMap:
+    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, max_cells: typing.SupportsInt | typing.SupportsIndex = 16777216, search_space: typing.Any = None) -> ExplorationMap:
         """
         Map from an OctoMap .bt file: FileNotFoundError if it does not exist, OSError if it cannot be read,
-        states a resolution outside [1e-4, 1e4] m or covers more than max_cells finest-resolution cells.
+        states a resolution outside [1e-4, 1e4] m, covers more than max_cells finest-resolution cells, or
+        its occupied cells span a box (clipped to search_space) too large to look for voids in.
         """
     def __init__(self, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.025, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, track_voids: bool = True, search_space: typing.Any = None) -> None:
         """
