@@ -34,6 +34,7 @@ class ViewRow:
     pose: list = field(default_factory=list)  # camera pose of this view (4x4 as nested lists)
     void_seen: int = 0  # void cells this view's insert turned known (compare with the previous row's void_cells)
     base: int = 0  # index of the base the view was taken from (0: base_pose, i: base_moves[i - 1])
+    expected_void: float = 0.0  # void cells the chosen next view is expected to see (visibility-weighted)
 
 
 @dataclass
@@ -109,7 +110,7 @@ def _best_view(emap, camera, bases, current, sphere_of, options, seed):
         capability_base = None if options.get("capability_map") is None else bp
         r = next_best_view(emap, camera, seed=seed, workspace_sphere=sphere_of(bp), chain_base=bp,
                            capability_base=capability_base, **options)
-        if nbv is None or r["void_cells"] > nbv["void_cells"]:
+        if nbv is None or r["expected_gain"] > nbv["expected_gain"]:
             nbv, best_base = r, i
     return nbv, best_base
 
@@ -121,7 +122,8 @@ def _row(view, emap, scene, region, stats, clusters, nbv, t_int, t_search, pose,
                    interior_share=observed_share(emap, scene, interiors) if interiors else 0.0,
                    points=int(stats["points"]), frontier_cells=int(emap.frontier_cell_count),
                    void_total=int(emap.void_cell_count), void_clusters=len(clusters),
-                   pose=pose.tolist(), base=base, void_seen=int(stats["void_removed"]))
+                   pose=pose.tolist(), base=base, void_seen=int(stats["void_removed"]),
+                   expected_void=float(nbv["expected_void"]))
 
 
 def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_pose=None, robot=None,
