@@ -9,6 +9,7 @@
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
 #include "chain_checks.hpp"
+#include "hinge_pairs.hpp"
 #include "common/cancel.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
@@ -62,6 +63,8 @@ struct CollisionSetup {
   std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
   std::vector<int> moved;  // joints whose child link the chain moves, in the robot's (parents-first) order
   std::vector<Pose> poses;
+  detail::HingePairs hinges;  // moving pairs one joint sets: skipped where certainly free
+  Eigen::VectorXd full;       // scratch: the robot configuration of the solution checked
 
   static CollisionSetup& of(const Chain& c, const Eigen::VectorXd& reference) {
     thread_local CollisionSetup s;
@@ -79,6 +82,7 @@ struct CollisionSetup {
     for (std::size_t j = 0; j < r->joints().size(); ++j)
       if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
     r->link_poses(reference, s.poses);
+    s.hinges = detail::HingePairs(c, s.moving_pairs, reference);
     return s;
   }
 
@@ -264,14 +268,15 @@ class LmIk {
     if (!need_full_) return true;
     const Robot& robot = c_.robot();
     CollisionSetup& s = *setup_;
-    s.place(robot, c_.to_robot_configuration(sol, s.reference));
+    s.full = c_.to_robot_configuration(sol, s.reference);
+    s.place(robot, s.full);
     if (o_.obstacles && robot.links_in_collision(s.poses, *o_.obstacles, o_.base_pose,
                                                  o_.obstacle_links.empty() ? nullptr : &o_.obstacle_links))
       return false;
     if (o_.check_self_collision) {
       if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
       if (fixed_state_ == 1) return false;
-      if (robot.in_self_collision_poses(s.poses, s.moving_pairs)) return false;
+      if (robot.in_self_collision_poses(s.poses, s.hinges.uncertain(robot, s.full))) return false;
     }
     return true;
   }
