@@ -9,6 +9,7 @@
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
 #include "chain_checks.hpp"
+#include "collision_detail.hpp"
 #include "hinge_pairs.hpp"
 #include "common/cancel.hpp"
 #include "common/random_mix.hpp"
@@ -276,7 +277,11 @@ class LmIk {
     if (o_.check_self_collision) {
       if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
       if (fixed_state_ == 1) return false;
-      if (robot.in_self_collision_poses(s.poses, s.hinges.uncertain(robot, s.full))) return false;
+      const int k = detail::first_colliding_pair(robot, s.poses, s.hinges.uncertain(robot, s.full));
+      if (k >= 0) {
+        s.hinges.hit(k);
+        return false;
+      }
     }
     return true;
   }
