@@ -1,6 +1,7 @@
 // Chain IK: damped least squares (Levenberg-Marquardt) with random restarts, solutions checked
 // against limits, self-collision and obstacles; ik_batch runs it on the thread pool.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -53,9 +54,10 @@ std::optional<Eigen::VectorXd> rigid_chain_ik(const Chain& c, const Pose& target
 
 // What IK needs to check its solutions of one chain at one reference posture for collisions: the
 // robot's checked pairs split into those the chain moves and those it never moves, and the link
-// poses at the reference. Per thread, the set-up of the last call is kept and reused by the next call
-// for the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so
-// a robot built at the address of a freed one never matches). Checking a solution then recomputes
+// poses at the reference, the hinge pairs (hinge_pairs.hpp) and the pair order. Per thread, the set-ups
+// of the last four robot, chain and reference combinations are kept and reused by the next call for
+// the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so a
+// robot built at the address of a freed one never matches). Checking a solution then recomputes
 // only the links the chain moves (the joints in `moved`, parents first).
 struct CollisionSetup {
   std::weak_ptr<const Robot> robot;
@@ -67,13 +69,28 @@ struct CollisionSetup {
   detail::HingePairs hinges;  // moving pairs one joint sets: skipped where certainly free
   Eigen::VectorXd full;       // scratch: the robot configuration of the solution checked
 
+  bool matches(const Chain& c, const std::shared_ptr<const Robot>& r, const Eigen::VectorXd& ref) const {
+    return !robot.expired() && !robot.owner_before(r) && !r.owner_before(robot) && base == c.base_link() &&
+           tip == c.tip_link() && reference.size() == ref.size() && reference == ref;
+  }
+
   static CollisionSetup& of(const Chain& c, const Eigen::VectorXd& reference) {
-    thread_local CollisionSetup s;
+    // The last few set-ups of this thread, so that a caller alternating between arms keeps what their
+    // hinge pairs measured; the least recently used one makes room.
+    thread_local std::array<CollisionSetup, 4> cache;
+    thread_local std::array<std::uint64_t, 4> used{};
+    thread_local std::uint64_t clock = 0;
     const std::shared_ptr<const Robot> r = c.robot_ptr();
-    const bool same = !s.robot.expired() && !s.robot.owner_before(r) && !r.owner_before(s.robot) &&
-                      s.base == c.base_link() && s.tip == c.tip_link() && s.reference.size() == reference.size() &&
-                      s.reference == reference;
-    if (same) return s;
+    std::size_t pick = 0;
+    for (std::size_t i = 0; i < cache.size(); ++i) {
+      if (cache[i].matches(c, r, reference)) {
+        used[i] = ++clock;
+        return cache[i];
+      }
+      if (used[i] < used[pick]) pick = i;
+    }
+    used[pick] = ++clock;
+    CollisionSetup& s = cache[pick];
     s.robot = r;
     s.base = c.base_link();
     s.tip = c.tip_link();
