@@ -24,6 +24,12 @@ the discretisation (a pose is not its cell's centre).
 Lookups: map.reachable on one numpy batch of 1,000,000 such poses and map.reachability on 1,000,000
 such points, median of 5 runs, wall clock per item (the batch runs on every core).
 
+Build cost on a shared machine: ``--reference PYTHONPATH`` builds the same map with another octoreach
+(e.g. main's build) in child processes, interleaved with builds of this one (``--repeats`` each, child
+processes so that neither warms the other), and reports the medians of wall and CPU seconds (user +
+system of the child's build) and their ratios: CPU seconds and the ratio are what a loaded machine
+measures fairly; the wall-clock target needs a quiet one.
+
 Prints one JSON document, with today's figures from before issue 15 (``before_issue_15``) beside the
 new ones. ``--quick`` runs at 0.1 m with fewer poses; ``--also-fine`` adds the 0.025 m build (its
 agreement is measured on the same poses).
@@ -36,6 +42,7 @@ import os
 import platform
 import resource
 import statistics
+import subprocess
 import sys
 import tempfile
 import time
@@ -122,6 +129,9 @@ def shares(map_yes: np.ndarray, ik_yes: np.ndarray) -> dict:
         "ik_reachable_percent": round(100 * ik_yes.mean(), 3),
         "map_reachable_percent": round(100 * map_yes.mean(), 3),
         "agreement_percent": round(100 * (map_yes == ik_yes).mean(), 3),
+        # sampling error of the agreement estimate (binomial, one standard error)
+        "agreement_standard_error_percent": round(100 * float(np.sqrt((map_yes == ik_yes).mean() *
+                                                                      (map_yes != ik_yes).mean() / n)), 3),
         "false_positive_percent": round(100 * (map_yes & ~ik_yes).mean(), 3),
         "false_negative_percent": round(100 * (~map_yes & ik_yes).mean(), 3),
     }
@@ -168,6 +178,48 @@ def build_and_measure(chain, reference, resolution, directions, threads, seed, w
     }
 
 
+def child_build(resolution, directions, threads, seed) -> dict:
+    """One build of the PR2 right-arm map in this process (the child of compare_builds): wall and CPU seconds."""
+    robot = robots.pr2()
+    chain = robot.chain("torso_lift_link", "r_gripper_tool_frame")
+    tucked = robot.configuration(robot.named_states["tuck_left_arm"])
+    t0, c0 = time.perf_counter(), cpu_seconds()
+    cmap = octoreach.CapabilityMap.build(chain, resolution=resolution, directions=directions, approach_axis=APPROACH,
+                                         self_collision=True, reference=tucked, seed=seed, threads=threads)
+    wall, cpu = time.perf_counter() - t0, cpu_seconds() - c0
+    return {"wall": wall, "cpu": cpu, "ik_calls": int(cmap.stats["ik_calls"]),
+            "reachable_cells": int(cmap.stats["reachable_cells"]), "octoreach": os.path.dirname(octoreach.__file__)}
+
+
+def compare_builds(reference_path, resolution, directions, threads, seed, repeats) -> dict:
+    """Builds with this octoreach and with the one on `reference_path`, interleaved, in child processes."""
+    def run(pythonpath):
+        env = dict(os.environ)
+        if pythonpath is not None:
+            env["PYTHONPATH"] = pythonpath
+        cmd = [sys.executable, os.path.abspath(__file__), "--child-build", "--resolution", str(resolution),
+               "--directions", str(directions), "--threads", str(threads), "--seed", str(seed)]
+        return json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
+
+    this_path = os.path.dirname(os.path.dirname(os.path.abspath(octoreach.__file__)))
+    runs = {"reference": [], "this": []}
+    for _ in range(repeats):
+        runs["reference"].append(run(reference_path))
+        runs["this"].append(run(this_path))
+    med = {k: {m: round(statistics.median(r[m] for r in v), 2) for m in ("wall", "cpu")} for k, v in runs.items()}
+    return {
+        "reference_pythonpath": reference_path,
+        "repeats": repeats,
+        "interleaved": True,
+        "runs": {k: [{m: round(r[m], 2) if isinstance(r[m], float) else r[m] for m in r} for r in v]
+                 for k, v in runs.items()},
+        "median_seconds": med,
+        "speedup_cpu": round(med["reference"]["cpu"] / med["this"]["cpu"], 3),
+        "speedup_wall": round(med["reference"]["wall"] / med["this"]["wall"], 3),
+        "load_average_after": [round(x, 2) for x in os.getloadavg()],
+    }
+
+
 def agreement(cmap, poses, truth, cell_truth):
     D = cmap.reachability(poses[:, :3, 3])
     yes = cmap.reachable(poses)
@@ -193,7 +245,14 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--plot", default="benchmarks/out/pr2_capability_slices.png", help="slice plot PNG ('' for none)")
     ap.add_argument("--progress", action="store_true", help="progress bars on stderr")
+    ap.add_argument("--reference", default=None, metavar="PYTHONPATH",
+                    help="also build with the octoreach found on this PYTHONPATH (e.g. main's build), interleaved")
+    ap.add_argument("--repeats", type=int, default=3, help="builds per side with --reference (medians reported)")
+    ap.add_argument("--child-build", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
+    if args.child_build:
+        json.dump(child_build(args.resolution, args.directions, args.threads, args.seed), sys.stdout)
+        return 0
     if args.quick:
         args.resolution, args.poses, args.lookups = 0.1, 2000, 100_000
 
@@ -251,6 +310,10 @@ def main(argv=None) -> int:
             fine["agreement"] = agreement(fine_map, poses, truth, None)
             out["fine_map"] = fine
             del fine_map
+
+    if args.reference:
+        out["build_comparison"] = compare_builds(args.reference, args.resolution, args.directions, args.threads,
+                                                 args.seed, args.repeats)
 
     if args.plot:
         Path(args.plot).parent.mkdir(parents=True, exist_ok=True)

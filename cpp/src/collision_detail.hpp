@@ -2,11 +2,23 @@
 // Internal: the two FCL steps shared by obstacle checks (collision.cpp) and the robot's own
 // collision checks (robot_collision.cpp).
 
+#include <utility>
+#include <vector>
+
 #include <fcl/fcl.h>
 
 #include "octoreach/types.hpp"
 
+namespace octoreach {
+class Robot;
+}
+
 namespace octoreach::detail {
+
+/// Index into `pairs` of the first pair (in that order) whose links collide at the link poses, or -1
+/// (Robot::in_self_collision_poses is this >= 0; IK uses the index to test often-hit pairs first).
+int first_colliding_pair(const Robot& robot, const std::vector<Pose>& poses,
+                         const std::vector<std::pair<int, int>>& pairs);
 
 /// World-frame AABB of a geometry at a pose, from its local AABB (cheap and conservative).
 inline fcl::AABBd world_aabb(const fcl::CollisionGeometryd& g, const Pose& T) {

@@ -1,6 +1,7 @@
 // Chain IK: damped least squares (Levenberg-Marquardt) with random restarts, solutions checked
 // against limits, self-collision and obstacles; ik_batch runs it on the thread pool.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -9,6 +10,8 @@
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
 #include "chain_checks.hpp"
+#include "collision_detail.hpp"
+#include "hinge_pairs.hpp"
 #include "common/cancel.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
@@ -51,9 +54,10 @@ std::optional<Eigen::VectorXd> rigid_chain_ik(const Chain& c, const Pose& target
 
 // What IK needs to check its solutions of one chain at one reference posture for collisions: the
 // robot's checked pairs split into those the chain moves and those it never moves, and the link
-// poses at the reference. Per thread, the set-up of the last call is kept and reused by the next call
-// for the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so
-// a robot built at the address of a freed one never matches). Checking a solution then recomputes
+// poses at the reference, the hinge pairs (hinge_pairs.hpp) and the pair order. Per thread, the set-ups
+// of the last four robot, chain and reference combinations are kept and reused by the next call for
+// the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so a
+// robot built at the address of a freed one never matches). Checking a solution then recomputes
 // only the links the chain moves (the joints in `moved`, parents first).
 struct CollisionSetup {
   std::weak_ptr<const Robot> robot;
@@ -62,14 +66,31 @@ struct CollisionSetup {
   std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
   std::vector<int> moved;  // joints whose child link the chain moves, in the robot's (parents-first) order
   std::vector<Pose> poses;
+  detail::HingePairs hinges;  // moving pairs one joint sets: skipped where certainly free
+  Eigen::VectorXd full;       // scratch: the robot configuration of the solution checked
+
+  bool matches(const Chain& c, const std::shared_ptr<const Robot>& r, const Eigen::VectorXd& ref) const {
+    return !robot.expired() && !robot.owner_before(r) && !r.owner_before(robot) && base == c.base_link() &&
+           tip == c.tip_link() && reference.size() == ref.size() && reference == ref;
+  }
 
   static CollisionSetup& of(const Chain& c, const Eigen::VectorXd& reference) {
-    thread_local CollisionSetup s;
+    // The last few set-ups of this thread, so that a caller alternating between arms keeps what their
+    // hinge pairs measured; the least recently used one makes room.
+    thread_local std::array<CollisionSetup, 4> cache;
+    thread_local std::array<std::uint64_t, 4> used{};
+    thread_local std::uint64_t clock = 0;
     const std::shared_ptr<const Robot> r = c.robot_ptr();
-    const bool same = !s.robot.expired() && !s.robot.owner_before(r) && !r.owner_before(s.robot) &&
-                      s.base == c.base_link() && s.tip == c.tip_link() && s.reference.size() == reference.size() &&
-                      s.reference == reference;
-    if (same) return s;
+    std::size_t pick = 0;
+    for (std::size_t i = 0; i < cache.size(); ++i) {
+      if (cache[i].matches(c, r, reference)) {
+        used[i] = ++clock;
+        return cache[i];
+      }
+      if (used[i] < used[pick]) pick = i;
+    }
+    used[pick] = ++clock;
+    CollisionSetup& s = cache[pick];
     s.robot = r;
     s.base = c.base_link();
     s.tip = c.tip_link();
@@ -79,6 +100,7 @@ struct CollisionSetup {
     for (std::size_t j = 0; j < r->joints().size(); ++j)
       if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
     r->link_poses(reference, s.poses);
+    s.hinges = detail::HingePairs(c, s.moving_pairs, reference);
     return s;
   }
 
@@ -264,14 +286,19 @@ class LmIk {
     if (!need_full_) return true;
     const Robot& robot = c_.robot();
     CollisionSetup& s = *setup_;
-    s.place(robot, c_.to_robot_configuration(sol, s.reference));
+    s.full = c_.to_robot_configuration(sol, s.reference);
+    s.place(robot, s.full);
     if (o_.obstacles && robot.links_in_collision(s.poses, *o_.obstacles, o_.base_pose,
                                                  o_.obstacle_links.empty() ? nullptr : &o_.obstacle_links))
       return false;
     if (o_.check_self_collision) {
       if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
       if (fixed_state_ == 1) return false;
-      if (robot.in_self_collision_poses(s.poses, s.moving_pairs)) return false;
+      const int k = detail::first_colliding_pair(robot, s.poses, s.hinges.uncertain(robot, s.full));
+      if (k >= 0) {
+        s.hinges.hit(k);
+        return false;
+      }
     }
     return true;
   }

@@ -108,19 +108,25 @@ bool Robot::in_self_collision_poses(const std::vector<Pose>& poses) const {
 }
 
 bool Robot::in_self_collision_poses(const std::vector<Pose>& poses, const std::vector<std::pair<int, int>>& pairs) const {
+  return detail::first_colliding_pair(*this, poses, pairs) >= 0;
+}
+
+int detail::first_colliding_pair(const Robot& robot, const std::vector<Pose>& poses,
+                                 const std::vector<std::pair<int, int>>& pairs) {
   // AABBs of every shape first, so most pairs are rejected without FCL. The scratch is per thread:
   // the robot itself is shared and never written.
+  const auto& links = robot.links();
   thread_local std::vector<std::vector<fcl::AABBd>> boxes;
   thread_local std::vector<std::vector<Pose>> shape_poses;
-  boxes.resize(links_.size());
-  shape_poses.resize(links_.size());
+  boxes.resize(links.size());
+  shape_poses.resize(links.size());
   // Only the links named by `pairs` need their boxes.
   thread_local std::vector<char> needed;
-  needed.assign(links_.size(), 0);
+  needed.assign(links.size(), 0);
   for (const auto& [a, b] : pairs) needed[a] = needed[b] = 1;
-  for (int li : collision_links_) {
+  for (int li : robot.collision_links()) {
     if (!needed[li]) continue;
-    const auto& shapes = links_[li].shapes;
+    const auto& shapes = links[li].shapes;
     boxes[li].resize(shapes.size());
     shape_poses[li].resize(shapes.size());
     for (std::size_t s = 0; s < shapes.size(); ++s) {
@@ -128,17 +134,18 @@ bool Robot::in_self_collision_poses(const std::vector<Pose>& poses, const std::v
       boxes[li][s] = world_aabb(*shapes[s].geometry, shape_poses[li][s]);
     }
   }
-  for (const auto& [a, b] : pairs) {
-    const auto& sa = links_[a].shapes;
-    const auto& sb = links_[b].shapes;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto [a, b] = pairs[p];
+    const auto& sa = links[a].shapes;
+    const auto& sb = links[b].shapes;
     for (std::size_t i = 0; i < sa.size(); ++i)
       for (std::size_t k = 0; k < sb.size(); ++k) {
         if (!boxes[a][i].overlap(boxes[b][k])) continue;
         if (geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb[k].geometry.get(), shape_poses[b][k]))
-          return true;
+          return static_cast<int>(p);
       }
   }
-  return false;
+  return -1;
 }
 
 bool Robot::in_self_collision(const Eigen::VectorXd& q) const {

@@ -1,6 +1,7 @@
 #include "capability_build.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -218,6 +219,8 @@ std::vector<CapabilityBuilder::Item> CapabilityBuilder::retry_items() const {
 }
 
 void CapabilityBuilder::solve() {
+  const auto t0 = std::chrono::steady_clock::now();  // stage times for OCTOREACH_DEBUG
+  auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   std::vector<Item> wave0;
   for (std::uint32_t c = 0; c < box_.cells; ++c)
     if (seed_row_[c] >= 0) {
@@ -227,16 +230,17 @@ void CapabilityBuilder::solve() {
   std::vector<std::uint32_t> newly;
   run_wave(wave0, seed_pool_, 1, newly);
   const char* debug = std::getenv("OCTOREACH_DEBUG");
-  if (debug) std::fprintf(stderr, "capability map: wave0 %zu calls, %zu reachable\n", wave0.size(), newly.size());
+  if (debug) std::fprintf(stderr, "capability map: wave0 %zu calls, %zu reachable (%.2f s)\n", wave0.size(), newly.size(), secs());
   report(0.15, 0.5, 1.0);
   flood(newly);
-  if (debug) std::fprintf(stderr, "capability map: after flood %zu calls\n", ik_calls_);
+  if (debug) std::fprintf(stderr, "capability map: after flood %zu calls (%.2f s)\n", ik_calls_, secs());
   // One retry pass: a second recovered about 1% of what it tried on the PR2 arm.
   std::vector<Item> retry = retry_items();
   if (!retry.empty()) {
     run_wave(retry, sol_pool_, 1, newly);
-    if (debug) std::fprintf(stderr, "capability map: retry pass 0: %zu cells, %zu recovered\n", retry.size(), newly.size());
+    if (debug) std::fprintf(stderr, "capability map: retry pass 0: %zu cells, %zu recovered (%.2f s)\n", retry.size(), newly.size(), secs());
     if (!newly.empty()) flood(newly);
+    if (debug) std::fprintf(stderr, "capability map: flood after retry: %zu calls (%.2f s)\n", ik_calls_, secs());
   }
   if (o_.exhaustive) {
     std::vector<Item> rest;

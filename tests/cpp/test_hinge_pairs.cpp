@@ -1,0 +1,81 @@
+// The hinge-pair certificates IK uses to skip self-collision tests (cpp/src/hinge_pairs.hpp): a pair
+// left out as certified free never collides, so the check answers as the plain check of every pair.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "collision_detail.hpp"
+#include "hinge_pairs.hpp"
+#include "octoreach/chain.hpp"
+#include "octoreach/robot.hpp"
+
+using namespace octoreach;
+
+namespace {
+
+// A body with a post beside the shoulder: the shoulder (joint 0) swings into the post, and a cover on
+// the upper arm (joint 1) swings into the shoulder: two hinge pairs, one against a link the chain never
+// moves and one between two moving links; the cover and the forearm are one joint (2) apart too. The
+// forearm against the body or the post is not a hinge pair (three joints between them).
+const char* kUrdf = R"(<robot name="hinge_test">
+  <link name="base"><collision><origin xyz="0 0 0.5"/><geometry><box size="0.4 0.4 1.0"/></geometry></collision></link>
+  <link name="post"><collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision></link>
+  <joint name="post_joint" type="fixed"><parent link="base"/><child link="post"/><origin xyz="0.25 0.3 1.05"/></joint>
+  <link name="shoulder"><collision><origin xyz="0.3 0 0"/><geometry><box size="0.12 0.12 0.12"/></geometry></collision></link>
+  <joint name="j0" type="revolute"><parent link="base"/><child link="shoulder"/><origin xyz="0 0 1.05"/>
+    <axis xyz="0 0 1"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+  <link name="upper"><collision><origin xyz="0 0 0.2"/><geometry><box size="0.06 0.06 0.4"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="shoulder"/><child link="upper"/><origin xyz="0.3 0 0.1"/>
+    <axis xyz="0 1 0"/><limit lower="-2.5" upper="2.5" effort="1" velocity="1"/></joint>
+  <link name="cover"><collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision></link>
+  <joint name="cover_joint" type="fixed"><parent link="upper"/><child link="cover"/><origin xyz="0.08 0 0.05"/></joint>
+  <link name="fore"><collision><origin xyz="0 0 0.25"/><geometry><cylinder radius="0.03" length="0.5"/></geometry></collision></link>
+  <joint name="j2" type="revolute"><parent link="upper"/><child link="fore"/><origin xyz="0 0 0.4"/>
+    <axis xyz="0 1 0"/><limit lower="-2.8" upper="2.8" effort="1" velocity="1"/></joint>
+</robot>)";
+
+}  // namespace
+
+TEST(HingePairs, SkipsOnlyPairsThatCannotCollide) {
+  auto robot = Robot::from_urdf(kUrdf);
+  Chain chain = robot->chain("base", "fore");
+  std::vector<std::pair<int, int>> moving, fixed;
+  chain.split_collision_pairs(moving, fixed);
+  const Eigen::VectorXd reference = robot->home();
+  detail::HingePairs hinges(chain, moving, reference);
+  EXPECT_EQ(hinges.hinges(), 3u);  // post-shoulder (joint 0), shoulder-cover (joint 1), cover-fore (joint 2)
+
+  std::mt19937_64 rng(7);
+  std::vector<Pose> poses;
+  int colliding = 0, skipped = 0, hinge_hits = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Eigen::VectorXd full = chain.to_robot_configuration(chain.random_configuration(rng), reference);
+    robot->link_poses(full, poses);
+    const bool plain = robot->in_self_collision_poses(poses, moving);
+    const auto& left = hinges.uncertain(*robot, full);
+    skipped += static_cast<int>(moving.size() - left.size());
+    // Every pair left out is free on its own (the certificate never skips a colliding pair).
+    for (const auto& p : moving)
+      if (std::find(left.begin(), left.end(), p) == left.end()) {
+        EXPECT_FALSE(robot->in_self_collision_poses(poses, {p})) << "pair " << p.first << "-" << p.second << " at " << i;
+      } else if (robot->in_self_collision_poses(poses, {p}) && (p.first == robot->link_index("post") ||
+                                                                 p.second == robot->link_index("cover"))) {
+        ++hinge_hits;
+      }
+    const int k = detail::first_colliding_pair(*robot, poses, left);
+    EXPECT_EQ(k >= 0, plain) << "configuration " << i;
+    if (k >= 0) hinges.hit(static_cast<std::size_t>(k));
+    colliding += plain;
+  }
+  // The test means something: configurations of both kinds, pairs skipped, hinge pairs that do collide.
+  EXPECT_GT(colliding, 100);
+  EXPECT_LT(colliding, 3900);
+  EXPECT_GT(skipped, 2000);
+  EXPECT_GT(hinge_hits, 20);
+}
+
+TEST(HingePairs, BucketWidthBoundsTheMotion) {
+  // Half a bucket turns a link of this radius by at most 1.5 mm.
+  for (double r : {0.01, 0.1, 0.5, 2.0}) EXPECT_LE(0.5 * detail::HingePairs::bucket_width(r) * r, 1.5e-3 + 1e-15);
+}
