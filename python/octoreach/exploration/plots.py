@@ -176,13 +176,7 @@ def plot_map(emap: ExplorationMap, path, poses=(), next_pose=None, title: str = 
     return path
 
 
-def plot_coverage(curves: dict, path, level: float = 0.9, title: str = "", ylabel: str = "observable interior seen") -> Path:
-    """Coverage against views for several strategies: `curves` maps a strategy name to a list of runs,
-    each a sequence of coverages (0-1) after view 1, 2, ...; a run that stopped early keeps its last
-    figure. Draws the mean per strategy with the range over runs as a band, and `level` dashed."""
-    fig = Figure(figsize=(7, 4.5))
-    FigureCanvasAgg(fig)
-    ax = fig.add_subplot(111)
+def _coverage_axes(ax, curves: dict, level: float, title: str, ylabel: str) -> None:
     for name, runs in curves.items():
         runs = [list(r) for r in runs if len(r)]
         if not runs:
@@ -198,8 +192,23 @@ def plot_coverage(curves: dict, path, level: float = 0.9, title: str = "", ylabe
     ax.set_ylabel(ylabel)
     ax.set_ylim(0, 1.02)
     ax.grid(alpha=0.3)
-    ax.legend(loc="lower right")
-    ax.set_title(title)
+    ax.legend(loc="lower right", fontsize=7)
+    ax.set_title(title, fontsize=9)
+
+
+def plot_coverage(curves: dict, path, level: float = 0.9, title: str = "", ylabel: str = "observable interior seen") -> Path:
+    """Coverage against views for several strategies: `curves` maps a strategy name to a list of runs,
+    each a sequence of coverages (0-1) after view 1, 2, ...; a run that stopped early keeps its last
+    figure. Draws the mean per strategy with the range over runs as a band, and `level` dashed.
+    `curves` may also map panel titles (scenes) to such dicts: one panel each."""
+    panels = curves if curves and all(isinstance(v, dict) for v in curves.values()) else {title: curves}
+    cols = min(3, len(panels))
+    rows = (len(panels) + cols - 1) // cols
+    fig = Figure(figsize=(4.6 * cols, 3.6 * rows))
+    FigureCanvasAgg(fig)
+    for i, (name, c) in enumerate(panels.items()):
+        _coverage_axes(fig.add_subplot(rows, cols, i + 1), c, level, name, ylabel)
+    fig.tight_layout()
     path = Path(path)
     fig.savefig(path, dpi=110, bbox_inches="tight")
     return path
