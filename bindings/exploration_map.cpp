@@ -150,6 +150,28 @@ void def_map_sets(MapClass& cls) {
              }
              return v;
            }, "Void clusters (ellipsoid region growing, deterministic for the map's seed).")
+      .def("void_clusters_from_scratch", [](const ExplorationMap& self) {
+             std::vector<VoidCluster> v;
+             {
+               py::gil_scoped_release release;
+               v = self.void_clusters_from_scratch();
+             }
+             return v;
+           }, "Void clusters computed from scratch from the current void cells (void_clusters() equals them).")
+      .def("ray_statistics", [](const ExplorationMap& self) {
+             RayStatistics r = self.ray_statistics();
+             py::dict d;
+             d["unknown_to_free"] = r.unknown_to_free;
+             d["unknown_to_occupied"] = r.unknown_to_occupied;
+             d["void_to_free"] = r.void_to_free;
+             d["void_to_occupied"] = r.void_to_occupied;
+             d["pass_probability"] = r.pass_probability();
+             d["void_pass_probability"] = r.void_pass_probability();
+             return d;
+           }, "What the rays of all inserts did to cells that were unknown (distinct cells that became free or\n"
+              "occupied; all unknown cells and void cells alone) and the pass probabilities learned from it.")
+      .def_property_readonly("pass_probability", &ExplorationMap::pass_probability,
+                             "p of the next-best-view visibility model learned from the inserts so far.")
       .def("void_cluster_cells", [](const ExplorationMap& self, const VoidCluster& v) { return centers(self, v.cells); },
            py::arg("cluster"), "Centres (N, 3) of a void cluster's cells.")
       .def("frontier_voids", [](const ExplorationMap& self) {

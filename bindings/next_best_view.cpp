@@ -1,5 +1,7 @@
 // Next-best-view bindings: NbvOptions (defaults from the C++ struct), view_utility,
 // accumulate_utility and next_best_view.
+#include <cmath>
+
 #include "exploration_convert.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/next_best_view.hpp"
@@ -99,16 +101,42 @@ void wrap_nbv_options(py::module_& m) {
       .def_readwrite("threads", &NbvOptions::threads)
       .def_readwrite("arm_collisions", &NbvOptions::arm_collisions)
       .def_readwrite("min_reachability", &NbvOptions::min_reachability)
-      .def_readwrite("capability_orientations", &NbvOptions::capability_orientations);
+      .def_readwrite("capability_orientations", &NbvOptions::capability_orientations)
+      .def_property("gain", [](const NbvOptions& o) { return std::string(gain_name(o.gain)); },
+                    [](NbvOptions& o, const std::string& g) { o.gain = gain_from_name(g); },
+                    "what views are ranked by: 'frontier_void' (expected void cells), 'frontiers' (expected\n"
+                    "frontier cells) or 'unknown' (expected unknown cells, as nbvplanner)")
+      .def_property("unknown_pass_probability", [](const NbvOptions& o) -> py::object {
+            return o.unknown_pass_probability < 0 ? py::object(py::none()) : py::object(py::float_(o.unknown_pass_probability));
+          }, [](NbvOptions& o, const py::object& p) {
+            if (p.is_none()) return void(o.unknown_pass_probability = -1.0);
+            double v = cast_arg<double>(p, "unknown_pass_probability", "a float in [0, 1] or None");
+            if (!(v >= 0 && v <= 1))
+              throw std::invalid_argument("unknown_pass_probability must be in [0, 1] or None, got " + std::to_string(v));
+            o.unknown_pass_probability = v;
+          }, "p of the visibility model (chance that an unknown cell lets a ray through); None: learned by the map")
+      .def_readwrite("unknown_is_obstacle", &NbvOptions::unknown_is_obstacle,
+                     "safe views: unknown cells of the map's search space are obstacles for the arm and the camera")
+      .def_readwrite("unknown_margin", &NbvOptions::unknown_margin,
+                     "metres around the camera with no unknown cell of the search space (unknown_is_obstacle)");
   def_workspace(cls);
   def_arm(cls);
+}
+
+void gains_into(py::dict& d, const ViewGains& v) {
+  d["void_cells"] = v.void_cells;
+  d["unknown_cells"] = v.unknown_cells;
+  d["frontier_cells"] = v.frontier_cells;
+  d["expected_void"] = v.expected_void;
+  d["expected_unknown"] = v.expected_unknown;
+  d["expected_frontier"] = v.expected_frontier;
 }
 
 py::dict view_dict(const ViewCandidate& v) {
   py::dict d;
   d["pose"] = pose_to_array(v.pose);
-  d["void_cells"] = v.void_cells;
-  d["unknown_cells"] = v.unknown_cells;
+  gains_into(d, v);
+  d["gain"] = v.gain;
   d["utility_dm3"] = v.utility_dm3;
   d["cell_utility"] = v.cell_utility;
   d["q"] = v.q.size() ? py::object(py::cast(v.q)) : py::object(py::none());
@@ -122,8 +150,11 @@ py::dict result_dict(const NbvResult& r) {
   d["ranked"] = ranked;
   d["best"] = r.ranked.empty() ? py::object(py::none()) : py::object(view_dict(r.ranked.front()));
   d["best_pose"] = r.ranked.empty() ? py::object(py::none()) : py::object(pose_to_array(r.ranked.front().pose));
-  d["void_cells"] = r.best_void_cells();
+  gains_into(d, r.ranked.empty() ? ViewGains() : static_cast<const ViewGains&>(r.ranked.front()));
+  d["expected_gain"] = r.best_gain();
   d["utility_dm3"] = r.best_utility_dm3();
+  d["pass_probability"] = r.pass_probability;
+  d["camera_not_clear"] = r.camera_not_clear;
   d["utility_vectors"] = r.utility_vectors;
   d["utility_cells"] = r.utility_cells;
   d["candidate_cells"] = r.candidate_cells;
@@ -136,6 +167,48 @@ py::dict result_dict(const NbvResult& r) {
   d["seconds_vectors"] = r.seconds_vectors;
   d["seconds_prune"] = r.seconds_prune;
   d["seconds_score"] = r.seconds_score;
+  return d;
+}
+
+// score_views' result: one entry per pose, as arrays.
+py::dict scored_dict(const std::vector<ScoredView>& sv, const NbvOptions& o, double p) {
+  const py::ssize_t n = py::ssize_t(sv.size());
+  const py::ssize_t dof = o.chain ? py::ssize_t(o.chain->dof()) : 0;
+  py::array_t<bool> valid(n);
+  py::list status;
+  std::vector<Pose> poses;
+  py::array_t<double> q({n, dof});
+  py::array_t<std::int64_t> voids(n), unknown(n), frontier(n);
+  py::array_t<double> e_void(n), e_unknown(n), e_frontier(n), gain(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const ScoredView& s = sv[std::size_t(i)];
+    valid.mutable_data()[i] = s.valid();
+    status.append(status_name(s.status));
+    poses.push_back(s.view.pose);
+    for (py::ssize_t j = 0; j < dof; ++j)
+      q.mutable_data()[i * dof + j] = s.view.q.size() == dof ? s.view.q[j] : std::nan("");
+    voids.mutable_data()[i] = std::int64_t(s.view.void_cells);
+    unknown.mutable_data()[i] = std::int64_t(s.view.unknown_cells);
+    frontier.mutable_data()[i] = std::int64_t(s.view.frontier_cells);
+    e_void.mutable_data()[i] = s.view.expected_void;
+    e_unknown.mutable_data()[i] = s.view.expected_unknown;
+    e_frontier.mutable_data()[i] = s.view.expected_frontier;
+    gain.mutable_data()[i] = s.view.gain;
+  }
+  py::dict d;
+  d["valid"] = valid;
+  d["status"] = status;
+  d["pose"] = poses_to_array(poses);
+  d["q"] = o.chain ? py::object(q) : py::object(py::none());
+  d["void_cells"] = voids;
+  d["unknown_cells"] = unknown;
+  d["frontier_cells"] = frontier;
+  d["expected_void"] = e_void;
+  d["expected_unknown"] = e_unknown;
+  d["expected_frontier"] = e_frontier;
+  d["expected_gain"] = gain;
+  d["gain"] = std::string(gain_name(o.gain));
+  d["pass_probability"] = p;
   return d;
 }
 
@@ -152,6 +225,53 @@ void wrap_next_best_view(py::module_& m) {
         py::arg("score_height") = 36,
         "(void cells, unknown cells) a camera at camera_pose (4x4) sees before the first occupied cell,\n"
         "casting a score_width x score_height grid of rays.");
+
+  m.def("view_gains", [](const ExplorationMap& map, const py::object& camera, const py::object& pose, int sw, int sh,
+                         const py::object& pass_probability) {
+          CameraIntrinsics c = intrinsics_from(camera);
+          Pose T = pose_from(pose, "camera_pose");
+          double p = pass_probability.is_none()
+                         ? map.pass_probability()
+                         : cast_arg<double>(pass_probability, "pass_probability", "a float in [0, 1] or None");
+          ViewGains v;
+          {
+            py::gil_scoped_release release;
+            v = view_gains(map, c, T, sw, sh, p);
+          }
+          py::dict d;
+          gains_into(d, v);
+          d["pass_probability"] = p;
+          return d;
+        }, py::arg("map"), py::arg("camera"), py::arg("camera_pose"), py::arg("score_width") = 48,
+        py::arg("score_height") = 36, py::arg("pass_probability") = py::none(),
+        "What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight\n"
+        "starts at 1 and is multiplied by pass_probability after each unknown cell; None: the map's learned\n"
+        "value): raw distinct void_cells, unknown_cells, frontier_cells and their visibility-weighted\n"
+        "expected_void, expected_unknown, expected_frontier.");
+
+  m.def("score_views", [](const ExplorationMap& map, const py::object& camera, const py::object& poses,
+                          const py::object& options, const py::kwargs& kwargs) {
+          CameraIntrinsics c = intrinsics_from(camera);
+          std::vector<Pose> T = poses_from(poses, "poses");
+          NbvOptions o = options_from<NbvOptions>(options, kwargs, "score_views");
+          o.ik.seed = o.seed;
+          std::vector<ScoredView> r;
+          double p;
+          {
+            py::gil_scoped_release release;
+            r = score_views(map, c, T, o);
+            p = o.unknown_pass_probability >= 0 ? o.unknown_pass_probability : map.pass_probability();
+          }
+          return scored_dict(r, o, p);
+        }, py::arg("map"), py::arg("camera"), py::arg("poses"), py::arg("options") = py::none(),
+        "Gains and validity of given camera poses (N, 4, 4) (camera -> map) with the checks and ray casting\n"
+        "of next_best_view (same options: workspace_*, capability_map, chain, chain_base, arm_collisions,\n"
+        "min_distance, unknown_is_obstacle, unknown_margin, gain, unknown_pass_probability, score_*).\n"
+        "Returns a dict of per-pose arrays: valid (N,) bool, status (list of 'valid', 'outside_workspace',\n"
+        "'not_reachable', 'camera_not_clear', 'no_ik', 'arm_collision'), pose (N, 4, 4: the pose the arm\n"
+        "reaches when IK succeeds, else the given one), q ((N, dof), NaN rows without a solution; None\n"
+        "without a chain), void_cells, unknown_cells, frontier_cells (N,) int, expected_void,\n"
+        "expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name) and pass_probability.");
 
   m.def("accumulate_utility", [](const ExplorationMap& map, double range) {
           std::vector<std::pair<CellKey, double>> u;
@@ -182,9 +302,11 @@ void wrap_next_best_view(py::module_& m) {
           return result_dict(r);
         }, py::arg("map"), py::arg("camera"), py::arg("options") = py::none(),
         "Next best view (Algorithm 1 + frustum scoring). Options: an NbvOptions and/or its attributes as\n"
-        "keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None),\n"
-        "void_cells and utility_dm3 expected from it, ranked (valid poses, best first, each with pose,\n"
-        "void_cells, unknown_cells, utility_dm3, cell_utility, q), and search statistics. The workspace is\n"
+        "keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None); of the best view:\n"
+        "void_cells, unknown_cells, frontier_cells (raw distinct cells met), expected_void,\n"
+        "expected_unknown, expected_frontier (visibility-weighted), expected_gain (of `gain`), utility_dm3\n"
+        "(expected_void as dm^3); pass_probability (p used); ranked (valid poses, best first, each with\n"
+        "pose, the same gains, gain, utility_dm3, cell_utility, q), and search statistics. The workspace is\n"
         "workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable\n"
         "taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,\n"
         "+z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.\n"

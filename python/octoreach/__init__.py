@@ -51,6 +51,8 @@ from ._core import (  # noqa: F401
     Scene,
     VoidCluster,
     next_best_view,
+    score_views,
+    view_gains,
     view_utility,
 )
 from . import exploration  # noqa: F401
@@ -72,4 +74,4 @@ __all__ = ["Arm", "Cancelled", "CapabilityBlocks", "CapabilityMap", "CapabilityM
            "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis",
            "rooms", "Room", "map_files", "cache"]
 __all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
-            "exploration", "explore", "view"]
+            "score_views", "view_gains", "exploration", "explore", "view"]

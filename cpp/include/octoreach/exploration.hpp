@@ -101,6 +101,23 @@ struct FrontierVoid {
   double utility = 0;                   ///< void volume, m^3
 };
 
+/// \brief What the rays of all inserts so far did to cells that were unknown: distinct cells that
+/// became free (a ray passed) or occupied (a ray stopped), all unknown cells and void cells alone.
+/// The next-best-view's visibility model learns from it how often an unknown cell lets a ray through.
+struct RayStatistics {
+  std::uint64_t unknown_to_free = 0, unknown_to_occupied = 0;
+  std::uint64_t void_to_free = 0, void_to_occupied = 0;
+  /// \brief P(an unknown cell a ray reaches lets it through) = (free + 1) / (free + occupied + 2)
+  /// over all unknown cells (Laplace's rule: 0.5 before any insert).
+  double pass_probability() const {
+    return (double(unknown_to_free) + 1.0) / (double(unknown_to_free + unknown_to_occupied) + 2.0);
+  }
+  /// \brief The same over void cells alone (cells inside the hull: behind surfaces).
+  double void_pass_probability() const {
+    return (double(void_to_free) + 1.0) / (double(void_to_free + void_to_occupied) + 2.0);
+  }
+};
+
 /// \brief Tuning of the exploration map.
 struct ExplorationOptions {
   double resolution = 0.025;        ///< cell edge, metres (the paper's 2.5 cm)
@@ -222,6 +239,16 @@ class ExplorationMap {
   /// \brief Counts of known / unknown cells (at the finest resolution) in an axis-aligned box.
   /// \throws std::invalid_argument for a corner outside the map bounds or a box of more than kMaxCountCells cells.
   std::pair<std::size_t, std::size_t> count_known(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
+
+  /// \brief What rays did to unknown cells over all inserts (see RayStatistics).
+  RayStatistics ray_statistics() const;
+  /// \brief The pass probability the next-best-view search learns from the map (the visibility
+  /// model's p): ray_statistics().pass_probability().
+  double pass_probability() const;
+
+  /// \brief Void clusters computed from scratch from the current void cells (the incrementally kept
+  /// void_clusters() must equal them; tests compare the two).
+  std::vector<VoidCluster> void_clusters_from_scratch() const;
 
   /// \brief Writes the tree as an OctoMap binary .bt (for octovis); temporary file + rename.
   /// \throws FileError on failure.

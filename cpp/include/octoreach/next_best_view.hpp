@@ -11,13 +11,22 @@
 ///    at or below a threshold go). The arm's IK stays the final check of each pose (step 4).
 /// 4. At the cells of highest utility, camera orientations are sampled around the mean direction
 ///    back along the vectors that reached the cell; each is scored by casting a coarse grid of rays
-///    through the camera frustum and counting the distinct void and unknown cells met before the
-///    first occupied cell. A pose counts when the arm (if given) has an IK solution for it whose
-///    links are clear of the occupied cells; the search stops after `max_valid_poses` valid poses.
+///    through the camera frustum (view_score.cpp: the visibility model below). A pose counts when
+///    the camera sits in observed-free space and the arm (if given) has an IK solution for it whose
+///    links are clear of the occupied (and, by default, the unknown) cells; the search stops after
+///    `max_valid_poses` valid poses, ranked by the expected gain of NbvOptions::gain.
+///
+/// Visibility model: a ray's weight starts at 1; each unknown cell it passes counts with the
+/// current weight, then the weight is multiplied by p, the probability that an unknown cell lets the
+/// ray through (learned by the map: ExplorationMap::pass_probability, or fixed by
+/// NbvOptions::unknown_pass_probability). The ray stops at the first occupied cell. A cell met by
+/// several rays counts once, with the largest weight: its expected visibility. Free cells do not
+/// reduce the weight.
 
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -31,6 +40,17 @@ namespace octoreach {
 
 class Chain;
 class CapabilityMap;
+
+/// \brief What a view is scored by (and, for Frontiers and Unknown, where the search looks).
+enum class NbvGain {
+  FrontierVoid,  ///< the paper's: expected void cells (candidate cells from Algorithm 1)
+  Frontiers,     ///< expected frontier cells in view (candidate cells traced back from the frontiers)
+  Unknown,       ///< expected unknown cells in view, as nbvplanner (candidates as for Frontiers)
+};
+/// \brief "frontier_void", "frontiers" or "unknown".
+const char* gain_name(NbvGain g);
+/// \brief The gain of a name; \throws std::invalid_argument naming the three choices.
+NbvGain gain_from_name(const std::string& name);
 
 /// \brief Where the sensor can be (map frame). Empty: everywhere.
 struct SensorWorkspace {
@@ -71,7 +91,7 @@ struct NbvOptions {
   IkOptions ik = default_ik();
   /// With a chain: reject IK solutions where a link of the chain's robot (its collision shapes, the
   /// rest of the robot at home, the robot placed so the chain base sits at chain_base) touches an
-  /// occupied cell of the map. Unknown cells are not obstacles here.
+  /// occupied cell of the map (and, with unknown_is_obstacle, an unknown cell of the search space).
   bool arm_collisions = true;
   /// Capability map of the arm carrying the camera (positions in its base link frame): candidate
   /// cells whose voxel has reachability index D <= min_reachability are pruned before any IK.
@@ -81,32 +101,60 @@ struct NbvOptions {
   /// Also skip IK for sampled poses whose (voxel, optical-axis direction) cell the capability map
   /// marks unreachable (only when the map's approach axis is the camera's +z).
   bool capability_orientations = true;
+  /// What the views are ranked by (and, for Frontiers / Unknown, where candidate cells come from).
+  NbvGain gain = NbvGain::FrontierVoid;
+  /// p of the visibility model: the chance that an unknown cell lets a ray through. < 0: learned by
+  /// the map (ExplorationMap::pass_probability()); in [0, 1]: fixed (1: unknown space is transparent,
+  /// the raw counts).
+  double unknown_pass_probability = -1.0;
+  /// Safe views: unknown cells inside the map's search space (ExplorationOptions::search_lo/hi)
+  /// count as obstacles for the arm's collision check (with arm_collisions) and the camera must sit
+  /// in observed-free space: no unknown cell of the search space within unknown_margin of it. Unknown
+  /// cells outside the search space (the robot's own body, space the camera never looks at) are not
+  /// obstacles.
+  bool unknown_is_obstacle = true;
+  double unknown_margin = 0.05;  ///< metres around the camera that must be observed (not unknown)
+};
+
+/// \brief What one camera pose sees under the visibility model (see the file comment).
+struct ViewGains {
+  std::size_t void_cells = 0;     ///< distinct void cells met before the first occupied cell (raw)
+  std::size_t unknown_cells = 0;  ///< distinct unknown cells met (void cells included; raw)
+  std::size_t frontier_cells = 0; ///< distinct frontier cells met (raw)
+  double expected_void = 0;       ///< void cells weighted by their expected visibility
+  double expected_unknown = 0;    ///< unknown cells weighted likewise (void cells included)
+  double expected_frontier = 0;   ///< frontier cells weighted likewise
+  /// \brief The expected gain of kind g (expected_void, expected_frontier or expected_unknown).
+  double gain(NbvGain g) const;
 };
 
 /// \brief One scored sensor configuration.
-struct ViewCandidate {
+struct ViewCandidate : ViewGains {
   Pose pose = Pose::Identity();  ///< camera -> map
-  std::size_t void_cells = 0;    ///< distinct void cells seen before the first occupied cell
-  std::size_t unknown_cells = 0; ///< distinct unknown cells seen (void cells included)
-  double utility_dm3 = 0;        ///< the void cells' volume, dm^3
+  double gain = 0;               ///< the expected gain of NbvOptions::gain (the ranking key)
+  double utility_dm3 = 0;        ///< expected_void as a volume, dm^3
   double cell_utility = 0;       ///< accumulated utility (m^3 summed over vectors) at its cell
   Eigen::VectorXd q;             ///< arm joints when a chain was given
 };
 
-/// \brief Result of a search: valid poses ranked by void cells, then unknown cells.
+/// \brief Result of a search: valid poses ranked by the expected gain, then expected unknown cells.
 struct NbvResult {
   std::vector<ViewCandidate> ranked;
+  double pass_probability = 1;      ///< p the visibility model used
   std::size_t utility_vectors = 0;
   std::size_t utility_cells = 0;    ///< cells with utility > 0 before pruning
   std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
   std::size_t capability_pruned = 0;  ///< cells the capability map removed
   std::size_t poses_scored = 0, ik_failures = 0;
-  std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied cell
+  std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied (or unknown) cell
+  std::size_t camera_not_clear = 0; ///< sampled poses whose camera is not in observed-free space
   std::size_t capability_rejected = 0;  ///< sampled poses the capability map ruled out before IK
   double seconds = 0;
   double seconds_vectors = 0, seconds_prune = 0, seconds_score = 0;  ///< parts: steps 1-2, 3, 4
-  /// \brief Expected void cells of the best pose (0 when there is none).
+  /// \brief Void cells (raw) of the best pose (0 when there is none).
   std::size_t best_void_cells() const { return ranked.empty() ? 0 : ranked.front().void_cells; }
+  /// \brief Expected gain of the best pose (0 when there is none).
+  double best_gain() const { return ranked.empty() ? 0.0 : ranked.front().gain; }
   /// \brief Volume of the best pose's expected void cells, dm^3 (0 when there is none).
   double best_utility_dm3() const { return ranked.empty() ? 0.0 : ranked.front().utility_dm3; }
 };
@@ -120,7 +168,40 @@ std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap&
 std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, const CameraIntrinsics& camera,
                                                  const Pose& pose, int score_width, int score_height);
 
+/// \brief The gains of a camera at `pose` under the visibility model with pass probability p
+/// (score_width x score_height rays). \throws std::invalid_argument for a bad grid or p outside [0, 1].
+ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, int score_width,
+                     int score_height, double pass_probability);
+
 /// \brief The full search (steps 1-4).
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& camera, const NbvOptions& options);
+
+/// \brief Why score_views counts a pose as a view or not (the checks in this order).
+enum class ViewStatus {
+  Valid,
+  OutsideWorkspace,  ///< the camera position is outside workspace box / sphere / filter
+  NotReachable,      ///< the capability map rules out the position (D <= min_reachability) or the axis
+  CameraNotClear,    ///< camera cell not free, an occupied cell within min_distance, or (unknown_is_obstacle)
+                     ///< an unknown cell of the search space within unknown_margin
+  NoIk,              ///< the chain has no IK solution
+  ArmCollision,      ///< every IK solution found touches an occupied (or unknown, see NbvOptions) cell
+};
+/// \brief "valid", "outside_workspace", "not_reachable", "camera_not_clear", "no_ik", "arm_collision".
+const char* status_name(ViewStatus s);
+
+/// \brief One pose scored by score_views: its gains (of the pose the arm reaches when it does, else of
+/// the given pose), the ranking gain, the joints (with a chain and IK) and the status.
+struct ScoredView {
+  ViewCandidate view;
+  ViewStatus status = ViewStatus::Valid;
+  bool valid() const { return status == ViewStatus::Valid; }
+};
+
+/// \brief The gains and validity of given camera poses (camera -> map), with the very checks and ray
+/// casting of next_best_view (workspace, capability map, camera clearance, IK with the chain at
+/// chain_base, arm collisions; samples, candidate counts and max_valid_poses play no part). Poses are
+/// scored in parallel; pose i uses IK seed ik.seed + i. \throws std::invalid_argument for a non-finite pose.
+std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntrinsics& camera,
+                                    const std::vector<Pose>& poses, const NbvOptions& options);
 
 }  // namespace octoreach

@@ -153,6 +153,11 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
   detail::GridWriter gw(S.grid);
   for (const auto& c : changed_) {
     std::uint8_t& cell = gw.at(c.key);
+    if (c.before == CellState::Unknown) {  // the visibility model's statistics (void flags still set)
+      const bool occ = c.after == CellState::Occupied;
+      ++(occ ? S.rays.unknown_to_occupied : S.rays.unknown_to_free);
+      if (cell & kVoidFlag) ++(occ ? S.rays.void_to_occupied : S.rays.void_to_free);
+    }
     cell = std::uint8_t((cell & ~kStateMask) | std::uint8_t(c.after));
   }
   st.changed_cells = changed_.size();
@@ -168,6 +173,13 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
   st.seconds_total = seconds_since(t_start);
   return st;
 }
+
+RayStatistics ExplorationMap::ray_statistics() const {
+  detail::MapGuard guard(*state_, false);
+  return state_->rays;
+}
+
+double ExplorationMap::pass_probability() const { return ray_statistics().pass_probability(); }
 
 std::vector<CellKey> ExplorationMap::known_cells(CellState which) const {
   if (which == CellState::Unknown) throw std::invalid_argument("known_cells: which must be Free or Occupied");

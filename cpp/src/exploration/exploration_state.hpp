@@ -154,6 +154,7 @@ struct ExplorationState {
   std::unordered_set<CellKey> void_set;
   Hull hull;
   HullColumns columns;
+  RayStatistics rays;  // what rays did to unknown cells, over all inserts
 
   // caches rebuilt on demand after an insert
   mutable std::mutex cache_mutex;

@@ -14,6 +14,7 @@
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
+#include "view_score.hpp"
 
 namespace octoreach {
 
@@ -28,9 +29,6 @@ struct UtilityVector {
   Eigen::Vector3d from, dir;
   double u;
 };
-
-std::pair<std::size_t, std::size_t> view_utility_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam,
-                                                          const Pose& pose, int sw, int sh);
 
 std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
   std::vector<UtilityVector> out;
@@ -47,6 +45,36 @@ std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
         if (dir.norm() < 1e-9) continue;
         out.push_back({pf, dir.normalized(), fv.utility});
       }
+  }
+  return out;
+}
+
+// The utility vectors of the Frontiers and Unknown gains: from every frontier cell (at most
+// kMaxFrontierVectors, evenly strided) away from its unknown 6-neighbours, carrying one cell's volume
+// (Frontiers) or one per unknown neighbour (Unknown).
+constexpr std::size_t kMaxFrontierVectors = 20000;
+std::vector<UtilityVector> frontier_vectors(const ExplorationMap& map, NbvGain gain) {
+  std::vector<UtilityVector> out;
+  const auto& S = detail::state(map);
+  detail::GridReader g(S.grid);
+  std::vector<CellKey> fr;
+  for (const auto& [k, label] : S.frontier_label)
+    if (g.get(k) & detail::kFrontierFlag) fr.push_back(k);
+  std::sort(fr.begin(), fr.end());
+  const std::size_t stride = std::max<std::size_t>(1, (fr.size() + kMaxFrontierVectors - 1) / kMaxFrontierVectors);
+  const double cell = std::pow(map.resolution(), 3);
+  for (std::size_t i = 0; i < fr.size(); i += stride) {
+    Eigen::Vector3d dir = Eigen::Vector3d::Zero();
+    int unknown = 0;
+    for (const auto& d : detail::kN6) {
+      CellKey nb;
+      if (detail::neighbour(fr[i], d[0], d[1], d[2], nb) && (g.get(nb) & detail::kStateMask) == 0) {
+        dir -= Eigen::Vector3d(d[0], d[1], d[2]);
+        ++unknown;
+      }
+    }
+    if (dir.norm() < 1e-9) continue;
+    out.push_back({map.center(fr[i]), dir.normalized(), cell * (gain == NbvGain::Unknown ? unknown : 1)});
   }
   return out;
 }
@@ -121,24 +149,18 @@ void prune_by_workspace(const ExplorationMap& map, const NbvOptions& opt, std::v
   cells.resize(w);
 }
 
-// Step 3b: best utility first, the cells with no occupied cell within min_distance, until
-// max_candidate_cells are kept (the clearance check runs only that far).
-void keep_clear_cells(const ExplorationMap& map, const NbvOptions& opt, std::vector<UtilityCell>& cells) {
+// Step 3b: best utility first, the cells where the camera would sit in observed-free space (no
+// occupied cell within min_distance; with unknown_is_obstacle no unknown cell of the search space
+// within unknown_margin), until max_candidate_cells are kept (the check runs only that far).
+void keep_clear_cells(const detail::ViewChecker& checker, const ExplorationMap& map, const NbvOptions& opt,
+                      std::vector<UtilityCell>& cells, NbvResult& r) {
   std::stable_sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.second.u > b.second.u; });
-  const int margin = int(std::ceil(opt.min_distance / map.resolution()));
-  detail::GridReader g(detail::state(map).grid);
   std::size_t w = 0;
   for (std::size_t i = 0; i < cells.size() && w < std::size_t(opt.max_candidate_cells); ++i) {
-    bool clear = true;
-    for (int dz = -margin; dz <= margin && clear; ++dz)
-      for (int dy = -margin; dy <= margin && clear; ++dy)
-        for (int dx = -margin; dx <= margin && clear; ++dx) {
-          CellKey nb;
-          if (detail::neighbour(cells[i].first, dx, dy, dz, nb) &&
-              (g.get(nb) & detail::kStateMask) == std::uint8_t(CellState::Occupied))
-            clear = false;
-        }
-    if (clear) cells[w++] = cells[i];
+    if (checker.camera_clear(map.center(cells[i].first)))
+      cells[w++] = cells[i];
+    else
+      ++r.camera_not_clear;
   }
   cells.resize(w);
 }
@@ -153,43 +175,23 @@ struct Slot {
 class PoseScorer {
  public:
   PoseScorer(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-             const std::vector<UtilityCell>& cells)
-      : map_(map), cam_(cam), opt_(opt), cells_(cells), per_cell_(std::size_t(opt.orientations_per_cell)) {
-    ik_ = opt.ik;
-    ik_.mode = IkMode::Approach;
-    ik_.approach_axis = Eigen::Vector3d::UnitZ();
-    base_inv_ = opt.chain_base.inverse();
-    cap_inv_ = opt.capability_base.inverse();
-    cap_orient_ = opt.capability_map && opt.capability_orientations &&
-                  opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9);
-    // The map's occupied cells as FCL obstacles for the arm (the tree is not copied: the map
-    // outlives the search, so the shared_ptr does not own it).
-    if (opt.chain && opt.arm_collisions && map.octree().size() > 0) {
-      const Robot& robot = opt.chain->robot();
-      obstacles_.emplace();
-      obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
-      reference_ = robot.home();
-      robot_root_ = opt.chain_base * robot.link_poses(reference_)[robot.link_index(opt.chain->base_link())].inverse();
-    }
-  }
+             const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, double p)
+      : map_(map), cam_(cam), opt_(opt), cells_(cells), per_cell_(std::size_t(opt.orientations_per_cell)),
+        checker_(checker), p_(p) {}
   std::size_t total() const { return cells_.size() * per_cell_; }
   // Pose idx: orientation idx % per_cell of cell idx / per_cell, sampled from its own stream.
   Slot score(std::size_t idx) const;
 
  private:
   Eigen::Vector3d sample_axis(std::size_t idx, Eigen::Vector3d forward, double& roll) const;
-  bool reach(Slot& s, std::size_t idx) const;
 
   const ExplorationMap& map_;
   const CameraIntrinsics& cam_;
   const NbvOptions& opt_;
   const std::vector<UtilityCell>& cells_;
   const std::size_t per_cell_;
-  IkOptions ik_;
-  Pose base_inv_, cap_inv_, robot_root_ = Pose::Identity();
-  bool cap_orient_ = false;
-  std::optional<Obstacles> obstacles_;
-  Eigen::VectorXd reference_;
+  const detail::ViewChecker& checker_;
+  const double p_;
 };
 
 // Orientation 0 looks along the mean direction; the others are drawn in a cone around it.
@@ -205,23 +207,6 @@ Eigen::Vector3d PoseScorer::sample_axis(std::size_t idx, Eigen::Vector3d forward
   return forward;
 }
 
-// The arm's check: IK for the pose, clear of the occupied cells; the pose becomes the one reached.
-bool PoseScorer::reach(Slot& s, std::size_t idx) const {
-  s.tried_ik = true;
-  IkOptions o = ik_;
-  o.seed = ik_.seed + idx;
-  auto q = opt_.chain->ik(base_inv_ * s.view.pose, o);
-  if (!q) return false;
-  if (obstacles_ &&
-      opt_.chain->robot().in_collision(opt_.chain->to_robot_configuration(*q, reference_), *obstacles_, robot_root_)) {
-    s.collides = true;
-    return false;
-  }
-  s.view.q = *q;
-  s.view.pose = opt_.chain_base * opt_.chain->fk(*q);  // the roll the arm actually reaches
-  return true;
-}
-
 Slot PoseScorer::score(std::size_t idx) const {
   Slot s;
   const UtilityCell& cell = cells_[idx / per_cell_];
@@ -231,16 +216,17 @@ Slot PoseScorer::score(std::size_t idx) const {
   forward = sample_axis(idx, forward.normalized(), roll);
   s.view.pose = camera_pose(map_.center(cell.first), forward, roll);
   s.view.cell_utility = cell.second.u;
-  if (cap_orient_ && !opt_.capability_map->reachable(cap_inv_ * s.view.pose)) {
+  if (!checker_.axis_reachable(s.view.pose)) {
     s.cap_rejected = true;
     return s;
   }
-  if (opt_.chain && !reach(s, idx)) return s;
-  auto [v, u] = view_utility_unlocked(map_, cam_, s.view.pose, opt_.score_width, opt_.score_height);
-  const double res = map_.resolution();
-  s.view.void_cells = v;
-  s.view.unknown_cells = u;
-  s.view.utility_dm3 = double(v) * res * res * res * 1000.0;
+  if (opt_.chain) {
+    s.tried_ik = true;
+    ViewStatus st = checker_.reach(s.view.pose, s.view.q, idx);
+    s.collides = st == ViewStatus::ArmCollision;
+    if (st != ViewStatus::Valid) return s;
+  }
+  detail::score_view(map_, cam_, opt_, p_, s.view);
   s.valid = true;
   return s;
 }
@@ -248,8 +234,9 @@ Slot PoseScorer::score(std::size_t idx) const {
 // Step 4: poses in batches of a few per thread, in index order, until max_valid_poses are valid;
 // ranked by void cells, then unknown cells, then index.
 void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-                      const std::vector<UtilityCell>& cells, int threads, NbvResult& r) {
-  const PoseScorer scorer(map, cam, opt, cells);
+                      const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, int threads,
+                      NbvResult& r) {
+  const PoseScorer scorer(map, cam, opt, cells, checker, r.pass_probability);
   const std::size_t total = scorer.total(), max_valid = std::size_t(opt.max_valid_poses);
   const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
@@ -266,8 +253,9 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
     }
   }
   std::sort(valid.begin(), valid.end(), [](const auto& a, const auto& b) {
-    if (a.second.void_cells != b.second.void_cells) return a.second.void_cells > b.second.void_cells;
-    if (a.second.unknown_cells != b.second.unknown_cells) return a.second.unknown_cells > b.second.unknown_cells;
+    if (a.second.gain != b.second.gain) return a.second.gain > b.second.gain;
+    if (a.second.expected_unknown != b.second.expected_unknown)
+      return a.second.expected_unknown > b.second.expected_unknown;
     return a.first < b.first;
   });
   for (auto& v : valid) r.ranked.push_back(std::move(v.second));
@@ -280,6 +268,13 @@ void validate(const CameraIntrinsics& cam, const NbvOptions& opt) {
   if (!(opt.orientation_spread >= 0)) throw std::invalid_argument("orientation_spread must be >= 0");
   if (!(opt.min_reachability >= 0 && opt.min_reachability < 1))
     throw std::invalid_argument("min_reachability must be in [0, 1), got " + std::to_string(opt.min_reachability));
+  if (opt.unknown_pass_probability > 1 || std::isnan(opt.unknown_pass_probability))
+    throw std::invalid_argument("unknown_pass_probability must be in [0, 1] (or < 0: learned by the map), got " +
+                                std::to_string(opt.unknown_pass_probability));
+  if (!(opt.unknown_margin >= 0) || !std::isfinite(opt.unknown_margin))
+    throw std::invalid_argument("unknown_margin must be a non-negative number of metres");
+  if (opt.score_width <= 0 || opt.score_height <= 0)
+    throw std::invalid_argument("score_width and score_height must be positive");
 }
 
 }  // namespace
@@ -300,75 +295,15 @@ std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap&
   return out;
 }
 
-std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, const CameraIntrinsics& cam,
-                                                 const Pose& pose, int sw, int sh) {
-  if (sw <= 0 || sh <= 0)
-    throw std::invalid_argument("score grid must be positive, got " + std::to_string(sw) + " x " + std::to_string(sh));
-  auto guard = detail::read_guard(map);
-  return view_utility_unlocked(map, cam, pose, sw, sh);
-}
-
-namespace {
-
-// view_utility without taking the map's lock: its caller holds it (pool workers of next_best_view
-// must not lock again: a writer waiting in between would deadlock them against their caller).
-std::pair<std::size_t, std::size_t> view_utility_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam,
-                                                          const Pose& pose, int sw, int sh) {
-  detail::GridReader g(detail::state(map).grid);
-  const Eigen::Matrix3d R = pose.linear();
-  const Eigen::Vector3d o = pose.translation();
-  const double res = map.resolution();
-  std::vector<Eigen::Vector3d> dirs(std::size_t(sw) * sh);
-  // key box of the frustum (every walked cell lies within a cell of a ray's end points)
-  Eigen::Vector3d lo = o, hi = o;
-  for (int j = 0; j < sh; ++j)
-    for (int i = 0; i < sw; ++i) {
-      Eigen::Vector3d d = R * cam.ray((i + 0.5) * cam.width / sw, (j + 0.5) * cam.height / sh);
-      dirs[std::size_t(j) * sw + i] = d;
-      Eigen::Vector3d e = o + d.normalized() * cam.max_range;
-      lo = lo.cwiseMin(e);
-      hi = hi.cwiseMax(e);
-    }
-  std::int64_t klo[3], n[3];
-  for (int a = 0; a < 3; ++a) {
-    klo[a] = std::int64_t(std::floor(lo[a] / res + 32768.0)) - 2;
-    n[a] = std::int64_t(std::floor(hi[a] / res + 32768.0)) + 2 - klo[a] + 1;
-  }
-  // distinct unknown cells: one bit per cell of the box instead of collecting and sorting keys
-  std::vector<std::uint64_t> seen(std::size_t((n[0] * n[1] * n[2] + 63) / 64), 0);
-  std::size_t voids = 0, unknown = 0;
-  for (const Eigen::Vector3d& d : dirs) {
-    detail::walk_cells(res, o, d, cam.max_range, [&](CellKey k) {
-      std::uint8_t f = g.get(k);
-      std::uint8_t s = f & detail::kStateMask;
-      if (s == std::uint8_t(CellState::Occupied)) return false;
-      if (s == std::uint8_t(CellState::Unknown)) {
-        std::int64_t x = std::int64_t(key_x(k)) - klo[0], y = std::int64_t(key_y(k)) - klo[1],
-                     z = std::int64_t(key_z(k)) - klo[2];
-        if (x < 0 || y < 0 || z < 0 || x >= n[0] || y >= n[1] || z >= n[2]) return false;  // cannot happen
-        std::size_t idx = std::size_t((z * n[1] + y) * n[0] + x);
-        std::uint64_t bit = std::uint64_t(1) << (idx & 63);
-        if (!(seen[idx >> 6] & bit)) {
-          seen[idx >> 6] |= bit;
-          ++unknown;
-          if (f & detail::kVoidFlag) ++voids;
-        }
-      }
-      return true;
-    });
-  }
-  return {voids, unknown};
-}
-
-}  // namespace
-
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt) {
   auto t0 = Clock::now();
   validate(cam, opt);
   auto guard = detail::read_guard(map);
   NbvResult r;
+  r.pass_probability = detail::pass_probability_of(map, opt);
   const int threads = detail::default_threads(opt.threads);
-  const std::vector<UtilityVector> vecs = utility_vectors(map);
+  const std::vector<UtilityVector> vecs =
+      opt.gain == NbvGain::FrontierVoid ? utility_vectors(map) : frontier_vectors(map, opt.gain);
   r.utility_vectors = vecs.size();
   std::vector<UtilityCell> cells = accumulate(map, vecs, cam.max_range, 8, threads);
   r.utility_cells = cells.size();
@@ -377,11 +312,12 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   auto t_prune = Clock::now();
   prune_by_workspace(map, opt, cells, r);
   r.candidate_cells = cells.size();
-  keep_clear_cells(map, opt, cells);
+  const detail::ViewChecker checker(map, opt);
+  keep_clear_cells(checker, map, opt, cells, r);
   r.seconds_prune = seconds_since(t_prune);
 
   auto t_score = Clock::now();
-  score_candidates(map, cam, opt, cells, threads, r);
+  score_candidates(map, cam, opt, cells, checker, threads, r);
   r.seconds_score = seconds_since(t_score);
   r.seconds = seconds_since(t0);
   return r;

@@ -95,21 +95,10 @@ VoidCluster make_cluster(const detail::ExplorationState& st, const VoidIndex& v,
   return vc;
 }
 
-}  // namespace
-
-// Region growing from seeded random start cells.
-std::vector<VoidCluster> ExplorationMap::void_clusters() const {
-  detail::MapGuard guard(*state_, false);
-  return detail::cached_void_clusters(*this);
-}
-
-const std::vector<VoidCluster>& detail::cached_void_clusters(const ExplorationMap& map) {
-  auto& I = detail::state(map);
-  const ExplorationOptions& options_ = map.options();
-  const double resolution_ = map.resolution();
-  std::lock_guard<std::mutex> lock(I.cache_mutex);
-  if (!I.voids_dirty) return I.void_clusters;
-  I.void_clusters.clear();
+// Region growing from seeded random start cells over all void cells.
+std::vector<VoidCluster> clusters_from_scratch(const detail::ExplorationState& I, const ExplorationOptions& options,
+                                               double resolution) {
+  std::vector<VoidCluster> out;
   VoidIndex v;
   v.cells.assign(I.void_set.begin(), I.void_set.end());
   std::sort(v.cells.begin(), v.cells.end());
@@ -118,17 +107,37 @@ const std::vector<VoidCluster>& detail::cached_void_clusters(const ExplorationMa
   for (std::size_t i = 0; i < n; ++i) v.index.emplace(v.cells[i], int(i));
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::mt19937_64 rng(options_.seed);
+  std::mt19937_64 rng(options.seed);
   std::shuffle(order.begin(), order.end(), rng);
   std::vector<int> assigned(n, -1), tried(n, -1);
   for (int s : order) {
     if (assigned[s] >= 0) continue;
-    const int cid = int(I.void_clusters.size());
+    const int cid = int(out.size());
     Moments m;
     double score = 0;
-    std::vector<int> members = grow(v, s, cid, options_.void_fit_threshold, assigned, tried, m, score);
-    I.void_clusters.push_back(make_cluster(I, v, v.cells[s], members, m, score, resolution_));
+    std::vector<int> members = grow(v, s, cid, options.void_fit_threshold, assigned, tried, m, score);
+    out.push_back(make_cluster(I, v, v.cells[s], members, m, score, resolution));
   }
+  return out;
+}
+
+}  // namespace
+
+std::vector<VoidCluster> ExplorationMap::void_clusters() const {
+  detail::MapGuard guard(*state_, false);
+  return detail::cached_void_clusters(*this);
+}
+
+std::vector<VoidCluster> ExplorationMap::void_clusters_from_scratch() const {
+  detail::MapGuard guard(*state_, false);
+  return clusters_from_scratch(*state_, options_, resolution_);
+}
+
+const std::vector<VoidCluster>& detail::cached_void_clusters(const ExplorationMap& map) {
+  auto& I = detail::state(map);
+  std::lock_guard<std::mutex> lock(I.cache_mutex);
+  if (!I.voids_dirty) return I.void_clusters;
+  I.void_clusters = clusters_from_scratch(I, map.options(), map.resolution());
   I.voids_dirty = false;
   return I.void_clusters;
 }

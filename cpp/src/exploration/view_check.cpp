@@ -1,0 +1,186 @@
+// What makes a camera pose a view: camera clearance (observed-free space), the capability map's axis,
+// IK and the arm's collisions against the occupied and (safe views) unknown cells; and score_views.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <octomap/OcTree.h>
+
+#include "cell_sets.hpp"
+#include "common/thread_pool.hpp"
+#include "exploration_state.hpp"
+#include "octoreach/capability_map.hpp"
+#include "octoreach/robot.hpp"
+#include "view_score.hpp"
+
+namespace octoreach {
+
+namespace detail {
+
+namespace {
+
+// Key box of the search space, clipped to the bounding box of the known cells (an unbounded search
+// space would otherwise hold infinitely many unknown cells). False when it is empty.
+bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, std::uint32_t lo[3], std::uint32_t hi[3]) {
+  if (s.tree.size() == 0) return false;
+  double mn[3], mx[3];
+  s.tree.getMetricMin(mn[0], mn[1], mn[2]);
+  s.tree.getMetricMax(mx[0], mx[1], mx[2]);
+  for (int a = 0; a < 3; ++a) {
+    double l = std::max(mn[a], o.search_lo[a]), h = std::min(mx[a], o.search_hi[a]);
+    if (l > h) return false;
+    lo[a] = s.tree.coordToKey(l);
+    hi[a] = s.tree.coordToKey(h);
+  }
+  return true;
+}
+
+}  // namespace
+
+ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map_(map), opt_(opt) {
+  ik_ = opt.ik;
+  ik_.mode = IkMode::Approach;
+  ik_.approach_axis = Eigen::Vector3d::UnitZ();
+  base_inv_ = opt.chain_base.inverse();
+  cap_inv_ = opt.capability_base.inverse();
+  cap_orient_ = opt.capability_map && opt.capability_orientations &&
+                opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9);
+  const ExplorationState& S = state(map);
+  if (!opt.unknown_is_obstacle || !search_key_box(S, map.options(), search_lo_, search_hi_)) {
+    for (int a = 0; a < 3; ++a) search_lo_[a] = 1, search_hi_[a] = 0;  // empty
+  }
+  if (!opt.chain || !opt.arm_collisions || S.tree.size() == 0) return;
+  const Robot& robot = opt.chain->robot();
+  obstacles_.emplace();
+  // The map's occupied cells (the tree is not copied: the map outlives the search).
+  obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
+  if (opt.unknown_is_obstacle && search_lo_[0] <= search_hi_[0]) {
+    unknown_tree_ = std::make_shared<octomap::OcTree>(map.resolution());
+    GridReader g(S.grid);
+    for (std::uint32_t z = search_lo_[2]; z <= search_hi_[2]; ++z)
+      for (std::uint32_t y = search_lo_[1]; y <= search_hi_[1]; ++y)
+        for (std::uint32_t x = search_lo_[0]; x <= search_hi_[0]; ++x)
+          if ((g.get(pack_key(x, y, z)) & kStateMask) == std::uint8_t(CellState::Unknown)) {
+            unknown_tree_->updateNode(octomap::OcTreeKey(octomap::key_type(x), octomap::key_type(y), octomap::key_type(z)),
+                                      true, true);
+            ++unknown_cells_;
+          }
+    if (unknown_cells_) {
+      unknown_tree_->updateInnerOccupancy();
+      unknown_tree_->prune();
+      obstacles_->add_octree(unknown_tree_);
+    }
+  }
+  reference_ = robot.home();
+  robot_root_ = opt.chain_base * robot.link_poses(reference_)[robot.link_index(opt.chain->base_link())].inverse();
+}
+
+ViewChecker::~ViewChecker() = default;
+
+bool ViewChecker::in_search_space(CellKey k) const {
+  return key_x(k) >= search_lo_[0] && key_x(k) <= search_hi_[0] && key_y(k) >= search_lo_[1] &&
+         key_y(k) <= search_hi_[1] && key_z(k) >= search_lo_[2] && key_z(k) <= search_hi_[2];
+}
+
+bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
+  const double res = map_.resolution();
+  CellKey c;
+  try {
+    c = map_.key_of(p);
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+  GridReader g(state(map_).grid);
+  const std::uint8_t own = g.get(c) & kStateMask;
+  if (own == std::uint8_t(CellState::Occupied)) return false;
+  if (own == std::uint8_t(CellState::Unknown) && opt_.unknown_is_obstacle && in_search_space(c)) return false;
+  const int m_occ = int(std::ceil(opt_.min_distance / res - 1e-9));
+  const int m_unk = opt_.unknown_is_obstacle ? int(std::ceil(opt_.unknown_margin / res - 1e-9)) : 0;
+  const int m = std::max(m_occ, m_unk);
+  for (int dz = -m; dz <= m; ++dz)
+    for (int dy = -m; dy <= m; ++dy)
+      for (int dx = -m; dx <= m; ++dx) {
+        CellKey nb;
+        if (!neighbour(c, dx, dy, dz, nb)) continue;
+        const int r = std::max({std::abs(dx), std::abs(dy), std::abs(dz)});
+        const std::uint8_t s = g.get(nb) & kStateMask;
+        if (s == std::uint8_t(CellState::Occupied) && r <= m_occ) return false;
+        if (s == std::uint8_t(CellState::Unknown) && r <= m_unk && in_search_space(nb)) return false;
+      }
+  return true;
+}
+
+bool ViewChecker::axis_reachable(const Pose& pose) const {
+  return !cap_orient_ || opt_.capability_map->reachable(cap_inv_ * pose);
+}
+
+ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t seed_offset) const {
+  IkOptions o = ik_;
+  o.seed = ik_.seed + seed_offset;
+  auto q = opt_.chain->ik(base_inv_ * pose, o);
+  if (!q) return ViewStatus::NoIk;
+  if (obstacles_ &&
+      opt_.chain->robot().in_collision(opt_.chain->to_robot_configuration(*q, reference_), *obstacles_, robot_root_))
+    return ViewStatus::ArmCollision;
+  q_out = *q;
+  pose = opt_.chain_base * opt_.chain->fk(*q);  // the roll the arm actually reaches
+  return ViewStatus::Valid;
+}
+
+}  // namespace detail
+
+const char* status_name(ViewStatus s) {
+  switch (s) {
+    case ViewStatus::Valid: return "valid";
+    case ViewStatus::OutsideWorkspace: return "outside_workspace";
+    case ViewStatus::NotReachable: return "not_reachable";
+    case ViewStatus::CameraNotClear: return "camera_not_clear";
+    case ViewStatus::NoIk: return "no_ik";
+    case ViewStatus::ArmCollision: return "arm_collision";
+  }
+  return "?";
+}
+
+std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntrinsics& cam,
+                                    const std::vector<Pose>& poses, const NbvOptions& opt) {
+  cam.validate();
+  if (opt.score_width <= 0 || opt.score_height <= 0)
+    throw std::invalid_argument("score grid must be positive");
+  if (opt.unknown_pass_probability > 1 || std::isnan(opt.unknown_pass_probability))
+    throw std::invalid_argument("unknown_pass_probability must be in [0, 1] (or < 0: learned)");
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    if (!poses[i].matrix().allFinite())
+      throw std::invalid_argument("pose " + std::to_string(i) + " is not finite");
+  std::vector<Eigen::Vector3d> pos(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) pos[i] = poses[i].translation();
+  std::vector<bool> keep(poses.size(), true);
+  if (opt.workspace.filter && !poses.empty()) {
+    keep = opt.workspace.filter(pos);
+    if (keep.size() != poses.size())
+      throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
+                                  std::to_string(poses.size()) + " positions");
+  }
+  auto guard = detail::read_guard(map);
+  const double p = detail::pass_probability_of(map, opt);
+  const detail::ViewChecker checker(map, opt);
+  const Pose to_arm = opt.capability_base.inverse();
+  std::vector<ScoredView> out(poses.size());
+  detail::parallel_for(poses.size(), detail::default_threads(opt.threads), [&](std::size_t i, int) {
+    ScoredView& s = out[i];
+    s.view.pose = poses[i];
+    if (!keep[i] || !opt.workspace.contains(pos[i]))
+      s.status = ViewStatus::OutsideWorkspace;
+    else if (opt.capability_map && (!(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability) ||
+                                    !checker.axis_reachable(poses[i])))
+      s.status = ViewStatus::NotReachable;
+    else if (!checker.camera_clear(pos[i]))
+      s.status = ViewStatus::CameraNotClear;
+    else if (opt.chain)
+      s.status = checker.reach(s.view.pose, s.view.q, i);
+    detail::score_view(map, cam, opt, p, s.view);
+  }, 1);
+  return out;
+}
+
+}  // namespace octoreach

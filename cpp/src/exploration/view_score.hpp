@@ -1,0 +1,62 @@
+#pragma once
+// Internal: the visibility model of a view (view_score.cpp) and the checks that make a camera pose a
+// view (view_check.cpp), shared by next_best_view and score_views.
+#include <optional>
+#include <vector>
+
+#include "octoreach/collision.hpp"
+#include "octoreach/next_best_view.hpp"
+
+namespace octomap {
+class OcTree;
+}
+
+namespace octoreach::detail {
+
+// view_gains without taking the map's lock: the caller holds it (pool workers of next_best_view must
+// not lock again: a writer waiting in between would deadlock them against their caller).
+ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
+                              double pass_probability);
+
+// p of a search: the fixed option or the map's learned value.
+double pass_probability_of(const ExplorationMap& map, const NbvOptions& opt);
+
+// Fills gains, gain and utility_dm3 of `v` (its pose set) with p.
+void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, double p,
+                ViewCandidate& v);
+
+// The checks of one search that make a pose a view: camera clearance, the capability map's axis,
+// IK and the arm's collisions. Built once per search (the obstacles: the map's occupied cells and,
+// with unknown_is_obstacle, a tree of the unknown cells of the search space); const methods may run
+// from many threads. The caller holds the map's lock.
+class ViewChecker {
+ public:
+  ViewChecker(const ExplorationMap& map, const NbvOptions& opt);
+  ~ViewChecker();
+  // Camera cell free, no occupied cell within min_distance, and (unknown_is_obstacle) no unknown cell
+  // of the search space within unknown_margin.
+  bool camera_clear(const Eigen::Vector3d& p) const;
+  // The capability map's verdict on the pose's (voxel, optical axis) cell (true without one or when
+  // its approach axis is not the camera's +z).
+  bool axis_reachable(const Pose& pose) const;
+  // IK (seed ik.seed + seed_offset) and the arm's collision check; on success the pose becomes the
+  // one the arm reaches and q is set. Needs a chain.
+  ViewStatus reach(Pose& pose, Eigen::VectorXd& q, std::size_t seed_offset) const;
+  // Unknown cells of the search space turned into obstacles (0 without unknown_is_obstacle).
+  std::size_t unknown_obstacle_cells() const { return unknown_cells_; }
+
+ private:
+  bool in_search_space(CellKey k) const;
+  const ExplorationMap& map_;
+  const NbvOptions& opt_;
+  IkOptions ik_;
+  Pose base_inv_, cap_inv_, robot_root_ = Pose::Identity();
+  bool cap_orient_ = false;
+  std::optional<Obstacles> obstacles_;
+  std::shared_ptr<octomap::OcTree> unknown_tree_;
+  std::size_t unknown_cells_ = 0;
+  Eigen::VectorXd reference_;
+  std::uint32_t search_lo_[3], search_hi_[3];  // key box of the search space (clipped to the known cells)
+};
+
+}  // namespace octoreach::detail
