@@ -29,6 +29,7 @@ class ViewRow:
     view: int
     integration_s: float  # insert + incremental frontiers/voids + void clustering
     search_s: float  # choosing the next view
+    void_cells: int  # void cells in the chosen next view (raw: unknown space transparent up to the first occupied cell)
     expected_void: float  # void cells the chosen next view is expected to see (visibility-weighted)
     utility_dm3: float  # the same as a volume
     observed_share: float  # of the scene's initially unknown volume, after this view
@@ -48,11 +49,6 @@ class ViewRow:
     valid_candidates: int = 0  # of them valid (reachable, collision-free, safe)
     physically_valid: bool = True  # this view's arm pose is clear of the scene's true geometry (else not taken)
     target_points: int = 0  # points of this view's cloud on the target (explore(target=...))
-
-    @property
-    def void_cells(self) -> float:
-        """The paper's column name for expected_void."""
-        return self.expected_void
 
 
 @dataclass
@@ -169,7 +165,8 @@ class _Physics:
 def _row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, pose, base, valid, target,
          pts) -> ViewRow:
     interiors = scene.interiors
-    return ViewRow(view=view, integration_s=t_int, search_s=t_search, expected_void=choice.expected_void,
+    return ViewRow(view=view, integration_s=t_int, search_s=t_search, void_cells=choice.void_cells,
+                   expected_void=choice.expected_void,
                    utility_dm3=choice.utility_dm3, observed_share=observed_share(emap, scene, [tuple(region)]),
                    interior_share=observed_share(emap, scene, interiors) if interiors else 0.0,
                    points=int(stats.get("points", 0)), frontier_cells=int(emap.frontier_cell_count),

@@ -39,6 +39,7 @@ class Choice:
     """The view a strategy picked (pose None: no valid view) with its expected gains."""
 
     pose: Optional[np.ndarray]
+    void_cells: int = 0  # raw distinct void cells in view (unknown space transparent up to the first occupied cell)
     expected_void: float = 0.0
     expected_unknown: float = 0.0
     expected_frontier: float = 0.0
@@ -88,10 +89,19 @@ def sample_poses(rng, region, sphere=None, box=None, n: int = CANDIDATES, floor:
 
 
 def _score(emap, camera, poses, options):
-    """score_views as a list of dicts (pose, valid, status, expected_* gains, q)."""
+    """score_views as a list of dicts (pose, valid, status, void_cells, expected_* gains, q)."""
     if len(poses) == 0:
         return []
-    return list(_core.score_views(emap, camera, poses, **options)["views"])
+    r = _core.score_views(emap, camera, poses, **options)
+    q = r["q"]
+    out = []
+    for i in range(len(poses)):
+        out.append({"pose": r["pose"][i], "valid": bool(r["valid"][i]), "status": r["status"][i],
+                    "void_cells": int(r["void_cells"][i]), "expected_void": float(r["expected_void"][i]),
+                    "expected_unknown": float(r["expected_unknown"][i]),
+                    "expected_frontier": float(r["expected_frontier"][i]),
+                    "q": None if q is None or not r["valid"][i] else np.asarray(q[i])})
+    return out
 
 
 def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed) -> Choice:
@@ -103,7 +113,8 @@ def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed) -> Choic
         r = _core.next_best_view(emap, camera, seed=seed, workspace_sphere=sphere_of(bp), chain_base=bp,
                                  capability_base=cap_base, gain="frontier_void", **options)
         top = r["ranked"][0] if r["ranked"] else {}
-        c = Choice(pose=r["best_pose"], expected_void=float(top.get("expected_void", 0.0)),
+        c = Choice(pose=r["best_pose"], void_cells=int(top.get("void_cells", 0)),
+                   expected_void=float(top.get("expected_void", 0.0)),
                    expected_unknown=float(top.get("expected_unknown", 0.0)),
                    expected_frontier=float(top.get("expected_frontier", 0.0)),
                    utility=float(top.get("expected_void", 0.0)), utility_dm3=float(r["utility_dm3"]),
@@ -139,7 +150,7 @@ def _sampled_choice(strategy, emap, camera, bases, current, sphere_of, options, 
     # the stopping rule: the strategy's gain of the best valid view (random: the best void gain on offer)
     utility = max(float(w["expected_void"]) for _, w in valid) if strategy == "random" else float(v[gain])
     res = emap.resolution
-    return Choice(pose=np.asarray(v["pose"]), expected_void=float(v["expected_void"]),
+    return Choice(pose=np.asarray(v["pose"]), void_cells=v["void_cells"], expected_void=float(v["expected_void"]),
                   expected_unknown=float(v["expected_unknown"]), expected_frontier=float(v["expected_frontier"]),
                   utility=utility, utility_dm3=float(v["expected_void"]) * res ** 3 * 1000, q=v.get("q"), base=i,
                   candidates=len(pool), valid=len(valid), details={"status_counts": statuses})
