@@ -268,7 +268,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         clusters = emap.void_clusters()
         t_int = time.perf_counter() - t0
         if rows:
-            rows[-1].void_seen = _seen(emap, void_before)
+            rows[-1].void_seen = _seen(emap, void_before) if valid else None
         if view == 1 and emap.void_cell_count == 0:
             rows.append(_row(view, emap, scene, region, stats, clusters, Choice(pose=None), t_int, 0.0, pose,
                              current, valid, target, pts))

@@ -54,7 +54,8 @@ def coverage_after(coverage, views: int) -> float:
     return float(coverage[min(views, len(coverage)) - 1])
 
 
-def seen_expected_ratios(rows) -> list:
-    """seen / expected void cells of every view that expected some (rows of explore(); the last row's
-    view was never taken, so it has no seen figure)."""
-    return [r.void_seen / r.expected_void for r in rows if r.expected_void > 0 and r.void_seen is not None]
+def seen_expected_ratios(rows, min_expected: float = 1.0) -> list:
+    """seen / expected void cells of every view that expected at least `min_expected` cells (rows of
+    explore(); the last row's view was never taken, nor was a physically invalid one: no seen figure).
+    A random view that expects 0.01 cells and sees 300 would say nothing about the model."""
+    return [r.void_seen / r.expected_void for r in rows if r.expected_void >= min_expected and r.void_seen is not None]
