@@ -24,7 +24,7 @@ def _ellipsoid_wire(ax, cluster, color="purple"):
     sphere = np.stack([np.outer(np.cos(u), np.sin(v)), np.outer(np.sin(u), np.sin(v)),
                        np.outer(np.ones_like(u), np.cos(v))], -1)
     pts = sphere @ (np.asarray(cluster.axes) * np.asarray(cluster.semi_axes)).T + np.asarray(cluster.centroid)
-    ax.plot_wireframe(pts[..., 0], pts[..., 1], pts[..., 2], color=color, linewidth=0.3, alpha=0.35, zorder=3)
+    ax.plot_wireframe(pts[..., 0], pts[..., 1], pts[..., 2], color=color, linewidth=0.25, alpha=0.25, zorder=3)
 
 
 def voxel_faces(centres, res: float):
@@ -65,16 +65,21 @@ def voxel_faces(centres, res: float):
     return np.concatenate(quads), np.concatenate(normals)
 
 
+def _crop(cells, region, margin=0.3):
+    """The cells within `region` ((2, 3)) grown by `margin` (floor at most 0.1 m below); all without a region."""
+    if region is None or len(cells) == 0:
+        return cells
+    lo, hi = np.asarray(region, float) + [[-margin] * 3, [margin] * 3]
+    lo[2] = max(lo[2], -0.1)
+    return cells[np.all((cells >= lo) & (cells <= hi), axis=1)]
+
+
 def _shaded_geometry(ax, emap, region, max_faces):
     """Occupied cells as lit voxel faces coloured by height (cropped to `region` grown by 0.3 m)."""
     from matplotlib import colormaps
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    occ = emap.cells("occupied")
-    if region is not None and len(occ):
-        lo, hi = np.asarray(region, float) + [[-0.3] * 3, [0.3] * 3]
-        lo[2] = max(lo[2], -0.1)
-        occ = occ[np.all((occ >= lo) & (occ <= hi), axis=1)]
+    occ = _crop(emap.cells("occupied"), region)
     quads, normals = voxel_faces(occ, emap.resolution)
     if len(quads) > max_faces:  # keep the picture cheap: the upward faces last to go
         keep = np.argsort(-normals[:, 2], kind="stable")[:max_faces]
@@ -91,11 +96,13 @@ def _shaded_geometry(ax, emap, region, max_faces):
     return occ
 
 
-def _light_cells(ax, emap, max_points):
-    """Frontiers and voids as small, light points on top of the geometry (each subsampled to `max_points`)."""
+def _light_cells(ax, emap, max_points, region):
+    """Frontiers and voids as small, light points on top of the geometry (each cropped like the geometry
+    and subsampled to `max_points`)."""
     rng = np.random.default_rng(0)
 
     def sub(p):
+        p = _crop(p, region)
         return p[rng.choice(len(p), max_points, replace=False)] if len(p) > max_points else p
 
     fr, vo = sub(emap.cells("frontier")), sub(emap.cells("void"))
@@ -144,20 +151,21 @@ def _frame(ax, drawn):
 
 
 def plot_map(emap: ExplorationMap, path, poses=(), next_pose=None, title: str = "", max_points: int = 6000,
-             ellipsoids: int = 8, camera=None, region=None, frustum_depth: float = 0.35,
+             ellipsoids: int = 4, camera=None, region=None, frustum_depth: float = 0.35,
              max_faces: int = 60000) -> Path:
     """PNG of the map: occupied cells as voxel faces shaded by a light and coloured by height, voids
     (violet) and frontiers (red) as small light points on top, the largest void ellipsoids (thin), the
     views so far (blue arrows) and the chosen next view as a green frustum (`camera`: a DepthCamera or
     CameraIntrinsics for its field of view, default 58 degrees at 4:3). `region` ((2, 3)) crops the
-    geometry to the search space grown by 0.3 m (the floor and walls far away would hide it)."""
+    geometry, frontiers and voids to the search space grown by 0.3 m (the floor and the frontiers far away
+    would hide the boxes)."""
     fov = float(getattr(camera, "fov", np.deg2rad(58.0)))
     aspect = float(camera.width) / float(camera.height) if camera is not None else 4.0 / 3.0
     fig = Figure(figsize=(8, 7))
     FigureCanvasAgg(fig)
     ax = fig.add_subplot(111, projection="3d", computed_zorder=False)
     occ = _shaded_geometry(ax, emap, region, max_faces)
-    drawn = _light_cells(ax, emap, max_points)
+    drawn = _light_cells(ax, emap, max_points, region)
     if len(occ):
         drawn.append(occ)
     for c in sorted(emap.void_clusters(), key=lambda c: -c.size)[:ellipsoids]:
