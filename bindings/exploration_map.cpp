@@ -171,7 +171,10 @@ void def_map_sets(MapClass& cls) {
            }, "What the rays of all inserts did to cells that were unknown (distinct cells that became free or\n"
               "occupied; all unknown cells and void cells alone) and the pass probabilities learned from it.")
       .def_property_readonly("pass_probability", &ExplorationMap::pass_probability,
-                             "p of the next-best-view visibility model learned from the inserts so far.")
+                             "p of the next-best-view visibility model for unknown cells outside the voids, learned\n"
+                             "from the inserts so far.")
+      .def_property_readonly("void_pass_probability", &ExplorationMap::void_pass_probability,
+                             "p of the visibility model for void cells (prior: pass_probability).")
       .def("void_cluster_cells", [](const ExplorationMap& self, const VoidCluster& v) { return centers(self, v.cells); },
            py::arg("cluster"), "Centres (N, 3) of a void cluster's cells.")
       .def("frontier_voids", [](const ExplorationMap& self) {

@@ -154,6 +154,7 @@ py::dict result_dict(const NbvResult& r) {
   d["expected_gain"] = r.best_gain();
   d["utility_dm3"] = r.best_utility_dm3();
   d["pass_probability"] = r.pass_probability;
+  d["void_pass_probability"] = r.void_pass_probability;
   d["camera_not_clear"] = r.camera_not_clear;
   d["utility_vectors"] = r.utility_vectors;
   d["utility_cells"] = r.utility_cells;
@@ -171,7 +172,7 @@ py::dict result_dict(const NbvResult& r) {
 }
 
 // score_views' result: one entry per pose, as arrays.
-py::dict scored_dict(const std::vector<ScoredView>& sv, const NbvOptions& o, double p) {
+py::dict scored_dict(const std::vector<ScoredView>& sv, const NbvOptions& o, std::pair<double, double> p) {
   const py::ssize_t n = py::ssize_t(sv.size());
   const py::ssize_t dof = o.chain ? py::ssize_t(o.chain->dof()) : 0;
   py::array_t<bool> valid(n);
@@ -208,7 +209,8 @@ py::dict scored_dict(const std::vector<ScoredView>& sv, const NbvOptions& o, dou
   d["expected_frontier"] = e_frontier;
   d["expected_gain"] = gain;
   d["gain"] = std::string(gain_name(o.gain));
-  d["pass_probability"] = p;
+  d["pass_probability"] = p.first;
+  d["void_pass_probability"] = p.second;
   return d;
 }
 
@@ -230,23 +232,24 @@ void wrap_next_best_view(py::module_& m) {
                          const py::object& pass_probability) {
           CameraIntrinsics c = intrinsics_from(camera);
           Pose T = pose_from(pose, "camera_pose");
-          double p = pass_probability.is_none()
-                         ? map.pass_probability()
-                         : cast_arg<double>(pass_probability, "pass_probability", "a float in [0, 1] or None");
+          double p = map.pass_probability(), pv = map.void_pass_probability();
+          if (!pass_probability.is_none())
+            p = pv = cast_arg<double>(pass_probability, "pass_probability", "a float in [0, 1] or None");
           ViewGains v;
           {
             py::gil_scoped_release release;
-            v = view_gains(map, c, T, sw, sh, p);
+            v = view_gains(map, c, T, sw, sh, p, pv);
           }
           py::dict d;
           gains_into(d, v);
           d["pass_probability"] = p;
+          d["void_pass_probability"] = pv;
           return d;
         }, py::arg("map"), py::arg("camera"), py::arg("camera_pose"), py::arg("score_width") = 48,
         py::arg("score_height") = 36, py::arg("pass_probability") = py::none(),
         "What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight\n"
         "starts at 1 and is multiplied by pass_probability after each unknown cell; None: the map's learned\n"
-        "value): raw distinct void_cells, unknown_cells, frontier_cells and their visibility-weighted\n"
+        "values, void_pass_probability for void cells and pass_probability for the others): raw distinct void_cells, unknown_cells, frontier_cells and their visibility-weighted\n"
         "expected_void, expected_unknown, expected_frontier.");
 
   m.def("score_views", [](const ExplorationMap& map, const py::object& camera, const py::object& poses,
@@ -256,11 +259,11 @@ void wrap_next_best_view(py::module_& m) {
           NbvOptions o = options_from<NbvOptions>(options, kwargs, "score_views");
           o.ik.seed = o.seed;
           std::vector<ScoredView> r;
-          double p;
+          std::pair<double, double> p{o.unknown_pass_probability, o.unknown_pass_probability};
           {
             py::gil_scoped_release release;
             r = score_views(map, c, T, o);
-            p = o.unknown_pass_probability >= 0 ? o.unknown_pass_probability : map.pass_probability();
+            if (o.unknown_pass_probability < 0) p = {map.pass_probability(), map.void_pass_probability()};
           }
           return scored_dict(r, o, p);
         }, py::arg("map"), py::arg("camera"), py::arg("poses"), py::arg("options") = py::none(),
@@ -271,7 +274,8 @@ void wrap_next_best_view(py::module_& m) {
         "'not_reachable', 'camera_not_clear', 'no_ik', 'arm_collision'), pose (N, 4, 4: the pose the arm\n"
         "reaches when IK succeeds, else the given one), q ((N, dof), NaN rows without a solution; None\n"
         "without a chain), void_cells, unknown_cells, frontier_cells (N,) int, expected_void,\n"
-        "expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name) and pass_probability.");
+        "expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name), pass_probability and\n"
+        "void_pass_probability.");
 
   m.def("accumulate_utility", [](const ExplorationMap& map, double range) {
           std::vector<std::pair<CellKey, double>> u;
@@ -305,7 +309,7 @@ void wrap_next_best_view(py::module_& m) {
         "keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None); of the best view:\n"
         "void_cells, unknown_cells, frontier_cells (raw distinct cells met), expected_void,\n"
         "expected_unknown, expected_frontier (visibility-weighted), expected_gain (of `gain`), utility_dm3\n"
-        "(expected_void as dm^3); pass_probability (p used); ranked (valid poses, best first, each with\n"
+        "(expected_void as dm^3); pass_probability, void_pass_probability (the p used); ranked (valid poses, best first, each with\n"
         "pose, the same gains, gain, utility_dm3, cell_utility, q), and search statistics. The workspace is\n"
         "workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable\n"
         "taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,\n"

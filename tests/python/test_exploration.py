@@ -3,7 +3,7 @@ bad inputs. Coarse resolutions and small images keep this under a minute on two 
 import numpy as np
 import pytest
 
-from octoreach import DepthCamera, ExplorationMap, Scene, next_best_view, view_utility
+from octoreach import DepthCamera, ExplorationMap, Scene, next_best_view, score_views, view_gains, view_utility
 from octoreach import exploration as ex
 
 FOV = np.deg2rad(58.0)
@@ -71,7 +71,8 @@ def test_closed_box_one_void_behind_one_frontier_and_the_view_looks_in():
     assert fv[0]["utility"] == pytest.approx(v.size * 0.04 ** 3)
     r = next_best_view(emap, cam, workspace_sphere=((0.8, 0.0, 0.3), 1.0), min_distance=0.05)
     assert r["void_cells"] > 100 and r["ranked"][0]["void_cells"] == r["void_cells"]
-    assert r["utility_dm3"] == pytest.approx(r["void_cells"] * 0.04 ** 3 * 1000)
+    assert 0 < r["expected_void"] <= r["void_cells"] and r["expected_gain"] == r["expected_void"]
+    assert r["utility_dm3"] == pytest.approx(r["expected_void"] * 0.04 ** 3 * 1000)
     P = r["best_pose"]
     eye, axis = P[:3, 3], P[:3, 2]
     assert not (np.all(eye > lo) and np.all(eye < hi))  # the camera is outside the box
@@ -80,10 +81,12 @@ def test_closed_box_one_void_behind_one_frontier_and_the_view_looks_in():
     # the optical axis passes through the opening and ends on an inner wall
     assert np.all(hit > lo - 0.03) and np.all(hit < hi + 0.03)
     assert axis[1] < -0.7  # looking into the +y opening
-    # the ranked list is ordered and its scores are what view_utility gives
-    counts = [c["void_cells"] for c in r["ranked"]]
-    assert counts == sorted(counts, reverse=True)
+    # the ranked list is ordered by the expected gain and its scores are what view_gains / view_utility give
+    gains = [c["gain"] for c in r["ranked"]]
+    assert gains == sorted(gains, reverse=True)
     assert view_utility(emap, cam, P)[0] == r["void_cells"]
+    g = view_gains(emap, cam, P)
+    assert g["void_cells"] == r["void_cells"] and g["expected_void"] == pytest.approx(r["expected_void"])
 
 
 def test_exploration_observes_the_crate_interiors():
@@ -255,3 +258,123 @@ def test_nbv_options_object_and_keywords_are_one_thing():
         next_best_view(emap, cam, bogus=1)
     with pytest.raises(ValueError, match="workspace_box"):
         next_best_view(emap, cam, workspace_box=np.zeros((3, 3)))
+
+
+def _unknown_cells_of_search_space(emap, region):
+    """Centres of the unknown cells of the search space within the bounding box of the known cells (the
+    cells unknown_is_obstacle turns into obstacles), found cell by cell with ExplorationMap.state."""
+    res = emap.resolution
+    known = np.vstack([emap.cells("free"), emap.cells("occupied")])
+    lo = np.maximum(region[0], known.min(axis=0) - res / 2)
+    hi = np.minimum(region[1], known.max(axis=0) + res / 2)
+    axes = [np.arange(np.floor(lo[i] / res) + 0.5, np.floor(hi[i] / res) + 1.0) * res for i in range(3)]
+    pts = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    return pts[emap.state(pts) == 0]
+
+
+def test_safe_views_keep_the_arm_and_the_camera_in_observed_space():
+    from octoreach import Obstacles
+
+    scene = ex.paper_scene(2)
+    region = ex.scene_region(scene)
+    robot, chain = ex.explorer_robot()
+    base = ex.arm_base_pose(robot, chain)
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    emap = ExplorationMap(resolution=0.04, search_space=region)
+    for T in survey(emap, scene, cam, [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)], (0.9, 0.0, 0.1)):
+        pass
+    unknown = _unknown_cells_of_search_space(emap, region)
+    assert len(unknown) > 1000
+    blocked = Obstacles()  # occupied and unknown cells, checked independently of the search
+    blocked.add_points(np.vstack([emap.cells("occupied"), unknown]), emap.resolution)
+
+    def touching_unknown(result):
+        n = 0
+        for v in result["ranked"]:
+            q = robot.home().copy()
+            q[: chain.dof] = v["q"]
+            n += robot.in_collision(q, blocked)
+        return n
+
+    kw = dict(max_valid_poses=40, max_candidate_cells=300, chain=chain, chain_base=base,
+              workspace_sphere=((0.2, 0.0, 0.3), 1.1), min_distance=0.05)
+    safe = next_best_view(emap, cam, **kw)
+    loose = next_best_view(emap, cam, unknown_is_obstacle=False, **kw)
+    assert touching_unknown(loose) > 0  # without the rule some views reach through unknown space
+    assert safe["best_pose"] is not None and touching_unknown(safe) == 0
+    margin = 0.05
+    for v in safe["ranked"]:
+        eye = v["pose"][:3, 3]
+        assert emap.state(eye[None])[0] == 1  # the camera sits in a free cell
+        near = unknown[np.all(np.abs(unknown - eye) <= margin + emap.resolution, axis=1)]
+        cells = np.floor(near / emap.resolution)
+        assert not np.any(np.all(np.abs(cells - np.floor(eye / emap.resolution)) <= 2, axis=1))
+    # score_views agrees on the camera checks (its IK restarts differ, so a solution may differ) and on
+    # the gains of the poses its arm reaches
+    poses = np.array([v["pose"] for v in safe["ranked"][:5]])
+    sv = score_views(emap, cam, poses, **kw)
+    assert set(sv["status"]) <= {"valid", "no_ik", "arm_collision"} and "valid" in sv["status"]
+    for i in np.flatnonzero(sv["valid"]):
+        assert sv["expected_void"][i] == pytest.approx(view_gains(emap, cam, sv["pose"][i])["expected_void"])
+    # a camera inside the closed box at -x (never seen inside) is not a view
+    inside = ex.look_at((0.9, -0.47, 0.2), (1.0, -0.47, 0.1))
+    sv = score_views(emap, cam, inside[None], **kw)
+    assert sv["status"] == ["camera_not_clear"] and not sv["valid"][0]
+    assert np.isnan(sv["q"]).all() and sv["q"].shape == (1, chain.dof)
+
+
+def test_score_views_statuses_gains_and_bad_input():
+    scene = ex.closed_box_scene("-x", 0.16)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (0.0, 0.4, 0.7)], (0.8, 0.0, 0.2)))
+    poses = np.array([ex.look_at((0.2, 0.0, 0.3), (0.8, 0.0, 0.2)), ex.look_at((3.0, 0.0, 0.3), (0.8, 0.0, 0.2))])
+    sv = score_views(emap, cam, poses, workspace_box=((-1, -1, 0), (1, 1, 1.5)), unknown_is_obstacle=False)
+    assert sv["status"] == ["valid", "outside_workspace"] and sv["q"] is None
+    assert sv["gain"] == "frontier_void" and np.array_equal(sv["expected_gain"], sv["expected_void"])
+    # gains are computed for every pose; p = 1 gives the raw counts (within 1.5 m a coarse ray's beam
+    # covers at most one cell of 4 cm)
+    near = DepthCamera(160, 120, FOV, 1.5)
+    raw = score_views(emap, near, poses[:1], unknown_pass_probability=1.0, unknown_is_obstacle=False)
+    assert raw["expected_void"][0] == pytest.approx(raw["void_cells"][0], rel=1e-3)
+    assert raw["expected_unknown"][0] == pytest.approx(raw["unknown_cells"][0], rel=1e-3)
+    opaque = score_views(emap, near, poses[:1], unknown_pass_probability=0.0, unknown_is_obstacle=False)
+    assert 0 < opaque["expected_unknown"][0] < raw["expected_unknown"][0]
+    assert opaque["unknown_cells"][0] == raw["unknown_cells"][0]  # the raw counts do not depend on p
+    unk = score_views(emap, cam, poses[:1], gain="unknown", unknown_is_obstacle=False)
+    assert unk["gain"] == "unknown" and unk["expected_gain"][0] == unk["expected_unknown"][0]
+    assert score_views(emap, cam, np.zeros((0, 4, 4)))["valid"].shape == (0,)
+    bad = poses.copy()
+    bad[1, 0, 3] = np.nan
+    with pytest.raises(ValueError, match="finite"):
+        score_views(emap, cam, bad)
+    with pytest.raises(ValueError, match=r"\(N, 4, 4\)"):
+        score_views(emap, cam, poses[:, :3])
+    with pytest.raises(ValueError, match="gain must be"):
+        score_views(emap, cam, poses, gain="volume")
+    with pytest.raises(ValueError, match="gain must be"):
+        next_best_view(emap, cam, gain="volume")
+    with pytest.raises(ValueError, match="unknown_pass_probability"):
+        score_views(emap, cam, poses, unknown_pass_probability=1.5)
+    with pytest.raises(TypeError, match="unexpected keyword"):
+        score_views(emap, cam, poses, gains="unknown")
+
+
+def test_ray_statistics_learn_a_pass_probability():
+    scene = ex.paper_scene(1)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    assert emap.pass_probability == 0.5 and emap.void_pass_probability == 0.5  # the priors before any ray
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)], (0.9, 0.0, 0.1)))
+    st = emap.ray_statistics()
+    assert st["unknown_to_free"] > st["unknown_to_occupied"] > 0 and st["void_to_free"] + st["void_to_occupied"] > 0
+    assert 0.5 < st["pass_probability"] < 1 and st["pass_probability"] == emap.pass_probability
+    assert 0 < st["void_pass_probability"] < 1
+    r = next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.6), 0.8), min_distance=0.05)
+    assert r["pass_probability"] == emap.pass_probability
+    assert r["void_pass_probability"] == emap.void_pass_probability
+    for gain in ("frontiers", "unknown"):
+        g = next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.6), 0.8), min_distance=0.05, gain=gain)
+        key = {"frontiers": "expected_frontier", "unknown": "expected_unknown"}[gain]
+        assert g["best_pose"] is not None and g["expected_gain"] == g[key] > 0
+        assert [v["gain"] for v in g["ranked"]] == sorted([v["gain"] for v in g["ranked"]], reverse=True)

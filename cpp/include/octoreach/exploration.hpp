@@ -104,18 +104,27 @@ struct FrontierVoid {
 /// \brief What the rays of all inserts so far did to cells that were unknown: distinct cells that
 /// became free (a ray passed) or occupied (a ray stopped), all unknown cells and void cells alone.
 /// The next-best-view's visibility model learns from it how often an unknown cell lets a ray through.
+///
+/// Counted per ray, not per cell: a bundle of rays of equal solid angle crosses a cell at distance t
+/// from the sensor about 1 / t^2 times, so each cell also adds 1 / max(t, 0.1 m)^2 to the weighted sums
+/// (m^-2); the probabilities are taken from those (plain cell counts would under-weight the free
+/// cells near the sensor that many rays cross).
 struct RayStatistics {
-  std::uint64_t unknown_to_free = 0, unknown_to_occupied = 0;
-  std::uint64_t void_to_free = 0, void_to_occupied = 0;
-  /// \brief P(an unknown cell a ray reaches lets it through) = (free + 1) / (free + occupied + 2)
-  /// over all unknown cells (Laplace's rule: 0.5 before any insert).
+  std::uint64_t unknown_to_free = 0, unknown_to_occupied = 0;  ///< cells
+  std::uint64_t void_to_free = 0, void_to_occupied = 0;        ///< cells
+  double unknown_to_free_w = 0, unknown_to_occupied_w = 0;     ///< 1/t^2-weighted sums
+  double void_to_free_w = 0, void_to_occupied_w = 0;
+  /// \brief P(an unknown cell a ray reaches lets it through): free / (free + occupied) of the
+  /// weighted sums over all unknown cells, with a prior of 0.5 worth kPrior m^-2 (0.5 before any insert).
   double pass_probability() const {
-    return (double(unknown_to_free) + 1.0) / (double(unknown_to_free + unknown_to_occupied) + 2.0);
+    return (unknown_to_free_w + 0.5 * kPrior) / (unknown_to_free_w + unknown_to_occupied_w + kPrior);
   }
-  /// \brief The same over void cells alone (cells inside the hull: behind surfaces).
+  /// \brief The same over void cells alone (cells inside the hull, mostly behind surfaces), with
+  /// pass_probability() as the prior worth kPrior.
   double void_pass_probability() const {
-    return (double(void_to_free) + 1.0) / (double(void_to_free + void_to_occupied) + 2.0);
+    return (void_to_free_w + kPrior * pass_probability()) / (void_to_free_w + void_to_occupied_w + kPrior);
   }
+  static constexpr double kPrior = 100.0;  ///< m^-2: about 25 cells at 0.5 m
 };
 
 /// \brief Tuning of the exploration map.
@@ -242,9 +251,11 @@ class ExplorationMap {
 
   /// \brief What rays did to unknown cells over all inserts (see RayStatistics).
   RayStatistics ray_statistics() const;
-  /// \brief The pass probability the next-best-view search learns from the map (the visibility
-  /// model's p): ray_statistics().pass_probability().
+  /// \brief The pass probabilities the next-best-view search learns from the map (the visibility
+  /// model's p): ray_statistics().pass_probability() for unknown cells outside the voids and
+  /// ray_statistics().void_pass_probability() for void cells.
   double pass_probability() const;
+  double void_pass_probability() const;
 
   /// \brief Void clusters computed from scratch from the current void cells (the incrementally kept
   /// void_clusters() must equal them; tests compare the two).

@@ -18,8 +18,9 @@
 ///
 /// Visibility model: a ray's weight starts at 1; each unknown cell it passes counts with the
 /// current weight, then the weight is multiplied by p, the probability that an unknown cell lets the
-/// ray through (learned by the map: ExplorationMap::pass_probability, or fixed by
-/// NbvOptions::unknown_pass_probability). The ray stops at the first occupied cell. A cell met by
+/// ray through: learned by the map from what earlier rays did (ExplorationMap::void_pass_probability
+/// for void cells, ExplorationMap::pass_probability for the other unknown cells), or fixed for both
+/// by NbvOptions::unknown_pass_probability. The ray stops at the first occupied cell. A cell met by
 /// several rays counts once, with the largest weight: its expected visibility. Free cells do not
 /// reduce the weight.
 
@@ -104,8 +105,8 @@ struct NbvOptions {
   /// What the views are ranked by (and, for Frontiers / Unknown, where candidate cells come from).
   NbvGain gain = NbvGain::FrontierVoid;
   /// p of the visibility model: the chance that an unknown cell lets a ray through. < 0: learned by
-  /// the map (ExplorationMap::pass_probability()); in [0, 1]: fixed (1: unknown space is transparent,
-  /// the raw counts).
+  /// the map (ExplorationMap::void_pass_probability() for void cells, pass_probability() for the
+  /// others); in [0, 1]: fixed for both (1: unknown space is transparent, the raw counts).
   double unknown_pass_probability = -1.0;
   /// Safe views: unknown cells inside the map's search space (ExplorationOptions::search_lo/hi)
   /// count as obstacles for the arm's collision check (with arm_collisions) and the camera must sit
@@ -140,7 +141,8 @@ struct ViewCandidate : ViewGains {
 /// \brief Result of a search: valid poses ranked by the expected gain, then expected unknown cells.
 struct NbvResult {
   std::vector<ViewCandidate> ranked;
-  double pass_probability = 1;      ///< p the visibility model used
+  double pass_probability = 1;      ///< p the visibility model used for unknown cells outside the voids
+  double void_pass_probability = 1; ///< p it used for void cells
   std::size_t utility_vectors = 0;
   std::size_t utility_cells = 0;    ///< cells with utility > 0 before pruning
   std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
@@ -168,10 +170,11 @@ std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap&
 std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, const CameraIntrinsics& camera,
                                                  const Pose& pose, int score_width, int score_height);
 
-/// \brief The gains of a camera at `pose` under the visibility model with pass probability p
-/// (score_width x score_height rays). \throws std::invalid_argument for a bad grid or p outside [0, 1].
+/// \brief The gains of a camera at `pose` under the visibility model with pass probability p for
+/// unknown cells outside the voids and p_void for void cells (score_width x score_height rays).
+/// \throws std::invalid_argument for a bad grid or a probability outside [0, 1].
 ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, int score_width,
-                     int score_height, double pass_probability);
+                     int score_height, double pass_probability, double void_pass_probability);
 
 /// \brief The full search (steps 1-4).
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& camera, const NbvOptions& options);

@@ -155,8 +155,13 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     std::uint8_t& cell = gw.at(c.key);
     if (c.before == CellState::Unknown) {  // the visibility model's statistics (void flags still set)
       const bool occ = c.after == CellState::Occupied;
+      const double w = 1.0 / std::max((S.center(c.key) - origin).squaredNorm(), 0.01);
       ++(occ ? S.rays.unknown_to_occupied : S.rays.unknown_to_free);
-      if (cell & kVoidFlag) ++(occ ? S.rays.void_to_occupied : S.rays.void_to_free);
+      (occ ? S.rays.unknown_to_occupied_w : S.rays.unknown_to_free_w) += w;
+      if (cell & kVoidFlag) {
+        ++(occ ? S.rays.void_to_occupied : S.rays.void_to_free);
+        (occ ? S.rays.void_to_occupied_w : S.rays.void_to_free_w) += w;
+      }
     }
     cell = std::uint8_t((cell & ~kStateMask) | std::uint8_t(c.after));
   }
@@ -180,6 +185,7 @@ RayStatistics ExplorationMap::ray_statistics() const {
 }
 
 double ExplorationMap::pass_probability() const { return ray_statistics().pass_probability(); }
+double ExplorationMap::void_pass_probability() const { return ray_statistics().void_pass_probability(); }
 
 std::vector<CellKey> ExplorationMap::known_cells(CellState which) const {
   if (which == CellState::Unknown) throw std::invalid_argument("known_cells: which must be Free or Occupied");

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "cell_sets.hpp"
 #include "common/thread_pool.hpp"
@@ -175,7 +176,7 @@ struct Slot {
 class PoseScorer {
  public:
   PoseScorer(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-             const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, double p)
+             const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, std::pair<double, double> p)
       : map_(map), cam_(cam), opt_(opt), cells_(cells), per_cell_(std::size_t(opt.orientations_per_cell)),
         checker_(checker), p_(p) {}
   std::size_t total() const { return cells_.size() * per_cell_; }
@@ -191,7 +192,7 @@ class PoseScorer {
   const std::vector<UtilityCell>& cells_;
   const std::size_t per_cell_;
   const detail::ViewChecker& checker_;
-  const double p_;
+  const std::pair<double, double> p_;
 };
 
 // Orientation 0 looks along the mean direction; the others are drawn in a cone around it.
@@ -236,7 +237,7 @@ Slot PoseScorer::score(std::size_t idx) const {
 void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
                       const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, int threads,
                       NbvResult& r) {
-  const PoseScorer scorer(map, cam, opt, cells, checker, r.pass_probability);
+  const PoseScorer scorer(map, cam, opt, cells, checker, {r.pass_probability, r.void_pass_probability});
   const std::size_t total = scorer.total(), max_valid = std::size_t(opt.max_valid_poses);
   const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
@@ -300,7 +301,7 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   validate(cam, opt);
   auto guard = detail::read_guard(map);
   NbvResult r;
-  r.pass_probability = detail::pass_probability_of(map, opt);
+  std::tie(r.pass_probability, r.void_pass_probability) = detail::pass_probabilities(map, opt);
   const int threads = detail::default_threads(opt.threads);
   const std::vector<UtilityVector> vecs =
       opt.gain == NbvGain::FrontierVoid ? utility_vectors(map) : frontier_vectors(map, opt.gain);

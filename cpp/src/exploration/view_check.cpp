@@ -162,7 +162,7 @@ std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntri
                                   std::to_string(poses.size()) + " positions");
   }
   auto guard = detail::read_guard(map);
-  const double p = detail::pass_probability_of(map, opt);
+  const auto p = detail::pass_probabilities(map, opt);
   const detail::ViewChecker checker(map, opt);
   const Pose to_arm = opt.capability_base.inverse();
   std::vector<ScoredView> out(poses.size());

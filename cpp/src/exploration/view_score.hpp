@@ -16,14 +16,14 @@ namespace octoreach::detail {
 // view_gains without taking the map's lock: the caller holds it (pool workers of next_best_view must
 // not lock again: a writer waiting in between would deadlock them against their caller).
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                              double pass_probability);
+                              double p, double p_void);
 
-// p of a search: the fixed option or the map's learned value.
-double pass_probability_of(const ExplorationMap& map, const NbvOptions& opt);
+// p (unknown cells outside the voids) and p_void of a search: the fixed option or the map's learned values.
+std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt);
 
-// Fills gains, gain and utility_dm3 of `v` (its pose set) with p.
-void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, double p,
-                ViewCandidate& v);
+// Fills gains, gain and utility_dm3 of `v` (its pose set).
+void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
+                std::pair<double, double> p, ViewCandidate& v);
 
 // The checks of one search that make a pose a view: camera clearance, the capability map's axis,
 // IK and the arm's collisions. Built once per search (the obstacles: the map's occupied cells and,
