@@ -500,7 +500,9 @@ def _add_view_and_experiment_commands(sub):
     sp.add_argument("--plot", default="tidy_up.png", help="tidy-up: PNG to write (default tidy_up.png)")
     sp.add_argument("--scene", type=int, default=1, help="exploration: paper scene 1 or 2 (default 1)")
     sp.add_argument("--views", type=int, default=10, help="exploration: view budget (default 10)")
-    sp.add_argument("--strategy", default="frontier_void", choices=["frontier_void", "random", "frontiers", "unknown"],
+    from .exploration.strategies import STRATEGIES
+
+    sp.add_argument("--strategy", default="frontier_void", choices=STRATEGIES,
                     help="exploration: how views are chosen (default frontier_void, the paper's)")
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.add_argument("--quiet", action="store_true", help="no progress line")
