@@ -21,6 +21,8 @@ the issue's goals on these figures.
 Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 15]
      [--plot docs/images/exploration_strategies.png] [--markdown table.md]
 Quick: --seeds 2 --generated 2 --views 8 --image 160 120 --resolution 0.05
+In parts (two cores): --scenes paper_1 usar_0 > a.json; --scenes paper_2 usar_1 > b.json; then
+     --combine a.json b.json --plot p.png --markdown t.md
 """
 from __future__ import annotations
 
@@ -152,6 +154,26 @@ def _markdown(summary, strategies):
     return "\n".join(lines)
 
 
+def _combine(a) -> int:
+    """One output from several (their scenes side by side; setups must agree but for the scenes)."""
+    parts = [json.load(open(f)) for f in a.combine]
+    out = {"setup": parts[0]["setup"], "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
+    for p in parts:
+        for k in ("oracle", "summary", "runs"):
+            out[k].update(p[k])
+    strategies = out["setup"]["strategies"]
+    out["goals"] = _goals(out["summary"], strategies)
+    out["total_s"] = sum(p["total_s"] for p in parts)
+    if a.plot:
+        ex.plot_coverage({k: {s: [r["coverage"] for r in runs] for s, runs in per.items()}
+                          for k, per in out["runs"].items()}, a.plot)
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(_markdown(out["summary"], strategies) + "\n")
+    print(json.dumps(out, indent=1, default=float))
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=10, help="exploration seeds per strategy and scene (>= 10 for the record)")
@@ -166,7 +188,11 @@ def main(argv=None) -> int:
     ap.add_argument("--oracle-samples", type=int, default=2000, help="joint and aimed samples of the oracle, each")
     ap.add_argument("--plot", default=None, help="PNG of coverage against views (one panel per scene)")
     ap.add_argument("--markdown", default=None, help="write the table (strategies x scenes) as markdown here")
+    ap.add_argument("--combine", nargs="+", default=None, metavar="JSON",
+                    help="no runs: combine the JSON outputs of earlier runs (e.g. one per --scenes group) into one")
     a = ap.parse_args(argv)
+    if a.combine:
+        return _combine(a)
     if a.seeds < 1 or a.views < 1 or a.generated < 0:
         ap.error("--seeds and --views must be >= 1, --generated >= 0")
     for s in a.strategies:
