@@ -161,6 +161,8 @@ def _combine(a) -> int:
     for p in parts:
         for k in ("oracle", "summary", "runs"):
             out[k].update(p[k])
+    for k in ("oracle", "summary", "runs"):  # paper scenes first, then usar_0, usar_1, ...
+        out[k] = dict(sorted(out[k].items(), key=lambda kv: (not kv[0].startswith("paper"), kv[0])))
     strategies = out["setup"]["strategies"]
     out["goals"] = _goals(out["summary"], strategies)
     out["total_s"] = sum(p["total_s"] for p in parts)
