@@ -78,6 +78,8 @@ def test_usar_scenes_are_seeded_and_hide_the_target_in_a_container():
         inner = u.scene.interiors[u.target_container]
         assert np.all(lo >= np.asarray(inner[0]) - 1e-9) and np.all(hi <= np.asarray(inner[1]) + 1e-9)
         assert u.scene.solid(((lo + hi) / 2)[None])[0]
+        if any(c["kind"] == "closed_box" for c in u.containers):
+            assert u.containers[u.target_container]["kind"] == "closed_box"
         faces = {c["face"] for c in u.containers}
         assert faces <= set(ex.usar_scenes.FACES)
     faces = {c["face"] for s in range(12) for c in ex.usar_scene(s).containers if c["kind"] == "closed_box"}

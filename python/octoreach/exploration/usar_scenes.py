@@ -90,7 +90,7 @@ def usar_scene(seed: int = 0, containers: int = 3, debris: int = 3, closed_share
     """A seeded USAR-like scene: `containers` crates and closed boxes (each closed with probability
     `closed_share`; footprints 0.25-0.45 m, heights 0.18-0.45 m, openings of 7 cm up to 80 % of the
     face on a random face), `debris` small boxes and boards on the floor between them, and a target
-    (a 5-8 cm cube) on the floor inside one container. ValueError for counts that do not fit."""
+    (a 5-8 cm cube) on the floor inside one container (a closed box when there is one). ValueError for counts that do not fit."""
     if not 1 <= containers <= 6:
         raise ValueError(f"containers must be 1..6 (the area holds at most 6), got {containers!r}")
     if not 0 <= debris <= 10:
@@ -126,7 +126,9 @@ def usar_scene(seed: int = 0, containers: int = 3, debris: int = 3, closed_share
         lo, hi = np.array([*spot[0], 0.0]), np.array([*spot[1], size[2]])
         s.add_box(lo, hi)
         pieces.append((lo, hi))
-    k = int(rng.integers(len(boxes)))
+    # the target hides in a closed box when there is one (a crate's inside is seen from the start view)
+    closed = [i for i, b in enumerate(boxes) if b["kind"] == "closed_box"] or list(range(len(boxes)))
+    k = closed[int(rng.integers(len(closed)))]
     c = boxes[k]
     inner_lo, inner_hi = c["lo"] + WALL, c["hi"] - WALL
     edge = rng.uniform(0.05, 0.08)
