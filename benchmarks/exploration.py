@@ -6,6 +6,11 @@ integration, 14-100 s per next-best-view search). Cloud: one 640 x 480 depth ima
 scene (12 crates and closed boxes, a wall, a floor), 2.5 cm cells, 4 m range.
 Explorations: the explorer robot with a coarse capability map (built once, timed separately), fixed
 base, and for scene 2 also with the base allowed to drive to four poses around the scene.
+Void clusters: a sequence of images of the cluttered scene from nearby poses; after each insert the
+incrementally kept clusters (void_clusters) against the clustering from scratch of the same void cells
+(void_clusters_from_scratch, the reference, measured on the same state), and whether they are equal.
+Visibility model: per exploration, the void cells each chosen view was expected to see (visibility
+weighted) against the void cells its image turned known.
 Run: .venv/bin/python benchmarks/exploration.py [--repeats 5]
 """
 from __future__ import annotations
@@ -19,6 +24,38 @@ import numpy as np
 
 from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, next_best_view
 from octoreach import exploration as ex
+
+
+def _void_cluster_sequence(scene, cam, res, rng, poses):
+    """Incremental void clusters against from scratch after each insert of a sequence of views."""
+    emap = ExplorationMap(resolution=res)
+    inc_s, scratch_s, voids, equal = [], [], [], True
+    for T in poses:
+        emap.insert(cam.capture(scene, T), T[:3, 3], rng)
+        t0 = time.perf_counter()
+        inc = emap.void_clusters()
+        inc_s.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        ref = emap.void_clusters_from_scratch()
+        scratch_s.append(time.perf_counter() - t0)
+        voids.append(emap.void_cell_count)
+        equal &= len(inc) == len(ref) and all(np.array_equal(x.keys, y.keys) for x, y in zip(inc, ref))
+    return {"views": len(poses), "void_cells": voids, "incremental_s": inc_s, "from_scratch_s": scratch_s,
+            "median_incremental_s_after_first": statistics.median(inc_s[1:]),
+            "median_from_scratch_s_after_first": statistics.median(scratch_s[1:]),
+            "equal_to_from_scratch_every_insert": bool(equal)}
+
+
+def _void_cluster_runs(scene, cam, res, rng):
+    """Two sequences after the same overview: views circling near it (their changes reach most of the
+    voids) and close views of single crates and boxes (local changes)."""
+    first = ex.look_at((-0.8, 0.0, 1.2), (1.5, 0.0, 0.0))
+    circling = [first] + [ex.look_at((-0.8 + 0.3 * np.cos(a), 0.3 * np.sin(a), 1.2), (1.5, 0.0, 0.0))
+                          for a in np.linspace(0, 2 * np.pi, 8)[1:]]
+    local = [first] + [ex.look_at((x - 0.35, y + 0.2, 0.75), (x + 0.2, y + 0.2, 0.15))
+                       for x, y in ((0.5, -1.2), (1.1, -0.4), (1.7, 0.4), (2.3, -1.2), (0.5, 0.4), (1.7, -1.2))]
+    return {"circling": _void_cluster_sequence(scene, cam, res, rng, circling),
+            "local": _void_cluster_sequence(scene, cam, res, rng, local)}
 
 
 def main() -> int:
@@ -54,6 +91,10 @@ def main() -> int:
         for k in ("seconds_vectors", "seconds_prune", "seconds_score"):
             nbv_parts.setdefault(k, []).append(nbv[k])
     med = statistics.median
+    inc = _void_cluster_runs(scene, cam, res, rng)
+    # the search with the safe-view rule off (the cost of the unknown-cell obstacles and clearance)
+    loose_s = [next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
+                              unknown_is_obstacle=False)["seconds"] for _ in range(a.repeats)]
     out = {
         "cloud": {"points": int(len(pts)), "image": [640, 480], "resolution_m": res, "max_range_m": rng},
         "integration": {
@@ -73,8 +114,12 @@ def main() -> int:
             "utility_vectors": nbv["utility_vectors"],
             "candidate_cells": nbv["candidate_cells"], "poses_scored": nbv["poses_scored"],
             "best_void_cells": nbv["void_cells"], "best_utility_dm3": nbv["utility_dm3"],
+            "best_expected_void": nbv["expected_void"], "pass_probability": nbv["pass_probability"],
+            "void_pass_probability": nbv["void_pass_probability"],
+            "median_s_without_unknown_obstacles": med(loose_s),
             "score_grid": [48, 36],
         },
+        "void_clusters": inc,
         "paper_reference": {"integration_s": [3.0, 4.5], "nbv_search_s": [14, 100]},
         "explorations": {},
     }
@@ -97,9 +142,15 @@ def main() -> int:
             "interior_share_per_box": [round(ex.observed_share(r.map, scene, [box]), 3) for box in scene.interiors],
             "final_utility_dm3": r.rows[-1].utility_dm3,
             "bases": [x.base for x in r.rows],
-            # void cells the search expected the next view to see, and those it turned known
-            "void_cells_expected_vs_seen": [[a.void_cells, b.void_seen] for a, b in zip(r.rows, r.rows[1:])],
+            # void cells the search expected the next view to see (visibility-weighted), those it turned
+            # known, and the raw count of void cells in its frustum (unknown space taken as transparent)
+            "void_cells_expected_seen_raw": [[round(a.expected_void, 1), b.void_seen, a.void_cells]
+                                             for a, b in zip(r.rows, r.rows[1:])],
         }
+        ratios = [b.void_seen / a.expected_void for a, b in zip(r.rows, r.rows[1:]) if a.expected_void > 0]
+        out["explorations"][name]["seen_over_expected"] = {
+            "median": med(ratios) if ratios else None,
+            "share_below_0.1": sum(x < 0.1 for x in ratios) / len(ratios) if ratios else None}
     out["machine_note"] = "shared 2-core machine: medians of %d runs; timings are noisy" % a.repeats
     print(json.dumps(out, indent=1))
     return 0

@@ -56,19 +56,23 @@ void wrap_void_cluster(py::module_& m) {
 
 }
 
+// The search space box of the constructor and of from_file into the options.
+void set_search_space(ExplorationOptions& o, const py::object& search_space) {
+  if (search_space.is_none()) return;
+  RowMatrixXd b = matrix_from(search_space, 3, "search_space");
+  if (b.rows() != 2 || !b.allFinite() || (b.row(0).array() > b.row(1).array()).any())
+    throw std::invalid_argument("search_space must be finite (2, 3) rows lo, hi with lo <= hi");
+  o.search_lo = b.row(0).transpose();
+  o.search_hi = b.row(1).transpose();
+}
+
 // Construction, insertion and per-cell queries.
 void def_map_core(MapClass& cls) {
   cls
       .def(py::init([](double resolution, double threshold, std::uint64_t seed, int threads, bool track_voids,
                        const py::object& search_space) {
              ExplorationOptions o;
-             if (!search_space.is_none()) {
-               RowMatrixXd b = matrix_from(search_space, 3, "search_space");
-               if (b.rows() != 2 || !b.allFinite() || (b.row(0).array() > b.row(1).array()).any())
-                 throw std::invalid_argument("search_space must be finite (2, 3) rows lo, hi with lo <= hi");
-               o.search_lo = b.row(0).transpose();
-               o.search_hi = b.row(1).transpose();
-             }
+             set_search_space(o, search_space);
              o.resolution = resolution;
              o.void_fit_threshold = threshold;
              o.seed = seed;
@@ -76,20 +80,24 @@ void def_map_core(MapClass& cls) {
              o.track_voids = track_voids;
              return std::make_unique<ExplorationMap>(o);
            }),
-           py::arg("resolution") = 0.025, py::arg("void_fit_threshold") = 0.6, py::arg("seed") = 0,
+           py::arg("resolution") = ExplorationOptions().resolution,
+           py::arg("void_fit_threshold") = ExplorationOptions().void_fit_threshold, py::arg("seed") = 0,
            py::arg("threads") = 0, py::arg("track_voids") = true, py::arg("search_space") = py::none(),
            "search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.")
-      .def_static("from_file", [](const std::string& path, double threshold, std::uint64_t seed, std::uint64_t max_cells) {
+      .def_static("from_file", [](const std::string& path, double threshold, std::uint64_t seed, std::uint64_t max_cells,
+                                  const py::object& search_space) {
              ExplorationOptions o;
              o.void_fit_threshold = threshold;
              o.seed = seed;
              o.max_file_cells = max_cells;
+             set_search_space(o, search_space);
              py::gil_scoped_release release;
              return ExplorationMap::from_file(path, o);
-           }, py::arg("path"), py::arg("void_fit_threshold") = 0.6, py::arg("seed") = 0,
-           py::arg("max_cells") = ExplorationOptions().max_file_cells,
+           }, py::arg("path"), py::arg("void_fit_threshold") = ExplorationOptions().void_fit_threshold, py::arg("seed") = 0,
+           py::arg("max_cells") = ExplorationOptions().max_file_cells, py::arg("search_space") = py::none(),
            "Map from an OctoMap .bt file: FileNotFoundError if it does not exist, OSError if it cannot be read,\n"
-           "states a resolution outside [1e-4, 1e4] m or covers more than max_cells finest-resolution cells.")
+           "states a resolution outside [1e-4, 1e4] m, covers more than max_cells finest-resolution cells, or\n"
+           "its occupied cells span a box (clipped to search_space) too large to look for voids in.")
       .def_property_readonly("resolution", &ExplorationMap::resolution)
       .def("insert", [](ExplorationMap& self, const py::object& points, const py::object& origin, double max_range) {
              auto pts = points_from(points, "points");

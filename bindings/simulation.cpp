@@ -56,14 +56,19 @@ void wrap_scene(py::module_& m) {
              for (std::size_t i = 0; i < pts.size(); ++i) out.mutable_data()[i] = s.solid(pts[i]);
              return out;
            }, py::arg("points"), "True for points inside a solid box.")
-      .def("raycast", [](const Scene& s, const py::object& o, const py::object& d, double max_range) -> py::object {
+      .def("raycast", [](const Scene& s, const py::object& o, const py::object& d, double max_range,
+                         bool normal) -> py::object {
              Eigen::Vector3d dir = vec3_from(d, "direction");
              if (!(dir.norm() > 0)) throw std::invalid_argument("direction must be non-zero");
              double t;
-             if (!s.raycast(vec3_from(o, "origin"), dir.normalized(), max_range, t)) return py::none();
+             Eigen::Vector3d n;
+             if (!s.raycast(vec3_from(o, "origin"), dir.normalized(), max_range, t, normal ? &n : nullptr))
+               return py::none();
+             if (normal) return py::make_tuple(t, n);
              return py::float_(t);
-           }, py::arg("origin"), py::arg("direction"), py::arg("max_range") = 4.0,
-           "Distance to the first surface along the ray, or None.");
+           }, py::arg("origin"), py::arg("direction"), py::arg("max_range") = 4.0, py::arg("normal") = false,
+           "Distance to the first surface along the ray, or None; with normal=True (distance, unit surface\n"
+           "normal facing the ray).");
 
 }
 
@@ -91,16 +96,19 @@ void wrap_camera(py::module_& m) {
   py::class_<DepthCamera>(m, "DepthCamera",
                           "Simulated depth camera. It looks along its +z axis (+x right, +y down in the image, as\n"
                           "ROS optical frames); poses are 4x4 camera -> world transforms. noise: depth standard\n"
-                          "deviation at 1 m, growing with depth^2.")
-      .def(py::init<int, int, double, double, double, std::uint64_t>(), py::arg("width") = 640,
+                          "deviation at 1 m, growing with depth^2. max_incidence (radians, (0, pi/2]): pixels whose\n"
+                          "ray meets the surface at a larger angle to its normal give no return (pi/2: never);\n"
+                          "noisy depths beyond max_range give none either.")
+      .def(py::init<int, int, double, double, double, std::uint64_t, double>(), py::arg("width") = 640,
            py::arg("height") = 480, py::arg("fov") = 1.0123, py::arg("max_range") = 4.0, py::arg("noise") = 0.0,
-           py::arg("seed") = 0)
+           py::arg("seed") = 0, py::arg("max_incidence") = kPi / 2)
       .def_property_readonly("intrinsics", &DepthCamera::intrinsics)
       .def_property_readonly("width", [](const DepthCamera& c) { return c.intrinsics().width; })
       .def_property_readonly("height", [](const DepthCamera& c) { return c.intrinsics().height; })
       .def_property_readonly("fov", [](const DepthCamera& c) { return c.intrinsics().fov; })
       .def_property_readonly("max_range", [](const DepthCamera& c) { return c.intrinsics().max_range; })
       .def_property_readonly("noise", &DepthCamera::noise)
+      .def_property_readonly("max_incidence", &DepthCamera::max_incidence)
       .def("capture", [](DepthCamera& c, const Scene& s, const py::object& pose, int threads) {
              Pose T = pose_from(pose, "camera_pose");
              std::vector<Eigen::Vector3d> pts;

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'look_at', 'map_format_version', 'next_best_view', 'set_progress_factory', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'look_at', 'map_format_version', 'next_best_view', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
 class Obstacles:
@@ -1183,9 +1183,10 @@ class Scene:
         """
         Adds the occupied cells of an OctoMap .bt file to the world (OSError if it cannot be read).
         """
-    def raycast(self, origin: typing.Any, direction: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0) -> typing.Any:
+    def raycast(self, origin: typing.Any, direction: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0, normal: bool = False) -> typing.Any:
         """
-        Distance to the first surface along the ray, or None.
+        Distance to the first surface along the ray, or None; with normal=True (distance, unit surface
+        normal facing the ray).
         """
     def solid(self, points: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
         """
@@ -1226,9 +1227,11 @@ class DepthCamera:
     """
     Simulated depth camera. It looks along its +z axis (+x right, +y down in the image, as
     ROS optical frames); poses are 4x4 camera -> world transforms. noise: depth standard
-    deviation at 1 m, growing with depth^2.
+    deviation at 1 m, growing with depth^2. max_incidence (radians, (0, pi/2]): pixels whose
+    ray meets the surface at a larger angle to its normal give no return (pi/2: never);
+    noisy depths beyond max_range give none either.
     """
-    def __init__(self, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 480, fov: typing.SupportsFloat | typing.SupportsIndex = 1.0123, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0, noise: typing.SupportsFloat | typing.SupportsIndex = 0.0, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, width: typing.SupportsInt | typing.SupportsIndex = 640, height: typing.SupportsInt | typing.SupportsIndex = 480, fov: typing.SupportsFloat | typing.SupportsIndex = 1.0123, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0, noise: typing.SupportsFloat | typing.SupportsIndex = 0.0, seed: typing.SupportsInt | typing.SupportsIndex = 0, max_incidence: typing.SupportsFloat | typing.SupportsIndex = 1.5707963267948966) -> None:
         ...
     def capture(self, scene: Scene, camera_pose: typing.Any, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -1242,6 +1245,9 @@ class DepthCamera:
         ...
     @property
     def intrinsics(self) -> CameraIntrinsics:
+        ...
+    @property
+    def max_incidence(self) -> float:
         ...
     @property
     def max_range(self) -> float:
@@ -1287,10 +1293,11 @@ class ExplorationMap:
     occupied cells), clustered into ellipsoids. Map frame, metres.
     """
     @staticmethod
-    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, max_cells: typing.SupportsInt | typing.SupportsIndex = 16777216) -> ExplorationMap:
+    def from_file(path: str, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, max_cells: typing.SupportsInt | typing.SupportsIndex = 16777216, search_space: typing.Any = None) -> ExplorationMap:
         """
         Map from an OctoMap .bt file: FileNotFoundError if it does not exist, OSError if it cannot be read,
-        states a resolution outside [1e-4, 1e4] m or covers more than max_cells finest-resolution cells.
+        states a resolution outside [1e-4, 1e4] m, covers more than max_cells finest-resolution cells, or
+        its occupied cells span a box (clipped to search_space) too large to look for voids in.
         """
     def __init__(self, resolution: typing.SupportsFloat | typing.SupportsIndex = 0.025, void_fit_threshold: typing.SupportsFloat | typing.SupportsIndex = 0.6, seed: typing.SupportsInt | typing.SupportsIndex = 0, threads: typing.SupportsInt | typing.SupportsIndex = 0, track_voids: bool = True, search_space: typing.Any = None) -> None:
         """
@@ -1342,6 +1349,11 @@ class ExplorationMap:
         """
         Counts and an order-independent hash of the finest-resolution occupancy (to compare trees).
         """
+    def ray_statistics(self) -> dict:
+        """
+        What the rays of all inserts did to cells that were unknown (distinct cells that became free or
+        occupied; all unknown cells and void cells alone) and the pass probabilities learned from it.
+        """
     def recompute_from_scratch(self) -> dict:
         """
         The same, recomputed from the occupancy and hull alone.
@@ -1362,6 +1374,10 @@ class ExplorationMap:
         """
         Void clusters (ellipsoid region growing, deterministic for the map's seed).
         """
+    def void_clusters_from_scratch(self) -> list[VoidCluster]:
+        """
+        Void clusters computed from scratch from the current void cells (void_clusters() equals them).
+        """
     def void_keys(self) -> numpy.typing.NDArray[numpy.uint64]:
         ...
     def write_bt(self, path: str) -> None:
@@ -1372,11 +1388,22 @@ class ExplorationMap:
     def frontier_cell_count(self) -> int:
         ...
     @property
+    def pass_probability(self) -> float:
+        """
+        p of the next-best-view visibility model for unknown cells outside the voids, learned
+        from the inserts so far.
+        """
+    @property
     def resolution(self) -> float:
         ...
     @property
     def void_cell_count(self) -> int:
         ...
+    @property
+    def void_pass_probability(self) -> float:
+        """
+        p of the visibility model for void cells (prior: pass_probability).
+        """
 class NbvOptions:
     """
     Options of next_best_view (defaults of the C++ struct); every attribute is also a
@@ -1417,6 +1444,15 @@ class NbvOptions:
         """
     @chain_base.setter
     def chain_base(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def gain(self) -> str:
+        """
+        what views are ranked by: 'frontier_void' (expected void cells), 'frontiers' (expected
+        frontier cells) or 'unknown' (expected unknown cells, as nbvplanner)
+        """
+    @gain.setter
+    def gain(self, arg1: str) -> None:
         ...
     @property
     def ik_attempts(self) -> int:
@@ -1505,6 +1541,30 @@ class NbvOptions:
     def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
+    def unknown_is_obstacle(self) -> bool:
+        """
+        safe views: unknown cells of the map's search space are obstacles for the arm and the camera
+        """
+    @unknown_is_obstacle.setter
+    def unknown_is_obstacle(self, arg0: bool) -> None:
+        ...
+    @property
+    def unknown_margin(self) -> float:
+        """
+        metres around the camera with no unknown cell of the search space (unknown_is_obstacle)
+        """
+    @unknown_margin.setter
+    def unknown_margin(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def unknown_pass_probability(self) -> typing.Any:
+        """
+        p of the visibility model (chance that an unknown cell lets a ray through); None: learned by the map
+        """
+    @unknown_pass_probability.setter
+    def unknown_pass_probability(self, arg1: typing.Any) -> None:
+        ...
+    @property
     def workspace(self) -> typing.Any:
         """
         Callable taking candidate cell centres (N, 3) and returning (N,) bools, or None.
@@ -1575,9 +1635,11 @@ def map_format_version() -> int:
 def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any = None, **kwargs) -> dict:
     """
     Next best view (Algorithm 1 + frustum scoring). Options: an NbvOptions and/or its attributes as
-    keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None),
-    void_cells and utility_dm3 expected from it, ranked (valid poses, best first, each with pose,
-    void_cells, unknown_cells, utility_dm3, cell_utility, q), and search statistics. The workspace is
+    keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None); of the best view:
+    void_cells, unknown_cells, frontier_cells (raw distinct cells met), expected_void,
+    expected_unknown, expected_frontier (visibility-weighted), expected_gain (of `gain`), utility_dm3
+    (expected_void as dm^3); pass_probability, void_pass_probability (the p used); ranked (valid poses, best first, each with
+    pose, the same gains, gain, utility_dm3, cell_utility, q), and search statistics. The workspace is
     workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable
     taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,
     +z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.
@@ -1586,10 +1648,29 @@ def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any 
     capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.
     arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.
     """
+def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, options: typing.Any = None, **kwargs) -> dict:
+    """
+    Gains and validity of given camera poses (N, 4, 4) (camera -> map) with the checks and ray casting
+    of next_best_view (same options: workspace_*, capability_map, chain, chain_base, arm_collisions,
+    min_distance, unknown_is_obstacle, unknown_margin, gain, unknown_pass_probability, score_*).
+    Returns a dict of per-pose arrays: valid (N,) bool, status (list of 'valid', 'outside_workspace',
+    'not_reachable', 'camera_not_clear', 'no_ik', 'arm_collision'), pose (N, 4, 4: the pose the arm
+    reaches when IK succeeds, else the given one), q ((N, dof), NaN rows without a solution; None
+    without a chain), void_cells, unknown_cells, frontier_cells (N,) int, expected_void,
+    expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name), pass_probability and
+    void_pass_probability.
+    """
 def set_progress_factory(factory: typing.Any) -> None:
     """
     Registers factory(progress, label) -> callable (done, total) or None, used for progress=True and
     callables; octoreach/__init__.py registers octoreach.progress.make_progress. None unregisters.
+    """
+def view_gains(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, pass_probability: typing.Any = None) -> dict:
+    """
+    What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight
+    starts at 1 and is multiplied by pass_probability after each unknown cell; None: the map's learned
+    values, void_pass_probability for void cells and pass_probability for the others): raw distinct void_cells, unknown_cells, frontier_cells and their visibility-weighted
+    expected_void, expected_unknown, expected_frontier.
     """
 def view_utility(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36) -> tuple[int, int]:
     """

@@ -216,3 +216,38 @@ TEST(ExplorationMap, BadInputsRaiseOrDoNothing) {
   bad.resolution = 0;
   EXPECT_THROW(ExplorationMap{bad}, std::invalid_argument);
 }
+
+TEST(DepthCamera, NormalsAndMissingReturnsAtGrazingAnglesAndBeyondRange) {
+  Scene s;
+  s.add_box({-5, -5, -0.1}, {5, 5, 0});  // floor
+  s.add_box({1, -0.5, 0}, {1.2, 0.5, 1});  // a wall facing -x
+  double t;
+  Eigen::Vector3d n;
+  ASSERT_TRUE(s.raycast({0, 0, 0.5}, {1, 0, 0}, 4.0, t, &n));
+  EXPECT_NEAR(t, 1.0, 1e-12);
+  EXPECT_TRUE(n.isApprox(Eigen::Vector3d(-1, 0, 0)));
+  ASSERT_TRUE(s.raycast({0, 0, 0.5}, Eigen::Vector3d(1, 0, -1).normalized(), 4.0, t, &n));
+  EXPECT_TRUE(n.isApprox(Eigen::Vector3d(0, 0, 1)));
+  // looking along the floor: the floor's pixels far away meet it at grazing angles
+  const Pose T = look_at({-2, 0, 0.3}, {0, 0, 0.1});
+  DepthCamera all(64, 48, 1.0, 4.0, 0.0, 0), cut(64, 48, 1.0, 4.0, 0.0, 0, 75.0 * kPi / 180.0);
+  auto a = all.capture(s, T), b = cut.capture(s, T);
+  ASSERT_LT(b.size(), a.size());
+  ASSERT_GT(b.size(), 0u);
+  for (const auto& p : b) {  // every kept floor point is seen at <= 75 degrees from the floor's normal
+    if (p.z() > 1e-6) continue;  // a wall point
+    Eigen::Vector3d d = (p - T.translation()).normalized();
+    EXPECT_GE(std::abs(d.z()), std::cos(75.0 * kPi / 180.0) - 1e-9);
+  }
+  std::size_t dropped = 0;
+  for (const auto& p : a) {
+    Eigen::Vector3d d = (p - T.translation()).normalized();
+    if (p.z() <= 1e-6 && std::abs(d.z()) < std::cos(75.0 * kPi / 180.0) - 1e-6) ++dropped;
+  }
+  EXPECT_EQ(a.size() - b.size(), dropped);
+  // noise never puts a point beyond the range
+  DepthCamera noisy(64, 48, 1.0, 2.3, 0.2, 3);
+  for (const auto& p : noisy.capture(s, T)) EXPECT_LE((p - T.translation()).norm(), 2.3 + 1e-9);
+  EXPECT_THROW(DepthCamera(8, 8, 1.0, 4.0, 0.0, 0, 0.0), std::invalid_argument);
+  EXPECT_THROW(DepthCamera(8, 8, 1.0, 4.0, 0.0, 0, 2.0), std::invalid_argument);
+}

@@ -378,3 +378,45 @@ def test_ray_statistics_learn_a_pass_probability():
         key = {"frontiers": "expected_frontier", "unknown": "expected_unknown"}[gain]
         assert g["best_pose"] is not None and g["expected_gain"] == g[key] > 0
         assert [v["gain"] for v in g["ranked"]] == sorted([v["gain"] for v in g["ranked"]], reverse=True)
+
+
+def test_incremental_void_clusters_equal_clusters_from_scratch_after_every_insert():
+    """void_clusters() re-grows only the clusters an insert can reach; the partition, the order and the
+    ellipsoids equal the clustering from scratch of the same void cells after every insert."""
+    for sid in (1, 2):
+        scene = ex.paper_scene(sid)
+        cam = DepthCamera(200, 150, FOV, 3.0, noise=0.004, seed=sid)
+        emap = ExplorationMap(resolution=0.03, search_space=ex.scene_region(scene), seed=5)
+        eyes = [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9), (0.3, 0.6, 0.9), (1.5, 0.0, 1.0), (0.9, -0.9, 0.8),
+                (0.9, 0.9, 1.2), (0.6, 0.0, 0.7)]
+        sizes = []
+        for T in survey(emap, scene, cam, eyes, (0.9, 0.0, 0.1)):
+            inc, scratch = emap.void_clusters(), emap.void_clusters_from_scratch()
+            assert len(inc) == len(scratch) > 0
+            for a, b in zip(inc, scratch):
+                assert np.array_equal(a.keys, b.keys)
+                assert np.allclose(a.centroid, b.centroid) and np.allclose(a.eigenvalues, b.eigenvalues)
+                assert a.score == pytest.approx(b.score)
+            assert sum(c.size for c in inc) == emap.void_cell_count
+            sizes.append(emap.void_cell_count)
+        assert len(set(sizes)) > 2  # the void cells did change along the way
+
+
+def test_visibility_model_expects_what_the_view_sees_when_nothing_hides_in_the_unknown():
+    """An open crate seen from the sides only: its inside is void, and nothing occupies it. From above,
+    with pass probability 1 (unknown cells let rays through, as they do here), the expected void cells
+    are exactly the void cells the view's image turns known; a learned p < 1 expects fewer."""
+    scene = Scene()
+    scene.add_box((-2, -2, -0.05), (2, 2, 0))
+    scene.add_crate((0.6, -0.2, 0), (1.0, 0.2, 0.3), 0.02)
+    cam = DepthCamera(160, 120, FOV, 2.0)
+    emap = ExplorationMap(resolution=0.03, search_space=ex.scene_region(scene))
+    list(survey(emap, scene, cam, [(0.0, 0.0, 0.5), (0.8, -0.9, 0.45), (0.8, 0.9, 0.45), (1.7, 0.0, 0.45)],
+                (0.8, 0.0, 0.15)))
+    top = ex.look_at((0.8, 0.0, 0.9), (0.8, 0.0, 0.0))
+    clear = view_gains(emap, cam, top, pass_probability=1.0)
+    learned = view_gains(emap, cam, top)
+    assert clear["void_cells"] == emap.void_cell_count > 200
+    assert learned["void_pass_probability"] < 1 and learned["expected_void"] < clear["expected_void"]
+    seen = emap.insert(cam.capture(scene, top), top[:3, 3], cam.max_range)["void_removed"]
+    assert clear["expected_void"] == pytest.approx(seen, rel=1e-3) and emap.void_cell_count == 0

@@ -206,8 +206,6 @@ def test_from_file_cell_limit_is_stated_and_adjustable(tmp_path):
     assert (d["free"], d["occupied"]) == (n["free"], n["occupied"])
 
 
-@pytest.mark.xfail(strict=True, reason="open finding of issue 12: byte 1 of the root node of this file set to 0x0f or 0xf0 "
-                   "still ends in MemoryError under a 2 GB cap (every other variant loads or raises OSError)")
 def test_one_changed_byte_in_a_small_valid_bt_is_rejected_not_expanded(tmp_path):
     # A valid .bt of 290 bytes; one byte of its node data replaced can turn unknown children into leaves
     # near the root (2^42 cells and more): the old loader expanded them cell by cell (MemoryError after
@@ -259,9 +257,6 @@ def test_forged_direction_count_is_rejected_quickly(small_maps, tmp_path):
     assert child.returncode == 0 and "OSError" in child.stdout, child.stderr[-2000:]
 
 
-@pytest.mark.xfail(strict=True, reason="open finding of issue 12 (make fuzz, long profile): one point far outside the "
-                   "octree's key range makes occupancy_digest() run for minutes and recompute_from_scratch() allocate "
-                   "gigabytes (MemoryError under a 4 GB cap, 21 GB without one)")
 def test_a_point_far_outside_the_map_keeps_later_calls_bounded():
     child = run_python("""
         import numpy as np, octoreach as o
@@ -271,6 +266,55 @@ def test_a_point_far_outside_the_map_keeps_later_calls_bounded():
         print('OK')
     """, timeout=20, mem_bytes=2 << 30)
     assert not child.hung and child.returncode == 0 and "OK" in child.stdout, child.stderr[-1000:]
+
+
+def test_bt_node_data_is_checked_before_anything_is_built(tmp_path):
+    # The .bt node data is walked before octomap reads it: octomap's own reader checks neither the end of the
+    # data nor the depth, so a damaged file made it read past the end and build nodes without bound.
+    one_inner_chain = [b"\xc0\x00"] * 16 + [b"\x02\x00"]  # child 3 inner down to depth 16, then an occupied leaf
+    cases = {
+        "ends inside a node": bt_file([b"\xc0\x00", b"\xc0"], size=3),
+        "without children": bt_file([b"\xc0\x00", b"\x00\x00"], size=2),
+        "below the finest": bt_file(one_inner_chain, size=18),
+        "header states 5 nodes": bt_file([b"\x02\x00"], size=5),
+    }
+    for why, data in cases.items():
+        path = tmp_path / "bad.bt"
+        path.write_bytes(data)
+        with pytest.raises(OSError, match=why):
+            octoreach.ExplorationMap.from_file(str(path))
+        with pytest.raises(OSError, match=why):
+            octoreach.Scene().load_octomap(str(path))
+    legacy = tmp_path / "legacy.bt"
+    legacy.write_bytes(b"\x00" * 64)
+    with pytest.raises(OSError, match="first line"):
+        octoreach.ExplorationMap.from_file(str(legacy))
+    # the deepest valid chain (an occupied leaf at the finest resolution) loads: one finest cell
+    path = tmp_path / "deep.bt"
+    path.write_bytes(bt_file(one_inner_chain[1:], size=17))
+    d = octoreach.ExplorationMap.from_file(str(path)).occupancy_digest()
+    assert (d["free"], d["occupied"]) == (0, 1)
+
+
+def test_occupied_cells_kilometres_apart_are_refused_before_anything_changes(tmp_path):
+    # Voids are looked for in the occupied cells' bounding box: two clusters 3 km apart made that box 10^10
+    # cells (the void upkeep ran for minutes and filled the memory; a .bt with one changed byte did the same).
+    near = np.random.default_rng(0).uniform([1, -0.5, 0], [1.5, 0.5, 0.5], (500, 3))
+    m = octoreach.ExplorationMap(resolution=0.1)
+    m.insert(near, [0, 0, 0.25])
+    before, voids = m.occupancy_digest(), m.void_cell_count
+    with pytest.raises(ValueError, match="search_space"):
+        m.insert(near + [3000, 3000, 0], [3000, 3000, 0.25])
+    assert m.occupancy_digest() == before and m.void_cell_count == voids  # nothing changed
+    bounded = octoreach.ExplorationMap(resolution=0.1, search_space=[[-5, -5, -1], [5, 5, 2]])
+    bounded.insert(near, [0, 0, 0.25])
+    bounded.insert(near + [3000, 3000, 0], [3000, 3000, 0.25])
+    assert 0 < bounded.void_cell_count <= 100 * 100 * 30  # only in the search space (the hull now reaches 3 km)
+    bounded.write_bt(str(tmp_path / "far.bt"))
+    with pytest.raises(OSError, match="search_space"):
+        octoreach.ExplorationMap.from_file(str(tmp_path / "far.bt"))
+    again = octoreach.ExplorationMap.from_file(str(tmp_path / "far.bt"), search_space=[[-5, -5, -1], [5, 5, 2]])
+    assert again.occupancy_digest()["occupied"] == bounded.occupancy_digest()["occupied"]
 
 
 def test_bt_with_absurd_resolution_is_rejected(tmp_path):

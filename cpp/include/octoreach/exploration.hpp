@@ -140,6 +140,11 @@ struct ExplorationOptions {
   /// from_file rejects a .bt file whose leaves cover more finest-resolution cells than this (counted
   /// before anything is expanded: a damaged file cannot make the load run out of memory or time).
   std::uint64_t max_file_cells = std::uint64_t(1) << 24;
+  /// Voids are looked for in the bounding box of the occupied cells clipped to the search space. An insert
+  /// or a file that would make that box hold more cells than this is refused before anything changes (occupied
+  /// cells kilometres apart would make the void upkeep run for hours and fill the memory): pass a search space
+  /// around the region to explore, or track_voids = false.
+  std::uint64_t max_void_box_cells = std::uint64_t(1) << 28;
 };
 
 /// \brief Order-independent digest of an occupancy tree at the finest resolution: counts of free and

@@ -63,6 +63,10 @@ class Scene {
 
   /// \brief Distance along the unit direction d from o to the first surface within max_range.
   bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const;
+  /// \brief The same, and the unit normal of the surface at the hit facing the ray (a box's face, a
+  /// triangle's plane, the entered face of an OctoMap cell; -d when the ray starts inside a box).
+  bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t,
+               Eigen::Vector3d* normal) const;
 
  private:
   friend class DepthCamera;
@@ -102,25 +106,32 @@ Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward
 /// \brief Camera pose at `eye` looking at `target` (camera_pose with forward = target - eye).
 Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll = 0.0);
 
-/// \brief A simulated depth camera: one ray per pixel, Gaussian depth noise growing with depth^2.
+/// \brief A simulated depth camera: one ray per pixel, Gaussian depth noise growing with depth^2,
+/// missing returns at grazing angles and beyond the range.
 ///
 /// Threads: capture() may run from many threads at once (each call takes the next noise stream).
 class DepthCamera {
  public:
   /// \param noise standard deviation of the depth at 1 m (metres); at depth z it is noise * z^2
   /// (as for structured-light sensors). 0 for exact depths.
-  DepthCamera(int width, int height, double fov, double max_range, double noise = 0.0, std::uint64_t seed = 0);
+  /// \param max_incidence radians: a pixel whose ray meets the surface at a larger angle to its normal
+  /// gives no return (structured light and time of flight lose grazing surfaces); pi/2: never.
+  DepthCamera(int width, int height, double fov, double max_range, double noise = 0.0, std::uint64_t seed = 0,
+              double max_incidence = kPi / 2);
   const CameraIntrinsics& intrinsics() const { return intr_; }
   double noise() const { return noise_; }
+  double max_incidence() const { return max_incidence_; }
   /// \brief Points (world frame) the camera at `camera_pose` (camera -> world) sees in `scene`;
-  /// pixels without a surface within max_range give no point. Each call draws new noise
-  /// (deterministic for the seed and the call count).
+  /// pixels without a surface within max_range, with a noisy depth beyond max_range (or <= 0) or whose
+  /// ray meets the surface at more than max_incidence from its normal give no point. Each call draws
+  /// new noise (deterministic for the seed and the call count).
   std::vector<Eigen::Vector3d> capture(const Scene& scene, const Pose& camera_pose, int threads = 0);
 
  private:
   CameraIntrinsics intr_;
   double noise_;
   std::uint64_t seed_;
+  double max_incidence_;
   std::atomic<std::uint64_t> calls_{0};
 };
 

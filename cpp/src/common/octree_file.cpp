@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include <octomap/OcTree.h>
 
@@ -22,22 +23,117 @@ std::uint64_t finest_cell_count(const octomap::OcTree& tree, std::uint64_t stop_
   return n;
 }
 
+namespace {
+
+constexpr const char* kBinaryHeader = "# Octomap OcTree binary file";
+
+// The header as octomap's AbstractOcTree::readHeader reads it (tokens until "data", comments skipped);
+// returns the offset of the node data. octomap's own reader does the same parse, so the offsets agree.
+struct BtHeader {
+  std::string id;
+  double res = 0;
+  unsigned long long size = 0;
+  std::size_t data_offset = 0;
+};
+
+BtHeader parse_header(const std::string& bytes, const std::string& path) {
+  std::istringstream s(bytes);
+  std::string line;
+  std::getline(s, line);
+  if (line.compare(0, std::string(kBinaryHeader).size(), kBinaryHeader) != 0)
+    throw FileError("'" + path + "' is not an OctoMap binary (.bt) file: its first line is not \"" + kBinaryHeader +
+                    "\" (files of OctoMap before 1.4 are not read)");
+  BtHeader h;
+  auto skip_line = [&s] {
+    char c;
+    do c = char(s.get());
+    while (s.good() && c != '\n');
+  };
+  std::string token;
+  bool data = false;
+  while (s.good() && !data) {
+    s >> token;
+    if (token == "data") {
+      data = true;
+      skip_line();
+    } else if (token.compare(0, 1, "#") == 0) {
+      skip_line();
+    } else if (token == "id") {
+      s >> h.id;
+    } else if (token == "res") {
+      s >> h.res;
+    } else if (token == "size") {
+      s >> h.size;
+    } else {
+      skip_line();
+    }
+  }
+  if (!data || !s) throw FileError("'" + path + "' is not a readable OctoMap binary (.bt) file: no \"data\" line in its header");
+  h.data_offset = std::size_t(s.tellg());
+  return h;
+}
+
+// Walks the node data the way octomap's readBinaryNode does (two bytes per inner node, two bits per child,
+// bit 2i+1 then bit 2i: 01 free leaf, 10 occupied leaf, 11 inner node, 00 unknown) without building anything: every inner node
+// must be whole in the file, no node may lie below the finest level, and an inner node needs a child.
+// Counts the nodes and the finest cells the leaves cover, so a file is rejected before octomap allocates.
+struct NodeWalk {
+  const std::string& bytes;
+  const std::string& path;
+  std::size_t pos;
+  std::uint64_t nodes = 1;  // the root
+  std::uint64_t cells = 0;
+
+  [[noreturn]] void damaged(const std::string& why) const {
+    throw FileError("'" + path + "' is damaged: " + why + " (node data byte " + std::to_string(pos) + ")");
+  }
+
+  void node(unsigned depth) {
+    if (pos + 2 > bytes.size()) damaged("the node data ends inside a node");
+    const unsigned bits = unsigned(std::uint8_t(bytes[pos])) | (unsigned(std::uint8_t(bytes[pos + 1])) << 8);
+    pos += 2;
+    if (bits == 0) damaged("an inner node without children");
+    if (depth >= 16) damaged("a node below the finest resolution");
+    unsigned inner = 0;
+    for (unsigned i = 0; i < 8; ++i) {
+      const unsigned code = (bits >> (2 * i)) & 3u;
+      if (code == 0) continue;
+      ++nodes;
+      if (code == 3)
+        inner |= 1u << i;
+      else
+        cells += std::uint64_t(1) << (3 * (15 - depth));  // a leaf at depth + 1 covers 8^(16 - depth - 1)
+    }
+    for (unsigned i = 0; i < 8; ++i)
+      if (inner & (1u << i)) node(depth + 1);
+  }
+};
+
+}  // namespace
+
 void read_bt(octomap::OcTree& tree, const std::string& path, const std::string& what, std::uint64_t max_cells) {
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) throw FileNotFound("no " + what + " '" + path + "'");
   std::ifstream f(path, std::ios::binary);
   if (!f) throw FileError("cannot open " + what + " '" + path + "'");
-  if (!tree.readBinary(f)) throw FileError("'" + path + "' is not a readable OctoMap binary (.bt) file");
-  const double res = tree.getResolution();
-  if (!(res >= kMinOctreeResolution && res <= kMaxOctreeResolution))
-    throw FileError("'" + path + "' states a resolution of " + format_number(res) + " m, outside [" +
+  std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  if (f.bad()) throw FileError("cannot read " + what + " '" + path + "'");
+  const BtHeader h = parse_header(bytes, path);
+  if (!(h.res >= kMinOctreeResolution && h.res <= kMaxOctreeResolution))
+    throw FileError("'" + path + "' states a resolution of " + format_number(h.res) + " m, outside [" +
                     format_number(kMinOctreeResolution) + ", " + format_number(kMaxOctreeResolution) + "] (damaged?)");
-  if (max_cells > 0) {
-    const std::uint64_t n = finest_cell_count(tree, max_cells);
-    if (n > max_cells)
+  if (h.size > 0) {
+    NodeWalk walk{bytes, path, h.data_offset};
+    walk.node(0);
+    if (walk.nodes != h.size)
+      throw FileError("'" + path + "' is damaged: its header states " + std::to_string(h.size) + " nodes, its data holds " +
+                      std::to_string(walk.nodes));
+    if (max_cells > 0 && walk.cells > max_cells)
       throw FileError("'" + path + "' covers more than " + std::to_string(max_cells) +
                       " cells at its finest resolution (the limit; damaged or too large a map)");
   }
+  std::istringstream s(bytes);
+  if (!tree.readBinary(s)) throw FileError("'" + path + "' is not a readable OctoMap binary (.bt) file");
 }
 
 }  // namespace octoreach::detail

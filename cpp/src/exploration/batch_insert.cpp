@@ -249,6 +249,8 @@ CloudUpdates cloud_updates(const octomap::OcTree& tree, const std::vector<octoma
 }
 
 void apply_updates(MapTree& tree, const std::vector<std::uint64_t>& updates, std::vector<CellChange>& changed) {
+  // no update, no root: a root without children would be one occupied leaf covering the whole key range
+  if (updates.empty()) return;
   bool created_root = tree.root_node() == nullptr;
   octomap::OcTreeNode* root = tree.make_root();
   BatchUpdater up{tree,

@@ -49,6 +49,26 @@ std::vector<octomap::point3d> finite_points(const std::vector<Eigen::Vector3d>& 
   return pc;
 }
 
+// Refuses occupied cells whose bounding box (with the hull's vertices), clipped to the search space, holds more
+// than options.max_void_box_cells cells: the void upkeep visits that box. Throws E before anything changes.
+template <class E>
+void check_void_box(const std::vector<Eigen::Vector3d>& hull_vertices, const std::vector<Eigen::Vector3d>& occupied,
+                    const ExplorationOptions& options, double resolution, const std::string& what) {
+  if (!options.track_voids || occupied.empty()) return;
+  Eigen::Vector3d lo = occupied.front(), hi = lo;
+  for (const auto* pts : {&hull_vertices, &occupied})
+    for (const auto& p : *pts) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  const double cells = detail::hull_box_cells(lo, hi, resolution, options.search_lo, options.search_hi);
+  if (cells > double(options.max_void_box_cells))
+    throw E(what + ": the occupied cells span " + detail::format_point(lo) + " to " + detail::format_point(hi) +
+            ", a box of " + detail::format_number(cells) + " cells in which voids would be looked for (limit " +
+            std::to_string(options.max_void_box_cells) +
+            "); pass a search_space around the region to explore (or track_voids=False)");
+}
+
 }  // namespace
 
 OccupancyDigest occupancy_digest(const octomap::OcTree& tree) {
@@ -146,6 +166,12 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
   auto t0 = Clock::now();
   detail::CloudUpdates up = detail::cloud_updates(S.tree, pc, o, max_range, threads, st);
   st.seconds_rays = seconds_since(t0);
+  if (options_.track_voids) {  // before any change: a refused insert leaves the map as it was
+    std::vector<Eigen::Vector3d> occupied;
+    occupied.reserve(up.occupied.size());
+    for (CellKey k : up.occupied) occupied.push_back(S.center(k));
+    check_void_box<std::invalid_argument>(S.hull.vertices, occupied, options_, resolution_, "insert refused");
+  }
 
   // 3. one batched descent of the tree; the cell cache follows the changed cells
   t0 = Clock::now();
@@ -300,6 +326,7 @@ std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& pat
     S.grid.at(c) = std::uint8_t(occ ? CellState::Occupied : CellState::Free);
     if (occ) occupied.push_back(S.center(c));
   });
+  check_void_box<FileError>({}, occupied, options, m->resolution_, "'" + path + "'");
   ExplorationSnapshot s = m->recompute_from_scratch();  // frontiers only: no hull yet
   for (CellKey k : s.frontier_cells) S.grid.at(k) |= kFrontierFlag;
   detail::label_frontier_clusters(S, std::move(s.frontier_clusters));
@@ -309,6 +336,7 @@ std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& pat
     for (CellKey k : v.void_cells) {
       S.grid.at(k) |= kVoidFlag;
       S.void_set.insert(k);
+      S.void_added.push_back(k);
     }
   }
   return m;

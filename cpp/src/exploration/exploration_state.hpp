@@ -13,6 +13,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "cell_sets.hpp"
 #include "common/shared_mutex.hpp"
 #include "hull.hpp"
 #include "octoreach/exploration.hpp"
@@ -162,6 +163,14 @@ struct ExplorationState {
   mutable std::vector<std::vector<CellKey>> clusters;
   mutable std::unordered_map<int, int> label_to_cluster;
   mutable std::vector<VoidCluster> void_clusters;
+  // What the incremental void clustering keeps between inserts (void_clusters.cpp): the clusters in
+  // slots that keep their index while the cluster lives (a free slot has no cells), each slot's seed
+  // cell, cell -> slot + 1 (0: none), and the void cells added and removed since the clusters were
+  // last brought up to date (written by insert).
+  mutable std::vector<VoidCluster> void_slots;
+  mutable std::vector<CellKey> void_slot_seed;
+  mutable KeyTable<int> void_slot_of;
+  mutable std::vector<CellKey> void_added, void_removed;
 
   CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }
   Eigen::Vector3d center(CellKey k) const {

@@ -58,6 +58,17 @@ bool convex_hull(const std::vector<Eigen::Vector3d>& pts, Hull& hull) {
   return true;
 }
 
+double hull_box_cells(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double resolution,
+                      const Eigen::Vector3d& search_lo, const Eigen::Vector3d& search_hi) {
+  double cells = 1;
+  for (int j = 0; j < 3; ++j) {
+    const double a = std::max(lo[j], search_lo[j]), b = std::min(hi[j], search_hi[j]);
+    if (a > b) return 0;
+    cells *= std::floor((b - a) / resolution) + 1;
+  }
+  return cells;
+}
+
 // Column intervals of the cells whose centres are inside the hull (planes: n.x + d <= 0).
 HullColumns hull_columns(const octomap::OcTree& tree, const Hull& hull, int threads, const Eigen::Vector3d& s_lo,
                          const Eigen::Vector3d& s_hi) {

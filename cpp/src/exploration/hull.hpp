@@ -36,6 +36,12 @@ struct HullColumns {
   }
 };
 
+// Cells of the box [lo, hi] (the bounding box of the hull's points) clipped to the search space, at
+// `resolution`: an upper bound of the cells hull_columns visits and of the voids inside the hull (0 when
+// the box misses the search space).
+double hull_box_cells(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double resolution,
+                      const Eigen::Vector3d& search_lo, const Eigen::Vector3d& search_hi);
+
 // Column intervals of the cells of `tree`'s grid whose centres are inside `hull` and inside the
 // search space [search_lo, search_hi].
 HullColumns hull_columns(const octomap::OcTree& tree, const Hull& hull, int threads, const Eigen::Vector3d& search_lo,

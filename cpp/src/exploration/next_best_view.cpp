@@ -262,22 +262,6 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
   for (auto& v : valid) r.ranked.push_back(std::move(v.second));
 }
 
-void validate(const CameraIntrinsics& cam, const NbvOptions& opt) {
-  cam.validate();
-  if (opt.max_valid_poses <= 0 || opt.orientations_per_cell <= 0 || opt.max_candidate_cells <= 0)
-    throw std::invalid_argument("max_valid_poses, orientations_per_cell and max_candidate_cells must be positive");
-  if (!(opt.orientation_spread >= 0)) throw std::invalid_argument("orientation_spread must be >= 0");
-  if (!(opt.min_reachability >= 0 && opt.min_reachability < 1))
-    throw std::invalid_argument("min_reachability must be in [0, 1), got " + std::to_string(opt.min_reachability));
-  if (opt.unknown_pass_probability > 1 || std::isnan(opt.unknown_pass_probability))
-    throw std::invalid_argument("unknown_pass_probability must be in [0, 1] (or < 0: learned by the map), got " +
-                                std::to_string(opt.unknown_pass_probability));
-  if (!(opt.unknown_margin >= 0) || !std::isfinite(opt.unknown_margin))
-    throw std::invalid_argument("unknown_margin must be a non-negative number of metres");
-  if (opt.score_width <= 0 || opt.score_height <= 0)
-    throw std::invalid_argument("score_width and score_height must be positive");
-}
-
 }  // namespace
 
 bool SensorWorkspace::contains(const Eigen::Vector3d& p) const {
@@ -298,7 +282,7 @@ std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap&
 
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt) {
   auto t0 = Clock::now();
-  validate(cam, opt);
+  detail::validate_options(cam, opt);
   auto guard = detail::read_guard(map);
   NbvResult r;
   std::tie(r.pass_probability, r.void_pass_probability) = detail::pass_probabilities(map, opt);

@@ -38,6 +38,22 @@ bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, std:
 
 }  // namespace
 
+void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
+  cam.validate();
+  if (opt.max_valid_poses <= 0 || opt.orientations_per_cell <= 0 || opt.max_candidate_cells <= 0)
+    throw std::invalid_argument("max_valid_poses, orientations_per_cell and max_candidate_cells must be positive");
+  if (!(opt.orientation_spread >= 0)) throw std::invalid_argument("orientation_spread must be >= 0");
+  if (!(opt.min_reachability >= 0 && opt.min_reachability < 1))
+    throw std::invalid_argument("min_reachability must be in [0, 1), got " + std::to_string(opt.min_reachability));
+  if (opt.unknown_pass_probability > 1 || std::isnan(opt.unknown_pass_probability))
+    throw std::invalid_argument("unknown_pass_probability must be in [0, 1] (or < 0: learned by the map), got " +
+                                std::to_string(opt.unknown_pass_probability));
+  if (!(opt.unknown_margin >= 0) || !std::isfinite(opt.unknown_margin))
+    throw std::invalid_argument("unknown_margin must be a non-negative number of metres");
+  if (opt.score_width <= 0 || opt.score_height <= 0)
+    throw std::invalid_argument("score_width and score_height must be positive");
+}
+
 ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map_(map), opt_(opt) {
   ik_ = opt.ik;
   ik_.mode = IkMode::Approach;
@@ -144,11 +160,7 @@ const char* status_name(ViewStatus s) {
 
 std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntrinsics& cam,
                                     const std::vector<Pose>& poses, const NbvOptions& opt) {
-  cam.validate();
-  if (opt.score_width <= 0 || opt.score_height <= 0)
-    throw std::invalid_argument("score grid must be positive");
-  if (opt.unknown_pass_probability > 1 || std::isnan(opt.unknown_pass_probability))
-    throw std::invalid_argument("unknown_pass_probability must be in [0, 1] (or < 0: learned)");
+  detail::validate_options(cam, opt);
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (!poses[i].matrix().allFinite())
       throw std::invalid_argument("pose " + std::to_string(i) + " is not finite");

@@ -18,6 +18,9 @@ namespace octoreach::detail {
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void);
 
+// Throws std::invalid_argument naming the first bad option (or camera value).
+void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt);
+
 // p (unknown cells outside the voids) and p_void of a search: the fixed option or the map's learned values.
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt);
 

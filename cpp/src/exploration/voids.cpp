@@ -13,12 +13,14 @@ namespace {
 void set_void(GridWriter& gw, ExplorationState& s, CellKey k, InsertStats& st) {
   gw.at(k) |= kVoidFlag;
   s.void_set.insert(k);
+  s.void_added.push_back(k);
   ++st.void_added;
 }
 
 void clear_void(GridWriter& gw, ExplorationState& s, CellKey k, InsertStats& st) {
   gw.at(k) &= std::uint8_t(~kVoidFlag);
   s.void_set.erase(k);
+  s.void_removed.push_back(k);
   ++st.void_removed;
 }
 

@@ -24,8 +24,9 @@ void CameraIntrinsics::validate() const {
     throw std::invalid_argument("max_range must be a positive number of metres, got " + std::to_string(max_range));
 }
 
-DepthCamera::DepthCamera(int width, int height, double fov, double max_range, double noise, std::uint64_t seed)
-    : noise_(noise), seed_(seed) {
+DepthCamera::DepthCamera(int width, int height, double fov, double max_range, double noise, std::uint64_t seed,
+                         double max_incidence)
+    : noise_(noise), seed_(seed), max_incidence_(max_incidence) {
   intr_.width = width;
   intr_.height = height;
   intr_.fov = fov;
@@ -33,6 +34,8 @@ DepthCamera::DepthCamera(int width, int height, double fov, double max_range, do
   intr_.validate();
   if (!(noise >= 0) || !std::isfinite(noise))
     throw std::invalid_argument("noise must be a non-negative standard deviation in metres, got " + std::to_string(noise));
+  if (!(max_incidence > 0 && max_incidence <= kPi / 2))
+    throw std::invalid_argument("max_incidence must be in (0, pi/2] radians, got " + std::to_string(max_incidence));
 }
 
 std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose& pose, int threads) {
@@ -46,6 +49,8 @@ std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose
   std::vector<std::vector<Eigen::Vector3d>> rows(H);
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
+  const bool grazing = max_incidence_ < kPi / 2;
+  const double min_cos = std::cos(max_incidence_);
   detail::parallel_for(std::size_t(H), threads, [&](std::size_t v, int) {
     std::mt19937_64 rng(seed_ * 0x9E3779B97F4A7C15ULL + call * 1000003ULL + v);
     std::normal_distribution<double> gauss(0.0, 1.0);
@@ -54,10 +59,12 @@ std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose
       Eigen::Vector3d dc = intr_.ray(u + 0.5, v + 0.5);
       Eigen::Vector3d d = R * dc;
       double t;
-      if (!scene.raycast(o, d, intr_.max_range, t)) continue;
+      Eigen::Vector3d n;
+      if (!scene.raycast(o, d, intr_.max_range, t, grazing ? &n : nullptr)) continue;
+      if (grazing && std::abs(n.dot(d)) < min_cos) continue;  // grazing: no return
       double z = t * dc.z();
       if (noise_ > 0) z += noise_ * z * z * gauss(rng);
-      if (z <= 0) continue;
+      if (z <= 0 || z / dc.z() > intr_.max_range) continue;  // beyond the range: no return
       out.push_back(o + d * (z / dc.z()));
     }
   }, 4);

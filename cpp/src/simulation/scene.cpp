@@ -24,21 +24,34 @@ void check_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const char*
     throw std::invalid_argument(std::string(what) + ": need finite lo <= hi, got lo " + detail::format_point(lo) + ", hi " + detail::format_point(hi));
 }
 
-// Slab test; t in [0, tmax].
+// Slab test; t in [0, tmax]. `axis`: the slab the ray entered last (-1 when it starts inside).
 inline bool ray_box(const Eigen::Vector3d& o, const Eigen::Vector3d& inv, const Eigen::Vector3d& lo,
-                    const Eigen::Vector3d& hi, double tmax, double& t) {
+                    const Eigen::Vector3d& hi, double tmax, double& t, int* axis = nullptr) {
   double t0 = 0, t1 = tmax;
+  int entered = -1;
   for (int i = 0; i < 3; ++i) {
     double a = (lo[i] - o[i]) * inv[i], b = (hi[i] - o[i]) * inv[i];
     if (std::isnan(a)) a = -std::numeric_limits<double>::infinity();  // 0 * inf: origin on the slab
     if (std::isnan(b)) b = std::numeric_limits<double>::infinity();
     if (a > b) std::swap(a, b);
-    t0 = std::max(t0, a);
+    if (a > t0) {
+      t0 = a;
+      entered = i;
+    }
     t1 = std::min(t1, b);
     if (t0 > t1) return false;
   }
   t = t0;
+  if (axis) *axis = entered;
   return true;
+}
+
+// Unit normal of the face of a box a ray with direction d entered through `axis` (-d from inside).
+inline Eigen::Vector3d box_normal(const Eigen::Vector3d& d, int axis) {
+  if (axis < 0) return -d.normalized();
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  n[axis] = d[axis] > 0 ? -1.0 : 1.0;
+  return n;
 }
 
 // Moller-Trumbore.
@@ -106,7 +119,8 @@ struct Scene::Bvh {
     nodes[id].right = r;
     return id;
   }
-  bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& inv, double& best) const {
+  bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& inv, double& best,
+               int* best_tri = nullptr) const {
     bool hit = false;
     int stack[128];
     int sp = 0;
@@ -121,6 +135,7 @@ struct Scene::Bvh {
           if (ray_triangle(o, d, tris[3 * i], tris[3 * i + 1], tris[3 * i + 2], t) && t < best) {
             best = t;
             hit = true;
+            if (best_tri) *best_tri = i;
           }
         }
       } else if (sp < 126) {
@@ -278,20 +293,36 @@ bool Scene::solid(const Eigen::Vector3d& p) const {
 }
 
 bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const {
+  return raycast(o, d, max_range, t, nullptr);
+}
+
+bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t,
+                    Eigen::Vector3d* normal) const {
   if (!o.allFinite() || !d.allFinite() || std::isnan(max_range))
     throw std::invalid_argument("raycast: origin, direction and max_range must be numbers, got origin " +
                                 detail::format_point(o) + ", direction " + detail::format_point(d));
   Eigen::Vector3d inv = d.cwiseInverse();
   double best = max_range;
   bool hit = false;
+  Eigen::Vector3d n = -d;
   for (const auto& b : boxes_) {
     double tb;
-    if (ray_box(o, inv, b.lo, b.hi, best, tb) && tb <= best) {
+    int axis;
+    if (ray_box(o, inv, b.lo, b.hi, best, tb, &axis) && tb <= best) {
       best = tb;
       hit = true;
+      if (normal) n = box_normal(d, axis);
     }
   }
-  if (bvh_ && bvh_->raycast(o, d, inv, best)) hit = true;
+  int tri = -1;
+  if (bvh_ && bvh_->raycast(o, d, inv, best, &tri)) {
+    hit = true;
+    if (normal && tri >= 0) {
+      const auto& T = bvh_->tris;
+      n = (T[3 * tri + 1] - T[3 * tri]).cross(T[3 * tri + 2] - T[3 * tri]).normalized();
+      if (n.dot(d) > 0) n = -n;
+    }
+  }
   if (octree_) {
     octomap::point3d end;
     octomap::point3d oo(float(o.x()), float(o.y()), float(o.z())), dd(float(d.x()), float(d.y()), float(d.z()));
@@ -301,10 +332,20 @@ bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double m
       if (tt <= best) {
         best = tt;
         hit = true;
+        if (normal) {  // the face of the hit cell the ray entered
+          const octomap::point3d c = octree_->keyToCoord(octree_->coordToKey(end));
+          const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * octree_->getResolution());
+          const Eigen::Vector3d cc(c.x(), c.y(), c.z());
+          double tc;
+          int axis = -1;
+          ray_box(o, inv, cc - h, cc + h, std::numeric_limits<double>::infinity(), tc, &axis);
+          n = box_normal(d, axis);
+        }
       }
     }
   }
   t = best;
+  if (normal) *normal = n;
   return hit;
 }
 
