@@ -48,7 +48,8 @@ def _scenes(generated: int):
 
 
 def _camera(a, seed):
-    return DepthCamera(a.image[0], a.image[1], np.deg2rad(58.0), 4.0, noise=a.noise, seed=seed)
+    extra = {} if a.max_incidence is None else {"max_incidence": np.deg2rad(a.max_incidence)}
+    return DepthCamera(a.image[0], a.image[1], np.deg2rad(58.0), 4.0, noise=a.noise, seed=seed, **extra)
 
 
 def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
@@ -185,6 +186,9 @@ def main(argv=None) -> int:
     ap.add_argument("--image", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))
     ap.add_argument("--score", type=int, nargs=2, default=None, metavar=("W", "H"), help="score ray grid")
     ap.add_argument("--noise", type=float, default=0.002, help="depth noise at 1 m (grows with depth^2)")
+    ap.add_argument("--max-incidence", type=float, default=None, metavar="DEG",
+                    help="no return where a ray meets a surface more than DEG degrees off its normal (grazing "
+                         "dropouts; default: the camera's, none), e.g. 75")
     ap.add_argument("--strategies", nargs="+", default=list(ex.STRATEGIES))
     ap.add_argument("--scenes", nargs="+", default=None, help="subset of scene names (paper_1 paper_2 usar_0 ...)")
     ap.add_argument("--oracle-samples", type=int, default=2000, help="joint and aimed samples of the oracle, each")
@@ -204,7 +208,7 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     cmap = ex.explorer_capability_map(chain)
     out = {"setup": {"seeds": a.seeds, "views": a.views, "resolution_m": a.resolution, "image": list(a.image),
-                     "noise_at_1m": a.noise, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
+                     "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy"},
            "oracle": {}, "summary": {}, "runs": {}}
     curves = {}
