@@ -144,10 +144,11 @@ def main() -> int:
             "bases": [x.base for x in r.rows],
             # void cells the search expected the next view to see (visibility-weighted), those it turned
             # known, and the raw count of void cells in its frustum (unknown space taken as transparent)
-            "void_cells_expected_seen_raw": [[round(a.expected_void, 1), b.void_seen, a.void_cells]
-                                             for a, b in zip(r.rows, r.rows[1:])],
+            # (explore's rows carry both: void_seen is what the next view's insert turned known)
+            "void_cells_expected_seen_raw": [[round(a.expected_void, 1), a.void_seen, a.void_cells]
+                                             for a in r.rows if a.void_seen is not None],
         }
-        ratios = [b.void_seen / a.expected_void for a, b in zip(r.rows, r.rows[1:]) if a.expected_void > 0]
+        ratios = ex.seen_expected_ratios(r.rows, min_expected=1e-9)
         out["explorations"][name]["seen_over_expected"] = {
             "median": med(ratios) if ratios else None,
             "share_below_0.1": sum(x < 0.1 for x in ratios) / len(ratios) if ratios else None}

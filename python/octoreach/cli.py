@@ -321,7 +321,8 @@ def _cmd_experiment(args) -> int:
         raise ValueError(f"--scene must be 1 or 2, got {args.scene}")
     if args.views < 1:
         raise ValueError(f"--views must be at least 1, got {args.views}")
-    experiments.exploration_tables(scenes=(args.scene,), max_views=args.views, seed=args.seed)
+    experiments.exploration_tables(scenes=(args.scene,), max_views=args.views, seed=args.seed,
+                                   strategy=args.strategy)
     return 0
 
 
@@ -499,6 +500,10 @@ def _add_view_and_experiment_commands(sub):
     sp.add_argument("--plot", default="tidy_up.png", help="tidy-up: PNG to write (default tidy_up.png)")
     sp.add_argument("--scene", type=int, default=1, help="exploration: paper scene 1 or 2 (default 1)")
     sp.add_argument("--views", type=int, default=10, help="exploration: view budget (default 10)")
+    from .exploration.strategies import STRATEGIES
+
+    sp.add_argument("--strategy", default="frontier_void", choices=STRATEGIES,
+                    help="exploration: how views are chosen (default frontier_void, the paper's)")
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.add_argument("--quiet", action="store_true", help="no progress line")
     sp.set_defaults(func=_cmd_experiment)

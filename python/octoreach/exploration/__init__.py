@@ -5,9 +5,11 @@ package strings it together as the paper's loop: sense, integrate, frontiers, vo
 move, until the best view's utility is 0 or the view budget runs out.
 
 One concept per module: ``camera`` (look_at), ``scenes`` (paper scenes, the search space),
-``robot`` (the explorer robot, its arm and capability map, base poses), ``metrics`` (observed
-shares), ``loop`` (explore and its table), ``plots`` (map pictures), ``demo`` (run_demo, the
-command line).
+``usar_scenes`` (seeded USAR-like scenes with a hidden target), ``robot`` (the explorer robot, its
+arm and capability map, base poses), ``metrics`` (observed shares, run figures), ``oracle`` (the
+observable interior by brute force: a test and benchmark utility), ``strategies`` (frontier-void
+and the baselines), ``loop`` (explore, its table and stop reason), ``plots`` (map pictures,
+coverage curves), ``demo`` (run_demo, the command line).
 
 Poses are 4x4 numpy arrays (camera -> world). The camera looks along its +z axis (+x right,
 +y down in the image). Units: metres, radians.
@@ -20,28 +22,43 @@ from __future__ import annotations
 from .._core import DepthCamera, ExplorationMap, Scene, next_best_view  # noqa: F401  (as before the split)
 from .camera import look_at
 from .demo import main, run_demo
-from .loop import ExplorationResult, ViewRow, explore
-from .metrics import observed_share
-from .plots import plot_map
+from .loop import STOP_REASONS, ExplorationResult, ViewRow, explore
+from .metrics import coverage_after, observed_share, region_points, seen_expected_ratios, views_to_reach
+from .oracle import Observable, observable_cells
+from .plots import plot_coverage, plot_map
 from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot
 from .scenes import closed_box_scene, cluttered_scene, paper_scene, scene_region
+from .strategies import STRATEGIES
+from .usar_scenes import UsarScene, points_on, usar_scene
 
 __all__ = [
+    "STOP_REASONS",
+    "STRATEGIES",
     "ExplorationResult",
+    "Observable",
+    "UsarScene",
     "ViewRow",
     "arm_base_pose",
     "arm_reach",
     "base_ring",
     "closed_box_scene",
     "cluttered_scene",
+    "coverage_after",
     "explore",
     "explorer_capability_map",
     "explorer_robot",
     "look_at",
     "main",
+    "observable_cells",
     "observed_share",
     "paper_scene",
+    "plot_coverage",
     "plot_map",
+    "points_on",
+    "region_points",
     "run_demo",
     "scene_region",
+    "seen_expected_ratios",
+    "usar_scene",
+    "views_to_reach",
 ]

@@ -7,23 +7,30 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from .._core import DepthCamera, ExplorationMap, Scene, next_best_view
+from .._core import DepthCamera, ExplorationMap, Scene
 from ._options import given
 from .metrics import observed_share
 from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot
 from .scenes import scene_region
+from .strategies import CANDIDATES, Choice, check_strategy, choose_view
+from .usar_scenes import points_on
 
 VIEW_BUDGET = 10  # views of one exploration unless told otherwise (explore, run_demo, the demo's --views)
 
 
+STOP_REASONS = ("utility 0", "utility below min_utility", "view budget", "nothing to explore", "no valid view")
+
+
 @dataclass
 class ViewRow:
-    """One view of the loop, like a row of the paper's Tables I and II."""
+    """One view of the loop, like a row of the paper's Tables I and II: the view taken, the map after
+    it, and the next view chosen from that map with what it is expected to see."""
 
     view: int
     integration_s: float  # insert + incremental frontiers/voids + void clustering
-    search_s: float  # next-best-view search
-    void_cells: int  # expected void cells seen from the chosen next view
+    search_s: float  # choosing the next view
+    void_cells: int  # void cells in the chosen next view (raw: unknown space transparent up to the first occupied cell)
+    expected_void: float  # void cells the chosen next view is expected to see (visibility-weighted)
     utility_dm3: float  # the same as a volume
     observed_share: float  # of the scene's initially unknown volume, after this view
     interior_share: float  # of the box interiors, after this view
@@ -32,28 +39,40 @@ class ViewRow:
     void_total: int  # void cells in the map
     void_clusters: int
     pose: list = field(default_factory=list)  # camera pose of this view (4x4 as nested lists)
-    void_seen: int = 0  # void cells this view's insert turned known (compare with the previous row's void_cells)
+    # void cells (of this row's map) that the next view's insert turned known; None until it is taken
+    void_seen: Optional[int] = None
     base: int = 0  # index of the base the view was taken from (0: base_pose, i: base_moves[i - 1])
-    expected_void: float = 0.0  # void cells the chosen next view is expected to see (visibility-weighted)
+    utility: float = 0.0  # the strategy's gain of the chosen next view (what the stopping rule looks at)
+    expected_unknown: float = 0.0
+    expected_frontier: float = 0.0
+    candidates: int = 0  # poses scored for the next view
+    valid_candidates: int = 0  # of them valid (reachable, collision-free, safe)
+    physically_valid: bool = True  # this view's arm pose is clear of the scene's true geometry (else not taken)
+    target_points: int = 0  # points of this view's cloud on the target (explore(target=...))
 
 
 @dataclass
 class ExplorationResult:
-    """What explore() returns: the per-view rows, the final map, the camera poses and the wall time."""
+    """What explore() returns: the per-view rows, the final map, the camera poses, the wall time, the
+    strategy and why the loop stopped (one of STOP_REASONS)."""
 
     rows: list
     map: ExplorationMap
     poses: list
     total_s: float
+    strategy: str = "frontier_void"
+    stop_reason: str = ""
 
     def table(self) -> str:
-        """The table as text (paper's columns plus coverage)."""
-        head = f"{'view':>4} {'integr. s':>9} {'search s':>9} {'void cells':>10} {'utility dm3':>11} " \
+        """The table as text (paper's columns plus coverage and the seen void cells)."""
+        head = f"{'view':>4} {'integr. s':>9} {'search s':>9} {'exp. void':>10} {'seen void':>9} {'utility dm3':>11} " \
                f"{'observed':>8} {'interiors':>9}"
         lines = [head]
         for r in self.rows:
-            lines.append(f"{r.view:>4} {r.integration_s:>9.3f} {r.search_s:>9.3f} {r.void_cells:>10d} "
+            seen = "-" if r.void_seen is None else str(r.void_seen)
+            lines.append(f"{r.view:>4} {r.integration_s:>9.3f} {r.search_s:>9.3f} {r.expected_void:>10.1f} {seen:>9} "
                          f"{r.utility_dm3:>11.2f} {r.observed_share:>8.1%} {r.interior_share:>9.1%}")
+        lines.append(f"stopped: {self.stop_reason} ({self.strategy})")
         return "\n".join(lines)
 
     def to_dicts(self) -> list:
@@ -67,18 +86,28 @@ class ExplorationResult:
     def interior_share(self) -> float:
         return self.rows[-1].interior_share if self.rows else 0.0
 
+    def target_seen_view(self, min_points: int = 5):
+        """The first view whose cloud had at least `min_points` points on the target, or None."""
+        for r in self.rows:
+            if r.target_points >= min_points:
+                return r.view
+        return None
+
 
 def _carrier(robot, chain, base_pose):
-    """(chain, base_pose) of the arm that carries the camera: `robot=True` is the explorer, another
-    robot needs `chain`; a chain without a base pose stands at the origin."""
+    """(robot, chain, base_pose) of the arm that carries the camera: `robot=True` is the explorer, another
+    robot needs `chain`; a chain without a base pose stands at the origin; robot None when not given."""
+    rob = None
     if robot is True or (robot is not None and chain is None):
         rob, chain = explorer_robot() if robot is True else (robot, None)
         if chain is None:
             raise ValueError("pass chain= with a robot other than the explorer")
         base_pose = arm_base_pose(rob, chain, base_pose)
+    elif robot is not None:
+        rob = robot
     if chain is not None and base_pose is None:
         base_pose = np.eye(4)
-    return chain, base_pose
+    return rob, chain, base_pose
 
 
 def _bases(chain, base_pose, base_moves) -> list:
@@ -102,44 +131,83 @@ def _capability(capability_map, chain):
     return capability_map
 
 
-def _best_view(emap, camera, bases, current, sphere_of, options, seed):
-    """The next best view over all bases (the current one first, so ties keep it): (result, base index)."""
-    nbv = best_base = None
-    for i in [current] + [j for j in range(len(bases)) if j != current]:
-        bp = bases[i]
-        capability_base = None if options.get("capability_map") is None else bp
-        r = next_best_view(emap, camera, seed=seed, workspace_sphere=sphere_of(bp), chain_base=bp,
-                           capability_base=capability_base, **options)
-        if nbv is None or r["expected_gain"] > nbv["expected_gain"]:
-            nbv, best_base = r, i
-    return nbv, best_base
+def _check_loop_args(strategy, max_views, min_utility, candidates, start_pose):
+    check_strategy(strategy)
+    if not isinstance(max_views, (int, np.integer)) or isinstance(max_views, bool) or max_views < 1:
+        raise ValueError(f"max_views must be an integer >= 1, got {max_views!r}")
+    if not np.isfinite(min_utility) or min_utility < 0:
+        raise ValueError(f"min_utility must be a finite number >= 0, got {min_utility!r}")
+    if not isinstance(candidates, (int, np.integer)) or candidates < 1:
+        raise ValueError(f"candidates must be an integer >= 1, got {candidates!r}")
+    pose = np.asarray(start_pose, float)
+    if pose.shape != (4, 4) or not np.all(np.isfinite(pose)):
+        raise ValueError(f"start_pose must be a finite 4x4 pose, got shape {pose.shape}")
+    return pose
 
 
-def _row(view, emap, scene, region, stats, clusters, nbv, t_int, t_search, pose, base) -> ViewRow:
+class _Physics:
+    """Whether an arm configuration is clear of the scene's true geometry (robot known), else always True."""
+
+    def __init__(self, robot, chain, scene, enabled):
+        self.on = bool(enabled and robot is not None and chain is not None)
+        if self.on:
+            from .oracle import robot_root, scene_obstacles
+
+            self.robot, self.chain, self.obstacles, self.root_of = robot, chain, scene_obstacles(scene), robot_root
+
+    def valid(self, q, chain_base) -> bool:
+        if not self.on or q is None:
+            return True
+        root = self.root_of(self.robot, self.chain, chain_base)
+        return not self.robot.in_collision(self.chain.to_robot_configuration(np.asarray(q, float)), self.obstacles, root)
+
+
+def _row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, pose, base, valid, target,
+         pts) -> ViewRow:
     interiors = scene.interiors
-    return ViewRow(view=view, integration_s=t_int, search_s=t_search, void_cells=int(nbv["void_cells"]),
-                   utility_dm3=float(nbv["utility_dm3"]), observed_share=observed_share(emap, scene, [tuple(region)]),
+    return ViewRow(view=view, integration_s=t_int, search_s=t_search, void_cells=choice.void_cells,
+                   expected_void=choice.expected_void,
+                   utility_dm3=choice.utility_dm3, observed_share=observed_share(emap, scene, [tuple(region)]),
                    interior_share=observed_share(emap, scene, interiors) if interiors else 0.0,
-                   points=int(stats["points"]), frontier_cells=int(emap.frontier_cell_count),
+                   points=int(stats.get("points", 0)), frontier_cells=int(emap.frontier_cell_count),
                    void_total=int(emap.void_cell_count), void_clusters=len(clusters),
-                   pose=pose.tolist(), base=base, void_seen=int(stats["void_removed"]),
-                   expected_void=float(nbv["expected_void"]))
+                   pose=pose.tolist(), base=base, utility=choice.utility, expected_unknown=choice.expected_unknown,
+                   expected_frontier=choice.expected_frontier, candidates=choice.candidates,
+                   valid_candidates=choice.valid, physically_valid=valid,
+                   target_points=points_on(target, pts) if target is not None and pts is not None else 0)
+
+
+def _seen(emap, void_before) -> int:
+    """How many of the cells at `void_before` (centres) the map now knows."""
+    return int(np.count_nonzero(emap.state(void_before) != 0)) if len(void_before) else 0
 
 
 def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_pose=None, robot=None,
+            strategy: str = "frontier_void", min_utility: float = 0.0, candidates: int = CANDIDATES,
             workspace_box=None, workspace_sphere=None, workspace: Optional[Callable] = None,
             max_views: int = VIEW_BUDGET, resolution: Optional[float] = None, max_valid_poses: Optional[int] = None,
             orientations_per_cell: Optional[int] = None, max_candidate_cells: Optional[int] = None,
             min_distance: float = 0.05, score_size=None, void_fit_threshold: Optional[float] = None, seed: int = 0,
             search_space=None, capability_map=None, min_reachability: Optional[float] = None,
-            capability_orientations: Optional[bool] = None, base_moves=None,
-            on_view: Optional[Callable] = None) -> ExplorationResult:
+            capability_orientations: Optional[bool] = None, base_moves=None, target=None,
+            physical_check: bool = True, on_view: Optional[Callable] = None) -> ExplorationResult:
     """Runs the paper's loop from `start_pose` (4x4 camera -> world) and returns the per-view table.
+
+    `strategy` picks the views (strategies.STRATEGIES): "frontier_void" (ours, next_best_view),
+    "random" (the first valid of `candidates` random reachable poses), "frontiers" / "unknown" (the
+    valid sampled pose with the most expected frontier / unknown cells in view). All use the same robot,
+    camera, reach checks, safe-view rule, budget and stopping rule.
+    The loop stops (ExplorationResult.stop_reason) when the map has no void after the first view
+    ("nothing to explore"), when no valid view is left ("no valid view"), when the chosen view's
+    utility (its strategy's gain: expected void cells for frontier_void and random, frontier or
+    unknown cells for the others) is 0 ("utility 0", the paper's criterion) or <= `min_utility`
+    ("utility below min_utility"), or after `max_views` views ("view budget").
 
     The camera is carried by `chain` (tip = camera frame, +z forward) whose base sits at `base_pose`
     (4x4 chain base -> world), or moves freely inside the workspace (box (2, 3), sphere (centre,
     radius), callable on (N, 3) positions). `robot=True` uses urdf/explorer.urdf standing at the
-    origin (or at `base_pose`, the pose of its base_footprint). The base does not move unless
+    origin (or at `base_pose`, the pose of its base_footprint); pass `robot=` with `chain=` for another
+    robot. The base does not move unless
     `base_moves` lists other poses of the chain's base (4x4 chain base -> world, like `base_pose`
     with a chain): then each view searches from the current base and from each of them, and the
     robot drives to the base of the best view (ties keep the current base; driving is free).
@@ -152,10 +220,16 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     (explorer_capability_map).
     `resolution`, `void_fit_threshold` go to ExplorationMap; `max_valid_poses`, `orientations_per_cell`,
     `max_candidate_cells`, `score_size` ((width, height)), `min_reachability` and `capability_orientations`
-    to next_best_view; None keeps their defaults. View k searches with seed `seed + k`.
-    Stops when the best view expects 0 void cells or after `max_views` views.
-    `on_view(row, emap, nbv)` is called after each view (plots, progress)."""
-    chain, base_pose = _carrier(robot, chain, base_pose)
+    to next_best_view / score_views; None keeps their defaults. View k searches with seed `seed + k`.
+    `physical_check` (with a robot): a chosen view whose arm touches the scene's true geometry is not
+    taken (counted as a view, `physically_valid` False, nothing integrated). `target` ((2, 3) lo, hi):
+    each row counts the points of its cloud on it (usar_scenes.points_on).
+    `on_view(row, emap, info)` is called after each view (plots, progress); `info` holds best_pose and
+    the chosen view's gains (and next_best_view's result for frontier_void)."""
+    pose = _check_loop_args(strategy, max_views, min_utility, candidates, start_pose)
+    if target is not None:
+        points_on(target, np.zeros((0, 3)))  # ValueError for a wrong shape, before any work
+    rob, chain, base_pose = _carrier(robot, chain, base_pose)
     auto_sphere = chain is not None and workspace_sphere is None and workspace_box is None and workspace is None
     # a cheap first prune: the arm's reach around its first joint, estimated by sampling FK
     reach = arm_reach(chain, seed) if auto_sphere else 0.0
@@ -171,30 +245,52 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
                    **given(max_valid_poses=max_valid_poses, orientations_per_cell=orientations_per_cell,
                            max_candidate_cells=max_candidate_cells, score_width=width, score_height=height,
                            min_reachability=min_reachability, capability_orientations=capability_orientations))
+    if strategy != "frontier_void":  # score_views has no search of its own
+        for k in ("max_valid_poses", "orientations_per_cell", "max_candidate_cells"):
+            options.pop(k, None)
+    physics = _Physics(rob, chain, scene, physical_check)
 
     def sphere_of(bp):
         return (bp[:3, 3].copy(), reach) if auto_sphere else workspace_sphere
 
-    pose = np.asarray(start_pose, float)
-    current = 0
-    rows, poses = [], []
+    current, q, valid = 0, None, True
+    rows, poses, stop = [], [], "view budget"
+    void_before = np.zeros((0, 3))
     t_all = time.perf_counter()
     for view in range(1, max_views + 1):
         poses.append(pose)
-        pts = camera.capture(scene, pose)
+        valid = physics.valid(q, bases[current]) if view > 1 else True
         t0 = time.perf_counter()
-        stats = emap.insert(pts, pose[:3, 3], camera.max_range)
+        pts, stats = None, {}
+        if valid:
+            pts = camera.capture(scene, pose)
+            stats = emap.insert(pts, pose[:3, 3], camera.max_range)
         clusters = emap.void_clusters()
         t_int = time.perf_counter() - t0
-        t0 = time.perf_counter()
-        nbv, best_base = _best_view(emap, camera, bases, current, sphere_of, options, seed + view)
-        t_search = time.perf_counter() - t0
-        row = _row(view, emap, scene, region, stats, clusters, nbv, t_int, t_search, pose, current)
-        rows.append(row)
-        if on_view is not None:
-            on_view(row, emap, nbv)
-        if nbv["best_pose"] is None or nbv["void_cells"] == 0:
+        if rows:
+            rows[-1].void_seen = _seen(emap, void_before) if valid else None
+        if view == 1 and emap.void_cell_count == 0:
+            rows.append(_row(view, emap, scene, region, stats, clusters, Choice(pose=None), t_int, 0.0, pose,
+                             current, valid, target, pts))
+            stop = "nothing to explore"
+            if on_view is not None:
+                on_view(rows[-1], emap, Choice(pose=None).info())
             break
-        pose = nbv["best_pose"]
-        current = best_base
-    return ExplorationResult(rows=rows, map=emap, poses=poses, total_s=time.perf_counter() - t_all)
+        void_before = emap.centers(emap.void_keys())
+        t0 = time.perf_counter()
+        choice = choose_view(strategy, emap, camera, bases, current, sphere_of, options, seed + view, region,
+                             candidates)
+        t_search = time.perf_counter() - t0
+        rows.append(_row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, pose, current, valid,
+                         target, pts))
+        if on_view is not None:
+            on_view(rows[-1], emap, choice.info())
+        if choice.pose is None:
+            stop = "no valid view"
+            break
+        if choice.utility <= min_utility:
+            stop = "utility 0" if choice.utility <= 0 else "utility below min_utility"
+            break
+        pose, q, current = np.asarray(choice.pose, float), choice.q, choice.base
+    return ExplorationResult(rows=rows, map=emap, poses=poses, total_s=time.perf_counter() - t_all,
+                             strategy=strategy, stop_reason=stop)

@@ -1,4 +1,5 @@
-"""Coverage figures of an exploration: the share of a region the map knows."""
+"""Coverage figures of an exploration: the share of a region the map knows, and the figures of a
+run (views to reach a coverage, coverage after k views, seen/expected ratios)."""
 from __future__ import annotations
 
 import numpy as np
@@ -17,18 +18,44 @@ def _grid(lo, hi, res):
     return g.reshape(-1, 3)
 
 
+def region_points(scene: Scene, regions, res: float) -> np.ndarray:
+    """Sample points (N, 3) every `res` in `regions` ((lo, hi) pairs), those inside solid boxes left out."""
+    parts = []
+    for lo, hi in regions:
+        pts = _grid(np.asarray(lo, float), np.asarray(hi, float), res)
+        if len(pts):
+            parts.append(pts[~scene.solid(pts)])
+    return np.concatenate(parts) if parts else np.zeros((0, 3))
+
+
 def observed_share(emap: ExplorationMap, scene: Scene, regions=None) -> float:
     """Share (0-1) of the non-solid cells of `regions` ((lo, hi) pairs; default scene_region(scene))
     that the map knows (free or occupied). Everything is unknown at the start."""
-    res = emap.resolution
     if regions is None:
         regions = [tuple(scene_region(scene))]
-    known = total = 0
-    for lo, hi in regions:
-        pts = _grid(np.asarray(lo, float), np.asarray(hi, float), res)
-        if len(pts) == 0:
-            continue
-        pts = pts[~scene.solid(pts)]
-        total += len(pts)
-        known += int(np.count_nonzero(emap.state(pts)))
-    return known / total if total else 0.0
+    pts = region_points(scene, regions, emap.resolution)
+    if len(pts) == 0:
+        return 0.0
+    return int(np.count_nonzero(emap.state(pts))) / len(pts)
+
+
+def views_to_reach(coverage, level: float):
+    """The first view (1-based) whose coverage reaches `level`, or None."""
+    for i, c in enumerate(coverage):
+        if c >= level:
+            return i + 1
+    return None
+
+
+def coverage_after(coverage, views: int) -> float:
+    """Coverage after `views` views; a run that stopped earlier keeps its last figure (0 for none)."""
+    if not len(coverage):
+        return 0.0
+    return float(coverage[min(views, len(coverage)) - 1])
+
+
+def seen_expected_ratios(rows, min_expected: float = 1.0) -> list:
+    """seen / expected void cells of every view that expected at least `min_expected` cells (rows of
+    explore(); the last row's view was never taken, nor was a physically invalid one: no seen figure).
+    A random view that expects 0.01 cells and sees 300 would say nothing about the model."""
+    return [r.void_seen / r.expected_void for r in rows if r.expected_void >= min_expected and r.void_seen is not None]

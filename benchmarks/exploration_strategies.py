@@ -1,0 +1,243 @@
+"""Exploration strategies against each other; prints JSON.
+
+Strategies (octoreach.exploration.STRATEGIES): frontier_void (ours, next_best_view), random
+reachable views, most frontier cells in view, most unknown cells in view (nbvplanner's gain). Same
+robot (the explorer, fixed base, its coarse capability map), camera (58 degrees, noise growing with
+depth^2, its missing returns), start view, reach checks, safe-view rule, view budget and stopping
+rule (explore(strategy=...)). Scenes: the paper's two and seeded USAR-like scenes (usar_scene(k):
+crates and closed boxes with openings on different faces, debris, a hidden target).
+
+The reference of every coverage figure is the observable interior (observable_cells: cells of the
+box interiors that some collision-free reachable camera pose sees, by brute force), computed once
+per scene in the same run. A view whose arm touches the true scene is not taken (it counts as a
+view and adds nothing: only physically valid views count).
+
+Per strategy and scene, over the seeds: views to reach 90 % of the observable interior (runs that
+never reach it count as budget + 1 in `views_to_90_mean_censored`; `reached_90` says how many did),
+coverage after 5 and 10 views, target seen (share of runs) and after how many views, time per view,
+and the seen/expected void ratio of every view (median, share of views under 0.1). `goals` checks
+the issue's goals on these figures.
+
+Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 15]
+     [--plot docs/images/exploration_strategies.png] [--markdown table.md]
+Quick: --seeds 2 --generated 2 --views 8 --image 160 120 --resolution 0.05
+In parts (two cores): --scenes paper_1 usar_0 > a.json; --scenes paper_2 usar_1 > b.json; then
+     --combine a.json b.json --plot p.png --markdown t.md
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import time
+
+import numpy as np
+
+from octoreach import DepthCamera
+from octoreach import exploration as ex
+
+START = ((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))  # eye, target of the first view (robot at the origin)
+
+
+def _scenes(generated: int):
+    out = [("paper_1", ex.paper_scene(1), None), ("paper_2", ex.paper_scene(2), None)]
+    for k in range(generated):
+        u = ex.usar_scene(k)
+        out.append((f"usar_{k}", u.scene, u.target))
+    return out
+
+
+def _camera(a, seed):
+    extra = {} if a.max_incidence is None else {"max_incidence": np.deg2rad(a.max_incidence)}
+    return DepthCamera(a.image[0], a.image[1], np.deg2rad(58.0), 4.0, noise=a.noise, seed=seed, **extra)
+
+
+def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
+    cover = []
+
+    def on_view(row, emap, info):
+        cover.append(oracle.share(emap))
+
+    r = ex.explore(scene, _camera(a, seed), ex.look_at(*START), robot=True, strategy=strategy, max_views=a.views,
+                   resolution=a.resolution, seed=seed, capability_map=cmap, target=target,
+                   score_size=tuple(a.score) if a.score else None, on_view=on_view)
+    views = len(r.rows)
+    per_view = [x.integration_s + x.search_s for x in r.rows]
+    return {
+        "coverage": [round(c, 4) for c in cover],
+        "views": views,
+        "stop_reason": r.stop_reason,
+        "views_to_90": ex.views_to_reach(cover, 0.9),
+        "coverage_5": ex.coverage_after(cover, 5),
+        "coverage_10": ex.coverage_after(cover, 10),
+        "final_coverage": cover[-1] if cover else 0.0,
+        "interior_share_raw": r.interior_share,
+        "target_seen_view": r.target_seen_view() if target is not None else None,
+        "time_per_view_s": statistics.mean(per_view) if per_view else 0.0,
+        "search_s": [round(x.search_s, 3) for x in r.rows],
+        "ratios": [round(x, 3) for x in ex.seen_expected_ratios(r.rows)],
+        "expected_seen": [[round(x.expected_void, 1), x.void_seen] for x in r.rows if x.void_seen is not None],
+        "physically_invalid_views": sum(not x.physically_valid for x in r.rows),
+        "seen_unobservable": oracle.seen_unobservable(r.map),
+    }
+
+
+def _summary(runs, views_budget, has_target):
+    v90 = [r["views_to_90"] for r in runs]
+    ratios = [x for r in runs for x in r["ratios"]]
+    seen = [r["target_seen_view"] for r in runs if r["target_seen_view"] is not None]
+    s = {
+        "runs": len(runs),
+        "reached_90": sum(v is not None for v in v90),
+        "views_to_90_mean_censored": statistics.mean([v if v is not None else views_budget + 1 for v in v90]),
+        "coverage_5_mean": statistics.mean(r["coverage_5"] for r in runs),
+        "coverage_10_mean": statistics.mean(r["coverage_10"] for r in runs),
+        "final_coverage_mean": statistics.mean(r["final_coverage"] for r in runs),
+        "views_mean": statistics.mean(r["views"] for r in runs),
+        "stop_reasons": {k: sum(r["stop_reason"] == k for r in runs) for k in {r["stop_reason"] for r in runs}},
+        "time_per_view_s_median": statistics.median(r["time_per_view_s"] for r in runs),
+        "ratio_median": statistics.median(ratios) if ratios else None,
+        "ratio_share_below_0.1": (sum(x < 0.1 for x in ratios) / len(ratios)) if ratios else None,
+        "ratio_views": len(ratios),
+        "physically_invalid_views": sum(r["physically_invalid_views"] for r in runs),
+        "seen_unobservable_max": max(r["seen_unobservable"] for r in runs),
+    }
+    if has_target:
+        s["target_seen_share"] = len(seen) / len(runs)
+        s["target_seen_after_views_mean"] = statistics.mean(seen) if seen else None
+    return s
+
+
+def _goals(summary, strategies):
+    """The issue's goals on the measured figures (True / False / None when not measurable here)."""
+    ours, base = "frontier_void", [s for s in strategies if s != "frontier_void"]
+    out = {}
+    if ours not in strategies or not base:
+        return out
+    gen = [k for k in summary if k.startswith("usar_")]
+    if gen:
+        mean = {s: statistics.mean(summary[k][s]["views_to_90_mean_censored"] for k in gen) for s in strategies}
+        best = min(mean[s] for s in base)
+        out["generated_views_to_90_mean"] = mean
+        out["generated_25pct_fewer_views_than_best_baseline"] = bool(mean[ours] <= 0.75 * best)
+    for k in ("paper_1", "paper_2"):
+        if k in summary:
+            for n in (5, 10):
+                key = f"coverage_{n}_mean"
+                out[f"{k}_beats_every_baseline_after_{n}"] = all(
+                    summary[k][ours][key] > summary[k][s][key] for s in base)
+    for k, need in (("paper_1", 0.95), ("paper_2", 0.90)):
+        if k in summary:
+            s = summary[k][ours]
+            out[f"{k}_ends_by_itself_with_{int(need * 100)}pct"] = bool(
+                s["final_coverage_mean"] >= need and s["stop_reasons"].get("view budget", 0) == 0)
+    ratios_all = [summary[k][s]["ratio_median"] for k in summary for s in strategies
+                  if summary[k][s]["ratio_median"] is not None]
+    out["ratio_median_of_medians_all_strategies"] = statistics.median(ratios_all) if ratios_all else None
+    return out
+
+
+def _markdown(summary, strategies):
+    head = "| scene | strategy | views to 90 % (reached) | coverage 5 / 10 views | final (views, stop) | target seen (after) | s/view | seen/expected median (<0.1) |"
+    lines = [head, "|" + "---|" * 8]
+    for k, per in summary.items():
+        for s in strategies:
+            x = per[s]
+            tgt = "-" if "target_seen_share" not in x else (
+                f"{x['target_seen_share']:.0%} ({x['target_seen_after_views_mean']:.1f})"
+                if x["target_seen_after_views_mean"] is not None else f"{x['target_seen_share']:.0%}")
+            stops = ", ".join(f"{r} x{n}" for r, n in sorted(x["stop_reasons"].items()))
+            ratio = "-" if x["ratio_median"] is None else f"{x['ratio_median']:.2f} ({x['ratio_share_below_0.1']:.0%})"
+            lines.append(f"| {k} | {s} | {x['views_to_90_mean_censored']:.1f} ({x['reached_90']}/{x['runs']}) | "
+                         f"{x['coverage_5_mean']:.0%} / {x['coverage_10_mean']:.0%} | "
+                         f"{x['final_coverage_mean']:.0%} ({x['views_mean']:.1f}, {stops}) | {tgt} | "
+                         f"{x['time_per_view_s_median']:.2f} | {ratio} |")
+    return "\n".join(lines)
+
+
+def _combine(a) -> int:
+    """One output from several (their scenes side by side; setups must agree but for the scenes)."""
+    parts = [json.load(open(f)) for f in a.combine]
+    out = {"setup": parts[0]["setup"], "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
+    for p in parts:
+        for k in ("oracle", "summary", "runs"):
+            out[k].update(p[k])
+    for k in ("oracle", "summary", "runs"):  # paper scenes first, then usar_0, usar_1, ...
+        out[k] = dict(sorted(out[k].items(), key=lambda kv: (not kv[0].startswith("paper"), kv[0])))
+    strategies = out["setup"]["strategies"]
+    out["goals"] = _goals(out["summary"], strategies)
+    out["total_s"] = sum(p["total_s"] for p in parts)
+    if a.plot:
+        ex.plot_coverage({k: {s: [r["coverage"] for r in runs] for s, runs in per.items()}
+                          for k, per in out["runs"].items()}, a.plot)
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(_markdown(out["summary"], strategies) + "\n")
+    print(json.dumps(out, indent=1, default=float))
+    return 0
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--seeds", type=int, default=10, help="exploration seeds per strategy and scene (>= 10 for the record)")
+    ap.add_argument("--generated", type=int, default=4, help="generated USAR scenes (usar_scene(0..k-1))")
+    ap.add_argument("--views", type=int, default=15, help="view budget")
+    ap.add_argument("--resolution", type=float, default=0.025)
+    ap.add_argument("--image", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))
+    ap.add_argument("--score", type=int, nargs=2, default=None, metavar=("W", "H"), help="score ray grid")
+    ap.add_argument("--noise", type=float, default=0.002, help="depth noise at 1 m (grows with depth^2)")
+    ap.add_argument("--max-incidence", type=float, default=None, metavar="DEG",
+                    help="no return where a ray meets a surface more than DEG degrees off its normal (grazing "
+                         "dropouts; default: the camera's, none), e.g. 75")
+    ap.add_argument("--strategies", nargs="+", default=list(ex.STRATEGIES))
+    ap.add_argument("--scenes", nargs="+", default=None, help="subset of scene names (paper_1 paper_2 usar_0 ...)")
+    ap.add_argument("--oracle-samples", type=int, default=2000, help="joint and aimed samples of the oracle, each")
+    ap.add_argument("--plot", default=None, help="PNG of coverage against views (one panel per scene)")
+    ap.add_argument("--markdown", default=None, help="write the table (strategies x scenes) as markdown here")
+    ap.add_argument("--combine", nargs="+", default=None, metavar="JSON",
+                    help="no runs: combine the JSON outputs of earlier runs (e.g. one per --scenes group) into one")
+    a = ap.parse_args(argv)
+    if a.combine:
+        return _combine(a)
+    if a.seeds < 1 or a.views < 1 or a.generated < 0:
+        ap.error("--seeds and --views must be >= 1, --generated >= 0")
+    for s in a.strategies:
+        ex.strategies.check_strategy(s)
+    t_all = time.perf_counter()
+    _, chain = ex.explorer_robot()
+    t0 = time.perf_counter()
+    cmap = ex.explorer_capability_map(chain)
+    out = {"setup": {"seeds": a.seeds, "views": a.views, "resolution_m": a.resolution, "image": list(a.image),
+                     "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
+                     "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy"},
+           "oracle": {}, "summary": {}, "runs": {}}
+    curves = {}
+    for name, scene, target in _scenes(a.generated):
+        if a.scenes and name not in a.scenes:
+            continue
+        t0 = time.perf_counter()
+        oracle = ex.observable_cells(scene, resolution=a.resolution, joint_samples=a.oracle_samples,
+                                     aimed_samples=a.oracle_samples)
+        out["oracle"][name] = {"seconds": time.perf_counter() - t0, "poses_valid": oracle.poses_valid,
+                               "interior_points": len(oracle.points), "observable_points": oracle.count,
+                               "observable_fraction": oracle.fraction}
+        out["summary"][name], out["runs"][name], curves[name] = {}, {}, {}
+        for s in a.strategies:
+            runs = [_run(a, scene, target, s, seed, oracle, cmap, chain) for seed in range(a.seeds)]
+            out["runs"][name][s] = runs
+            out["summary"][name][s] = _summary(runs, a.views, target is not None)
+            curves[name][s] = [r["coverage"] for r in runs]
+            print(f"# {name} {s}: {json.dumps(out['summary'][name][s])}", flush=True, file=__import__('sys').stderr)
+    out["goals"] = _goals(out["summary"], a.strategies)
+    out["total_s"] = time.perf_counter() - t_all
+    if a.plot:
+        ex.plot_coverage(curves, a.plot)
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(_markdown(out["summary"], a.strategies) + "\n")
+    print(json.dumps(out, indent=1, default=float))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

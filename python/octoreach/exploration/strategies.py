@@ -1,0 +1,167 @@
+"""How explore() picks the next view: frontier-void (ours, next_best_view) and three baselines in the
+same harness (same robot, camera, reach checks, safe-view rule, budget and stopping rule).
+
+- "frontier_void": next_best_view (Algorithm 1 + frustum scoring), ranked by expected void cells.
+- "random": random reachable views: the first valid pose of a seeded random sample.
+- "frontiers": the valid sampled pose with the most (expected) frontier cells in view.
+- "unknown": the valid sampled pose with the most (expected) unknown cells in view (nbvplanner's gain).
+
+The baselines sample camera poses uniformly in the arm's reach sphere (or the workspace box) above
+the floor, each looking at a uniform random point of the search space, and score them all with
+score_views (IK, arm collisions, camera clearance and the safe-view rule of next_best_view).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from .. import _core
+from .camera import look_at
+
+STRATEGIES = ("frontier_void", "random", "frontiers", "unknown")
+# The gain each strategy ranks by, and stops on ("random" ranks by nothing, it stops on the void gain).
+GAIN_OF = {"frontier_void": "expected_void", "random": "expected_void", "frontiers": "expected_frontier",
+           "unknown": "expected_unknown"}
+CANDIDATES = 200  # sampled poses per view and base for the baselines
+
+
+def check_strategy(strategy) -> str:
+    """`strategy` itself, or ValueError naming the choices."""
+    if strategy not in STRATEGIES:
+        raise ValueError(f"unknown strategy {strategy!r}; choose one of {', '.join(STRATEGIES)}")
+    return strategy
+
+
+@dataclass
+class Choice:
+    """The view a strategy picked (pose None: no valid view) with its expected gains."""
+
+    pose: Optional[np.ndarray]
+    void_cells: int = 0  # raw distinct void cells in view (unknown space transparent up to the first occupied cell)
+    expected_void: float = 0.0
+    expected_unknown: float = 0.0
+    expected_frontier: float = 0.0
+    utility: float = 0.0  # the gain the stopping rule looks at (GAIN_OF[strategy]) of the best valid view
+    utility_dm3: float = 0.0
+    q: Optional[np.ndarray] = None
+    base: int = 0
+    candidates: int = 0  # poses scored
+    valid: int = 0  # of them valid
+    details: dict = field(default_factory=dict)  # next_best_view's result (frontier_void) or counts by status
+
+    def info(self) -> dict:
+        """What on_view gets: best_pose plus the figures above (and next_best_view's keys for frontier_void)."""
+        d = dict(self.details)
+        d.update(best_pose=self.pose, expected_void=self.expected_void, expected_unknown=self.expected_unknown,
+                 expected_frontier=self.expected_frontier, utility=self.utility, q=self.q)
+        return d
+
+
+def sample_poses(rng, region, sphere=None, box=None, n: int = CANDIDATES, floor: float = 0.05) -> np.ndarray:
+    """`n` camera poses (n, 4, 4): positions uniform in the sphere (centre, radius) and/or box ((2, 3))
+    above `floor` (neither: the search space grown by 0.5 m), each looking at a uniform random point of `region` ((2, 3) lo, hi) at least 0.1 m away."""
+    region = np.asarray(region, float)
+    if sphere is not None:
+        c, r = np.asarray(sphere[0], float), float(sphere[1])
+        lo, hi = c - r, c + r
+    elif box is not None:
+        lo, hi = np.asarray(box, float)
+    else:  # a free camera with only a callable workspace: around the search space
+        lo, hi = region[0] - 0.5, region[1] + 0.5
+    if box is not None:
+        lo, hi = np.maximum(lo, np.asarray(box, float)[0]), np.minimum(hi, np.asarray(box, float)[1])
+    lo = lo.copy()
+    lo[2] = max(lo[2], floor)
+    out = []
+    for _ in range(200 * n):
+        if len(out) == n or np.any(hi <= lo):
+            break
+        p = rng.uniform(lo, hi)
+        if sphere is not None and np.linalg.norm(p - c) > r:
+            continue
+        t = rng.uniform(region[0], region[1])
+        if np.linalg.norm(t - p) < 0.1:
+            continue
+        out.append(look_at(p, t))
+    return np.array(out).reshape(-1, 4, 4)
+
+
+def _score(emap, camera, poses, options):
+    """score_views as a list of dicts (pose, valid, status, void_cells, expected_* gains, q)."""
+    if len(poses) == 0:
+        return []
+    r = _core.score_views(emap, camera, poses, **options)
+    q = r["q"]
+    out = []
+    for i in range(len(poses)):
+        out.append({"pose": r["pose"][i], "valid": bool(r["valid"][i]), "status": r["status"][i],
+                    "void_cells": int(r["void_cells"][i]), "expected_void": float(r["expected_void"][i]),
+                    "expected_unknown": float(r["expected_unknown"][i]),
+                    "expected_frontier": float(r["expected_frontier"][i]),
+                    "q": None if q is None or not r["valid"][i] else np.asarray(q[i])})
+    return out
+
+
+def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed) -> Choice:
+    """next_best_view over all bases (the current one first, so ties keep it)."""
+    best = None
+    for i in [current] + [j for j in range(len(bases)) if j != current]:
+        bp = bases[i]
+        cap_base = None if options.get("capability_map") is None else bp
+        r = _core.next_best_view(emap, camera, seed=seed, workspace_sphere=sphere_of(bp), chain_base=bp,
+                                 capability_base=cap_base, gain="frontier_void", **options)
+        top = r["ranked"][0] if r["ranked"] else {}
+        c = Choice(pose=r["best_pose"], void_cells=int(top.get("void_cells", 0)),
+                   expected_void=float(top.get("expected_void", 0.0)),
+                   expected_unknown=float(top.get("expected_unknown", 0.0)),
+                   expected_frontier=float(top.get("expected_frontier", 0.0)),
+                   utility=float(top.get("expected_void", 0.0)), utility_dm3=float(r["utility_dm3"]),
+                   q=top.get("q"), base=i, candidates=int(r["poses_scored"]), valid=len(r["ranked"]), details=r)
+        if best is None or c.utility > best.utility:
+            best = c
+    return best
+
+
+def _sampled_choice(strategy, emap, camera, bases, current, sphere_of, options, seed, region, candidates) -> Choice:
+    """The baselines: sample poses per base, score them, take the best valid (random: the first valid)."""
+    rng = np.random.default_rng(seed)
+    gain = GAIN_OF[strategy]
+    best, pool = None, []
+    for i in [current] + [j for j in range(len(bases)) if j != current]:
+        bp = bases[i]
+        sphere = sphere_of(bp)
+        poses = sample_poses(rng, region, sphere=sphere, box=options.get("workspace_box"), n=candidates)
+        opts = dict(options, chain_base=bp, workspace_sphere=sphere, seed=seed,
+                    capability_base=None if options.get("capability_map") is None else bp)
+        views = _score(emap, camera, poses, opts)
+        pool += [(i, v) for v in views]
+    valid = [(i, v) for i, v in pool if v["valid"]]
+    statuses = {}
+    for _, v in pool:
+        statuses[v["status"]] = statuses.get(v["status"], 0) + 1
+    if not valid:
+        return Choice(pose=None, candidates=len(pool), details={"status_counts": statuses})
+    if strategy == "random":
+        i, v = valid[0]
+    else:
+        i, v = max(valid, key=lambda iv: (iv[1][gain], iv[1]["expected_unknown"]))
+    # the stopping rule: the strategy's gain of the best valid view (random: the best void gain on offer)
+    utility = max(float(w["expected_void"]) for _, w in valid) if strategy == "random" else float(v[gain])
+    res = emap.resolution
+    return Choice(pose=np.asarray(v["pose"]), void_cells=v["void_cells"], expected_void=float(v["expected_void"]),
+                  expected_unknown=float(v["expected_unknown"]), expected_frontier=float(v["expected_frontier"]),
+                  utility=utility, utility_dm3=float(v["expected_void"]) * res ** 3 * 1000, q=v.get("q"), base=i,
+                  candidates=len(pool), valid=len(valid), details={"status_counts": statuses})
+
+
+def choose_view(strategy, emap, camera, bases, current, sphere_of, options, seed, region,
+                candidates: int = CANDIDATES) -> Choice:
+    """The next view of `strategy` (see the module) from any of `bases` (chain base poses; the current
+    one first). `sphere_of(base)` is the reach sphere around a base (or the fixed workspace sphere),
+    `options` next_best_view's keywords without seed, chain_base and the workspace sphere."""
+    check_strategy(strategy)
+    if strategy == "frontier_void":
+        return _nbv_choice(emap, camera, bases, current, sphere_of, options, seed)
+    return _sampled_choice(strategy, emap, camera, bases, current, sphere_of, options, seed, region, candidates)

@@ -1,0 +1,243 @@
+"""Exploration harness: the observable-interior oracle against hand reasoning, generated USAR scenes,
+every strategy terminates with a stop reason, "nothing to explore", no chosen view reaches through
+unknown space, the visibility model's expected count against the seen count, pictures, bad input.
+Coarse maps (5 cm) and small images keep this to about a minute on two cores."""
+import numpy as np
+import pytest
+
+from octoreach import DepthCamera, ExplorationMap, Scene
+from octoreach import exploration as ex
+
+FOV = np.deg2rad(58.0)
+RES = 0.05
+
+
+def _floor(s, half=2.0):
+    s.add_box((-half, -half, -0.05), (half, half, 0.0))
+
+
+def _sealed_box(s, lo, hi, wall):
+    """A box closed on every side (six slabs of thickness `wall`); its inside is recorded as an interior."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    for axis in range(3):
+        for side in (0, 1):
+            a, b = lo.copy(), hi.copy()
+            if side == 0:
+                b[axis] = lo[axis] + wall
+            else:
+                a[axis] = hi[axis] - wall
+            s.add_box(a, b)
+    s.add_interior(lo + wall, hi - wall)
+
+
+def _inside(points, box):
+    lo, hi = map(np.asarray, box)
+    return np.all((points >= lo) & (points <= hi), axis=1)
+
+
+def test_oracle_sealed_box_unobservable_open_crate_observable_from_above():
+    s = Scene()
+    _floor(s)
+    # walls thicker than a cell: no cell holding an inside point can hold the outer surface
+    _sealed_box(s, (0.6, -0.35, 0.0), (0.95, -0.05, 0.35), 0.07)
+    s.add_crate((0.6, 0.1, 0.0), (0.95, 0.45, 0.25), 0.02)
+    obs = ex.observable_cells(s, resolution=RES, joint_samples=300, aimed_samples=300, width=48, height=36)
+    assert obs.poses_valid > 100
+    sealed, crate = (_inside(obs.points, box) for box in s.interiors)
+    assert sealed.sum() > 10 and crate.sum() > 50
+    assert not obs.observable[sealed].any()  # nothing sees into a sealed box
+    assert obs.observable[crate].mean() > 0.95  # the crate's inside is seen from above
+    # an exploration map that knows nothing sees nothing; one that knows everything sees all that is observable
+    empty = ExplorationMap(resolution=RES)
+    assert obs.share(empty) == 0.0 and obs.seen_unobservable(empty) == 0
+
+
+def test_oracle_honours_the_arm_reach():
+    # two boxes beyond the shoulder's reach in x; walls thicker than a cell. One opens towards the robot
+    # (-x): a camera held in front of the opening sees in. The other opens away (+x): the camera would
+    # have to stand behind it, 1.3 m from the shoulder, so its inside is unobservable.
+    s = Scene()
+    _floor(s)
+    s.add_closed_box((1.0, -0.45, 0.0), (1.35, -0.1, 0.35), 0.07, "-x", 0.16, 0.16)
+    s.add_closed_box((1.0, 0.1, 0.0), (1.35, 0.45, 0.35), 0.07, "+x", 0.16, 0.16)
+    obs = ex.observable_cells(s, resolution=RES, joint_samples=300, aimed_samples=600, width=48, height=36)
+    towards, away = (_inside(obs.points, box) for box in s.interiors)
+    assert towards.sum() > 10 and away.sum() > 10
+    assert obs.observable[towards].mean() > 0.3
+    assert not obs.observable[away].any()
+
+
+def test_usar_scenes_are_seeded_and_hide_the_target_in_a_container():
+    a, b, c = ex.usar_scene(3), ex.usar_scene(3), ex.usar_scene(4)
+    assert [tuple(map(tuple, x)) for x in a.scene.boxes] == [tuple(map(tuple, x)) for x in b.scene.boxes]
+    assert [tuple(map(tuple, x)) for x in a.scene.boxes] != [tuple(map(tuple, x)) for x in c.scene.boxes]
+    for seed in range(6):
+        u = ex.usar_scene(seed)
+        assert len(u.containers) >= 1 and len(u.scene.interiors) == len(u.containers)
+        lo, hi = u.target
+        inner = u.scene.interiors[u.target_container]
+        assert np.all(lo >= np.asarray(inner[0]) - 1e-9) and np.all(hi <= np.asarray(inner[1]) + 1e-9)
+        assert u.scene.solid(((lo + hi) / 2)[None])[0]
+        if any(c["kind"] == "closed_box" for c in u.containers):
+            assert u.containers[u.target_container]["kind"] == "closed_box"
+        faces = {c["face"] for c in u.containers}
+        assert faces <= set(ex.usar_scenes.FACES)
+    faces = {c["face"] for s in range(12) for c in ex.usar_scene(s).containers if c["kind"] == "closed_box"}
+    assert len(faces) >= 3  # openings on different faces
+    # a point on the target counts, the floor next to it does not
+    u = ex.usar_scene(0)
+    lo, hi = u.target
+    on_top = np.array([[(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2]]])
+    beside = np.array([[lo[0] - 0.01, lo[1], lo[2]]])
+    assert u.target_points(on_top) == 1 and u.target_points(beside) == 0
+    with pytest.raises(ValueError, match="containers"):
+        ex.usar_scene(0, containers=0)
+    with pytest.raises(ValueError, match="target"):
+        ex.points_on(np.zeros(3), on_top)
+
+
+def _small_run(scene, strategy, **kw):
+    cam = DepthCamera(80, 60, FOV, 3.0, noise=0.002, seed=1)
+    start = ex.look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))
+    opts = dict(robot=True, strategy=strategy, resolution=RES, max_views=4, candidates=60, max_valid_poses=10,
+                score_size=(24, 18))
+    opts.update(kw)
+    return ex.explore(scene, cam, start, **opts)
+
+
+def _skeleton_points(robot, chain, q, root):
+    """Points along the arm's links (between consecutive joint frames, 6 cm kept clear of each joint)."""
+    poses = robot.link_poses(chain.to_robot_configuration(q))
+    names = [chain.base_link] + [n for n in robot.link_names if n in poses]
+    origins = [root @ poses[n] for n in names]
+    pts = []
+    for A, B in zip(origins, origins[1:]):
+        a, b = A[:3, 3], B[:3, 3]
+        L = np.linalg.norm(b - a)
+        if L > 0.13:
+            for t in np.arange(0.06, L - 0.06, 0.01):
+                pts.append(a + (b - a) * t / L)
+    return np.array(pts).reshape(-1, 3)
+
+
+@pytest.mark.parametrize("strategy", ex.STRATEGIES)
+def test_every_strategy_terminates_and_its_views_stay_in_observed_space(strategy):
+    scene = ex.paper_scene(1)
+    robot, chain = ex.explorer_robot()
+    base = ex.arm_base_pose(robot, chain)
+    root = ex.oracle.robot_root(robot, chain, base)
+    region = ex.scene_region(scene)
+    checked = []
+
+    def on_view(row, emap, info):
+        if info["best_pose"] is None:
+            return
+        eye = np.asarray(info["best_pose"])[:3, 3]
+        if _inside(eye[None], region)[0]:
+            assert emap.state(eye[None])[0] == 1  # in the search space the camera stands in observed-free space
+        if info.get("q") is not None:
+            pts = _skeleton_points(robot, chain, np.asarray(info["q"]), root)
+            inside = _inside(pts, region)
+            assert not np.any(emap.state(pts[inside]) == 0), "an arm link passes through unknown space"
+        checked.append(row.view)
+
+    r = _small_run(scene, strategy, on_view=on_view)
+    assert r.stop_reason in ex.STOP_REASONS and r.strategy == strategy
+    assert 1 <= len(r.rows) <= 4
+    if r.stop_reason == "view budget":
+        assert len(r.rows) == 4
+    assert checked, r.table()
+    assert r.rows[-1].void_seen is None  # the last chosen view was never taken
+    assert all(x.void_seen is not None and x.void_seen >= 0 for x in r.rows[:-1])
+    assert all(x.expected_void >= 0 and x.valid_candidates <= x.candidates for x in r.rows)
+    shares = [x.interior_share for x in r.rows]
+    assert shares == sorted(shares)
+    assert "stopped:" in r.table()
+
+
+def test_min_utility_stops_early_and_says_so():
+    r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9)
+    assert len(r.rows) == 1 and r.stop_reason == "utility below min_utility"
+
+
+def test_a_scene_without_void_ends_at_once():
+    s = Scene()
+    _floor(s)
+    cam = DepthCamera(80, 60, FOV, 3.0)
+    start = ex.look_at((0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
+    region = np.array([[0.3, -0.5, 0.0], [1.5, 0.5, 0.5]])
+    r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region)
+    assert r.stop_reason == "nothing to explore" and len(r.rows) == 1
+    assert r.rows[0].void_total == 0 and r.rows[0].expected_void == 0
+
+
+def test_expected_void_against_the_void_cells_a_view_turns_known():
+    """A crate seen only from low at its sides: its inside is one void, empty in reality. A camera above
+    it casts the score grid's rays through the void to the crate's floor. With unknown space transparent
+    (p = 1) the expected count is the count of void cells those rays cross, so it equals what a capture
+    along the same rays turns known; the learned p (< 1) expects less (the void's far cells are weighted
+    down), and a fixed p between scales the count between the two."""
+    from octoreach import _core
+
+    s = Scene()
+    _floor(s)
+    s.add_crate((0.6, -0.2, 0.0), (1.0, 0.2, 0.3), 0.02)
+    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.5, -0.3, 0.0], [1.1, 0.3, 0.35]]))
+    low = DepthCamera(160, 120, FOV, 4.0)
+    for eye in ((0.0, 0.0, 0.2), (0.8, -0.9, 0.2), (0.8, 0.9, 0.2), (1.6, 0.0, 0.2)):
+        T = ex.look_at(eye, (0.8, 0.0, 0.15))
+        emap.insert(low.capture(s, T), T[:3, 3], 4.0)
+    assert emap.void_cell_count > 50
+    w, h = 48, 36
+    T = ex.look_at((0.8, 0.0, 0.9), (0.8, 0.0, 0.0))
+    cam = DepthCamera(w, h, FOV, 4.0)
+
+    def gains(p):
+        return _core.score_views(emap, cam, np.array([T]), score_width=w, score_height=h, unknown_is_obstacle=False,
+                                 unknown_pass_probability=p)
+
+    clear, learned, half = gains(1.0), gains(None), gains(0.5)
+    before = emap.centers(emap.void_keys())
+    emap.insert(cam.capture(s, T), T[:3, 3], 4.0)
+    seen = int(np.count_nonzero(emap.state(before) != 0))
+    assert clear["void_cells"][0] > 50 and clear["expected_void"][0] == pytest.approx(clear["void_cells"][0])
+    assert seen == pytest.approx(clear["expected_void"][0], rel=0.05), (seen, clear["expected_void"][0])
+    assert learned["pass_probability"] < 1.0
+    assert 0 < learned["expected_void"][0] < clear["expected_void"][0]
+    assert half["expected_void"][0] < clear["expected_void"][0]
+
+
+def test_pictures(tmp_path):
+    scene = ex.paper_scene(2)
+    emap = ExplorationMap(resolution=RES, search_space=ex.scene_region(scene))
+    cam = DepthCamera(80, 60, FOV, 3.0)
+    T = ex.look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))
+    emap.insert(cam.capture(scene, T), T[:3, 3], 3.0)
+    quads, normals = ex.plots.voxel_faces(np.array([[0, 0, 0], [RES, 0, 0]], float), RES)
+    assert len(quads) == 10 and np.allclose(np.abs(normals).sum(1), 1)  # two cubes side by side: 10 faces
+    png = ex.plot_map(emap, tmp_path / "v.png", poses=[T], next_pose=ex.look_at((0.3, -0.5, 0.9), (0.9, 0, 0)),
+                      camera=cam, region=ex.scene_region(scene))
+    assert png.stat().st_size > 10000
+    png = ex.plot_coverage({"paper_1": {"frontier_void": [[0.2, 0.9]], "random": [[0.1, 0.4, 0.5]]},
+                            "paper_2": {"frontier_void": [[0.3]]}}, tmp_path / "c.png")
+    assert png.stat().st_size > 5000
+    assert ex.views_to_reach([0.2, 0.95], 0.9) == 2 and ex.views_to_reach([0.2], 0.9) is None
+    assert ex.coverage_after([0.2, 0.5], 5) == 0.5
+
+
+def test_bad_input():
+    scene = ex.closed_box_scene()
+    cam = DepthCamera(40, 30, FOV, 3.0)
+    T = ex.look_at((0.3, 0.0, 1.0), (0.8, 0.0, 0.2))
+    with pytest.raises(ValueError, match="frontier_void, random, frontiers, unknown"):
+        ex.explore(scene, cam, T, strategy="greedy")
+    with pytest.raises(ValueError, match="max_views"):
+        ex.explore(scene, cam, T, max_views=0)
+    with pytest.raises(ValueError, match="min_utility"):
+        ex.explore(scene, cam, T, min_utility=float("nan"))
+    with pytest.raises(ValueError, match="start_pose"):
+        ex.explore(scene, cam, np.eye(3))
+    with pytest.raises(ValueError, match="target"):
+        ex.explore(scene, cam, T, target=(1, 2, 3))
+    with pytest.raises(ValueError, match="resolution"):
+        ex.observable_cells(scene, resolution=0.0)
