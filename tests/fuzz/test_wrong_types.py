@@ -153,7 +153,7 @@ def valid_value(sweep, fname: str, pname: str, ann: str):
     if fname.startswith("SurfaceMap.reachability") or fname.startswith("InversePointMap.reachability"):
         if pname == "poses":
             return np.zeros((2, 4))
-    if fname == "CapabilityMap.reachable" and pname == "poses":
+    if fname in ("CapabilityMap.reachable", "score_views") and pname == "poses":
         return np.repeat(np.eye(4)[None], 2, axis=0)
     if fname == "InversePointMap.direct_reachability" and pname == "poses":
         return np.zeros((2, 4))
