@@ -296,6 +296,29 @@ def test_bt_node_data_is_checked_before_anything_is_built(tmp_path):
     assert (d["free"], d["occupied"]) == (0, 1)
 
 
+def test_points_beyond_float_range_do_not_crash_the_ray_walk():
+    # Found by the long property profile (make fuzz): 1e277 is finite as a double and inf as a float; the ray
+    # walk crashed (SIGSEGV). Such points keep their ray: out of bounds, or cut at max_range.
+    child = run_python("""
+        import numpy as np, octoreach as o
+        t = -1.17549435e-38
+        m = o.ExplorationMap(resolution=0.1)
+        s = m.insert(np.array([[t, t, t], [-1.28057411e277, t, t], [-2.08e16, t, t], [1e300, 1e300, 0]]), [0, 0, 0])
+        assert s['points'] == 4 and s['out_of_bounds'] == 3, s
+        cut = o.ExplorationMap(resolution=0.1)
+        s = cut.insert(np.array([[-1e300, 0, 0.0]]), [0, 0, 0], max_range=2.0)
+        assert s['free_cells'] >= 19 and s['occupied_cells'] == 0, s  # a max-range ray of 2 m along -x
+        with_far_origin = o.ExplorationMap(resolution=0.1)
+        try:
+            with_far_origin.insert(np.zeros((1, 3)), [1e300, 0, 0])
+        except ValueError as e:
+            assert 'outside the map bounds' in str(e)
+        print('OK')
+    """, timeout=60)
+    assert not child.crashed and not child.hung, child.stderr[-2000:]
+    assert child.returncode == 0 and "OK" in child.stdout, child.stderr[-2000:]
+
+
 def test_occupied_cells_kilometres_apart_are_refused_before_anything_changes(tmp_path):
     # Voids are looked for in the occupied cells' bounding box: two clusters 3 km apart made that box 10^10
     # cells (the void upkeep ran for minutes and filled the memory; a .bt with one changed byte did the same).

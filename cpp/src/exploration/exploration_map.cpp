@@ -31,19 +31,30 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// The key of p, false outside the key range. Checked in double first: octomap's coordToKeyChecked converts
+// resolution_factor * coordinate to int, undefined (and accepted by optimised code) beyond 2^31.
 bool key_checked(const octomap::OcTree& tree, const Eigen::Vector3d& p, octomap::OcTreeKey& k) {
-  return p.allFinite() && tree.coordToKeyChecked(octomap::point3d(float(p.x()), float(p.y()), float(p.z())), k);
+  return p.allFinite() && p.cwiseAbs().maxCoeff() < tree.getResolution() * 32768 &&
+         tree.coordToKeyChecked(octomap::point3d(float(p.x()), float(p.y()), float(p.z())), k);
 }
 
-// Finite rows as OctoMap points; counts the others in stats.dropped.
-std::vector<octomap::point3d> finite_points(const std::vector<Eigen::Vector3d>& points, InsertStats& st) {
+// Finite rows as OctoMap points; counts the others in stats.dropped. A point farther from the origin than twice
+// the key range is moved along its ray to that distance: the same ray (out of bounds, or cut at max_range), but
+// representable as a float (1e300 became inf and crashed the ray walk) and inside octomap's int key arithmetic.
+std::vector<octomap::point3d> finite_points(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
+                                            double resolution, InsertStats& st) {
+  const double far = resolution * 65536;
   std::vector<octomap::point3d> pc;
   pc.reserve(points.size());
   for (const auto& p : points) {
-    if (p.allFinite())
-      pc.emplace_back(float(p.x()), float(p.y()), float(p.z()));
-    else
+    if (!p.allFinite()) {
       ++st.dropped;
+      continue;
+    }
+    const Eigen::Vector3d d = p - origin;
+    const double m = d.cwiseAbs().maxCoeff();
+    const Eigen::Vector3d q = m > far ? Eigen::Vector3d(origin + d * (far / m)) : p;
+    pc.emplace_back(float(q.x()), float(q.y()), float(q.z()));
   }
   st.points = pc.size();
   return pc;
@@ -154,7 +165,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
                                 " is outside the map bounds (|coordinate| < " + std::to_string(resolution_ * 32768) +
                                 " m)");
   changed_.clear();
-  const std::vector<octomap::point3d> pc = finite_points(points, st);
+  const std::vector<octomap::point3d> pc = finite_points(points, origin, resolution_, st);
   if (pc.empty()) {
     st.seconds_total = seconds_since(t_start);
     return st;

@@ -135,6 +135,8 @@ struct RayWalk {
     if (key_origin == key_end) return false;
     bits.set(key_origin);
     const GridRay r = octomap_ray(tree, origin, key_origin, end);
+    // an end a denormal distance away (1e-38 m) has no direction in float: NaN steps walked off the bitmap
+    if (!(r.length > 0) || std::isnan(r.t[0] + r.t[1] + r.t[2]) || std::isnan(r.d[0] + r.d[1] + r.d[2])) return false;
     for (int i = 0; i < 3; ++i) {
       t[i] = r.t[i];
       d[i] = r.d[i];
