@@ -150,22 +150,9 @@ void def_map_sets(MapClass& cls) {
            }, "Frontier clusters as a list of (N, 3) cell centres.")
       .def_property_readonly("void_cell_count", &ExplorationMap::void_cell_count)
       .def_property_readonly("frontier_cell_count", [](const ExplorationMap& self) { return self.frontier_cells().size(); })
-      .def("void_clusters", [](const ExplorationMap& self) {
-             std::vector<VoidCluster> v;
-             {
-               py::gil_scoped_release release;
-               v = self.void_clusters();
-             }
-             return v;
-           }, "Void clusters (ellipsoid region growing, deterministic for the map's seed).")
-      .def("void_clusters_from_scratch", [](const ExplorationMap& self) {
-             std::vector<VoidCluster> v;
-             {
-               py::gil_scoped_release release;
-               v = self.void_clusters_from_scratch();
-             }
-             return v;
-           }, "Void clusters computed from scratch from the current void cells (void_clusters() equals them).")
+      .def("void_clusters", &ExplorationMap::void_clusters, py::call_guard<py::gil_scoped_release>(), "Void clusters (ellipsoid region growing, deterministic for the map's seed).")
+      .def("void_clusters_from_scratch", &ExplorationMap::void_clusters_from_scratch,
+           py::call_guard<py::gil_scoped_release>(), "Void clusters computed from scratch from the current void cells (void_clusters() equals them).")
       .def("ray_statistics", [](const ExplorationMap& self) {
              RayStatistics r = self.ray_statistics();
              py::dict d;

@@ -4,7 +4,8 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
+#include <istream>
+#include <streambuf>
 
 #include <octomap/OcTree.h>
 
@@ -13,19 +14,34 @@
 
 namespace octoreach::detail {
 
-std::uint64_t finest_cell_count(const octomap::OcTree& tree, std::uint64_t stop_above) {
-  std::uint64_t n = 0;
-  for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-    const unsigned levels = 16 - it.getDepth();  // a leaf covers (2^levels)^3 cells, at most 2^48
-    n += std::uint64_t(1) << (3 * levels);
-    if (n > stop_above) return n;
-  }
-  return n;
-}
-
 namespace {
 
 constexpr const char* kBinaryHeader = "# Octomap OcTree binary file";
+
+// A read-only stream over a string's bytes (tellg and seekg work), so the file is held once, not copied into
+// an istringstream for the header parse and again for octomap's reader.
+class ByteStream : std::streambuf, public std::istream {
+  using pos_type = std::streambuf::pos_type;
+  using off_type = std::streambuf::off_type;
+
+ public:
+  explicit ByteStream(const std::string& bytes) : std::istream(static_cast<std::streambuf*>(this)) {
+    char* b = const_cast<char*>(bytes.data());  // never written through: no put area
+    setg(b, b, b + bytes.size());
+  }
+
+ private:
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override {
+    char* base = dir == std::ios_base::beg ? eback() : dir == std::ios_base::cur ? gptr() : egptr();
+    const off_type at = (base - eback()) + off;
+    if (at < 0 || at > egptr() - eback()) return pos_type(off_type(-1));
+    setg(eback(), eback() + at, egptr());
+    return pos_type(at);
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode which) override {
+    return seekoff(off_type(pos), std::ios_base::beg, which);
+  }
+};
 
 // The header as octomap's AbstractOcTree::readHeader reads it (tokens until "data", comments skipped);
 // returns the offset of the node data. octomap's own reader does the same parse, so the offsets agree.
@@ -37,7 +53,7 @@ struct BtHeader {
 };
 
 BtHeader parse_header(const std::string& bytes, const std::string& path) {
-  std::istringstream s(bytes);
+  ByteStream s(bytes);
   std::string line;
   std::getline(s, line);
   if (line.compare(0, std::string(kBinaryHeader).size(), kBinaryHeader) != 0)
@@ -132,7 +148,7 @@ void read_bt(octomap::OcTree& tree, const std::string& path, const std::string& 
       throw FileError("'" + path + "' covers more than " + std::to_string(max_cells) +
                       " cells at its finest resolution (the limit; damaged or too large a map)");
   }
-  std::istringstream s(bytes);
+  ByteStream s(bytes);
   if (!tree.readBinary(s)) throw FileError("'" + path + "' is not a readable OctoMap binary (.bt) file");
 }
 

@@ -13,10 +13,6 @@ namespace octoreach::detail {
 /// \brief Resolutions a .bt file may state, metres (outside: the file is rejected as damaged).
 constexpr double kMinOctreeResolution = 1e-4, kMaxOctreeResolution = 1e4;
 
-/// \brief Number of finest-resolution cells the leaves of `tree` cover (a pruned leaf of depth d covers
-/// 8^(16 - d)), counted leaf by leaf without expanding; stops counting once it passes `stop_above`.
-std::uint64_t finest_cell_count(const octomap::OcTree& tree, std::uint64_t stop_above);
-
 /// \brief Reads the .bt file at `path` into `tree` (`what` names it in messages).
 /// \throws FileNotFound if it does not exist, FileError if it cannot be parsed, states a resolution outside
 /// [kMinOctreeResolution, kMaxOctreeResolution], or (max_cells > 0) its leaves cover more than max_cells
