@@ -94,7 +94,7 @@ class MetCells {
   bool dense_;
   std::int64_t klo_[3], n_[3];
   std::vector<std::pair<std::size_t, CellKey>> touched_;
-  KeyTable<std::uint16_t> table_{dense_ ? 0 : 1 << 16};
+  KeyTable<std::uint16_t> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
 };
 
 }  // namespace
