@@ -20,9 +20,10 @@ Prints JSON. Each scene is timed in parts:
                the main thread's waits for their compiles
 Each scene is opened --repeat times (a new viewer and page each time); the JSON holds the medians and every
 page_s. The slider: --moves theta moves per opening, each timed from the server-side call to the first frame
-whose pixels differ from the frame before the move has been drawn (frames are read back whole while the slider
-is timed, which adds the read-back to each frame: an upper bound); frame_js_s / frame_gpu_s split that
-frame into its main-thread part and the wait for SwiftShader to draw it (plus the read-back).
+whose pixels differ from the frame before the move has been drawn (drawn: its 1-pixel read-back returned, as
+for draw_s; while the slider is timed every frame is then also read back whole to tell frames apart, which can
+delay the frame after it: an upper bound; read_back_s is that whole read-back's time); frame_js_s / frame_gpu_s
+split that frame into its main-thread part and the wait for SwiftShader to draw it.
 
 Two configurations, interleaved opening by opening, each in its own headless Chromium (1280 x 800):
   before  main before this round: Chromium's earlier flags (PREVIOUS_FLAGS: the page composited on
@@ -75,7 +76,8 @@ NO_MSAA = ("--webgl-antialiasing-mode=none",)
 # hands each message batch to the page; per animation frame with draws: start, end of its main-thread work,
 # draw calls, triangles, and `finished`, when a 1-pixel read-back returned (the GPU process, SwiftShader here,
 # has drawn the frame). While `watch` is set, every
-# frame is read back whole and `hash` records a digest of its pixels (the slider: the first frame that differs).
+# frame is also read back whole, after its 1-pixel read-back, and `hash` records a digest of its pixels (the slider:
+# the first frame that differs; its `finished` is the 1-pixel read-back's, `read_back` the whole one's time).
 TIMING_JS = r"""
 (() => {
   const T = window.__octoreach_timing = {messages: [], frames: [], watch: false};
@@ -116,13 +118,15 @@ TIMING_JS = r"""
       const gl = curGl;  // the context that drew this frame
       if (f.draws) {
         if (gl && T.watch) {
+          gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+          f.finished = now();  // drawn; the whole read-back below only tells frames apart
           const n = gl.drawingBufferWidth * gl.drawingBufferHeight * 4;
           if (!buf || buf.length !== n) buf = new Uint8Array(n);
           const bound = gl.getParameter(gl.READ_FRAMEBUFFER_BINDING);
           gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);  // the canvas, not the last render target
           gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, buf);
           gl.bindFramebuffer(gl.READ_FRAMEBUFFER, bound);
-          f.finished = now();
+          f.read_back = now() - f.finished;
           let h = 0;
           for (let i = 0; i < n; i += 61) h = (h * 31 + buf[i]) >>> 0;
           f.hash = h;
@@ -255,7 +259,8 @@ def slider_times(v: Viewer, browser: Browser, moves: int) -> list:
         if changed is None:
             raise TimeoutError(f"theta bin {k}: the page did not change")
         out.append({"server_s": server, "page_s": changed["finished"] - t0,
-                    "frame_js_s": changed["end"] - changed["start"], "frame_gpu_s": changed["finished"] - changed["end"]})
+                    "frame_js_s": changed["end"] - changed["start"], "frame_gpu_s": changed["finished"] - changed["end"],
+                    "read_back_s": changed["read_back"] / 1000.0})
     browser.driver.execute_script("window.__octoreach_timing.watch = false;")
     return out
 

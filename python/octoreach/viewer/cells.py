@@ -15,12 +15,22 @@ def cube(edge: float, height: float | None = None) -> tuple[np.ndarray, np.ndarr
     return v, f
 
 
+def tile(edge: float, height: float) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices (4, 3) and triangles (2, 3, facing +z) of the top face of a box edge x edge x height centred at
+    0: a cell seen from above in a sixth of a box's triangles (a software-rendered frame's cost grows with
+    them)."""
+    h = edge / 2.0
+    v = np.array([[-h, -h, 0], [h, -h, 0], [h, h, 0], [-h, h, 0]], dtype=np.float32)
+    v[:, 2] = height / 2.0
+    return v, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
+
+
 def add_cells(scene, name: str, centres: np.ndarray, colours: np.ndarray, edge: float, height=None, opacity=None,
-              scales=None, visible: bool = True):
-    """A batched mesh of boxes (edge x edge x height, default cubes) at `centres` with per-box `colours` and
-    optional per-box `scales` (N,) (0 hides a box without re-sending the others); click events carry the box's
-    index as `instance_index`."""
-    v, f = cube(edge, height)
+              scales=None, visible: bool = True, top_only: bool = False):
+    """A batched mesh of boxes (edge x edge x height, default cubes; `top_only`: their top faces alone) at
+    `centres` with per-box `colours` and optional per-box `scales` (N,) (0 hides a box without re-sending the
+    others); click events carry the box's index as `instance_index`."""
+    v, f = tile(edge, edge if height is None else height) if top_only else cube(edge, height)
     centres = np.asarray(centres, dtype=np.float32).reshape(-1, 3)
     n = len(centres)
     wxyz = np.tile(np.array([1.0, 0.0, 0.0, 0.0], dtype=np.float32), (n, 1))

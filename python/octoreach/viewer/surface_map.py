@@ -54,7 +54,7 @@ class SurfaceMapLayer:
         for k, shown in self.cells.items():
             self.handles[k] = cells.add_cells(self.scene, self.node_name(k), self.centres[shown],
                                               colours.scale(self.rs[k], self.vmax), self.edge * 0.92,
-                                              self.tile_height, visible=k == self.theta_bin)
+                                              self.tile_height, visible=k == self.theta_bin, top_only=True)
 
     def node_name(self, theta_bin: int) -> str:
         return f"{self.name}/best" if theta_bin == BEST else f"{self.name}/theta_{theta_bin:02d}"
