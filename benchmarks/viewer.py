@@ -171,7 +171,7 @@ class RecolourLayer(SurfaceMapLayer):
         rs = np.vstack([self.values.T, self.values.max(axis=1, initial=0.0)[None, :]])  # row BEST = -1: best
         self._colours = colours.scale(rs.reshape(-1), self.vmax).reshape(bins + 1, n, 3)
         self._scales = (rs > 0).astype(np.float32)
-        self._node = cells.add_cells(self.scene, self.name + "/all", self.centres, self._colours[BEST],
+        self._node = cells.add_cells(self.scene, self.name + "/all", self.drawn_centres, self._colours[BEST],
                                      self.edge * 0.92, self.tile_height, scales=self._scales[BEST])
 
     def show(self, theta_bin: int) -> None:

@@ -86,7 +86,7 @@ def test_scene_nodes_and_theta_slider(arm_map, viewer):
         assert handle is viewer.scene.get_handle_by_name(f"/surface_map/theta_{k:02d}")
         assert [h.visible for h in layer.handles.values()].count(True) == 1 and handle.visible
         shown = np.flatnonzero(values[:, k] > 0)
-        assert np.allclose(handle.batched_positions, centres[shown], atol=1e-6)
+        assert np.allclose(handle.batched_positions, centres[shown] - [0, 0, centres[:, 2].min()], atol=1e-6)
         assert np.array_equal(handle.batched_colors, colours.scale(values[shown, k], layer.vmax))
         assert np.array_equal(layer.colours_at(k)[shown], handle.batched_colors)
         assert [layer.cell_of(k, j) for j in range(len(shown))] == list(shown)  # a click's instance -> cell
@@ -157,6 +157,29 @@ def test_static_html(arm_map, viewer, tmp_path):
     path = viewer.save_html(tmp_path / "scene.html")
     text = open(path, encoding="utf-8").read()
     assert "__VISER_EMBED_DATA__" in text and len(text) > 100_000
+
+
+def test_cells_and_samples_lie_on_the_floor_when_the_reference_frame_is_above_it(viewer):
+    # A robot whose reference frame stands 0.3 m above its feet (as Baxter's torso, or a base link on wheels):
+    # the map's z is 0.3, the robot stands there, and the cells, outlines and arrows lie on the floor, not in the air.
+    robot = octoreach.robots.test_arm()
+    cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.15, directions=24,
+                                        progress=False)
+    table = octoreach.Surface.rectangle(0.6, 0.4, 0.7, x=0.55)
+    sm = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.15, z_range=(0.3, 0.3), progress=False)
+    layer = viewer.add_surface_map(sm, robot=robot, samples=2)
+    z = layer.centres[0, 2]  # the voxel's centre: 0.3 m up to half a voxel
+    assert 0.3 <= z < 0.3 + sm.resolution and np.allclose(layer.centres[:, 2], z) and layer.floor_offset == z
+    assert np.allclose(layer.handle.batched_positions[:, 2], 0.0, atol=1e-6)
+    i = int(layer.shown[0])
+    assert layer.cell_pose(i)[2] == pytest.approx(z)  # poses and R_S keep the map's z
+    assert viewer.select_cell(i)["rs"] == pytest.approx(float(sm.reachability(layer.cell_pose(i)[None, :])[0]))
+    assert viewer.robot_layer.base_pose[2, 3] == pytest.approx(z)
+    outline_z = np.asarray(viewer.scene.get_handle_by_name("/samples/footprints").points)[..., 2]
+    assert np.allclose(outline_z, layer.tile_height / 2 + 0.02, atol=1e-4), outline_z.min()
+    # A click is picked on the tiles where they are drawn.
+    top = layer.drawn_centres[i] + [0.0, 0.0, 1.0]
+    assert layer.pick(top, [0.0, 0.0, -1.0]) == i
 
 
 def test_port_in_use_picks_another(arm_map):
@@ -231,7 +254,7 @@ def test_browser_shows_robot_and_map_and_click_reports_rs(arm_map, viewer, tmp_p
         client = next(iter(viewer.server.get_clients().values()))
         canvas = b.canvas()
         w, h = canvas.size["width"], canvas.size["height"]
-        top = layer.centres[layer.shown] + [0.0, 0.0, layer.tile_height / 2]
+        top = layer.drawn_centres[layer.shown] + [0.0, 0.0, layer.tile_height / 2]
         pix = np.array([b.project(client.camera, p) for p in top])
         ok = (pix[:, 0] > 40) & (pix[:, 0] < 0.6 * w) & (pix[:, 1] > 40) & (pix[:, 1] < h - 40)
         assert ok.any()

@@ -110,15 +110,18 @@ class Viewer:
         poses, rs = sample_poses(smap, samples, seed=seed, robot=robot, obstacles=obstacles,
                                  reference=self.robot_layer.q if self.robot_layer else None)
         layer = self.surface_map
-        top = float(layer.centres[:, 2].max() + layer.tile_height / 2) if len(layer.centres) else 0.0
-        lift = max(top - (float(poses[:, 2].min()) if len(poses) else 0.0), 0.0) + 0.02
+        # Outlines and arrows just above the tiles, which lie on the floor (below a pose's z when the robot's
+        # reference frame is above its feet: lift < 0 then).
+        top = float(layer.drawn_centres[:, 2].max() + layer.tile_height / 2) if len(layer.centres) else 0.0
+        lift = top - (float(poses[:, 2].min()) if len(poses) else 0.0) + 0.02
         self.samples = SamplesLayer(self.scene, poses, rs, footprint, lift=lift)
         if len(poses):
             self.server.gui.add_markdown(self.samples.table())
         if self.robot_layer is not None and len(poses):
             self.stand(poses[0], smap.reference_frame)
         self._surface_controls(smap)
-        self.frame_camera(np.vstack([polygon, self.surface_map.centres]) if len(polygon) else self.surface_map.centres)
+        drawn = self.surface_map.drawn_centres
+        self.frame_camera(np.vstack([polygon, drawn]) if len(polygon) else drawn)
         return self.surface_map
 
     def add_capability_map(self, cap, base_pose=None):

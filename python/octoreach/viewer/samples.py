@@ -22,7 +22,8 @@ class SamplesLayer:
     """Poses (N, 4) drawn as footprints plus arrows; `table()` lists them with their R_S."""
 
     def __init__(self, scene, poses, rs, footprint: np.ndarray, name: str = "/samples", lift: float = 0.04):
-        """`lift`: height above each pose at which outlines and arrows are drawn (above the map's tiles)."""
+        """`lift`: height relative to each pose's z at which outlines and arrows are drawn (just above the map's
+        tiles; negative when the tiles lie on the floor below the robot's reference frame)."""
         from .._core import base_pose
 
         self.lift = lift

@@ -22,7 +22,8 @@ BEST = -1  # theta selection: the best theta of each cell
 
 class SurfaceMapLayer:
     """Cells of a SurfaceMap under `name`; `show(theta_bin)` shows another theta selection, `pick(ray)` finds a
-    cell. Cell indices (clicks, `shown`, `cell_pose`) index `centres`, the map's voxels, whatever theta is shown.
+    cell. Cell indices (clicks, `shown`, `cell_pose`) index `centres`, the map's voxels, whatever theta is shown;
+    they are drawn at `drawn_centres` (on the floor: z lowered by `floor_offset`).
     `atomic`: the viser server's `atomic` (a move's two visibility changes reach the page together)."""
 
     def __init__(self, scene, smap, name: str = "/surface_map", atomic=None):
@@ -31,6 +32,11 @@ class SurfaceMapLayer:
         centres, values = smap.voxels()
         self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
         self.values = np.asarray(values, dtype=float).reshape(len(self.centres), smap.theta_bins)
+        # Drawn on the floor: a cell's z is the height of the robot's reference frame (a PR2's base link: 0; a
+        # robot whose frame is its torso: that height), so the lowest level is drawn at z = 0, where the robot
+        # stands, and higher ones (a map over a z range) above it. Picks and poses use the map's own z.
+        self.floor_offset = float(self.centres[:, 2].min()) if len(self.centres) else 0.0
+        self.drawn_centres = self.centres - [0.0, 0.0, self.floor_offset]
         self.vmax = float(smap.max_reachability) or 1.0
         self.edge = float(smap.resolution)
         self.tile_height = self.edge * 0.2
@@ -52,7 +58,7 @@ class SurfaceMapLayer:
         """One node a selection, coloured for it; only the best theta's visible. Flat tiles (a fifth of the edge
         high) keep the robot's footprint and the floor visible."""
         for k, shown in self.cells.items():
-            self.handles[k] = cells.add_cells(self.scene, self.node_name(k), self.centres[shown],
+            self.handles[k] = cells.add_cells(self.scene, self.node_name(k), self.drawn_centres[shown],
                                               colours.scale(self.rs[k], self.vmax), self.edge * 0.92,
                                               self.tile_height, visible=k == self.theta_bin, top_only=True)
 
@@ -110,5 +116,5 @@ class SurfaceMapLayer:
 
     def pick(self, origin, direction) -> int | None:
         """Shown cell hit first by a ray (world frame), or None."""
-        hit = cells.first_hit(origin, direction, self.centres[self.shown], self.edge * 0.92, self.tile_height)
+        hit = cells.first_hit(origin, direction, self.drawn_centres[self.shown], self.edge * 0.92, self.tile_height)
         return None if hit is None else int(self.shown[hit])
