@@ -1,7 +1,8 @@
 // The SRDF part of Robot::from_urdf: groups (chains, joint lists, link lists, subgroups), end
 // effectors, group states and disabled collision pairs. Names the URDF lacks are an error that
 // says which (and the nearest names), except in <disable_collisions>, which MoveIt also lets name
-// links of other variants of the robot.
+// links of other variants of the robot. Names under the robot's name as a namespace ("baxter/left_s0") are read
+// without it when the URDF has the plain name.
 #include <algorithm>
 #include <map>
 #include <set>
@@ -155,6 +156,31 @@ void read_disabled_pairs(TiXmlElement* root, const Robot& robot, PairSet& allowe
   }
 }
 
+// Some SRDFs name joints and links with the robot's name as a namespace (example-robot-data's Baxter:
+// "baxter/left_s0" in its groups and states, plain names in its disabled pairs). A name the URDF lacks whose
+// "<robot name>/" prefix (the URDF's or the SRDF's robot name), once removed, names a URDF link or joint is
+// read without it; every other name is left as written (and checked as before).
+void strip_robot_prefix(TiXmlElement* e, const Robot& robot, const std::vector<std::string>& prefixes) {
+  static const char* const kAttributes[] = {"name", "link1", "link2", "base_link", "tip_link", "parent_link"};
+  auto known = [&robot](const std::string& n) {
+    if (robot.has_link(n)) return true;
+    for (const Joint& j : robot.joints())
+      if (j.name == n) return true;
+    return false;
+  };
+  for (const char* a : kAttributes) {
+    const char* v = e->Attribute(a);
+    if (!v) continue;
+    const std::string s(v);
+    for (const std::string& p : prefixes)
+      if (s.size() > p.size() && s.compare(0, p.size(), p) == 0 && !known(s) && known(s.substr(p.size()))) {
+        e->SetAttribute(a, s.substr(p.size()));
+        break;
+      }
+  }
+  for (TiXmlElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) strip_robot_prefix(c, robot, prefixes);
+}
+
 }  // namespace
 
 void RobotBuilder::read_srdf(const std::string& srdf, PairSet& allowed) {
@@ -167,6 +193,9 @@ void RobotBuilder::read_srdf(const std::string& srdf, PairSet& allowed) {
   TiXmlElement* root = doc.RootElement();
   if (!root || std::string(root->Value()) != "robot")
     throw std::invalid_argument("malformed SRDF: the root element must be <robot>");
+  std::vector<std::string> prefixes{r.name() + "/"};
+  if (const char* n = root->Attribute("name"); n && std::string(n) + "/" != prefixes[0]) prefixes.push_back(std::string(n) + "/");
+  for (TiXmlElement* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) strip_robot_prefix(c, r, prefixes);
   r.srdf_groups_ = read_all_groups(root);
   r.end_effectors_ = read_end_effectors(root);
   check_against_urdf(r, r.srdf_groups_, r.end_effectors_, root);
