@@ -20,6 +20,19 @@ namespace octoreach::detail {
 int first_colliding_pair(const Robot& robot, const std::vector<Pose>& poses,
                          const std::vector<std::pair<int, int>>& pairs);
 
+/// World poses and world AABBs of the shapes of a robot's links (per link, per shape).
+struct ShapeBoxes {
+  std::vector<std::vector<fcl::AABBd>> boxes;
+  std::vector<std::vector<Pose>> poses;
+  /// Recomputes link `link`'s entries from its link pose.
+  void update(const Robot& robot, const std::vector<Pose>& link_poses, int link);
+};
+
+/// first_colliding_pair with the shape boxes given: `boxes` must hold every link named by `pairs`, at
+/// the link poses the check is about (IK keeps the boxes of the links its chain never moves and
+/// recomputes only the others).
+int first_colliding_pair(const Robot& robot, const ShapeBoxes& boxes, const std::vector<std::pair<int, int>>& pairs);
+
 /// World-frame AABB of a geometry at a pose, from its local AABB (cheap and conservative).
 inline fcl::AABBd world_aabb(const fcl::CollisionGeometryd& g, const Pose& T) {
   const fcl::AABBd& local = g.aabb_local;

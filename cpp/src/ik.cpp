@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include "octoreach/chain.hpp"
@@ -68,6 +69,8 @@ struct CollisionSetup {
   std::vector<Pose> poses;
   detail::HingePairs hinges;  // moving pairs one joint sets: skipped where certainly free
   Eigen::VectorXd full;       // scratch: the robot configuration of the solution checked
+  detail::ShapeBoxes boxes;   // shape boxes: the links the chain never moves stay at the reference
+  std::vector<int> moved_links;  // collision links the chain moves (their boxes follow each solution)
 
   bool matches(const Chain& c, const std::shared_ptr<const Robot>& r, const Eigen::VectorXd& ref) const {
     return !robot.expired() && !robot.owner_before(r) && !r.owner_before(robot) && base == c.base_link() &&
@@ -101,6 +104,12 @@ struct CollisionSetup {
       if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
     r->link_poses(reference, s.poses);
     s.hinges = detail::HingePairs(c, s.moving_pairs, reference);
+    s.boxes = detail::ShapeBoxes();
+    s.moved_links.clear();
+    for (int li : r->collision_links()) {
+      s.boxes.update(*r, s.poses, li);
+      if (c.link_mask(li) != 0) s.moved_links.push_back(li);
+    }
     return s;
   }
 
@@ -133,7 +142,7 @@ class LmIk {
   using Res = Eigen::Matrix<double, 6, 1>;
 
   LmIk(const Chain& chain, const Pose& target, const IkOptions& o)
-      : c_(chain), target_(target), o_(o), n_(chain.dof()), rng_(o.seed), J_(6, n_), J_new_(6, n_), Jr_(6, n_),
+      : c_(chain), target_(target), o_(o), n_(chain.dof()), J_(6, n_), J_new_(6, n_), Jr_(6, n_),
         q_(n_), q_new_(n_), dq_(n_), g_(n_), A_(n_, n_) {
     approach_tip_ = o.approach_axis.normalized();
     approach_goal_ = target.linear() * approach_tip_;
@@ -149,7 +158,7 @@ class LmIk {
         q_ = *seed;
         clamp(q_);
       } else {
-        q_ = c_.random_configuration(rng_);
+        q_ = c_.random_configuration(rng());
       }
       if (descend()) {
         Eigen::VectorXd sol = c_.wrap(q_);
@@ -294,7 +303,8 @@ class LmIk {
     if (o_.check_self_collision) {
       if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
       if (fixed_state_ == 1) return false;
-      const int k = detail::first_colliding_pair(robot, s.poses, s.hinges.uncertain(robot, s.full));
+      for (int li : s.moved_links) s.boxes.update(robot, s.poses, li);
+      const int k = detail::first_colliding_pair(robot, s.boxes, s.hinges.uncertain(robot, s.full));
       if (k >= 0) {
         s.hinges.hit(k);
         return false;
@@ -308,7 +318,13 @@ class LmIk {
   const IkOptions& o_;
   const int n_;
   Eigen::Vector3d approach_tip_, approach_goal_;
-  std::mt19937_64 rng_;
+  // The restarts' generator, seeded at the first restart: a seeded single-attempt call (the capability
+  // map's flood) never draws from it, and seeding a Mersenne twister costs more than a descent step.
+  std::optional<std::mt19937_64> rng_;
+  std::mt19937_64& rng() {
+    if (!rng_) rng_.emplace(o_.seed);
+    return *rng_;
+  }
   Jac J_, J_new_, Jr_;  // Jacobian at q_ and at q_new_; rows weighted as the residual
   Vec q_, q_new_, dq_, g_;
   Sq A_;

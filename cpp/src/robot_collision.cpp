@@ -111,37 +111,45 @@ bool Robot::in_self_collision_poses(const std::vector<Pose>& poses, const std::v
   return detail::first_colliding_pair(*this, poses, pairs) >= 0;
 }
 
+void detail::ShapeBoxes::update(const Robot& robot, const std::vector<Pose>& link_poses, int link) {
+  if (boxes.size() < robot.links().size()) {
+    boxes.resize(robot.links().size());
+    poses.resize(robot.links().size());
+  }
+  const auto& shapes = robot.links()[link].shapes;
+  boxes[link].resize(shapes.size());
+  poses[link].resize(shapes.size());
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    poses[link][s] = link_poses[link] * shapes[s].origin;
+    boxes[link][s] = world_aabb(*shapes[s].geometry, poses[link][s]);
+  }
+}
+
 int detail::first_colliding_pair(const Robot& robot, const std::vector<Pose>& poses,
                                  const std::vector<std::pair<int, int>>& pairs) {
   // AABBs of every shape first, so most pairs are rejected without FCL. The scratch is per thread:
-  // the robot itself is shared and never written.
-  const auto& links = robot.links();
-  thread_local std::vector<std::vector<fcl::AABBd>> boxes;
-  thread_local std::vector<std::vector<Pose>> shape_poses;
-  boxes.resize(links.size());
-  shape_poses.resize(links.size());
-  // Only the links named by `pairs` need their boxes.
+  // the robot itself is shared and never written. Only the links named by `pairs` need their boxes.
+  thread_local ShapeBoxes boxes;
   thread_local std::vector<char> needed;
-  needed.assign(links.size(), 0);
+  needed.assign(robot.links().size(), 0);
   for (const auto& [a, b] : pairs) needed[a] = needed[b] = 1;
-  for (int li : robot.collision_links()) {
-    if (!needed[li]) continue;
-    const auto& shapes = links[li].shapes;
-    boxes[li].resize(shapes.size());
-    shape_poses[li].resize(shapes.size());
-    for (std::size_t s = 0; s < shapes.size(); ++s) {
-      shape_poses[li][s] = poses[li] * shapes[s].origin;
-      boxes[li][s] = world_aabb(*shapes[s].geometry, shape_poses[li][s]);
-    }
-  }
+  for (int li : robot.collision_links())
+    if (needed[li]) boxes.update(robot, poses, li);
+  return first_colliding_pair(robot, boxes, pairs);
+}
+
+int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& sb, const std::vector<std::pair<int, int>>& pairs) {
+  const auto& links = robot.links();
+  const auto& boxes = sb.boxes;
+  const auto& shape_poses = sb.poses;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const auto [a, b] = pairs[p];
     const auto& sa = links[a].shapes;
-    const auto& sb = links[b].shapes;
+    const auto& sb_ = links[b].shapes;
     for (std::size_t i = 0; i < sa.size(); ++i)
-      for (std::size_t k = 0; k < sb.size(); ++k) {
+      for (std::size_t k = 0; k < sb_.size(); ++k) {
         if (!boxes[a][i].overlap(boxes[b][k])) continue;
-        if (geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb[k].geometry.get(), shape_poses[b][k]))
+        if (geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb_[k].geometry.get(), shape_poses[b][k]))
           return static_cast<int>(p);
       }
   }

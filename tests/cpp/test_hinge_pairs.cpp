@@ -79,3 +79,60 @@ TEST(HingePairs, BucketWidthBoundsTheMotion) {
   // Half a bucket turns a link of this radius by at most 1.5 mm.
   for (double r : {0.01, 0.1, 0.5, 2.0}) EXPECT_LE(0.5 * detail::HingePairs::bucket_width(r) * r, 1.5e-3 + 1e-15);
 }
+
+TEST(ShapeBoxes, KeptBoxesOfStillLinksAnswerAsFreshOnes) {
+  // IK keeps the shape boxes of the links its chain never moves at the reference posture and refreshes
+  // the others (detail::ShapeBoxes): the check answers, pair for pair, as boxes computed afresh.
+  auto robot = Robot::from_urdf(kUrdf);
+  Chain chain = robot->chain("base", "fore");
+  std::vector<std::pair<int, int>> moving, fixed;
+  chain.split_collision_pairs(moving, fixed);
+  std::vector<std::pair<int, int>> all = moving;
+  all.insert(all.end(), fixed.begin(), fixed.end());
+  const Eigen::VectorXd reference = robot->home();
+  std::vector<Pose> poses;
+  robot->link_poses(reference, poses);
+  detail::ShapeBoxes boxes;
+  std::vector<int> moved;
+  for (int li : robot->collision_links()) {
+    boxes.update(*robot, poses, li);
+    if (chain.link_mask(li) != 0) moved.push_back(li);
+  }
+  EXPECT_EQ(moved.size(), 4u);  // shoulder, upper, cover, fore
+  std::mt19937_64 rng(11);
+  int colliding = 0;
+  for (int i = 0; i < 2000; ++i) {
+    robot->link_poses(chain.to_robot_configuration(chain.random_configuration(rng), reference), poses);
+    for (int li : moved) boxes.update(*robot, poses, li);
+    for (const auto& p : all) {
+      const std::vector<std::pair<int, int>> one{p};
+      EXPECT_EQ(detail::first_colliding_pair(*robot, boxes, one), detail::first_colliding_pair(*robot, poses, one))
+          << "pair " << p.first << "-" << p.second << " at " << i;
+    }
+    colliding += detail::first_colliding_pair(*robot, boxes, all) >= 0;
+  }
+  EXPECT_GT(colliding, 100);
+  EXPECT_LT(colliding, 1900);
+}
+
+TEST(ShapeBoxes, IkSolutionsWithSelfCollisionAreFree) {
+  // Chain::ik with check_self_collision accepts only solutions the robot's full check finds free
+  // (IK checks them with kept boxes and hinge certificates).
+  auto robot = Robot::from_urdf(kUrdf);
+  Chain chain = robot->chain("base", "fore");
+  IkOptions o;
+  o.mode = IkMode::Position;
+  o.check_self_collision = true;
+  o.attempts = 5;
+  std::mt19937_64 rng(5);
+  int solved = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Pose target = chain.fk(chain.random_configuration(rng));
+    o.seed = static_cast<std::uint64_t>(i);
+    auto q = chain.ik(target, o);
+    if (!q) continue;
+    ++solved;
+    EXPECT_FALSE(robot->in_self_collision(chain.to_robot_configuration(*q, robot->home()))) << "target " << i;
+  }
+  EXPECT_GT(solved, 100);
+}

@@ -174,6 +174,9 @@ void CapabilityBuilder::run_wave(const std::vector<Item>& wave, const std::vecto
       newly.push_back(c);
     } else {
       status_[c] = kFailed;
+      // The solution row tried (flood), kept so that the retry pass does not repeat a call that fails
+      // again (the same seed gives the same descent); -1 after wave 0 (its seed is an FK sample).
+      sol_row_[c] = &pool == &sol_pool_ ? wave[i].seed : -1;
     }
   }
 }
@@ -198,22 +201,32 @@ void CapabilityBuilder::flood(std::vector<std::uint32_t> frontier) {
 }
 
 // A failed cell next to several reachable ones gets their solutions as seeds (a single
-// neighbour's seed can sit on the wrong side of a joint limit or a collision).
+// neighbour's seed can sit on the wrong side of a joint limit or a collision). The seed the cell
+// failed with in the flood is not tried again: IK from the same seed at the same target repeats the
+// same descent, so leaving it out changes no result, only the cost (about a third of the pass's calls).
 std::vector<CapabilityBuilder::Item> CapabilityBuilder::retry_items() const {
   std::vector<Item> retry;
   std::vector<std::uint32_t> nb;
   for (std::uint32_t c = 0; c < box_.cells; ++c) {
     if (status_[c] != kFailed) continue;
     box_.neighbours(c, set_, nb);
-    Item it{c, -1};
+    std::array<std::int32_t, 4> seeds{{-1, -1, -1, -1}};
     int k = 0;
     for (std::uint32_t n : nb)
       if (status_[n] == kReachable) {
-        if (k == 0) it.seed = sol_row_[n];
-        else if (k <= 3) it.more[k - 1] = sol_row_[n];
+        if (k <= 3) seeds[k] = sol_row_[n];
         ++k;
       }
-    if (k >= 2) retry.push_back(it);
+    if (k < 2) continue;
+    Item it{c, -1};
+    int m = 0;
+    for (std::int32_t s : seeds)
+      if (s >= 0 && s != sol_row_[c]) {
+        if (m == 0) it.seed = s;
+        else it.more[m - 1] = s;
+        ++m;
+      }
+    if (m > 0) retry.push_back(it);
   }
   return retry;
 }
