@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fcl/fcl.h>
 
@@ -36,7 +37,10 @@ ArmObstacles::ArmObstacles(const Robot& robot, const CapabilityMap& cap, const A
   links_ = place.roles.arm;
   links_.insert(links_.end(), place.roles.tool.begin(), place.roles.tool.end());
   if (obstacles_)
-    for (const auto& o : obstacles_->objects()) boxes_.push_back(o->getAABB());
+    for (const auto& o : obstacles_->objects()) {
+      boxes_.push_back(o->getAABB());
+      obbs_.push_back(Obb::of(*o->collisionGeometry(), Pose(o->getTransform().matrix())));
+    }
 }
 
 namespace {
@@ -161,7 +165,24 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
     in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
     const Pose world = world_from_arm * in_arm;
     for (const auto& s : robot_.links()[shaped_[l]].shapes)
-      if (obstacles_->collides(*s.geometry, world * s.origin)) return true;
+      if (shape_collides(*s.geometry, world * s.origin)) return true;
+  }
+  return false;
+}
+
+// Obstacles::collides (world AABBs, then FCL) with an exact pre-test between: the oriented boxes of
+// the shape and of the obstacle (their local AABBs placed) clearly apart means no contact, and FCL
+// (whose every call fits a bounding volume to the obstacle box) is skipped.
+bool ArmObstacles::shape_collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const {
+  const fcl::AABBd box = world_aabb(geometry, pose);
+  const auto& objects = obstacles_->objects();
+  std::optional<Obb> shape;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const auto& o = objects[i];
+    if (!o->getAABB().overlap(box)) continue;
+    if (!shape) shape = Obb::of(geometry, pose);
+    if (shape->apart(obbs_[i])) continue;
+    if (geometry_collide(&geometry, pose, o->collisionGeometry().get(), Pose(o->getTransform().matrix()))) return true;
   }
   return false;
 }

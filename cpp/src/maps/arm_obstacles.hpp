@@ -12,6 +12,7 @@
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "cell_slots.hpp"
+#include "obb.hpp"
 
 namespace octoreach::detail {
 
@@ -62,6 +63,8 @@ class ArmObstacles {
   const float* link_poses(std::int32_t slot, ArmScratch& scratch) const;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
+  std::vector<Obb> obbs_;           // world oriented boxes of the obstacles (their local AABBs placed)
+  bool shape_collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
   Eigen::Vector3d reach_lo_, reach_hi_;  // union of the arm boxes (arm frame)
 };
 
