@@ -8,14 +8,26 @@ their combination, as the issue asks.
 
     .venv/bin/python benchmarks/surface_map.py               # 0.05 m and 0.1 m
     .venv/bin/python benchmarks/surface_map.py --quick       # 0.1 m only
+
+Build cost on a shared machine: ``--reference PYTHONPATH`` builds the capability maps once (this octoreach,
+saved with solutions), then the point maps, surface maps and combination of both arms in child processes,
+alternately with the octoreach found on PYTHONPATH (e.g. main's build) and with this one (``--repeats``
+each), and reports CPU seconds (user + sys) and wall seconds of each child, their medians, the ratio, and
+whether both builds wrote the same bytes (SHA-256 of every map file):
+
+    .venv/bin/python benchmarks/surface_map.py --reference /path/to/main/py --repeats 3
 """
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import platform
+import resource
 import statistics
+import subprocess
+import sys
 import tempfile
 import time
 
@@ -124,12 +136,105 @@ def run(res: float, directions: int, samples: int) -> dict:
     return out
 
 
+def cpu_seconds() -> float:
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
+def child_build(res: float, caps_dir: str, out_dir: str) -> dict:
+    """Point maps, surface maps and their combination for both arms from saved capability maps (the child of
+    compare_builds): wall and CPU seconds, and the SHA-256 of every map file written."""
+    robot = octoreach.robots.pr2()
+    table = octoreach.Surface.rectangle(TABLE["size_x"], TABLE["size_y"], TABLE["height"], TABLE["x"], TABLE["y"])
+    table.add_legs()
+    caps = {arm: octoreach.CapabilityMap.load(os.path.join(caps_dir, f"{arm}.map")) for arm in ("right_arm", "left_arm")}
+    refs = {arm: arms.default_reference(robot, arm) for arm in caps}
+    t0, c0 = time.perf_counter(), cpu_seconds()
+    points, maps = {}, {}
+    for arm in caps:
+        points[arm] = octoreach.InversePointMap.build(robot, caps[arm], reference_frame="base_footprint",
+                                                      reference=refs[arm], progress=False)
+        maps[arm] = octoreach.SurfaceMap.build(robot, caps[arm], table, resolution=res, z_range=(0, 0),
+                                               reference=refs[arm], progress=False)
+    combined = octoreach.SurfaceMap.combine([maps["right_arm"], maps["left_arm"]], "max")
+    wall, cpu = time.perf_counter() - t0, cpu_seconds() - c0
+    digests = {}
+    for name, m in [*((f"{a}.orpm", points[a]) for a in points), *((f"{a}.orsm", maps[a]) for a in maps),
+                    ("combined.orsm", combined)]:
+        path = os.path.join(out_dir, name)
+        m.save(path)
+        with open(path, "rb") as f:
+            digests[name] = hashlib.sha256(f.read()).hexdigest()
+    return {"wall": wall, "cpu": cpu, "sha256": digests, "octoreach": os.path.dirname(octoreach.__file__)}
+
+
+def compare_builds(reference_path: str, res: float, directions: int, repeats: int) -> dict:
+    """Surface-map builds with the octoreach on `reference_path` and with this one, interleaved, in child
+    processes, from the same capability maps (built once here)."""
+    robot = octoreach.robots.pr2()
+    with tempfile.TemporaryDirectory() as work:
+        caps_dir = os.path.join(work, "caps")
+        os.makedirs(caps_dir)
+        for arm in ("right_arm", "left_arm"):
+            arms.capability_map(robot, arm, resolution=res, directions=directions, progress=False).save(
+                os.path.join(caps_dir, f"{arm}.map"), with_solutions=True)
+
+        def run(pythonpath: str, n: int) -> dict:
+            env = dict(os.environ, PYTHONPATH=pythonpath)
+            out_dir = os.path.join(work, f"out{n}")
+            os.makedirs(out_dir)
+            cmd = [sys.executable, os.path.abspath(__file__), "--child-build", "--resolution", str(res),
+                   "--caps", caps_dir, "--out", out_dir]
+            return json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
+
+        this_path = os.path.dirname(os.path.dirname(os.path.abspath(octoreach.__file__)))
+        runs = {"reference": [], "this": []}
+        for i in range(repeats):
+            runs["reference"].append(run(reference_path, 2 * i))
+            runs["this"].append(run(this_path, 2 * i + 1))
+    med = {k: {m: round(statistics.median(r[m] for r in v), 2) for m in ("wall", "cpu")} for k, v in runs.items()}
+    digests = [r["sha256"] for v in runs.values() for r in v]
+    return {
+        "reference_pythonpath": reference_path,
+        "resolution_m": res,
+        "directions": directions,
+        "repeats": repeats,
+        "interleaved": True,
+        "timed": "point maps + surface maps of both arms + their combination (capability maps given)",
+        "runs": {k: [{"wall": round(r["wall"], 2), "cpu": round(r["cpu"], 2), "octoreach": r["octoreach"]} for r in v]
+                 for k, v in runs.items()},
+        "median_seconds": med,
+        "speedup_cpu": round(med["reference"]["cpu"] / med["this"]["cpu"], 3),
+        "speedup_wall": round(med["reference"]["wall"] / med["this"]["wall"], 3),
+        "same_bytes": all(d == digests[0] for d in digests),
+        "sha256": digests[0],
+        "load_average_after": [round(x, 2) for x in os.getloadavg()],
+    }
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true", help="0.1 m only, fewer directions")
     p.add_argument("--directions", type=int, default=200)
     p.add_argument("--samples", type=int, default=200)
+    p.add_argument("--reference", default=None, metavar="PYTHONPATH",
+                   help="compare surface-map builds with the octoreach on this PYTHONPATH (e.g. main's build), "
+                        "interleaved in child processes, instead of the full benchmark")
+    p.add_argument("--repeats", type=int, default=3, help="builds per side with --reference (medians reported)")
+    p.add_argument("--resolution", type=float, default=0.05, help="resolution of the --reference comparison")
+    p.add_argument("--child-build", action="store_true", help=argparse.SUPPRESS)
+    p.add_argument("--caps", help=argparse.SUPPRESS)
+    p.add_argument("--out", help=argparse.SUPPRESS)
     args = p.parse_args()
+    if args.child_build:
+        json.dump(child_build(args.resolution, args.caps, args.out), sys.stdout)
+        return
+    if args.reference is not None:
+        result = {"benchmark": "surface_map", "machine": {"cpus": os.cpu_count(), "platform": platform.platform(),
+                                                          "octoreach": octoreach.__version__},
+                  "compare": compare_builds(args.reference, args.resolution, args.directions, args.repeats)}
+        print(json.dumps(result, indent=2))
+        return
     resolutions = [0.1] if args.quick else [0.05, 0.1]
     result = {"benchmark": "surface_map", "anchors": ANCHORS, "targets": TARGETS,
               "machine": {"cpus": os.cpu_count(), "platform": platform.platform(), "octoreach": octoreach.__version__},

@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include <fcl/fcl.h>
 
@@ -16,6 +18,7 @@
 #include "maps/arm_clearance.hpp"
 #include "maps/arm_obstacles.hpp"
 #include "maps/batch.hpp"
+#include "maps/cell_slots.hpp"
 #include "reach_extent.hpp"
 
 namespace octoreach {
@@ -46,6 +49,7 @@ struct SurfaceBuild {
   detail::ArmClearance* clearance = nullptr;
   std::shared_ptr<Obstacles> slab;        // the surface, its boxes and the rest of the room: the body check
   const detail::ArmObstacles* obstacles = nullptr;  // its boxes and the rest of the room: the arm check
+  const detail::CellSlots* slots = nullptr;  // the cells the arm checks read (check_arm only)
 };
 
 struct BinCounts {
@@ -172,8 +176,8 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   std::vector<Pose> poses;
   detail::ArmScratch arm_scratch;
   detail::NearObstacles near;
-  auto low_points = [&](std::uint32_t rec, int orient, const Eigen::Vector3d& centre) -> const detail::LowSet& {
-    if (b.upright) return b.clearance->shared(rec, orient);
+  auto low_points = [&](std::uint32_t rec, int orient, std::int32_t slot, const Eigen::Vector3d& centre) -> const detail::LowSet& {
+    if (b.upright) return b.clearance->shared(slot);
     auto it = own_low.find(b.clearance->key(rec, orient));
     if (it != own_low.end()) return it->second;
     auto& out = own_low[b.clearance->key(rec, orient)];
@@ -197,18 +201,25 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
           Eigen::Vector3d in_ref = f.Rz.transpose() * (b.targets[i] - base);
           Eigen::Vector3d p = b.arm_from_reference * in_ref + target_offset();
           Eigen::Vector3d centre;
-          std::int64_t rec = b.cap.record_at(p, &centre);
+          // The voxel centre serves the low sets computed per bin (not upright) only.
+          std::int64_t rec = b.cap.record_at(p, b.upright ? nullptr : &centre);
           if (rec < 0) continue;
           ++n.candidates;
           int count = 0;
           if (f.fast)
             for (std::size_t j = 0; j < hp.size(); ++j)
               d[j] = static_cast<float>(hp[j].z() - hp[j].head<2>().dot(b.target_uv[i]));
+          const auto r = static_cast<std::uint32_t>(rec);
           for (int mo : f.mapped) {
-            if (!b.cap.record_has(static_cast<std::uint32_t>(rec), mo)) continue;
-            const auto r = static_cast<std::uint32_t>(rec);
-            bool ok = !b.o.check_arm || (!f.arm_under(b, low_points(r, mo, centre), b.target_uv[i], d) &&
-                                         !b.obstacles->collides(r, mo, near, world_from_arm, arm_scratch));
+            if (!b.cap.record_has(r, mo)) continue;
+            if (!b.o.check_arm) {
+              ++count;
+              continue;
+            }
+            const std::int32_t slot = b.slots->slot(r, mo);
+            if (slot < 0) throw std::logic_error("surface map: capability cell outside the precomputed layers");
+            const bool ok = !f.arm_under(b, low_points(r, mo, slot, centre), b.target_uv[i], d) &&
+                            !b.obstacles->collides(slot, near, world_from_arm, arm_scratch);
             if (!ok) ++n.arm;
             count += ok;
           }
@@ -319,12 +330,22 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   b.clearance = &clearance;
   detail::ArmObstacles arm_obstacles(robot, cap, place, others);
   b.obstacles = &arm_obstacles;
-  if (b.upright && o.check_arm) {
-    auto [za_lo, za_hi] = target_heights_in_arm(b, g);
-    clearance.compute_shared(za_lo, za_hi, o.threads);
-    arm_obstacles.compute(o.threads, za_lo, za_hi);
-  } else if (o.check_arm) {
-    arm_obstacles.compute(o.threads);
+  std::unique_ptr<detail::CellSlots> slots;
+  if (o.check_arm) {
+    // The cells a build can read: the orientations the grasps map to at some theta bin, and in the
+    // upright case the records of the heights the targets have in the arm frame.
+    std::vector<char> wanted(cap.orientations().size(), 0);
+    for (int k = 0; k < o.theta_bins; ++k)
+      for (int mo : BinFrame(b, k).mapped) wanted[mo] = 1;
+    if (b.upright) {
+      auto [za_lo, za_hi] = target_heights_in_arm(b, g);
+      slots = std::make_unique<detail::CellSlots>(cap, wanted, za_lo, za_hi);
+      clearance.compute_shared(*slots, o.threads);
+    } else {
+      slots = std::make_unique<detail::CellSlots>(cap, wanted);
+    }
+    b.slots = slots.get();
+    arm_obstacles.compute(*slots, o.threads);
   }
 
   const int T = o.theta_bins;

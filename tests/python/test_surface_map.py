@@ -353,3 +353,46 @@ def test_a_robot_whose_frame_is_not_at_its_feet_is_told_its_height():
     # The plain test arm stands on its base plate.
     plain = robots.test_arm()
     assert plain.lowest_point(plain.home())[0] >= -1e-9
+
+
+def _wall(y, x=0.0, z=0.5, size=(2.0, 0.05, 1.0)):
+    walls = octoreach.Obstacles()
+    pose = np.eye(4)
+    pose[:3, 3] = [x, y, z]
+    walls.add_box(np.array(size), pose, "wall")
+    return walls
+
+
+def _file_bytes(sm, path):
+    sm.save(str(path))
+    return path.read_bytes()
+
+
+@pytest.mark.parametrize("tilted", [False, True])
+def test_arm_checks_with_obstacles_do_not_depend_on_threads(arm_setup, tmp_path, tilted):
+    # The arm checks read per-cell data built in parallel (low sets, arm boxes) and per-bin caches of
+    # link poses: the map must be the same bytes whatever the thread count, upright or tilted surface.
+    robot, cap, _, _ = arm_setup
+    if tilted:
+        table = octoreach.Surface(np.array([[0.4, -0.2, 0.3], [0.8, -0.2, 0.5], [0.8, 0.2, 0.5], [0.4, 0.2, 0.3]]))
+    else:
+        table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)  # the fixture's table, with legs
+        table.add_legs()
+    wall = _wall(0.35)
+    build = lambda threads: octoreach.SurfaceMap.build(robot, cap, table, resolution=0.1, z_range=(0, 0),
+                                                       obstacles=wall, threads=threads, progress=False)
+    one, two = build(1), build(2)
+    assert one.voxel_count > 0
+    assert _file_bytes(one, tmp_path / "one.orsm") == _file_bytes(two, tmp_path / "two.orsm")
+    open_map = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.1, z_range=(0, 0), progress=False)
+    assert one.stats["arm_rejections"] > open_map.stats["arm_rejections"]
+
+
+def test_an_obstacle_out_of_the_arms_reach_changes_no_value(arm_setup):
+    # Obstacles far from every arm box are culled before any check: the values must equal the map without them.
+    robot, cap, table, sm = arm_setup
+    far = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.1, z_range=(0, 0), progress=False,
+                                     obstacles=_wall(0.0, x=0.0, z=50.0))
+    (c0, v0), (c1, v1) = sm.voxels(), far.voxels()
+    assert np.array_equal(c0, c1) and np.array_equal(v0, v1)
+    assert far.stats["arm_rejections"] == sm.stats["arm_rejections"]

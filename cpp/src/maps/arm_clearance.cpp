@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -98,36 +97,15 @@ void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d&
   low.summarise();
 }
 
-void ArmClearance::compute_shared(double za_lo, double za_hi, int threads) {
-  std::vector<Eigen::Vector3d> cc;
-  std::vector<double> cv;
-  cap_.voxels(cc, cv);
-  std::vector<std::pair<std::uint32_t, Eigen::Vector3d>> records;
-  for (std::size_t i = 0; i < cc.size(); ++i)
-    if (cc[i].z() >= za_lo - cap_.resolution() && cc[i].z() <= za_hi + cap_.resolution()) {
-      Eigen::Vector3d centre;
-      std::int64_t rec = cap_.record_at(cc[i], &centre);
-      if (rec >= 0) records.emplace_back(static_cast<std::uint32_t>(rec), centre);
-    }
-  std::vector<std::vector<std::pair<std::uint64_t, LowSet>>> parts(records.size());
+void ArmClearance::compute_shared(const CellSlots& slots, int threads) {
+  shared_.assign(slots.size(), LowSet());
+  const auto& records = slots.records();
   detail::parallel_for(records.size(), threads, [&](std::size_t i, int) {
     thread_local std::vector<Pose> poses;
-    auto [rec, centre] = records[i];
-    for (int orient = 0; orient < orientations_; ++orient) {
-      if (!cap_.record_has(rec, orient)) continue;
-      LowSet pts;
-      compute(rec, orient, centre, Eigen::Vector3d::UnitZ(), poses, pts);
-      parts[i].emplace_back(key(rec, orient), std::move(pts));
-    }
+    const auto& R = records[i];
+    for (std::uint32_t s = R.first; s < R.last; ++s)
+      compute(R.rec, slots.cell(s).orient, R.centre, Eigen::Vector3d::UnitZ(), poses, shared_[s]);
   }, 4);
-  for (auto& part : parts)
-    for (auto& [k, pts] : part) shared_.emplace(k, std::move(pts));
-}
-
-const LowSet& ArmClearance::shared(std::uint32_t rec, int orient) const {
-  auto it = shared_.find(key(rec, orient));
-  if (it == shared_.end()) throw std::logic_error("surface map: capability cell outside the precomputed layers");
-  return it->second;
 }
 
 }  // namespace octoreach::detail

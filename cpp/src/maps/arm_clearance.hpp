@@ -9,6 +9,7 @@
 
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
+#include "cell_slots.hpp"
 
 namespace octoreach::detail {
 
@@ -32,11 +33,10 @@ class ArmClearance {
   void compute(std::uint32_t rec, int orient, const Eigen::Vector3d& centre, const Eigen::Vector3d& n_arm,
                std::vector<Pose>& poses, LowSet& low) const;
   /// For an upright arm frame and a horizontal surface the normal in the arm frame is z whatever
-  /// the yaw: computes the low sets once for every cell whose voxel centre height (arm frame) lies
-  /// in [za_lo, za_hi] widened by one capability voxel.
-  void compute_shared(double za_lo, double za_hi, int threads);
-  /// The shared low set of a cell; throws std::logic_error when compute_shared did not cover it.
-  const LowSet& shared(std::uint32_t rec, int orient) const;
+  /// the yaw: computes the low sets once for every cell of `slots`, in parallel.
+  void compute_shared(const CellSlots& slots, int threads);
+  /// The shared low set of a slot of the CellSlots given to compute_shared.
+  const LowSet& shared(std::int32_t slot) const { return shared_[static_cast<std::size_t>(slot)]; }
   std::uint64_t key(std::uint32_t rec, int orient) const { return static_cast<std::uint64_t>(rec) * orientations_ + orient; }
 
  private:
@@ -49,7 +49,7 @@ class ArmClearance {
   Pose root_from_arm_base_;
   double grasp_height_;
   int orientations_;
-  std::unordered_map<std::uint64_t, LowSet> shared_;
+  std::vector<LowSet> shared_;  // by slot
 };
 
 }  // namespace octoreach::detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fcl/fcl.h>
 
@@ -30,14 +31,16 @@ ArmObstacles::ArmObstacles(const Robot& robot, const CapabilityMap& cap, const A
       arm_(robot.chain(cap.base_link(), cap.tip_link())),
       reference_(place.reference),
       arm_from_root_(place.link_poses[robot.link_index(cap.base_link())].inverse()),
-      orientations_(cap.orientations().size()),
       obstacles_(std::move(obstacles)),
       reach_lo_(Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity())),
       reach_hi_(-reach_lo_) {
   links_ = place.roles.arm;
   links_.insert(links_.end(), place.roles.tool.begin(), place.roles.tool.end());
   if (obstacles_)
-    for (const auto& o : obstacles_->objects()) boxes_.push_back(o->getAABB());
+    for (const auto& o : obstacles_->objects()) {
+      boxes_.push_back(o->getAABB());
+      obbs_.push_back(Obb::of(*o->collisionGeometry(), Pose(o->getTransform().matrix())));
+    }
 }
 
 namespace {
@@ -58,69 +61,50 @@ bool meets(const std::int16_t* box, const Eigen::Vector3d& lo_cm, const Eigen::V
 
 }  // namespace
 
-void ArmObstacles::compute(int threads, double za_lo, double za_hi) {
+void ArmObstacles::compute(const CellSlots& slots, int threads) {
   if (empty()) return;
+  slots_ = &slots;
   for (int li : links_)
     if (!robot_.links()[li].shapes.empty()) shaped_.push_back(li);
-  const std::size_t stride = 6 * (1 + shaped_.size());
-  std::vector<Eigen::Vector3d> cc;
-  std::vector<double> cv;
-  cap_.voxels(cc, cv);
-  std::vector<std::uint32_t> records;
-  for (const auto& c : cc) {
-    if (c.z() < za_lo - cap_.resolution() || c.z() > za_hi + cap_.resolution()) continue;
-    std::int64_t rec = cap_.record_at(c);
-    if (rec >= 0) records.push_back(static_cast<std::uint32_t>(rec));
-  }
-  std::vector<std::vector<std::uint64_t>> keys(records.size());
-  std::vector<std::vector<std::int16_t>> parts(records.size());
+  stride_ = 6 * (1 + shaped_.size());
+  boxes_cm_.assign(slots.size() * stride_, 0);
+  const auto& records = slots.records();
   detail::parallel_for(records.size(), threads, [&](std::size_t i, int) {
     thread_local std::vector<Pose> poses;
-    const std::uint32_t rec = records[i];
-    for (int orient = 0; orient < orientations_; ++orient) {
-      if (!cap_.record_has(rec, orient)) continue;
-      const float* qf = cap_.record_solution(rec, orient);
+    for (std::uint32_t s = records[i].first; s < records[i].last; ++s) {
+      const float* qf = cap_.record_solution(records[i].rec, slots.cell(s).orient);
       Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
       robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
-      const std::size_t at = parts[i].size();
-      parts[i].resize(at + stride);
+      std::int16_t* out = boxes_cm_.data() + s * stride_;
       Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
       for (std::size_t j = 0; j < shaped_.size(); ++j) {
         const int li = shaped_[j];
         Eigen::Vector3d llo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), lhi = -llo;
-        for (const auto& s : robot_.links()[li].shapes) {
-          fcl::AABBd b = world_aabb(*s.geometry, arm_from_root_ * poses[li] * s.origin);
+        for (const auto& sh : robot_.links()[li].shapes) {
+          fcl::AABBd b = world_aabb(*sh.geometry, arm_from_root_ * poses[li] * sh.origin);
           llo = llo.cwiseMin(b.min_);
           lhi = lhi.cwiseMax(b.max_);
         }
-        put_box(llo, lhi, parts[i].data() + at + 6 * (1 + j));
+        put_box(llo, lhi, out + 6 * (1 + j));
         lo = lo.cwiseMin(llo);
         hi = hi.cwiseMax(lhi);
       }
-      put_box(lo, hi, parts[i].data() + at);
-      keys[i].push_back(key(rec, orient));
+      put_box(lo, hi, out);
     }
   }, 4);
-  std::size_t total = 0;
-  for (const auto& k : keys) total += k.size();
-  boxes_cm_.reserve(total * stride);
-  offset_.reserve(total);
-  for (std::size_t i = 0; i < records.size(); ++i)
-    for (std::size_t c = 0; c < keys[i].size(); ++c) {
-      const std::int16_t* box = parts[i].data() + c * stride;
-      for (int k = 0; k < 3; ++k) {
-        reach_lo_[k] = std::min(reach_lo_[k], box[k] / 100.0);
-        reach_hi_[k] = std::max(reach_hi_[k], box[3 + k] / 100.0);
-      }
-      offset_.emplace(keys[i][c], static_cast<std::uint32_t>(boxes_cm_.size()));
-      boxes_cm_.insert(boxes_cm_.end(), box, box + stride);
+  for (std::size_t s = 0; s < slots.size(); ++s) {
+    const std::int16_t* box = boxes_cm_.data() + s * stride_;
+    for (int k = 0; k < 3; ++k) {
+      reach_lo_[k] = std::min(reach_lo_[k], box[k] / 100.0);
+      reach_hi_[k] = std::max(reach_hi_[k], box[3 + k] / 100.0);
     }
+  }
 }
 
 void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
   out.lo.clear();
   out.hi.clear();
-  if (empty() || offset_.empty()) return;
+  if (empty() || !slots_ || slots_->size() == 0) return;
   const Pose arm_from_world = world_from_arm.inverse();
   for (const auto& b : boxes_) {
     Eigen::Vector3d lo, hi;
@@ -133,39 +117,37 @@ void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
 
 // Link poses (arm frame) of the shaped links at the stored solution of a cell, from the scratch's
 // cache, computed and cached on first use (the cache stops growing at 32 MB).
-const float* ArmObstacles::link_poses(std::uint32_t rec, int orient, ArmScratch& s) const {
-  const std::uint64_t k = key(rec, orient);
-  auto it = s.at.find(k);
-  if (it != s.at.end()) return s.pool.data() + it->second;
-  const float* qf = cap_.record_solution(rec, orient);
+const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
+  if (s.at.empty()) s.at.assign(slots_->size(), ArmScratch::kNotYet);
+  const std::uint32_t cached = s.at[static_cast<std::size_t>(slot)];
+  if (cached != ArmScratch::kNotYet) return s.pool.data() + cached;
+  const CellSlots::Cell& c = slots_->cell(static_cast<std::size_t>(slot));
+  const float* qf = cap_.record_solution(c.rec, c.orient);
   Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
   robot_.link_poses(arm_.to_robot_configuration(q, reference_), s.poses);
   const std::size_t n = 12 * shaped_.size();
   const bool keep = s.pool.size() + n <= (std::size_t(32) << 20) / sizeof(float);
   const std::size_t at = s.pool.size();
-  thread_local std::vector<float> spare;  // a cell met once the cache is full
   float* out;
   if (keep) {
     s.pool.resize(at + n);
     out = s.pool.data() + at;
   } else {
-    spare.resize(n);
-    out = spare.data();
+    s.spare.resize(n);
+    out = s.spare.data();
   }
   for (std::size_t j = 0; j < shaped_.size(); ++j) {
     Eigen::Matrix<float, 3, 4> m = (arm_from_root_ * s.poses[shaped_[j]]).matrix().topRows<3>().cast<float>();
     std::copy(m.data(), m.data() + 12, out + 12 * j);
   }
-  if (keep) s.at.emplace(k, static_cast<std::uint32_t>(at));
+  if (keep) s.at[static_cast<std::size_t>(slot)] = static_cast<std::uint32_t>(at);
   return out;
 }
 
-bool ArmObstacles::collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_arm,
+bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const Pose& world_from_arm,
                             ArmScratch& scratch) const {
   if (near.empty()) return false;
-  auto it = offset_.find(key(rec, orient));
-  if (it == offset_.end()) return false;  // no stored solution: nothing to check
-  const std::int16_t* box = boxes_cm_.data() + it->second;
+  const std::int16_t* box = boxes_cm_.data() + static_cast<std::size_t>(slot) * stride_;
   // The whole arm's box, then each link's box, against each near obstacle's box; FCL only for the
   // links whose box meets one.
   thread_local std::vector<int> hit;
@@ -177,13 +159,30 @@ bool ArmObstacles::collides(std::uint32_t rec, int orient, const NearObstacles& 
         hit.push_back(static_cast<int>(l));
   }
   if (hit.empty()) return false;
-  const float* P = link_poses(rec, orient, scratch);
+  const float* P = link_poses(slot, scratch);
   for (int l : hit) {
     Pose in_arm = Pose::Identity();
     in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
     const Pose world = world_from_arm * in_arm;
     for (const auto& s : robot_.links()[shaped_[l]].shapes)
-      if (obstacles_->collides(*s.geometry, world * s.origin)) return true;
+      if (shape_collides(*s.geometry, world * s.origin)) return true;
+  }
+  return false;
+}
+
+// Obstacles::collides (world AABBs, then FCL) with an exact pre-test between: the oriented boxes of
+// the shape and of the obstacle (their local AABBs placed) clearly apart means no contact, and FCL
+// (whose every call fits a bounding volume to the obstacle box) is skipped.
+bool ArmObstacles::shape_collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const {
+  const fcl::AABBd box = world_aabb(geometry, pose);
+  const auto& objects = obstacles_->objects();
+  std::optional<Obb> shape;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const auto& o = objects[i];
+    if (!o->getAABB().overlap(box)) continue;
+    if (!shape) shape = Obb::of(geometry, pose);
+    if (shape->apart(obbs_[i])) continue;
+    if (geometry_collide(&geometry, pose, o->collisionGeometry().get(), Pose(o->getTransform().matrix()))) return true;
   }
   return false;
 }

@@ -4,7 +4,6 @@
 // whole reach at a base pose, then the arm's bounding box at that solution, then FCL per link.
 #include <cstdint>
 #include <memory>
-#include <unordered_map>
 #include <vector>
 
 #include <fcl/math/bv/AABB.h>
@@ -12,6 +11,8 @@
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
+#include "cell_slots.hpp"
+#include "obb.hpp"
 
 namespace octoreach::detail {
 
@@ -25,8 +26,10 @@ struct NearObstacles {
 /// checked so far, so a cell met again from another base position needs no forward kinematics.
 struct ArmScratch {
   std::vector<Pose> poses;
-  std::unordered_map<std::uint64_t, std::uint32_t> at;
+  std::vector<std::uint32_t> at;  // by slot: offset into pool, or kNotYet
   std::vector<float> pool;
+  std::vector<float> spare;       // a cell met once the pool is full
+  static constexpr std::uint32_t kNotYet = 0xffffffffu;
 };
 
 /// Arm boxes of capability cells and the checks against a set of obstacles. Thread-safe for const
@@ -36,34 +39,32 @@ class ArmObstacles {
   ArmObstacles(const Robot& robot, const CapabilityMap& capability, const ArmPlacement& place,
                std::shared_ptr<const Obstacles> obstacles);
   bool empty() const { return !obstacles_ || obstacles_->empty(); }
-  /// Arm boxes of every (record, orientation) with a solution whose voxel centre height (arm frame) lies
-  /// in [za_lo, za_hi] widened by one capability voxel (the cells an upright build can meet; the default
-  /// is every cell), in parallel.
-  void compute(int threads, double za_lo = -1e9, double za_hi = 1e9);
+  /// Arm boxes of every cell of `slots` (kept by reference: it must outlive this object), in parallel.
+  void compute(const CellSlots& slots, int threads);
   /// Obstacles whose world box meets the arm's whole reach when the arm base is at `world_from_arm`.
   void near(const Pose& world_from_arm, NearObstacles& out) const;
-  /// True when the arm at the stored solution of (rec, orient) touches an obstacle; the arm base link
-  /// at `world_from_arm`.
-  bool collides(std::uint32_t rec, int orient, const NearObstacles& near, const Pose& world_from_arm,
-                ArmScratch& scratch) const;
+  /// True when the arm at the stored solution of the cell of `slot` touches an obstacle; the arm base
+  /// link at `world_from_arm`.
+  bool collides(std::int32_t slot, const NearObstacles& near, const Pose& world_from_arm, ArmScratch& scratch) const;
 
  private:
-  std::uint64_t key(std::uint32_t rec, int orient) const { return static_cast<std::uint64_t>(rec) * orientations_ + orient; }
   const Robot& robot_;
   const CapabilityMap& cap_;
   Chain arm_;
   Eigen::VectorXd reference_;
   std::vector<int> links_;          // links moved by the arm (arm and tool roles)
   std::vector<int> shaped_;         // those of them with collision shapes
-  // Per cell: the box of the whole arm, then one box per shaped link, arm frame, in centimetres
-  // rounded outwards (lo x y z, hi x y z): 6 (1 + shaped links) int16 from offset_[key].
+  // Per slot: the box of the whole arm, then one box per shaped link, arm frame, in centimetres
+  // rounded outwards (lo x y z, hi x y z): stride_ = 6 (1 + shaped links) int16 from slot * stride_.
   std::vector<std::int16_t> boxes_cm_;
-  std::unordered_map<std::uint64_t, std::uint32_t> offset_;
+  std::size_t stride_ = 0;
+  const CellSlots* slots_ = nullptr;
   Pose arm_from_root_;
-  const float* link_poses(std::uint32_t rec, int orient, ArmScratch& scratch) const;
-  int orientations_;
+  const float* link_poses(std::int32_t slot, ArmScratch& scratch) const;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
+  std::vector<Obb> obbs_;           // world oriented boxes of the obstacles (their local AABBs placed)
+  bool shape_collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
   Eigen::Vector3d reach_lo_, reach_hi_;  // union of the arm boxes (arm frame)
 };
 
