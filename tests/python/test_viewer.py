@@ -159,12 +159,10 @@ def test_static_html(arm_map, viewer, tmp_path):
     assert "__VISER_EMBED_DATA__" in text and len(text) > 100_000
 
 
-def test_cells_and_samples_lie_on_the_floor_when_the_reference_frame_is_above_it(viewer):
+def test_cells_and_samples_lie_on_the_floor_when_the_reference_frame_is_above_it(arm_map, viewer):
     # A robot whose reference frame stands 0.3 m above its feet (as Baxter's torso, or a base link on wheels):
     # the map's z is 0.3, the robot stands there, and the cells, outlines and arrows lie on the floor, not in the air.
-    robot = octoreach.robots.test_arm()
-    cap = octoreach.CapabilityMap.build(robot.chain("base_link", "tool0"), resolution=0.15, directions=24,
-                                        progress=False)
+    robot, cap, _ = arm_map
     table = octoreach.Surface.rectangle(0.6, 0.4, 0.7, x=0.55)
     sm = octoreach.SurfaceMap.build(robot, cap, table, resolution=0.15, z_range=(0.3, 0.3), progress=False)
     layer = viewer.add_surface_map(sm, robot=robot, samples=2)
