@@ -25,7 +25,8 @@ for draw_s; while the slider is timed every frame is then also read back whole t
 delay the frame after it: an upper bound; read_back_s is that whole read-back's time); frame_js_s / frame_gpu_s
 split that frame into its main-thread part and the wait for SwiftShader to draw it.
 
-Two configurations, interleaved opening by opening, each in its own headless Chromium (1280 x 800):
+Two configurations, interleaved opening by opening, each in its own headless Chromium (1280 x 800; a
+browser shows about:blank while another configuration is timed, so it draws nothing then):
   before  main before this round: Chromium's earlier flags (PREVIOUS_FLAGS: the page composited on
           SwiftShader, the GPU in its own process), the slider re-sending one node's colours and scales
           (RecolourLayer) and the sampled poses labelled in 3D text
@@ -322,7 +323,7 @@ def main() -> None:
               "browser": "headless Chromium, software WebGL (SwiftShader)", "window": [1280, 800],
               "flags": {"before": list(PREVIOUS_FLAGS), "after": list(FLAGS),
                         "after_no_antialiasing": list(FLAGS + NO_MSAA)},
-              "targets": TARGETS, "note": "shared 2-core machine, other jobs running: figures vary from run to run"}
+              "targets": TARGETS, "load_average_at_start": [round(x, 2) for x in os.getloadavg()]}
     result["imports_in_a_fresh_process"] = import_times()
     result["reference_robot_meshes_trimesh_s"] = trimesh_reference()
     import viser  # noqa: F401  (imported before the timings: a running viewer has it)
@@ -376,6 +377,10 @@ def main() -> None:
                                 moves[c][key] += slider_times(v, browsers[c], args.moves)
                         finally:
                             v.close()
+                            # a viewer's page keeps drawing after its server is closed (viser's client redraws its
+                            # scene at least once a second, a SwiftShader frame of this scene takes 0.1-0.2 s): a
+                            # blank page keeps this browser idle while the other configurations are timed
+                            browsers[c].driver.get("about:blank")
                     finally:
                         app.SurfaceMapLayer = SurfaceMapLayer
                     rows[c][key].append(out)
@@ -390,6 +395,7 @@ def main() -> None:
                                                                   for f in m[0]},
                                             "page_s_max": round(max(x["page_s"] for x in m), 3),
                                             "page_s_all": [round(x["page_s"], 3) for x in m]}
+    result["load_average_at_end"] = [round(x, 2) for x in os.getloadavg()]
     print(json.dumps(result, indent=2), file=json_out)
 
 

@@ -21,6 +21,21 @@ def resolve(robot: Robot, arm, approach_axis=None) -> tuple[str, str, np.ndarray
     return a.base_link, a.tip_link, np.array(a.approach_axis, float)
 
 
+def default_arm(robot: Robot) -> str:
+    """The arm a command uses when none is named: "right_arm" where the robot has one (the PR2's convention), else
+    the robot's only arm; ValueError naming the arms when there are several (or none)."""
+    names = [a.name for a in find_arms(robot)]
+    if "right_arm" in names:
+        return "right_arm"
+    if len(names) == 1:
+        return names[0]
+    if not names:
+        raise ValueError(f"robot {robot.name!r} has no arm that could be found: give one by its links "
+                         "(--base LINK --tip LINK)")
+    raise ValueError(f"robot {robot.name!r} has {len(names)} arms ({', '.join(sorted(names))}): choose with --arm "
+                     "(or --arms, several are combined)")
+
+
 def default_reference(robot: Robot, arm) -> np.ndarray:
     """Home posture with every SRDF 'tuck*' state applied that does not move this arm (the other arm tucked)."""
     a = Arm.resolve(robot, arm)

@@ -77,9 +77,13 @@ def _arm_arg(args, robot):
 
     axis = None if args.approach_axis is None else tuple(args.approach_axis)
     if args.arm is None:
-        if not (args.base and args.tip):
-            raise ValueError("give --arm NAME, or --base LINK --tip LINK")
-        return Arm.resolve(robot, (args.base, args.tip), approach_axis=axis)
+        if args.base or args.tip:
+            if not (args.base and args.tip):
+                raise ValueError("give both --base LINK and --tip LINK (or --arm NAME)")
+            return Arm.resolve(robot, (args.base, args.tip), approach_axis=axis)
+        from .arms import default_arm
+
+        return Arm.resolve(robot, default_arm(robot), approach_axis=axis)
     return Arm.resolve(robot, args.arm, approach_axis=axis)
 
 
@@ -194,6 +198,10 @@ def _cmd_surface(args) -> int:
     robot = _load_robot(args)
     surfaces = _surfaces(args)
     sources = []
+    if not args.arms:
+        from .arms import default_arm
+
+        args.arms = [default_arm(robot)]
     for arm in args.arms:
         source = CapabilityMap.load(arm) if arm.endswith(".orcm") else _named_arm(args, robot, arm)
         if isinstance(source, CapabilityMap) and not source.has_solutions:
@@ -343,11 +351,12 @@ def _arm_args(sp, many=False):
 
     defaults = CapabilityMapOptions()  # the build defaults, defined once in C++
     if many:
-        sp.add_argument("--arms", nargs="+", default=["right_arm"],
+        sp.add_argument("--arms", nargs="+",
                         help="arm names (SRDF groups, e.g. right_arm left_arm) or saved capability maps (.orcm "
-                             "with solutions); several are combined (default: right_arm)")
+                             "with solutions); several are combined (default: right_arm, or the robot's only arm)")
     else:
-        sp.add_argument("--arm", help="arm name (see `octoreach robot NAME`, e.g. right_arm)")
+        sp.add_argument("--arm", help="arm name (see `octoreach robot NAME`, e.g. right_arm; default: right_arm, or "
+                                      "the robot's only arm)")
         sp.add_argument("--base", help="chain base link (instead of --arm)")
         sp.add_argument("--tip", help="chain tip (tool) link (instead of --arm)")
     sp.add_argument("--approach-axis", type=float, nargs=3, metavar=("X", "Y", "Z"),

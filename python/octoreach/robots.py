@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import os
+import re
 import warnings
 import site
 import sys
@@ -114,6 +115,28 @@ def files(name: str) -> tuple[Path, Path | None, list[str]]:
         raise ValueError(f"unknown robot {name!r}{hint} Available: {', '.join(sorted(index))}")
     urdf_path, srdf_path = index[name]
     return urdf_path, srdf_path, package_dirs()
+
+
+_ROBOT_NAME = re.compile(r"<robot\b[^>]*?\bname\s*=\s*[\"']([^\"']+)[\"']")
+
+
+def catalogue_name(robot_name: str, urdf_hash: str = "") -> str | None:
+    """The name load() takes for the robot of example-robot-data whose URDF declares `robot_name`
+    (<robot name=...>; a Robot and a map carry that name, which need not be the one it is loaded by: xarm7's URDF
+    says "UF_ROBOT") and, when `urdf_hash` is given, whose model has that hash; None if there is none."""
+    check_type(robot_name, str, "robot_name", "a str")
+    try:
+        index = _index()
+    except FileNotFoundError:
+        return None
+    for name, (urdf_path, _) in sorted(index.items()):
+        with open(urdf_path, encoding="utf-8", errors="replace") as f:
+            m = _ROBOT_NAME.search(f.read())
+        if m is None or m.group(1) != robot_name:
+            continue
+        if not urdf_hash or Robot.from_urdf(str(urdf_path), package_dirs=package_dirs()).urdf_hash == urdf_hash:
+            return name
+    return None
 
 
 def complete_allowed_collisions(robot: Robot, srdf_given: bool = True, options=None, progress=False, **kwargs) -> Robot:

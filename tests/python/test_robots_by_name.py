@@ -3,9 +3,13 @@ file of ours, the allowed-collision matrix is sampled as MoveIt's setup assistan
 what exists."""
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
+import octoreach
 from octoreach import Arm, Robot, find_arms, robots
 
 try:
@@ -206,9 +210,6 @@ def test_self_collision_error_names_the_links():
 
 
 def test_cli_robot_by_name_prints_links_joints_groups_end_effectors_and_arms(tmp_path):
-    import subprocess
-    import sys
-
     out = tmp_path / "panda.srdf"
     r = subprocess.run([sys.executable, "-m", "octoreach.cli", "robot", "panda", "--write-srdf", str(out)],
                        capture_output=True, text=True)
@@ -221,3 +222,39 @@ def test_cli_robot_by_name_prints_links_joints_groups_end_effectors_and_arms(tmp
     assert "  arm: panda_link0 -> panda_hand_tcp, approach axis (0.0, 0.0, 1.0) (+z of 'panda_hand_tcp'" in text
     assert Robot.from_urdf(str(robots._index()["panda"][0]), package_dirs=robots.package_dirs(),
                            srdf=str(out)).srdf_groups["arm"]["joints"][0] == "panda_joint1"
+
+
+def test_default_arm_is_right_arm_or_the_only_arm(monkeypatch):
+    from octoreach import arms
+
+    assert arms.default_arm(robots.pr2()) == "right_arm"
+    xarm = robots.load("xarm7")
+    assert arms.default_arm(xarm) == octoreach.arm_names(xarm)[0] and len(octoreach.arm_names(xarm)) == 1
+
+    class Named:
+        def __init__(self, name):
+            self.name = name
+
+    monkeypatch.setattr(arms, "find_arms", lambda robot: [Named("arm_left"), Named("arm_right")])
+    with pytest.raises(ValueError, match="2 arms .*arm_left, arm_right.*--arm"):
+        arms.default_arm(xarm)
+    monkeypatch.setattr(arms, "find_arms", lambda robot: [])
+    with pytest.raises(ValueError, match="no arm .*--base LINK --tip LINK"):
+        arms.default_arm(xarm)
+
+
+def test_catalogue_name_of_a_urdf_robot_name():
+    xarm = robots.load("xarm7")
+    assert xarm.name == "UF_ROBOT"  # what a map records
+    assert robots.catalogue_name("UF_ROBOT") == "xarm7"
+    assert robots.catalogue_name("UF_ROBOT", xarm.urdf_hash) == "xarm7"
+    assert robots.catalogue_name("UF_ROBOT", "0") is None  # another model of that name
+    assert robots.catalogue_name("no_such_robot") is None
+
+
+def test_cli_single_arm_robot_needs_no_arm_name(tmp_path):
+    out = tmp_path / "xarm7.orsm"
+    r = subprocess.run([sys.executable, "-m", "octoreach.cli", "surface", "--robot", "xarm7", "--resolution", "0.2",
+                        "--directions", "12", "--quiet", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert octoreach.SurfaceMap.load(str(out)).voxel_count > 0

@@ -335,3 +335,31 @@ def test_surface_slab_faces_outwards():
         assert volume == pytest.approx(0.1)
         normals = np.cross(b - a, c - a)
         assert (normals[:, 2] > 0).sum() == 2 and (normals[:, 2] < 0).sum() == 2  # top up, bottom down
+
+
+def test_map_of_a_robot_loaded_under_another_name_draws_it(viewer):
+    # xarm7's URDF calls its robot "UF_ROBOT", the name a map records: the viewer finds the robot (and its meshes)
+    # by the URDF's declared name and model hash
+    robot = octoreach.robots.load("xarm7")
+    assert robot.name != "xarm7"
+    cap = octoreach.arms.capability_map(robot, octoreach.arms.default_arm(robot), resolution=0.2, directions=12,
+                                        progress=False)
+    sm = octoreach.SurfaceMap.build(robot, cap, octoreach.Surface.rectangle(0.6, 0.4, 0.3, x=0.6), resolution=0.2,
+                                    z_range=(0, 0), progress=False)
+    viewer.add_surface_map(sm, samples=1)
+    assert viewer.robot_layer is not None and viewer.robot_layer.meshes.robot.urdf_hash == robot.urdf_hash
+    assert viewer.robot_layer.links  # its meshes were found
+
+
+def test_map_of_an_unknown_robot_is_drawn_without_it_and_says_so(arm_map, viewer):
+    robot, _, _ = arm_map
+    text = (octoreach.robots.project_urdf("test_arm")).read_text()
+    stranger = octoreach.Robot.from_urdf(text.replace(f'name="{robot.name}"', 'name="somebody_elses_arm"', 1))
+    assert stranger.name == "somebody_elses_arm"
+    cap = octoreach.CapabilityMap.build(stranger.chain("base_link", "tool0"), resolution=0.2, directions=12,
+                                        progress=False)
+    sm = octoreach.SurfaceMap.build(stranger, cap, octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55),
+                                    resolution=0.2, z_range=(0, 0), progress=False)
+    layer = viewer.add_surface_map(sm, samples=2)
+    assert viewer.robot_layer is None and len(layer.centres)
+    assert any("somebody_elses_arm" in n and "--robot" in n for n in viewer.notes)

@@ -90,10 +90,14 @@ class Viewer:
                       "boxes); in Python, view(..., surface=the Surface) draws them")
         self.surface_map = SurfaceMapLayer(self.scene, smap, atomic=self.server.atomic)
         self._watch_surface_clicks(self.surface_map)
-        if robot is None and smap.robot_name:
-            robot = smap.robot_name
         if isinstance(robot, str):
             robot = files.robot_by_name(robot)
+        elif robot is None and smap.robot_name:  # the map's own robot, when it can be found
+            try:
+                robot = files.robot_by_name(smap.robot_name, smap.urdf_hash)
+            except (ValueError, OSError):
+                self.note(f"the map's robot {smap.robot_name!r} is neither the project's nor example-robot-data's: "
+                          "drawn without it (give --robot NAME, or robot= in Python)")
         if robot is not None:
             if smap.urdf_hash and robot.urdf_hash != smap.urdf_hash:
                 print(f"octoreach: warning: the map was built for another robot model ({smap.robot_name}) than "

@@ -39,7 +39,10 @@ def exploration_map(source):
     return source
 
 
-def robot_by_name(name: str):
+def robot_by_name(name: str, urdf_hash: str = ""):
+    """The robot called `name`: one of the project's own (urdf/), one of example-robot-data by the name it is
+    loaded by, or (a map records its URDF's robot name) the one whose URDF declares that name and, when given,
+    has that model hash. ValueError (from robots.load: the names there are) if none is."""
     from .. import robots
     from .._core import Robot
 
@@ -47,7 +50,14 @@ def robot_by_name(name: str):
     try:
         return Robot.from_urdf(str(robots.project_urdf(own)))  # the project's own robots (urdf/)
     except ValueError:
+        pass
+    try:
         return robots.load(name)
+    except ValueError:
+        known = robots.catalogue_name(name, urdf_hash)
+        if known is None:
+            raise
+        return robots.load(known)
 
 
 def reference_posture(robot, smap) -> np.ndarray:

@@ -17,9 +17,10 @@ import numpy as np
 from . import colours, mesh_files
 
 
-def robot_files(name: str) -> tuple[str, list[str]]:
-    """(URDF path, package_dirs) of a robot that ``octoreach.robots.load(name)`` loads, or of the
-    project's own robots (``urdf/NAME.urdf``, whose robots are named "octoreach_NAME")."""
+def robot_files(name: str, urdf_hash: str = "") -> tuple[str, list[str]]:
+    """(URDF path, package_dirs) of a robot that ``octoreach.robots.load(name)`` loads, of the project's own
+    robots (``urdf/NAME.urdf``, whose robots are named "octoreach_NAME"), or of the robot of example-robot-data
+    whose URDF declares the robot name `name` (a Robot's name; with that model hash when given)."""
     from .. import robots
 
     own = name[len("octoreach_"):] if name.startswith("octoreach_") else name
@@ -27,7 +28,13 @@ def robot_files(name: str) -> tuple[str, list[str]]:
         return str(robots.project_urdf(own)), []
     except ValueError:
         pass
-    urdf, _, dirs = robots.files(name)
+    try:
+        urdf, _, dirs = robots.files(name)
+    except ValueError:
+        known = robots.catalogue_name(name, urdf_hash)
+        if known is None:
+            raise
+        urdf, _, dirs = robots.files(known)
     return str(urdf), dirs
 
 
@@ -97,7 +104,7 @@ class RobotMeshes:
 
     def __init__(self, robot, urdf: str | None = None, package_dirs=None):
         if urdf is None:
-            urdf, default_dirs = robot_files(robot.name)
+            urdf, default_dirs = robot_files(robot.name, robot.urdf_hash)
             package_dirs = default_dirs if package_dirs is None else package_dirs
         self.robot = robot
         try:
