@@ -3,7 +3,7 @@
 A job file is YAML (or JSON)::
 
     robots: [pr2, {name: tiago, arms: [arm_right]}, {urdf: my_robot.urdf, srdf: my_robot.srdf}]
-    arms: [right_arm]             # the arms of every robot that names none
+    arms: [right_arm]             # the arms of every robot that names none (default: right_arm, else its only arm)
     resolutions: [0.1]            # m
     capability: {directions: 100, seed: 0}    # CapabilityMapOptions fields (not resolution)
     surfaces:
@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import cache as _cache
+from .arms import default_arm
 from ._core import Arm, CapabilityBlocks, CapabilityMap, Robot, SurfaceMap, SurfaceMapOptions
 
 _JOB_KEYS = {"robots", "arms", "resolutions", "capability", "surfaces", "surface", "base_heights", "out"}
@@ -263,7 +264,9 @@ def _robot_specs(data: dict, where: str, base: Path) -> list[tuple[dict, list, s
         if "package_dirs" in spec:
             spec["package_dirs"] = [str(p if Path(p).is_absolute() else (base / p).resolve()) for p in spec["package_dirs"]]
         arms_ = entry.get("arms", default_arms)
-        if not isinstance(arms_, list) or not arms_ or not all(isinstance(a, (str, list)) for a in arms_):
+        if arms_ is None:
+            arms_ = []  # the robot's default arm (arms.default_arm), once it is loaded
+        elif not isinstance(arms_, list) or not arms_ or not all(isinstance(a, (str, list)) for a in arms_):
             raise _err(w, "'arms' must list arm names (or [base, tip] pairs); give 'arms' here or at the top")
         out.append((spec, arms_, w))
     return out
@@ -347,6 +350,11 @@ def read_job(job, out: str | os.PathLike | None = None) -> Job:
         except (ValueError, OSError, RuntimeError) as e:
             raise _err(f"{w}", f"cannot load the robot: {e}") from None
         rname = _safe(spec.get("name") or Path(spec["urdf"]).stem)
+        if not arm_names:
+            try:
+                arm_names = [default_arm(robot)]
+            except ValueError as e:
+                raise _err(f"{w}: arms", str(e)) from None
         for j, arm_name in enumerate(arm_names):
             try:
                 arm = Arm.resolve(robot, arm_name if isinstance(arm_name, str) else tuple(arm_name))

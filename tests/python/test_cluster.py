@@ -132,9 +132,18 @@ def test_unreachable_cluster_fails_within_seconds(tmp_path):
     assert time.monotonic() - t0 < 10
 
 
+def test_job_robot_without_arms_takes_its_default_arm(tmp_path):
+    from octoreach import jobs
+
+    job = tmp_path / "job.json"
+    job.write_text(__import__("json").dumps({**JOB, "robots": ["test_arm"]}))
+    caps = jobs.read_job(job).capability
+    assert [c.arm.tip_link for c in caps] == ["tool0", "tool0"]  # its only arm, "arm", at both resolutions
+
+
 @pytest.mark.parametrize("change, message", [
     ({"robots": ["no_such_robot"], "arms": ["arm"]}, "robots[0]: cannot load the robot"),
-    ({"robots": ["test_arm"]}, "robots[0]: 'arms' must list"),
+    ({"robots": [{"name": "test_arm", "arms": "arm"}]}, "robots[0]: 'arms' must list"),
     ({"robots": [{"name": "test_arm", "arms": ["no_arm"]}]}, "robots[0]: arms[0]"),
     ({"resolutions": [0.1, -1]}, "resolutions[1]"),
     ({"surfaces": [{"name": "t", "rectangle": {"size": [1, 1]}}]}, "surfaces[0]"),
