@@ -27,12 +27,22 @@ std::vector<std::string> link_names(const Robot& r, const std::vector<int>& link
 // Model queries: names, limits, configurations, chains, link poses.
 void wrap_robot_model(py::class_<Robot, std::shared_ptr<Robot>>& c) {
   c.def_static("from_urdf", [](const std::string& urdf, const std::vector<std::string>& package_dirs,
-                               const py::object& srdf) {
-          return Robot::from_urdf(urdf, package_dirs,
-                                  srdf.is_none() ? "" : cast_arg<std::string>(srdf, "srdf", "a path or XML string (str)"));
+                               const py::object& srdf, const py::object& srdf_mismatch) {
+          const std::string text = srdf.is_none() ? "" : cast_arg<std::string>(srdf, "srdf", "a path or XML string (str)");
+          if (srdf_mismatch.is_none()) return Robot::from_urdf(urdf, package_dirs, text);  // the C++ default
+          const auto m = cast_arg<std::string>(srdf_mismatch, "srdf_mismatch", "'error' or 'leave_out'");
+          if (m != "error" && m != "leave_out")
+            throw py::value_error("srdf_mismatch must be 'error' or 'leave_out', got '" + m + "'");
+          return Robot::from_urdf(urdf, package_dirs, text, m == "error" ? SrdfMismatch::kError : SrdfMismatch::kLeaveOut);
         }, py::arg("urdf"), py::arg("package_dirs") = std::vector<std::string>{}, py::arg("srdf") = py::none(),
+        py::arg("srdf_mismatch") = py::none(),
         "Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through\n"
-        "package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs.")
+        "package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs. srdf_mismatch: SRDF\n"
+        "groups and end effectors that name links, joints or groups the URDF lacks are an error ('error', the\n"
+        "default) or left out ('leave_out', as MoveIt does; srdf_left_out says which).")
+      .def_property_readonly("srdf_left_out", &Robot::srdf_left_out,
+                             "SRDF groups and end effectors left out (srdf_mismatch='leave_out'), each with what it names\n"
+                             "that the URDF lacks.")
       .def_property_readonly("name", &Robot::name)
       .def_property_readonly("urdf_hash", &Robot::urdf_hash,
                              "64-bit FNV-1a hash of the URDF text (the same for robots that differ only in their\n"

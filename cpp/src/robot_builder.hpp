@@ -34,7 +34,7 @@ struct RobotBuilder {
   void add_mimics_and_number_joints(const urdf::ModelInterface& model);
 
   // srdf.cpp: groups, group states and disabled collision pairs of an SRDF (path or XML).
-  void read_srdf(const std::string& srdf, PairSet& allowed);
+  void read_srdf(const std::string& srdf, SrdfMismatch mismatch, PairSet& allowed);
 
   // robot_collision.cpp: collision links, adjacent pairs, then the allowed and checked pairs.
   void finish_collision_model(PairSet allowed);

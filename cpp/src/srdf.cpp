@@ -1,6 +1,7 @@
 // The SRDF part of Robot::from_urdf: groups (chains, joint lists, link lists, subgroups), end
 // effectors, group states and disabled collision pairs. Names the URDF lacks are an error that
-// says which (and the nearest names), except in <disable_collisions>, which MoveIt also lets name
+// says which (and the nearest names), or with SrdfMismatch::kLeaveOut leave the groups and end effectors
+// that use them out (recorded in srdf_left_out()), except in <disable_collisions>, which MoveIt also lets name
 // links of other variants of the robot. Names under the robot's name as a namespace ("baxter/left_s0") are read
 // without it when the URDF has the plain name.
 #include <algorithm>
@@ -69,28 +70,29 @@ std::vector<EndEffector> read_end_effectors(TiXmlElement* root) {
   return out;
 }
 
-// Names an SRDF's groups and end effectors use that the URDF lacks, as "link 'x' (in group 'g'; did you mean ...)".
+// Names an SRDF's groups and end effectors use that the URDF (or the SRDF's groups) lacks, each as
+// (owner, "link 'x' (group 'g'; did you mean ...)"), owner being "group 'g'" or "end_effector 'e'".
 struct Disagreements {
   const Robot& robot;
-  std::vector<std::string> problems;
+  std::vector<std::pair<std::string, std::string>> problems;
   std::vector<std::string> link_names, joint_names, group_names;
   std::set<std::string> virtuals;
   void link(const std::string& name, const std::string& where) {
-    if (!robot.has_link(name)) problems.push_back("link '" + name + "' (" + where + detail::did_you_mean(name, link_names) + ")");
+    if (!robot.has_link(name)) problems.emplace_back(where, "link '" + name + "' (" + where + detail::did_you_mean(name, link_names) + ")");
   }
   void joint(const std::string& name, const std::string& where) {
     if (!virtuals.count(name) && std::find(joint_names.begin(), joint_names.end(), name) == joint_names.end())
-      problems.push_back("joint '" + name + "' (" + where + detail::did_you_mean(name, joint_names) + ")");
+      problems.emplace_back(where, "joint '" + name + "' (" + where + detail::did_you_mean(name, joint_names) + ")");
   }
   void group(const std::string& name, const std::string& where) {
     if (std::find(group_names.begin(), group_names.end(), name) == group_names.end())
-      problems.push_back("group '" + name + "' (" + where + detail::did_you_mean(name, group_names) + ")");
+      problems.emplace_back(where, "group '" + name + "' (" + where + detail::did_you_mean(name, group_names) + ")");
   }
 };
 
-void check_against_urdf(const Robot& robot, const std::vector<SrdfGroup>& groups, const std::vector<EndEffector>& ees,
-                        TiXmlElement* root) {
-  Disagreements d{robot, {}, {}, {}, {}, virtual_joints(root)};
+Disagreements disagreements(const Robot& robot, const std::vector<SrdfGroup>& groups, const std::vector<EndEffector>& ees,
+                            const std::set<std::string>& virtuals) {
+  Disagreements d{robot, {}, {}, {}, {}, virtuals};
   for (const Link& l : robot.links()) d.link_names.push_back(l.name);
   for (const Joint& j : robot.joints()) d.joint_names.push_back(j.name);
   for (const SrdfGroup& g : groups) d.group_names.push_back(g.name);
@@ -108,12 +110,36 @@ void check_against_urdf(const Robot& robot, const std::vector<SrdfGroup>& groups
     if (!e.parent_group.empty()) d.group(e.parent_group, where);
   }
   // Group states may name free-flyer joints ("root_joint") that are no URDF joint: skipped, as MoveIt does.
-  if (d.problems.empty()) return;
-  std::string msg = "the SRDF does not match the URDF of robot '" + robot.name() + "': it names " +
-                    std::to_string(d.problems.size()) + " thing(s) the URDF does not have: ";
-  for (std::size_t i = 0; i < d.problems.size() && i < 6; ++i) msg += (i ? "; " : "") + d.problems[i];
-  if (d.problems.size() > 6) msg += "; ...";
-  throw std::invalid_argument(msg + " (is it the SRDF of another variant of the robot?)");
+  return d;
+}
+
+// kError: throws naming what the URDF lacks. kLeaveOut: removes every group and end effector that names
+// something the URDF lacks, then those that name a group so removed, and so on; returns what was left out
+// (one line per entry).
+std::vector<std::string> fit_to_urdf(const Robot& robot, std::vector<SrdfGroup>& groups, std::vector<EndEffector>& ees,
+                                     TiXmlElement* root, SrdfMismatch mismatch) {
+  const std::set<std::string> virtuals = virtual_joints(root);
+  std::vector<std::string> left_out;
+  for (;;) {
+    const Disagreements d = disagreements(robot, groups, ees, virtuals);
+    if (d.problems.empty()) return left_out;
+    if (mismatch == SrdfMismatch::kError) {
+      std::string msg = "the SRDF does not match the URDF of robot '" + robot.name() + "': it names " +
+                        std::to_string(d.problems.size()) + " thing(s) the URDF does not have: ";
+      for (std::size_t i = 0; i < d.problems.size() && i < 6; ++i) msg += (i ? "; " : "") + d.problems[i].second;
+      if (d.problems.size() > 6) msg += "; ...";
+      throw std::invalid_argument(msg + " (is it the SRDF of another variant of the robot?)");
+    }
+    std::map<std::string, std::string> why;  // owner -> its problems
+    for (const auto& [owner, text] : d.problems) why[owner] += (why[owner].empty() ? "" : "; ") + text;
+    for (const auto& [owner, text] : why) left_out.push_back(owner + " left out: " + text);
+    groups.erase(std::remove_if(groups.begin(), groups.end(),
+                                [&why](const SrdfGroup& g) { return why.count("group '" + g.name + "'") > 0; }),
+                 groups.end());
+    ees.erase(std::remove_if(ees.begin(), ees.end(),
+                             [&why](const EndEffector& e) { return why.count("end_effector '" + e.name + "'") > 0; }),
+              ees.end());
+  }
 }
 
 // The groups declared by a chain, as ChainGroup (their first chain).
@@ -183,7 +209,7 @@ void strip_robot_prefix(TiXmlElement* e, const Robot& robot, const std::vector<s
 
 }  // namespace
 
-void RobotBuilder::read_srdf(const std::string& srdf, PairSet& allowed) {
+void RobotBuilder::read_srdf(const std::string& srdf, SrdfMismatch mismatch, PairSet& allowed) {
   std::string sx = looks_like_xml(srdf) ? srdf : read_text_file(srdf, "SRDF");
   TiXmlDocument doc;
   doc.Parse(sx.c_str());
@@ -198,7 +224,7 @@ void RobotBuilder::read_srdf(const std::string& srdf, PairSet& allowed) {
   for (TiXmlElement* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) strip_robot_prefix(c, r, prefixes);
   r.srdf_groups_ = read_all_groups(root);
   r.end_effectors_ = read_end_effectors(root);
-  check_against_urdf(r, r.srdf_groups_, r.end_effectors_, root);
+  r.srdf_left_out_ = fit_to_urdf(r, r.srdf_groups_, r.end_effectors_, root, mismatch);
   r.groups_ = chain_groups(r.srdf_groups_);
   r.named_states_ = read_group_states(root, r);
   read_disabled_pairs(root, r, allowed);

@@ -321,7 +321,7 @@ void RobotBuilder::add_mimics_and_number_joints(const urdf::ModelInterface& mode
 }  // namespace detail
 
 std::shared_ptr<Robot> Robot::from_urdf(const std::string& urdf, const std::vector<std::string>& package_dirs,
-                                        const std::string& srdf) {
+                                        const std::string& srdf, SrdfMismatch mismatch) {
   UrdfText text = read_urdf_text(urdf);
   urdf::ModelInterfaceSharedPtr model = parse_urdf(text.xml);
   std::shared_ptr<Robot> robot(new Robot());
@@ -332,7 +332,7 @@ std::shared_ptr<Robot> Robot::from_urdf(const std::string& urdf, const std::vect
   build.add_joints(*model);
   build.add_mimics_and_number_joints(*model);
   detail::PairSet allowed;
-  if (!srdf.empty()) build.read_srdf(srdf, allowed);
+  if (!srdf.empty()) build.read_srdf(srdf, mismatch, allowed);
   build.finish_collision_model(std::move(allowed));
   return robot;
 }

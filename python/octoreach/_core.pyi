@@ -183,10 +183,12 @@ class Robot:
     Robot model from a URDF: links, joints, collision shapes. Never changes once built.
     """
     @staticmethod
-    def from_urdf(urdf: str, package_dirs: collections.abc.Sequence[str] = [], srdf: typing.Any = None) -> Robot:
+    def from_urdf(urdf: str, package_dirs: collections.abc.Sequence[str] = [], srdf: typing.Any = None, srdf_mismatch: typing.Any = None) -> Robot:
         """
         Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through
-        package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs.
+        package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs. srdf_mismatch: SRDF
+        groups and end effectors that name links, joints or groups the URDF lacks are an error ('error', the
+        default) or left out ('leave_out', as MoveIt does; srdf_left_out says which).
         """
     def __repr__(self) -> str:
         ...
@@ -317,6 +319,12 @@ class Robot:
     def srdf_groups(self) -> dict:
         """
         Every SRDF group: name -> {'chains': [(base, tip)], 'joints': [...], 'links': [...], 'subgroups': [...]}.
+        """
+    @property
+    def srdf_left_out(self) -> list[str]:
+        """
+        SRDF groups and end effectors left out (srdf_mismatch='leave_out'), each with what it names
+        that the URDF lacks.
         """
     @property
     def upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:

@@ -150,15 +150,17 @@ def complete_allowed_collisions(robot: Robot, srdf_given: bool = True, options=N
     return robot.with_sampled_collisions(options, progress=progress, **kwargs)
 
 
-def from_urdf(urdf, package_dirs=(), srdf=None, allowed_collisions: str = "auto") -> Robot:
+def from_urdf(urdf, package_dirs=(), srdf=None, allowed_collisions: str = "auto", srdf_mismatch=None) -> Robot:
     """Robot from a URDF (path or XML) with its SRDF; allowed_collisions: "auto" samples the allowed-collision
     matrix when the SRDF is missing or incomplete (complete_allowed_collisions), "sample" always adds the
-    sampled pairs, "srdf" keeps what the URDF and SRDF say."""
+    sampled pairs, "srdf" keeps what the URDF and SRDF say. srdf_mismatch as in Robot.from_urdf ("error", the
+    default, or "leave_out")."""
     check_type(urdf, PATH, "urdf", "a path or URDF text (str or os.PathLike)")
     check_type(srdf, PATH + (type(None),), "srdf", "a path or SRDF text (str or os.PathLike) or None")
     check_type(allowed_collisions, str, "allowed_collisions", "'auto', 'sample' or 'srdf'")
     dirs = check_paths(package_dirs, "package_dirs")
-    robot = Robot.from_urdf(str(urdf), package_dirs=dirs, srdf=None if srdf is None else str(srdf))
+    robot = Robot.from_urdf(str(urdf), package_dirs=dirs, srdf=None if srdf is None else str(srdf),
+                            srdf_mismatch=srdf_mismatch)
     if allowed_collisions == "auto":
         return complete_allowed_collisions(robot, srdf_given=srdf is not None)
     if allowed_collisions == "sample":
@@ -178,13 +180,16 @@ def load(name: str, srdf: bool = True, allowed_collisions: str = "auto") -> Robo
     urdf_path, srdf_path, dirs = files(name)
     if not srdf:
         srdf_path = None
-    try:
-        return from_urdf(urdf_path, dirs, srdf_path, allowed_collisions)
-    except ValueError as e:
-        if srdf_path is None or "does not match the URDF" not in str(e):
-            raise
-        warnings.warn(f"{name}: {srdf_path.name} left out: {e}", stacklevel=2)
-        return from_urdf(urdf_path, dirs, None, allowed_collisions)
+    # example-robot-data ships SRDFs of other variants (talos.srdf for talos_left_arm, a group naming a link
+    # the URDF lacks): the entries that do not fit are left out, as MoveIt does, and the rest is used.
+    robot = from_urdf(urdf_path, dirs, srdf_path, allowed_collisions, srdf_mismatch="leave_out")
+    left_out = robot.srdf_left_out
+    if left_out:
+        shown = "; ".join(left_out[:3]) + ("; ..." if len(left_out) > 3 else "")
+        warnings.warn(f"{name}: {len(left_out)} group(s)/end effector(s) of {srdf_path.name} name links, joints or "
+                      f"groups its URDF does not have and were left out (the rest of the SRDF is used): {shown}",
+                      stacklevel=2)
+    return robot
 
 
 def pr2(srdf: bool = True) -> Robot:

@@ -114,6 +114,45 @@ def test_srdf_that_disagrees_with_the_urdf_says_which():
         Robot.from_urdf(str(urdf), package_dirs=robots.package_dirs(), srdf=srdf)
 
 
+def test_srdf_entries_the_urdf_does_not_fit_are_left_out_on_request_and_the_rest_is_read():
+    urdf = robots.project_urdf("test_arm")
+    plain = Robot.from_urdf(str(urdf))
+    name, joint, link = plain.name, plain.joint_names[0], plain.link_names[1]
+    # g_bad names a link the URDF lacks; g_sub has it as a subgroup; the end effector uses g_sub: all three go,
+    # the rest (g_ok, its state, the disabled pair) stays.
+    srdf = f"""<robot name="{name}">
+      <group name="g_ok"><joint name="{joint}"/></group>
+      <group name="g_bad"><link name="r_foot"/></group>
+      <group name="g_sub"><group name="g_bad"/></group>
+      <end_effector name="ee" parent_link="{link}" group="g_sub"/>
+      <group_state name="s" group="g_ok"><joint name="{joint}" value="0.25"/></group_state>
+      <disable_collisions link1="{plain.link_names[0]}" link2="{link}" reason="Adjacent"/></robot>"""
+    with pytest.raises(ValueError, match="link 'r_foot'"):
+        Robot.from_urdf(str(urdf), srdf=srdf)  # the default: an error naming it
+    robot = Robot.from_urdf(str(urdf), srdf=srdf, srdf_mismatch="leave_out")
+    assert list(robot.srdf_groups) == ["g_ok"] and robot.end_effectors == []
+    assert robot.named_states["s"][joint] == pytest.approx(0.25)
+    assert (plain.link_names[0], link) in {tuple(p) for p in robot.allowed_collisions} | \
+        {tuple(reversed(p)) for p in robot.allowed_collisions}
+    left = robot.srdf_left_out
+    assert len(left) == 3 and any("group 'g_bad' left out: link 'r_foot'" in x for x in left)
+    assert any(x.startswith("group 'g_sub' left out: group 'g_bad'") for x in left)
+    assert any(x.startswith("end_effector 'ee' left out: group 'g_sub'") for x in left)
+    assert Robot.from_urdf(str(urdf), srdf=srdf.replace("r_foot", link), srdf_mismatch="leave_out").srdf_left_out == []
+    with pytest.raises(ValueError, match="srdf_mismatch must be 'error' or 'leave_out'"):
+        Robot.from_urdf(str(urdf), srdf=srdf, srdf_mismatch="skip")
+
+
+def test_example_robot_data_srdf_of_another_variant_keeps_what_fits():
+    # z1.srdf's one group names a link 'base' its URDF lacks (and its end effector uses that group): the whole
+    # SRDF used to be left out; now those two entries are, with a warning that says so, and its states stay.
+    with pytest.warns(UserWarning, match=r"z1: 2 group\(s\)/end effector\(s\) of z1.srdf .*"
+                                         r"group 'end_effector' left out: link 'base'"):
+        z1 = robots.load("z1", allowed_collisions="srdf")
+    assert z1.srdf_groups == {} and z1.end_effectors == []
+    assert z1.named_states["arm_up"]["joint2"] == pytest.approx(0.26178)
+
+
 def test_srdf_names_under_the_robots_name_as_a_namespace_are_read():
     # example-robot-data's Baxter SRDF names its group's joints "baxter/left_s0" (its URDF: "left_s0") and its
     # disabled pairs plainly: it used to be left out whole, and Baxter's arms then collided with themselves at

@@ -89,14 +89,19 @@ struct SampledCollisions {
 /// Build it with Robot::from_urdf. A Robot never changes once built (every member function is
 /// const), so one robot serves any number of threads and chains at once. A different
 /// allowed-collision matrix makes a new robot (with_allowed_collisions), with its own model_hash().
+/// \brief What Robot::from_urdf does with SRDF groups and end effectors that name links, joints or groups the
+/// URDF lacks (an SRDF of another variant of the robot): an error naming them, or leave those entries out (as
+/// MoveIt's srdfdom does, which warns), keeping the rest; Robot::srdf_left_out() says what was left out.
+enum class SrdfMismatch { kError, kLeaveOut };
+
 class Robot : public std::enable_shared_from_this<Robot> {
  public:
   /// \brief Parses a URDF (file path or XML string); resolves package:// and file:// mesh URIs
   /// through `package_dirs`; reads chain groups and disabled collision pairs from an SRDF
-  /// (file path or XML string, may be empty).
+  /// (file path or XML string, may be empty); `mismatch` says what to do with SRDF entries the URDF does not fit.
   /// \throws std::invalid_argument on malformed input, std::runtime_error on unreadable files
   static std::shared_ptr<Robot> from_urdf(const std::string& urdf, const std::vector<std::string>& package_dirs = {},
-                                          const std::string& srdf = "");
+                                          const std::string& srdf = "", SrdfMismatch mismatch = SrdfMismatch::kError);
 
   /// \brief The URDF's robot name.
   const std::string& name() const { return name_; }
@@ -138,6 +143,9 @@ class Robot : public std::enable_shared_from_this<Robot> {
   const std::vector<SrdfGroup>& srdf_groups() const { return srdf_groups_; }
   /// \brief SRDF end effectors, in file order.
   const std::vector<EndEffector>& end_effectors() const { return end_effectors_; }
+  /// \brief SRDF groups and end effectors left out by SrdfMismatch::kLeaveOut, each with what it names that the
+  /// URDF lacks ("group 'r_leg': link 'r_foot' (did you mean ...)"); empty when everything was read.
+  const std::vector<std::string>& srdf_left_out() const { return srdf_left_out_; }
   /// \brief Moving joints (indices into joints()) of an SRDF group: its chains, joints, the parent
   /// joints of its links and its subgroups, in tree order; throws naming an unknown group.
   std::vector<int> group_joints(const std::string& group) const;
@@ -232,6 +240,7 @@ class Robot : public std::enable_shared_from_this<Robot> {
   std::vector<ChainGroup> groups_;
   std::vector<SrdfGroup> srdf_groups_;
   std::vector<EndEffector> end_effectors_;
+  std::vector<std::string> srdf_left_out_;
   std::map<std::string, std::map<std::string, double>> named_states_;
   std::vector<std::pair<int, int>> allowed_, checked_;
   std::vector<int> collision_links_;
