@@ -189,14 +189,19 @@ struct PackedBin {
     std::int32_t slot;  // CellSlots::kNone: no stored solution there
     std::uint32_t first, count;  // the low set's points in ArmClearance::shared_points()
   };
+  // The first kNear points of each low set (the nearest to the target, which end most tests) are
+  // copied beside the entries.
+  static constexpr std::uint32_t kNear = 2;
   std::size_t G = 0, nh = 0;
   std::vector<Entry> entries;  // [local record * G + grasp]
   std::vector<float> bounds;   // [(local record * G + grasp) * nh + half-plane]
+  std::vector<Eigen::Vector3f> near;  // [(local record * G + grasp) * kNear + point]
 
   PackedBin(const SurfaceBuild& b, const BinFrame& f) : G(f.mapped.size()), nh(f.g.size()) {
     const auto& records = b.slots->records();
     entries.resize(records.size() * G);
     bounds.resize(entries.size() * nh);
+    near.resize(entries.size() * kNear, Eigen::Vector3f::Zero());
     for (std::size_t l = 0; l < records.size(); ++l)
       for (std::size_t m = 0; m < G; ++m) {
         const std::size_t e = l * G + m;
@@ -210,6 +215,7 @@ struct PackedBin {
         entries[e] = {slot, b.clearance->shared_start(slot), b.clearance->shared_count(slot)};
         const detail::LowSetRef low = b.clearance->shared(slot);
         for (std::size_t j = 0; j < nh; ++j) bounds[e * nh + j] = f.bound(low, j);
+        std::copy(low.points, low.points + std::min(low.count, kNear), near.begin() + e * kNear);
       }
   }
 };
@@ -259,12 +265,15 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
     const std::size_t G = packed->G, nh = packed->nh, first = static_cast<std::size_t>(local) * G;
     const PackedBin::Entry* E = packed->entries.data() + first;
     const float* B = packed->bounds.data() + first * nh;
+    const Eigen::Vector3f* N = packed->near.data() + first * PackedBin::kNear;
     int count = 0;
     for (std::size_t m = 0; m < G; ++m) {
       if (E[m].slot < 0) continue;
       bool all_outside = E[m].count == 0;
       for (std::size_t j = 0; j < nh && !all_outside; ++j) all_outside = B[m * nh + j] > d[j];
-      const bool under = !all_outside && f.any_inside(shared_points + E[m].first, E[m].count, d);
+      const std::uint32_t c = E[m].count, in_near = std::min(c, PackedBin::kNear);
+      const bool under = !all_outside && (f.any_inside(N + m * PackedBin::kNear, in_near, d) ||
+                                          f.any_inside(shared_points + E[m].first + in_near, c - in_near, d));
       const bool ok = !under && !b.obstacles->collides(E[m].slot, near, world_from_arm, arm_scratch);
       if (!ok) ++n.arm;
       count += ok;
