@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <fstream>
+#include <optional>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -11,6 +12,7 @@
 
 #include "collision_detail.hpp"
 #include "common/octree_file.hpp"
+#include "maps/obb.hpp"
 
 namespace octoreach {
 namespace {
@@ -115,6 +117,7 @@ void Obstacles::add_geometry(std::shared_ptr<fcl::CollisionGeometryd> geometry, 
   auto obj = std::make_shared<fcl::CollisionObjectd>(geometry, fcl::Transform3d(pose.matrix()));
   obj->computeAABB();
   objects_.push_back(obj);
+  obbs_.push_back(std::make_shared<const detail::Obb>(detail::Obb::of(*geometry, pose)));
   names_.push_back(name.empty() ? "obstacle_" + std::to_string(objects_.size() - 1) : name);
 }
 
@@ -164,6 +167,7 @@ void Obstacles::add(const Obstacles& other) {
   if (&other == this) throw std::invalid_argument("cannot add obstacles to themselves");
   objects_.insert(objects_.end(), other.objects_.begin(), other.objects_.end());
   names_.insert(names_.end(), other.names_.begin(), other.names_.end());
+  obbs_.insert(obbs_.end(), other.obbs_.begin(), other.obbs_.end());
 }
 
 bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) const {
@@ -176,10 +180,17 @@ bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) cons
   return collides(box, pose);
 }
 
+// World AABBs first, then an exact pre-test: the oriented boxes of the geometry and of the obstacle
+// (their local AABBs placed) clearly apart means no contact, and FCL (whose every call fits a bounding
+// volume to the obstacle) is skipped.
 bool Obstacles::collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const {
-  fcl::AABBd box = world_aabb(geometry, pose);
-  for (const auto& o : objects_) {
+  const fcl::AABBd box = world_aabb(geometry, pose);
+  std::optional<detail::Obb> shape;
+  for (std::size_t i = 0; i < objects_.size(); ++i) {
+    const auto& o = objects_[i];
     if (!o->getAABB().overlap(box)) continue;
+    if (!shape) shape = detail::Obb::of(geometry, pose);
+    if (shape->apart(*obbs_[i])) continue;
     if (geometry_collide(&geometry, pose, o->collisionGeometry().get(), Pose(o->getTransform().matrix())))
       return true;
   }

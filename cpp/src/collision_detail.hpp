@@ -28,10 +28,11 @@ struct ShapeBoxes {
   void update(const Robot& robot, const std::vector<Pose>& link_poses, int link);
 };
 
-/// first_colliding_pair with the shape boxes given: `boxes` must hold every link named by `pairs`, at
+/// first_colliding_pair with the shape boxes given: `shape_boxes` must hold every link named by `pairs`, at
 /// the link poses the check is about (IK keeps the boxes of the links its chain never moves and
 /// recomputes only the others).
-int first_colliding_pair(const Robot& robot, const ShapeBoxes& boxes, const std::vector<std::pair<int, int>>& pairs);
+int first_colliding_pair(const Robot& robot, const ShapeBoxes& shape_boxes,
+                         const std::vector<std::pair<int, int>>& pairs);
 
 /// World-frame AABB of a geometry at a pose, from its local AABB (cheap and conservative).
 inline fcl::AABBd world_aabb(const fcl::CollisionGeometryd& g, const Pose& T) {

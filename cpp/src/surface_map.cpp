@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -146,24 +147,76 @@ struct BinFrame {
     fast = b.upright && surf.convex();
   }
 
-  // True when a witness point of `low` lies under the surface outline. d[j] = c_j - h_j . uv_target (fast path).
-  bool arm_under(const SurfaceBuild& b, const detail::LowSet& low, const Eigen::Vector2d& target_uv,
-                 const std::vector<float>& d) const {
-    if (!fast) {
-      for (const auto& w : low.points)
-        if (b.surface.contains(target_uv + (Af * w).cast<double>())) return true;
-      return false;
-    }
-    bool all_outside = low.points.empty();
-    for (std::size_t j = 0; j < g.size() && !all_outside; ++j)
-      all_outside = g_norm[j] * (low.min_proj[g_dir[j]] - g_slack[j] * low.r_max) > d[j];
-    if (all_outside) return false;
-    for (const auto& w : low.points) {
+  // Fast path: a bound of the low set along half-plane j's direction; every witness point lies outside
+  // that edge when it exceeds d[j].
+  float bound(const detail::LowSetRef& low, std::size_t j) const {
+    return g_norm[j] * (low.min_proj[g_dir[j]] - g_slack[j] * low.r_max);
+  }
+
+  // Fast path: true when one of the points lies inside every half-plane.
+  bool any_inside(const Eigen::Vector3f* points, std::uint32_t count, const std::vector<float>& d) const {
+    for (std::uint32_t p = 0; p < count; ++p) {
+      const Eigen::Vector3f& w = points[p];
       bool inside = true;
       for (std::size_t j = 0; j < g.size() && inside; ++j) inside = g[j].dot(w) <= d[j];
       if (inside) return true;
     }
     return false;
+  }
+
+  // True when a witness point of `low` lies under the surface outline. d[j] = c_j - h_j . uv_target (fast path).
+  bool arm_under(const SurfaceBuild& b, const detail::LowSetRef& low, const Eigen::Vector2d& target_uv,
+                 const std::vector<float>& d) const {
+    if (!fast) {
+      for (std::uint32_t p = 0; p < low.count; ++p)
+        if (b.surface.contains(target_uv + (Af * low.points[p]).cast<double>())) return true;
+      return false;
+    }
+    bool all_outside = low.count == 0;
+    for (std::size_t j = 0; j < g.size() && !all_outside; ++j) all_outside = bound(low, j) > d[j];
+    if (all_outside) return false;
+    return any_inside(low.points, low.count, d);
+  }
+};
+
+// The arm-check cells of one theta bin (upright arm, convex outline), packed record by record: for
+// each record of the CellSlots and each grasp of the bin, the slot, where its low set lies and the
+// low set's bounds along the half-planes, side by side. A candidate then reads one short run of
+// memory instead of a scattered low set per grasp (the build was bound by those memory reads).
+// The bounds are the ones arm_under computes, so the answers are the same.
+struct PackedBin {
+  struct Entry {
+    std::int32_t slot;  // CellSlots::kNone: no stored solution there
+    std::uint32_t first, count;  // the low set's points in ArmClearance::shared_points()
+  };
+  // The first kNear points of each low set (the nearest to the target, which end most tests) are
+  // copied beside the entries.
+  static constexpr std::uint32_t kNear = 2;
+  std::size_t G = 0, nh = 0;
+  std::vector<Entry> entries;  // [local record * G + grasp]
+  std::vector<float> bounds;   // [(local record * G + grasp) * nh + half-plane]
+  std::vector<Eigen::Vector3f> near;  // [(local record * G + grasp) * kNear + point]
+
+  PackedBin(const SurfaceBuild& b, const BinFrame& f) : G(f.mapped.size()), nh(f.g.size()) {
+    const auto& records = b.slots->records();
+    entries.resize(records.size() * G);
+    bounds.resize(entries.size() * nh);
+    near.resize(entries.size() * kNear, Eigen::Vector3f::Zero());
+    for (std::size_t l = 0; l < records.size(); ++l)
+      for (std::size_t m = 0; m < G; ++m) {
+        const std::size_t e = l * G + m;
+        const std::int32_t slot = b.slots->slot(records[l].rec, f.mapped[m]);
+        if (slot < 0) {
+          if (b.cap.record_has(records[l].rec, f.mapped[m]))
+            throw std::logic_error("surface map: capability cell outside the precomputed layers");
+          entries[e] = {slot, 0, 0};
+          continue;
+        }
+        entries[e] = {slot, b.clearance->shared_start(slot), b.clearance->shared_count(slot)};
+        const detail::LowSetRef low = b.clearance->shared(slot);
+        for (std::size_t j = 0; j < nh; ++j) bounds[e * nh + j] = f.bound(low, j);
+        std::copy(low.points, low.points + std::min(low.count, kNear), near.begin() + e * kNear);
+      }
   }
 };
 
@@ -176,17 +229,58 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   std::vector<Pose> poses;
   detail::ArmScratch arm_scratch;
   detail::NearObstacles near;
-  auto low_points = [&](std::uint32_t rec, int orient, std::int32_t slot, const Eigen::Vector3d& centre) -> const detail::LowSet& {
+  auto low_points = [&](std::uint32_t rec, int orient, std::int32_t slot, const Eigen::Vector3d& centre) -> detail::LowSetRef {
     if (b.upright) return b.clearance->shared(slot);
     auto it = own_low.find(b.clearance->key(rec, orient));
-    if (it != own_low.end()) return it->second;
+    if (it != own_low.end()) return detail::LowSetRef::of(it->second);
     auto& out = own_low[b.clearance->key(rec, orient)];
     b.clearance->compute(rec, orient, centre, f.n_arm, poses, out);
-    return out;
+    return detail::LowSetRef::of(out);
   };
-  const double inv_g = 1.0 / b.place.grasps.orientations.size(), inv_n = 1.0 / b.targets.size();
+  std::optional<PackedBin> packed;
+  if (b.o.check_arm && b.upright && f.fast) packed.emplace(b, f);
+  const Eigen::Vector3f* shared_points = packed ? b.clearance->shared_points() : nullptr;
   std::vector<float> d(hp.size());
   BinCounts n;
+  // Grasps of the bin that pass the arm checks at a candidate (the cell's record `r`, target i).
+  auto plain_count = [&](std::uint32_t r, std::size_t i, const Eigen::Vector3d& centre, const Pose& world_from_arm) {
+    int count = 0;
+    for (int mo : f.mapped) {
+      if (!b.cap.record_has(r, mo)) continue;
+      if (!b.o.check_arm) {
+        ++count;
+        continue;
+      }
+      const std::int32_t slot = b.slots->slot(r, mo);
+      if (slot < 0) throw std::logic_error("surface map: capability cell outside the precomputed layers");
+      const bool ok = !f.arm_under(b, low_points(r, mo, slot, centre), b.target_uv[i], d) &&
+                      !b.obstacles->collides(slot, near, world_from_arm, arm_scratch);
+      if (!ok) ++n.arm;
+      count += ok;
+    }
+    return count;
+  };
+  // The same from the packed bin (`local`: the record's index in the CellSlots).
+  auto packed_count = [&](std::int32_t local, const Pose& world_from_arm) {
+    const std::size_t G = packed->G, nh = packed->nh, first = static_cast<std::size_t>(local) * G;
+    const PackedBin::Entry* E = packed->entries.data() + first;
+    const float* B = packed->bounds.data() + first * nh;
+    const Eigen::Vector3f* N = packed->near.data() + first * PackedBin::kNear;
+    int count = 0;
+    for (std::size_t m = 0; m < G; ++m) {
+      if (E[m].slot < 0) continue;
+      bool all_outside = E[m].count == 0;
+      for (std::size_t j = 0; j < nh && !all_outside; ++j) all_outside = B[m * nh + j] > d[j];
+      const std::uint32_t c = E[m].count, in_near = std::min(c, PackedBin::kNear);
+      const bool under = !all_outside && (f.any_inside(N + m * PackedBin::kNear, in_near, d) ||
+                                          f.any_inside(shared_points + E[m].first + in_near, c - in_near, d));
+      const bool ok = !under && !b.obstacles->collides(E[m].slot, near, world_from_arm, arm_scratch);
+      if (!ok) ++n.arm;
+      count += ok;
+    }
+    return count;
+  };
+  const double inv_g = 1.0 / b.place.grasps.orientations.size(), inv_n = 1.0 / b.targets.size();
   for (int ix = 0; ix < g.nx; ++ix)
     for (int iy = 0; iy < g.ny; ++iy, detail::poll_cancel("surface map build cancelled"))
       for (int iz = 0; iz < g.nz; ++iz) {
@@ -205,24 +299,13 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
           std::int64_t rec = b.cap.record_at(p, b.upright ? nullptr : &centre);
           if (rec < 0) continue;
           ++n.candidates;
-          int count = 0;
           if (f.fast)
             for (std::size_t j = 0; j < hp.size(); ++j)
               d[j] = static_cast<float>(hp[j].z() - hp[j].head<2>().dot(b.target_uv[i]));
           const auto r = static_cast<std::uint32_t>(rec);
-          for (int mo : f.mapped) {
-            if (!b.cap.record_has(r, mo)) continue;
-            if (!b.o.check_arm) {
-              ++count;
-              continue;
-            }
-            const std::int32_t slot = b.slots->slot(r, mo);
-            if (slot < 0) throw std::logic_error("surface map: capability cell outside the precomputed layers");
-            const bool ok = !f.arm_under(b, low_points(r, mo, slot, centre), b.target_uv[i], d) &&
-                            !b.obstacles->collides(slot, near, world_from_arm, arm_scratch);
-            if (!ok) ++n.arm;
-            count += ok;
-          }
+          const std::int32_t local = packed ? b.slots->local(r) : -1;
+          const int count = local >= 0 ? packed_count(local, world_from_arm)
+                                       : plain_count(r, i, centre, world_from_arm);
           if (count) {
             ++n.valid;
             sum += count * inv_g;
@@ -328,9 +411,8 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   b.upright = std::abs(place.reference_to_arm.linear()(2, 2) - 1.0) < 1e-9 && std::abs(surface.normal().z() - 1.0) < 1e-9;
   detail::ArmClearance clearance(robot, cap, place, o.grasp_height);
   b.clearance = &clearance;
-  detail::ArmObstacles arm_obstacles(robot, cap, place, others);
-  b.obstacles = &arm_obstacles;
-  std::unique_ptr<detail::CellSlots> slots;
+  std::shared_ptr<const detail::CellSlots> slots;
+  std::unique_ptr<const detail::ArmObstacles> arm_obstacles;
   if (o.check_arm) {
     // The cells a build can read: the orientations the grasps map to at some theta bin, and in the
     // upright case the records of the heights the targets have in the arm frame.
@@ -339,13 +421,14 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
       for (int mo : BinFrame(b, k).mapped) wanted[mo] = 1;
     if (b.upright) {
       auto [za_lo, za_hi] = target_heights_in_arm(b, g);
-      slots = std::make_unique<detail::CellSlots>(cap, wanted, za_lo, za_hi);
+      slots = std::make_shared<const detail::CellSlots>(cap, wanted, za_lo, za_hi);
       clearance.compute_shared(*slots, o.threads);
     } else {
-      slots = std::make_unique<detail::CellSlots>(cap, wanted);
+      slots = std::make_shared<const detail::CellSlots>(cap, wanted);
     }
     b.slots = slots.get();
-    arm_obstacles.compute(*slots, o.threads);
+    arm_obstacles = std::make_unique<const detail::ArmObstacles>(robot, cap, place, others, slots, o.threads);
+    b.obstacles = arm_obstacles.get();
   }
 
   const int T = o.theta_bins;

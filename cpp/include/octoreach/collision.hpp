@@ -29,6 +29,10 @@ class OcTree;
 
 namespace octoreach {
 
+namespace detail {
+struct Obb;
+}  // namespace detail
+
 /// \brief One collision shape of a link, with its pose in the link frame.
 struct Shape {
   /// \brief Kind of shape (URDF box, cylinder, sphere or mesh).
@@ -104,6 +108,8 @@ class Obstacles {
  private:
   std::vector<std::shared_ptr<fcl::CollisionObjectd>> objects_;
   std::vector<std::string> names_;
+  // Per object: its local AABB placed at its pose, for an exact pre-test before FCL (shared, never changed).
+  std::vector<std::shared_ptr<const detail::Obb>> obbs_;
 };
 
 }  // namespace octoreach

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
@@ -98,14 +99,28 @@ void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d&
 }
 
 void ArmClearance::compute_shared(const CellSlots& slots, int threads) {
-  shared_.assign(slots.size(), LowSet());
+  std::vector<LowSet> low(slots.size());
   const auto& records = slots.records();
   detail::parallel_for(records.size(), threads, [&](std::size_t i, int) {
     thread_local std::vector<Pose> poses;
     const auto& R = records[i];
     for (std::uint32_t s = R.first; s < R.last; ++s)
-      compute(R.rec, slots.cell(s).orient, R.centre, Eigen::Vector3d::UnitZ(), poses, shared_[s]);
+      compute(R.rec, slots.cell(s).orient, R.centre, Eigen::Vector3d::UnitZ(), poses, low[s]);
   }, 4);
+  std::size_t total = 0;
+  for (const auto& l : low) total += l.points.size();
+  if (total > 0xffffffffu) throw std::length_error("surface map: too many arm witness points below the surface");
+  points_.clear();
+  points_.reserve(total);
+  start_.assign(1, 0);
+  summary_.assign(low.size() * kSummary, 0.0f);
+  for (std::size_t s = 0; s < low.size(); ++s) {
+    points_.insert(points_.end(), low[s].points.begin(), low[s].points.end());
+    start_.push_back(static_cast<std::uint32_t>(points_.size()));
+    std::copy(low[s].min_proj.begin(), low[s].min_proj.end(), summary_.begin() + s * kSummary);
+    summary_[s * kSummary + LowSet::kDirs] = low[s].r_max;
+    std::vector<Eigen::Vector3f>().swap(low[s].points);
+  }
 }
 
 }  // namespace octoreach::detail

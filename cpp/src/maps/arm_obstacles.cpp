@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
+#include <stdexcept>
 
 #include <fcl/fcl.h>
 
@@ -25,22 +25,23 @@ void box_in_frame(const Pose& F_from_world, const Eigen::Vector3d& lo, const Eig
 }  // namespace
 
 ArmObstacles::ArmObstacles(const Robot& robot, const CapabilityMap& cap, const ArmPlacement& place,
-                           std::shared_ptr<const Obstacles> obstacles)
+                           std::shared_ptr<const Obstacles> obstacles, std::shared_ptr<const CellSlots> slots,
+                           int threads)
     : robot_(robot),
       cap_(cap),
       arm_(robot.chain(cap.base_link(), cap.tip_link())),
       reference_(place.reference),
+      slots_(std::move(slots)),
       arm_from_root_(place.link_poses[robot.link_index(cap.base_link())].inverse()),
       obstacles_(std::move(obstacles)),
       reach_lo_(Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity())),
       reach_hi_(-reach_lo_) {
   links_ = place.roles.arm;
   links_.insert(links_.end(), place.roles.tool.begin(), place.roles.tool.end());
+  if (!slots_) throw std::invalid_argument("ArmObstacles: no cells given");
   if (obstacles_)
-    for (const auto& o : obstacles_->objects()) {
-      boxes_.push_back(o->getAABB());
-      obbs_.push_back(Obb::of(*o->collisionGeometry(), Pose(o->getTransform().matrix())));
-    }
+    for (const auto& o : obstacles_->objects()) boxes_.push_back(o->getAABB());
+  compute(threads);
 }
 
 namespace {
@@ -61,9 +62,9 @@ bool meets(const std::int16_t* box, const Eigen::Vector3d& lo_cm, const Eigen::V
 
 }  // namespace
 
-void ArmObstacles::compute(const CellSlots& slots, int threads) {
+void ArmObstacles::compute(int threads) {
   if (empty()) return;
-  slots_ = &slots;
+  const CellSlots& slots = *slots_;
   for (int li : links_)
     if (!robot_.links()[li].shapes.empty()) shaped_.push_back(li);
   stride_ = 6 * (1 + shaped_.size());
@@ -104,7 +105,7 @@ void ArmObstacles::compute(const CellSlots& slots, int threads) {
 void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
   out.lo.clear();
   out.hi.clear();
-  if (empty() || !slots_ || slots_->size() == 0) return;
+  if (empty() || slots_->size() == 0) return;
   const Pose arm_from_world = world_from_arm.inverse();
   for (const auto& b : boxes_) {
     Eigen::Vector3d lo, hi;
@@ -165,24 +166,7 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
     in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
     const Pose world = world_from_arm * in_arm;
     for (const auto& s : robot_.links()[shaped_[l]].shapes)
-      if (shape_collides(*s.geometry, world * s.origin)) return true;
-  }
-  return false;
-}
-
-// Obstacles::collides (world AABBs, then FCL) with an exact pre-test between: the oriented boxes of
-// the shape and of the obstacle (their local AABBs placed) clearly apart means no contact, and FCL
-// (whose every call fits a bounding volume to the obstacle box) is skipped.
-bool ArmObstacles::shape_collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const {
-  const fcl::AABBd box = world_aabb(geometry, pose);
-  const auto& objects = obstacles_->objects();
-  std::optional<Obb> shape;
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    const auto& o = objects[i];
-    if (!o->getAABB().overlap(box)) continue;
-    if (!shape) shape = Obb::of(geometry, pose);
-    if (shape->apart(obbs_[i])) continue;
-    if (geometry_collide(&geometry, pose, o->collisionGeometry().get(), Pose(o->getTransform().matrix()))) return true;
+      if (obstacles_->collides(*s.geometry, world * s.origin)) return true;
   }
   return false;
 }

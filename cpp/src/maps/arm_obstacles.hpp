@@ -12,7 +12,6 @@
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "cell_slots.hpp"
-#include "obb.hpp"
 
 namespace octoreach::detail {
 
@@ -32,15 +31,14 @@ struct ArmScratch {
   static constexpr std::uint32_t kNotYet = 0xffffffffu;
 };
 
-/// Arm boxes of capability cells and the checks against a set of obstacles. Thread-safe for const
-/// use once compute() has run.
+/// Arm boxes of the capability cells of a CellSlots and the checks against a set of obstacles.
+/// Thread-safe for const use.
 class ArmObstacles {
  public:
+  /// Computes the arm boxes of every cell of `slots` (shared: the cells are numbered by it), in parallel.
   ArmObstacles(const Robot& robot, const CapabilityMap& capability, const ArmPlacement& place,
-               std::shared_ptr<const Obstacles> obstacles);
+               std::shared_ptr<const Obstacles> obstacles, std::shared_ptr<const CellSlots> slots, int threads);
   bool empty() const { return !obstacles_ || obstacles_->empty(); }
-  /// Arm boxes of every cell of `slots` (kept by reference: it must outlive this object), in parallel.
-  void compute(const CellSlots& slots, int threads);
   /// Obstacles whose world box meets the arm's whole reach when the arm base is at `world_from_arm`.
   void near(const Pose& world_from_arm, NearObstacles& out) const;
   /// True when the arm at the stored solution of the cell of `slot` touches an obstacle; the arm base
@@ -58,14 +56,13 @@ class ArmObstacles {
   // rounded outwards (lo x y z, hi x y z): stride_ = 6 (1 + shaped links) int16 from slot * stride_.
   std::vector<std::int16_t> boxes_cm_;
   std::size_t stride_ = 0;
-  const CellSlots* slots_ = nullptr;
+  std::shared_ptr<const CellSlots> slots_;
   Pose arm_from_root_;
   const float* link_poses(std::int32_t slot, ArmScratch& scratch) const;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
-  std::vector<Obb> obbs_;           // world oriented boxes of the obstacles (their local AABBs placed)
-  bool shape_collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
   Eigen::Vector3d reach_lo_, reach_hi_;  // union of the arm boxes (arm frame)
+  void compute(int threads);
 };
 
 }  // namespace octoreach::detail

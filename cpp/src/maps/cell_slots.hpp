@@ -28,6 +28,8 @@ class CellSlots {
     const std::int32_t r = local_[rec];
     return r < 0 ? kNone : table_[static_cast<std::size_t>(r) * orientations_ + orient];
   }
+  /// Index into records() of record `rec`, or -1 when the record is not covered.
+  std::int32_t local(std::uint32_t rec) const { return rec < local_.size() ? local_[rec] : -1; }
   std::size_t size() const { return cells_.size(); }
   const Cell& cell(std::size_t slot) const { return cells_[slot]; }
   /// Records covered, each with its voxel centre and its slots [first, last).
