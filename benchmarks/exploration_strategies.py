@@ -59,7 +59,8 @@ def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
         cover.append(oracle.share(emap))
 
     r = ex.explore(scene, _camera(a, seed), ex.look_at(*START), robot=True, strategy=strategy, max_views=a.views,
-                   resolution=a.resolution, seed=seed, capability_map=cmap, target=target,
+                   resolution=a.resolution, seed=seed, capability_map=cmap, target=target, min_utility=a.min_utility,
+                   patience=a.patience,
                    score_size=tuple(a.score) if a.score else None, on_view=on_view)
     views = len(r.rows)
     per_view = [x.integration_s + x.search_s for x in r.rows]
@@ -181,7 +182,13 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=10, help="exploration seeds per strategy and scene (>= 10 for the record)")
     ap.add_argument("--generated", type=int, default=4, help="generated USAR scenes (usar_scene(0..k-1))")
-    ap.add_argument("--views", type=int, default=15, help="view budget")
+    ap.add_argument("--views", type=int, default=30,
+                    help="view budget (large, so that the stopping rule ends the runs, not the budget)")
+    ap.add_argument("--patience", type=int, default=ex.STOP_PATIENCE,
+                    help="... for this many chosen views in a row (default: exploration.STOP_PATIENCE)")
+    ap.add_argument("--min-utility", type=float, default=ex.STOP_UTILITY,
+                    help="stop when the chosen view's utility (the strategy's expected gain, cells) is at or below "
+                         "this (default: exploration.STOP_UTILITY; 0: the paper's utility 0)")
     ap.add_argument("--resolution", type=float, default=0.025)
     ap.add_argument("--image", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))
     ap.add_argument("--score", type=int, nargs=2, default=None, metavar=("W", "H"), help="score ray grid")
@@ -207,7 +214,7 @@ def main(argv=None) -> int:
     _, chain = ex.explorer_robot()
     t0 = time.perf_counter()
     cmap = ex.explorer_capability_map(chain)
-    out = {"setup": {"seeds": a.seeds, "views": a.views, "resolution_m": a.resolution, "image": list(a.image),
+    out = {"setup": {"seeds": a.seeds, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "resolution_m": a.resolution, "image": list(a.image),
                      "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy"},
            "oracle": {}, "summary": {}, "runs": {}}

@@ -21,8 +21,9 @@
 /// ray through: learned by the map from what earlier rays did (ExplorationMap::void_pass_probability
 /// for void cells, ExplorationMap::pass_probability for the other unknown cells), or fixed for both
 /// by NbvOptions::unknown_pass_probability. The ray stops at the first occupied cell. A cell met by
-/// several rays counts once, with the largest weight: its expected visibility. Free cells do not
-/// reduce the weight.
+/// several rays counts once, with the largest weight: its expected visibility, times the cell's
+/// seeability (1 unless views announced with expect_view expected it and missed, see there). Free
+/// cells do not reduce the weight.
 
 #include <cstdint>
 #include <functional>
@@ -175,6 +176,17 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
 /// \throws std::invalid_argument for a bad grid or a probability outside [0, 1].
 ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, int score_width,
                      int score_height, double pass_probability, double void_pass_probability);
+
+/// \brief Announces the view the map's next insert comes from (the visibility model's memory of
+/// misses): the unknown cells a camera at `pose` is expected to see (options' score grid and pass
+/// probability) are recorded with their ray weights w; the next ExplorationMap::insert multiplies the
+/// seeability s of each of them it leaves unknown by (1 - w). Every later view score counts an unknown
+/// cell with w * s, so voids that views aimed at and did not see (behind unseen surfaces, inside
+/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A second call
+/// replaces the announcement. \throws std::invalid_argument for a bad option or a non-finite pose.
+void expect_view(ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, const NbvOptions& options);
+/// \brief Unknown cells whose seeability a missed view has lowered (some may be known by now).
+std::size_t missed_cells(const ExplorationMap& map);
 
 /// \brief The full search (steps 1-4).
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& camera, const NbvOptions& options);

@@ -34,8 +34,18 @@ struct UtilityVector {
 std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
   std::vector<UtilityVector> out;
   const auto& vcs = detail::cached_void_clusters(map);
+  const auto& S = detail::state(map);
+  const double cell = std::pow(map.resolution(), 3);
   for (const auto& fv : map.frontier_voids()) {
     const VoidCluster& v = vcs[fv.void_index];
+    // the paper's u_i, "the expectation of the void volume that will be discovered": the void's volume,
+    // each cell weighted by its seeability (1 until views that expected it missed it, see expect_view)
+    double utility = fv.utility;
+    if (S.hidden.size()) {
+      utility = 0;
+      for (CellKey k : v.cells) utility += S.seeability(k) * cell;
+    }
+    if (utility <= 0) continue;
     std::vector<Eigen::Vector3d> corners{v.centroid};
     for (int j = 0; j < 3; ++j)
       for (int s = -1; s <= 1; s += 2) corners.push_back(v.centroid + s * v.semi_axes[j] * v.axes.col(j));
@@ -44,7 +54,7 @@ std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
         Eigen::Vector3d pf = map.center(f);
         Eigen::Vector3d dir = pf - c;
         if (dir.norm() < 1e-9) continue;
-        out.push_back({pf, dir.normalized(), fv.utility});
+        out.push_back({pf, dir.normalized(), utility});
       }
   }
   return out;
