@@ -78,7 +78,7 @@ struct NbvOptions {
   int max_valid_poses = 50;          ///< N of the paper
   int orientations_per_cell = 8;     ///< sampled orientations per candidate cell
   double orientation_spread = 0.35;  ///< radians: cone around the mean utility direction
-  int max_candidate_cells = 400;     ///< cells tried, best utility first
+  int max_candidate_cells = 400;     ///< cells tried, best utility first (up to 8 such batches while no pose is valid)
   int score_width = 48, score_height = 36;  ///< coarse ray grid for scoring (not every pixel)
   double min_distance = 0.0;         ///< keep the camera this far (m) from occupied cells (one cell check)
   std::uint64_t seed = 0;
