@@ -18,7 +18,11 @@ coverage after 5 and 10 views, target seen (share of runs) and after how many vi
 and the seen/expected void ratio of every view (median, share of views under 0.1). `goals` checks
 the issue's goals on these figures.
 
-Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 15]
+Every strategy stops by the same stated rule: its chosen view's utility at or below --min-utility
+(exploration.STOP_UTILITY) for --patience (STOP_PATIENCE) views in a row, or utility 0, or no valid
+view; the budget (--views, 30) is large so that the rule, not the budget, ends the runs.
+
+Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 30]
      [--plot docs/images/exploration_strategies.png] [--markdown table.md]
 Quick: --seeds 2 --generated 2 --views 8 --image 160 120 --resolution 0.05
 In parts (two cores): --scenes paper_1 usar_0 > a.json; --scenes paper_2 usar_1 > b.json; then
@@ -157,12 +161,17 @@ def _markdown(summary, strategies):
 
 
 def _combine(a) -> int:
-    """One output from several (their scenes side by side; setups must agree but for the scenes)."""
+    """One output from several (their scenes and strategies side by side; setups must agree but for the
+    scenes and strategies; a later file's (scene, strategy) replaces an earlier one's)."""
     parts = [json.load(open(f)) for f in a.combine]
-    out = {"setup": parts[0]["setup"], "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
+    out = {"setup": dict(parts[0]["setup"]), "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
     for p in parts:
-        for k in ("oracle", "summary", "runs"):
-            out[k].update(p[k])
+        out["oracle"].update(p["oracle"])
+        for k in ("summary", "runs"):
+            for scene, per in p[k].items():
+                out[k].setdefault(scene, {}).update(per)
+    names = {s for p in parts for s in p["setup"]["strategies"]}
+    out["setup"]["strategies"] = [s for s in ex.STRATEGIES if s in names]
     for k in ("oracle", "summary", "runs"):  # paper scenes first, then usar_0, usar_1, ...
         out[k] = dict(sorted(out[k].items(), key=lambda kv: (not kv[0].startswith("paper"), kv[0])))
     strategies = out["setup"]["strategies"]
