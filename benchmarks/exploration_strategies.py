@@ -18,7 +18,11 @@ coverage after 5 and 10 views, target seen (share of runs) and after how many vi
 and the seen/expected void ratio of every view (median, share of views under 0.1). `goals` checks
 the issue's goals on these figures.
 
-Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 15]
+Every strategy stops by the same stated rule: its chosen view's utility at or below --min-utility
+(exploration.STOP_UTILITY) for --patience (STOP_PATIENCE) views in a row, or utility 0, or no valid
+view; the budget (--views, 30) is large so that the rule, not the budget, ends the runs.
+
+Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 30]
      [--plot docs/images/exploration_strategies.png] [--markdown table.md]
 Quick: --seeds 2 --generated 2 --views 8 --image 160 120 --resolution 0.05
 In parts (two cores): --scenes paper_1 usar_0 > a.json; --scenes paper_2 usar_1 > b.json; then
@@ -59,7 +63,8 @@ def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
         cover.append(oracle.share(emap))
 
     r = ex.explore(scene, _camera(a, seed), ex.look_at(*START), robot=True, strategy=strategy, max_views=a.views,
-                   resolution=a.resolution, seed=seed, capability_map=cmap, target=target,
+                   resolution=a.resolution, seed=seed, capability_map=cmap, target=target, min_utility=a.min_utility,
+                   patience=a.patience,
                    score_size=tuple(a.score) if a.score else None, on_view=on_view)
     views = len(r.rows)
     per_view = [x.integration_s + x.search_s for x in r.rows]
@@ -156,12 +161,17 @@ def _markdown(summary, strategies):
 
 
 def _combine(a) -> int:
-    """One output from several (their scenes side by side; setups must agree but for the scenes)."""
+    """One output from several (their scenes and strategies side by side; setups must agree but for the
+    scenes and strategies; a later file's (scene, strategy) replaces an earlier one's)."""
     parts = [json.load(open(f)) for f in a.combine]
-    out = {"setup": parts[0]["setup"], "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
+    out = {"setup": dict(parts[0]["setup"]), "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
     for p in parts:
-        for k in ("oracle", "summary", "runs"):
-            out[k].update(p[k])
+        out["oracle"].update(p["oracle"])
+        for k in ("summary", "runs"):
+            for scene, per in p[k].items():
+                out[k].setdefault(scene, {}).update(per)
+    names = {s for p in parts for s in p["setup"]["strategies"]}
+    out["setup"]["strategies"] = [s for s in ex.STRATEGIES if s in names]
     for k in ("oracle", "summary", "runs"):  # paper scenes first, then usar_0, usar_1, ...
         out[k] = dict(sorted(out[k].items(), key=lambda kv: (not kv[0].startswith("paper"), kv[0])))
     strategies = out["setup"]["strategies"]
@@ -181,7 +191,13 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=10, help="exploration seeds per strategy and scene (>= 10 for the record)")
     ap.add_argument("--generated", type=int, default=4, help="generated USAR scenes (usar_scene(0..k-1))")
-    ap.add_argument("--views", type=int, default=15, help="view budget")
+    ap.add_argument("--views", type=int, default=30,
+                    help="view budget (large, so that the stopping rule ends the runs, not the budget)")
+    ap.add_argument("--patience", type=int, default=ex.STOP_PATIENCE,
+                    help="... for this many chosen views in a row (default: exploration.STOP_PATIENCE)")
+    ap.add_argument("--min-utility", type=float, default=ex.STOP_UTILITY,
+                    help="stop when the chosen view's utility (the strategy's expected gain, cells) is at or below "
+                         "this (default: exploration.STOP_UTILITY; 0: the paper's utility 0)")
     ap.add_argument("--resolution", type=float, default=0.025)
     ap.add_argument("--image", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))
     ap.add_argument("--score", type=int, nargs=2, default=None, metavar=("W", "H"), help="score ray grid")
@@ -207,7 +223,7 @@ def main(argv=None) -> int:
     _, chain = ex.explorer_robot()
     t0 = time.perf_counter()
     cmap = ex.explorer_capability_map(chain)
-    out = {"setup": {"seeds": a.seeds, "views": a.views, "resolution_m": a.resolution, "image": list(a.image),
+    out = {"setup": {"seeds": a.seeds, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "resolution_m": a.resolution, "image": list(a.image),
                      "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy"},
            "oracle": {}, "summary": {}, "runs": {}}

@@ -277,6 +277,21 @@ void wrap_next_best_view(py::module_& m) {
         "expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name), pass_probability and\n"
         "void_pass_probability.");
 
+  m.def("expect_view", [](ExplorationMap& map, const py::object& camera, const py::object& pose,
+                          const py::object& options, const py::kwargs& kwargs) {
+          CameraIntrinsics c = intrinsics_from(camera);
+          Pose T = pose_from(pose, "camera_pose");
+          NbvOptions o = options_from<NbvOptions>(options, kwargs, "expect_view");
+          py::gil_scoped_release release;
+          expect_view(map, c, T, o);
+        }, py::arg("map"), py::arg("camera"), py::arg("camera_pose"), py::arg("options") = py::none(),
+        "Announces the view (4x4 camera -> map) the map's next insert comes from: the unknown cells it is\n"
+        "expected to see (score_width x score_height rays, unknown_pass_probability as in next_best_view)\n"
+        "are recorded with their ray weights w, and the next insert multiplies the seeability of each one it\n"
+        "leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability.");
+  m.def("missed_cells", [](const ExplorationMap& map) { return missed_cells(map); }, py::arg("map"),
+        "Unknown cells whose seeability a missed view (expect_view) has lowered.");
+
   m.def("accumulate_utility", [](const ExplorationMap& map, double range) {
           std::vector<std::pair<CellKey, double>> u;
           {

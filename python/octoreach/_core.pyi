@@ -1613,6 +1613,13 @@ def default_reference(robot: Robot, chain: Chain) -> typing.Annotated[numpy.typi
     Reference posture (robot configuration) for the joints off `chain`: home with every SRDF 'tuck*' state
     applied that does not move the chain (the other arm tucked). Builds use it when given no reference.
     """
+def expect_view(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, options: typing.Any = None, **kwargs) -> None:
+    """
+    Announces the view (4x4 camera -> map) the map's next insert comes from: the unknown cells it is
+    expected to see (score_width x score_height rays, unknown_pass_probability as in next_best_view)
+    are recorded with their ray weights w, and the next insert multiplies the seeability of each one it
+    leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability.
+    """
 def find_arms(robot: Robot) -> list[Arm]:
     """
     The robot's arms: serial SRDF groups (tips moved to their tool frames), else branches of the kinematic
@@ -1639,6 +1646,10 @@ def look_at(eye: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]
 def map_format_version() -> int:
     """
     Version of the map file format this library writes and reads (part of a map cache key).
+    """
+def missed_cells(map: ExplorationMap) -> int:
+    """
+    Unknown cells whose seeability a missed view (expect_view) has lowered.
     """
 def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any = None, **kwargs) -> dict:
     """

@@ -158,6 +158,10 @@ def test_every_strategy_terminates_and_its_views_stay_in_observed_space(strategy
 def test_min_utility_stops_early_and_says_so():
     r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9)
     assert len(r.rows) == 1 and r.stop_reason == "utility below min_utility"
+    r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9, patience=2)  # the low view is taken once
+    assert len(r.rows) == 2 and r.stop_reason == "utility below min_utility" and r.rows[0].void_seen is not None
+    with pytest.raises(ValueError, match="patience"):
+        _small_run(ex.paper_scene(1), "frontier_void", patience=0)
 
 
 def test_a_scene_without_void_ends_at_once():
@@ -169,6 +173,50 @@ def test_a_scene_without_void_ends_at_once():
     r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region)
     assert r.stop_reason == "nothing to explore" and len(r.rows) == 1
     assert r.rows[0].void_total == 0 and r.rows[0].expected_void == 0
+
+
+def test_a_small_scene_ends_by_itself():
+    """One open crate in front of the robot: frontier-void stops on its own criterion (utility 0 or
+    below a small threshold, or nothing left to explore) well before a generous budget, having seen
+    most of the crate's inside."""
+    s = Scene()
+    _floor(s)
+    s.add_crate((0.55, -0.2, 0.0), (0.9, 0.2, 0.25), 0.02)
+    r = _small_run(s, "frontier_void", max_views=15, min_utility=5.0)
+    assert r.stop_reason in ("utility 0", "utility below min_utility", "nothing to explore"), r.table()
+    assert len(r.rows) < 15
+    assert r.interior_share > 0.8, r.table()
+
+
+def test_a_missed_view_lowers_the_seeability_of_what_it_expected():
+    """A sealed box's inside is void behind walls. Two maps take the same views; in one, the view from
+    the +y side is announced with expect_view. That view sees only walls, so the void cells it expected
+    stay unknown and lose seeability: a view from above (through the still unknown top) expects less
+    void in that map than in the other, and the map counts the missed cells."""
+    from octoreach import _core
+
+    s = Scene()
+    _floor(s)
+    _sealed_box(s, (0.6, -0.2, 0.0), (1.0, 0.2, 0.4), 0.02)
+    cam = DepthCamera(80, 60, FOV, 4.0)
+    side = ex.look_at((0.8, 0.9, 0.25), (0.8, 0.0, 0.2))
+    above = ex.look_at((0.8, 0.0, 1.2), (0.8, 0.0, 0.2))
+    maps = []
+    for announce in (False, True):
+        emap = ExplorationMap(resolution=RES, search_space=np.array([[0.5, -0.3, 0.0], [1.1, 0.3, 0.45]]))
+        T = ex.look_at((0.0, 0.0, 0.3), (0.8, 0.0, 0.2))
+        emap.insert(cam.capture(s, T), T[:3, 3], 4.0)
+        assert emap.void_cell_count > 50
+        if announce:
+            _core.expect_view(emap, cam, side, score_width=24, score_height=18)
+        emap.insert(cam.capture(s, side), side[:3, 3], 4.0)
+        maps.append(emap)
+    plain, learned = (_core.view_gains(m, cam, above, 24, 18) for m in maps)
+    assert _core.missed_cells(maps[0]) == 0 and _core.missed_cells(maps[1]) > 0
+    assert plain["void_cells"] == learned["void_cells"] > 0  # the same map, the same raw count
+    assert learned["expected_void"] < 0.9 * plain["expected_void"], (plain, learned)
+    with pytest.raises(ValueError):
+        _core.expect_view(maps[1], cam, np.full((4, 4), np.nan))
 
 
 def test_expected_void_against_the_void_cells_a_view_turns_known():

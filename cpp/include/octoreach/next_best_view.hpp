@@ -21,8 +21,9 @@
 /// ray through: learned by the map from what earlier rays did (ExplorationMap::void_pass_probability
 /// for void cells, ExplorationMap::pass_probability for the other unknown cells), or fixed for both
 /// by NbvOptions::unknown_pass_probability. The ray stops at the first occupied cell. A cell met by
-/// several rays counts once, with the largest weight: its expected visibility. Free cells do not
-/// reduce the weight.
+/// several rays counts once, with the largest weight: its expected visibility, times the cell's
+/// seeability (1 unless views announced with expect_view expected it and missed, see there). Free
+/// cells do not reduce the weight.
 
 #include <cstdint>
 #include <functional>
@@ -77,7 +78,7 @@ struct NbvOptions {
   int max_valid_poses = 50;          ///< N of the paper
   int orientations_per_cell = 8;     ///< sampled orientations per candidate cell
   double orientation_spread = 0.35;  ///< radians: cone around the mean utility direction
-  int max_candidate_cells = 400;     ///< cells tried, best utility first
+  int max_candidate_cells = 400;     ///< cells tried, best utility first (up to 8 such batches while no pose is valid)
   int score_width = 48, score_height = 36;  ///< coarse ray grid for scoring (not every pixel)
   double min_distance = 0.0;         ///< keep the camera this far (m) from occupied cells (one cell check)
   std::uint64_t seed = 0;
@@ -175,6 +176,17 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
 /// \throws std::invalid_argument for a bad grid or a probability outside [0, 1].
 ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, int score_width,
                      int score_height, double pass_probability, double void_pass_probability);
+
+/// \brief Announces the view the map's next insert comes from (the visibility model's memory of
+/// misses): the unknown cells a camera at `pose` is expected to see (options' score grid and pass
+/// probability) are recorded with their ray weights w; the next ExplorationMap::insert multiplies the
+/// seeability s of each of them it leaves unknown by (1 - w). Every later view score counts an unknown
+/// cell with w * s, so voids that views aimed at and did not see (behind unseen surfaces, inside
+/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A second call
+/// replaces the announcement. \throws std::invalid_argument for a bad option or a non-finite pose.
+void expect_view(ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, const NbvOptions& options);
+/// \brief Unknown cells whose seeability a missed view has lowered (some may be known by now).
+std::size_t missed_cells(const ExplorationMap& map);
 
 /// \brief The full search (steps 1-4).
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& camera, const NbvOptions& options);

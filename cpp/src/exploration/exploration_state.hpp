@@ -156,6 +156,16 @@ struct ExplorationState {
   Hull hull;
   HullColumns columns;
   RayStatistics rays;  // what rays did to unknown cells, over all inserts
+  // The visibility model's memory of views that missed (view_score.cpp, expect_view): per unknown
+  // cell, 1 - its seeability s (absent: 0, s = 1). A view announced by expect_view lists the unknown
+  // cells it expects with their ray weights w; the next insert multiplies s by (1 - w) for each of
+  // them it left unknown. The view score counts an unknown cell with w * s.
+  KeyTable<float> hidden;
+  std::vector<std::pair<CellKey, float>> expected_by_view;
+  double seeability(CellKey k) const {
+    const float* h = hidden.find(k);
+    return h ? 1.0 - double(*h) : 1.0;
+  }
 
   // caches rebuilt on demand after an insert
   mutable std::mutex cache_mutex;
@@ -219,10 +229,13 @@ class MapGuard {
 // The only door from outside the class to its state (declared a friend in exploration.hpp).
 struct ExplorationAccess {
   static const ExplorationState& state(const ExplorationMap& m) { return *m.state_; }
+  static ExplorationState& state(ExplorationMap& m) { return *m.state_; }
 };
 
 /// \brief The state behind `map`, for octoreach's own algorithms (next_best_view).
 inline const ExplorationState& state(const ExplorationMap& map) { return ExplorationAccess::state(map); }
+/// \brief The same, writable (expect_view); the caller takes the map's write lock.
+inline ExplorationState& mutable_state(ExplorationMap& map) { return ExplorationAccess::state(map); }
 
 /// \brief The cached frontier clusters / void clusters (rebuilt when stale); valid while the caller
 /// holds the map's lock (ExplorationMap::frontier_clusters / void_clusters return copies).

@@ -34,8 +34,18 @@ struct UtilityVector {
 std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
   std::vector<UtilityVector> out;
   const auto& vcs = detail::cached_void_clusters(map);
+  const auto& S = detail::state(map);
+  const double cell = std::pow(map.resolution(), 3);
   for (const auto& fv : map.frontier_voids()) {
     const VoidCluster& v = vcs[fv.void_index];
+    // the paper's u_i, "the expectation of the void volume that will be discovered": the void's volume,
+    // each cell weighted by its seeability (1 until views that expected it missed it, see expect_view)
+    double utility = fv.utility;
+    if (S.hidden.size()) {
+      utility = 0;
+      for (CellKey k : v.cells) utility += S.seeability(k) * cell;
+    }
+    if (utility <= 0) continue;
     std::vector<Eigen::Vector3d> corners{v.centroid};
     for (int j = 0; j < 3; ++j)
       for (int s = -1; s <= 1; s += 2) corners.push_back(v.centroid + s * v.semi_axes[j] * v.axes.col(j));
@@ -44,7 +54,7 @@ std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
         Eigen::Vector3d pf = map.center(f);
         Eigen::Vector3d dir = pf - c;
         if (dir.norm() < 1e-9) continue;
-        out.push_back({pf, dir.normalized(), fv.utility});
+        out.push_back({pf, dir.normalized(), utility});
       }
   }
   return out;
@@ -153,18 +163,23 @@ void prune_by_workspace(const ExplorationMap& map, const NbvOptions& opt, std::v
 // Step 3b: best utility first, the cells where the camera would sit in observed-free space (no
 // occupied cell within min_distance; with unknown_is_obstacle no unknown cell of the search space
 // within unknown_margin), until max_candidate_cells are kept (the check runs only that far).
-void keep_clear_cells(const detail::ViewChecker& checker, const ExplorationMap& map, const NbvOptions& opt,
-                      std::vector<UtilityCell>& cells, NbvResult& r) {
-  std::stable_sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.second.u > b.second.u; });
-  std::size_t w = 0;
-  for (std::size_t i = 0; i < cells.size() && w < std::size_t(opt.max_candidate_cells); ++i) {
+// The next max_candidate_cells clear cells of `cells` (sorted by utility, best first) from index
+// `from`; returns the index after the last cell looked at.
+std::size_t keep_clear_cells(const detail::ViewChecker& checker, const ExplorationMap& map, const NbvOptions& opt,
+                             const std::vector<UtilityCell>& cells, std::size_t from, std::vector<UtilityCell>& out,
+                             NbvResult& r) {
+  out.clear();
+  std::size_t i = from;
+  for (; i < cells.size() && out.size() < std::size_t(opt.max_candidate_cells); ++i) {
     if (checker.camera_clear(map.center(cells[i].first)))
-      cells[w++] = cells[i];
+      out.push_back(cells[i]);
     else
       ++r.camera_not_clear;
   }
-  cells.resize(w);
+  return i;
 }
+
+constexpr int kMaxCellBatches = 8;  // batches of max_candidate_cells cells tried while no pose is valid
 
 // What scoring one sampled pose came to.
 struct Slot {
@@ -298,11 +313,19 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   prune_by_workspace(map, opt, cells, r);
   r.candidate_cells = cells.size();
   const detail::ViewChecker checker(map, opt);
-  keep_clear_cells(checker, map, opt, cells, r);
+  std::stable_sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.second.u > b.second.u; });
+  std::vector<UtilityCell> batch;
+  std::size_t next = keep_clear_cells(checker, map, opt, cells, 0, batch, r);
   r.seconds_prune = seconds_since(t_prune);
 
   auto t_score = Clock::now();
-  score_candidates(map, cam, opt, cells, checker, threads, r);
+  score_candidates(map, cam, opt, batch, checker, threads, r);
+  // The paper walks the cells by utility until it has valid poses: when the best max_candidate_cells
+  // cells give none (arm collisions, no IK), the next ones are tried, up to kMaxCellBatches batches.
+  for (int round = 1; round < kMaxCellBatches && r.ranked.empty() && next < cells.size(); ++round) {
+    next = keep_clear_cells(checker, map, opt, cells, next, batch, r);
+    score_candidates(map, cam, opt, batch, checker, threads, r);
+  }
   r.seconds_score = seconds_since(t_score);
   r.seconds = seconds_since(t0);
   return r;

@@ -100,7 +100,7 @@ class MetCells {
 }  // namespace
 
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                              double p, double p_void) {
+                              double p, double p_void, std::vector<std::pair<CellKey, float>>* unknown_met) {
   const ExplorationState& S = state(map);
   GridReader g(S.grid);
   const Eigen::Matrix3d R = pose.linear();
@@ -144,8 +144,11 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   ViewGains v;
   met.for_each([&](CellKey k, double w) {
     const std::uint8_t f = g.get(k);
-    const double e = w * std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
-    if ((f & kStateMask) == std::uint8_t(CellState::Unknown)) {
+    const bool unknown = (f & kStateMask) == std::uint8_t(CellState::Unknown);
+    if (unknown && unknown_met) unknown_met->emplace_back(k, float(w));
+    // unknown cells count with their seeability (lowered by views that expected them and missed)
+    const double e = w * (unknown ? S.seeability(k) : 1.0) * std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
+    if (unknown) {
       ++v.unknown_cells;
       v.expected_unknown += e;
       if (f & kVoidFlag) {
@@ -175,7 +178,32 @@ void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const Nb
   v.utility_dm3 = v.expected_void * res * res * res * 1000.0;
 }
 
+void learn_from_missed(ExplorationState& S) {
+  for (const auto& [k, w] : S.expected_by_view) {
+    if (S.state(k) != CellState::Unknown) continue;
+    float& h = S.hidden.at(k);  // s' = s (1 - w), kept as h = 1 - s
+    h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(w), 0.0), 1.0)));
+  }
+  S.expected_by_view.clear();
+}
+
 }  // namespace detail
+
+void expect_view(ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, const NbvOptions& opt) {
+  detail::validate_options(cam, opt);
+  if (!pose.matrix().allFinite()) throw std::invalid_argument("camera pose must be finite");
+  detail::ExplorationState& S = detail::mutable_state(map);
+  detail::MapGuard guard(S, true);
+  const auto p = detail::pass_probabilities(map, opt);
+  S.expected_by_view.clear();
+  detail::view_gains_unlocked(map, cam, pose, opt.score_width, opt.score_height, p.first, p.second,
+                              &S.expected_by_view);
+}
+
+std::size_t missed_cells(const ExplorationMap& map) {
+  auto guard = detail::read_guard(map);
+  return detail::state(map).hidden.size();
+}
 
 ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                      double p, double p_void) {

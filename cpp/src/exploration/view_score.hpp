@@ -15,8 +15,16 @@ namespace octoreach::detail {
 
 // view_gains without taking the map's lock: the caller holds it (pool workers of next_best_view must
 // not lock again: a writer waiting in between would deadlock them against their caller).
+// With `unknown_met`, also lists every unknown cell a ray met with its largest ray weight w (before
+// seeability).
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                              double p, double p_void);
+                              double p, double p_void,
+                              std::vector<std::pair<CellKey, float>>* unknown_met = nullptr);
+
+struct ExplorationState;
+// After an insert: each cell the view announced by expect_view expected (weight w) and left unknown
+// has its seeability multiplied by (1 - w); the announcement is cleared. The caller holds the write lock.
+void learn_from_missed(ExplorationState& S);
 
 // Throws std::invalid_argument naming the first bad option (or camera value).
 void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt);

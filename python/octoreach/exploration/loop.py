@@ -7,6 +7,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from .. import _core
 from .._core import DepthCamera, ExplorationMap, Scene
 from ._options import given
 from .metrics import observed_share
@@ -17,6 +18,14 @@ from .usar_scenes import points_on
 
 VIEW_BUDGET = 10  # views of one exploration unless told otherwise (explore, run_demo, the demo's --views)
 
+
+# The stated stopping threshold of the benchmark and the demo (explore's own default is the paper's
+# utility 0): a chosen view expecting at most this many void cells (visibility- and seeability-weighted,
+# 2.5 cm cells: 20 cells = 0.31 dm^3) is not worth taking.
+STOP_UTILITY = 20.0
+# ... for this many chosen views in a row (the search samples orientations at random: one poor search
+# should not end the exploration; the low view is taken, and the next search starts from its map).
+STOP_PATIENCE = 2
 
 STOP_REASONS = ("utility 0", "utility below min_utility", "view budget", "nothing to explore", "no valid view")
 
@@ -183,14 +192,16 @@ def _seen(emap, void_before) -> int:
 
 
 def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_pose=None, robot=None,
-            strategy: str = "frontier_void", min_utility: float = 0.0, candidates: int = CANDIDATES,
+            strategy: str = "frontier_void", min_utility: float = 0.0, patience: int = 1,
+            candidates: int = CANDIDATES,
             workspace_box=None, workspace_sphere=None, workspace: Optional[Callable] = None,
             max_views: int = VIEW_BUDGET, resolution: Optional[float] = None, max_valid_poses: Optional[int] = None,
             orientations_per_cell: Optional[int] = None, max_candidate_cells: Optional[int] = None,
             min_distance: float = 0.05, score_size=None, void_fit_threshold: Optional[float] = None, seed: int = 0,
             search_space=None, capability_map=None, min_reachability: Optional[float] = None,
             capability_orientations: Optional[bool] = None, base_moves=None, target=None,
-            physical_check: bool = True, on_view: Optional[Callable] = None) -> ExplorationResult:
+            physical_check: bool = True, learn_misses: bool = True,
+            on_view: Optional[Callable] = None) -> ExplorationResult:
     """Runs the paper's loop from `start_pose` (4x4 camera -> world) and returns the per-view table.
 
     `strategy` picks the views (strategies.STRATEGIES): "frontier_void" (ours, next_best_view),
@@ -200,8 +211,9 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     The loop stops (ExplorationResult.stop_reason) when the map has no void after the first view
     ("nothing to explore"), when no valid view is left ("no valid view"), when the chosen view's
     utility (its strategy's gain: expected void cells for frontier_void and random, frontier or
-    unknown cells for the others) is 0 ("utility 0", the paper's criterion) or <= `min_utility`
-    ("utility below min_utility"), or after `max_views` views ("view budget").
+    unknown cells for the others) is 0 ("utility 0", the paper's criterion) or has been <= `min_utility`
+    for `patience` chosen views in a row ("utility below min_utility"; the low views are taken), or after
+    `max_views` views ("view budget"). STOP_UTILITY and STOP_PATIENCE are the benchmark's stated rule.
 
     The camera is carried by `chain` (tip = camera frame, +z forward) whose base sits at `base_pose`
     (4x4 chain base -> world), or moves freely inside the workspace (box (2, 3), sphere (centre,
@@ -224,9 +236,14 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     `physical_check` (with a robot): a chosen view whose arm touches the scene's true geometry is not
     taken (counted as a view, `physically_valid` False, nothing integrated). `target` ((2, 3) lo, hi):
     each row counts the points of its cloud on it (usar_scenes.points_on).
+    `learn_misses`: before each insert the loop announces the view to the map (next_best_view.expect_view),
+    so the void (and unknown) cells that view was expected to see and did not lose seeability; views
+    aimed at voids nobody can see stop scoring, and the loop can end (all strategies alike).
     `on_view(row, emap, info)` is called after each view (plots, progress); `info` holds best_pose and
     the chosen view's gains (and next_best_view's result for frontier_void)."""
     pose = _check_loop_args(strategy, max_views, min_utility, candidates, start_pose)
+    if not isinstance(patience, (int, np.integer)) or isinstance(patience, bool) or patience < 1:
+        raise ValueError(f"patience must be an integer >= 1, got {patience!r}")
     if target is not None:
         points_on(target, np.zeros((0, 3)))  # ValueError for a wrong shape, before any work
     rob, chain, base_pose = _carrier(robot, chain, base_pose)
@@ -253,7 +270,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     def sphere_of(bp):
         return (bp[:3, 3].copy(), reach) if auto_sphere else workspace_sphere
 
-    current, q, valid = 0, None, True
+    current, q, valid, low = 0, None, True, 0
     rows, poses, stop = [], [], "view budget"
     void_before = np.zeros((0, 3))
     t_all = time.perf_counter()
@@ -264,6 +281,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         pts, stats = None, {}
         if valid:
             pts = camera.capture(scene, pose)
+            if learn_misses and emap.void_cell_count:  # the cells this view is expected to see (see expect_view)
+                _core.expect_view(emap, camera, pose, **given(score_width=width, score_height=height))
             stats = emap.insert(pts, pose[:3, 3], camera.max_range)
         clusters = emap.void_clusters()
         t_int = time.perf_counter() - t0
@@ -288,7 +307,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         if choice.pose is None:
             stop = "no valid view"
             break
-        if choice.utility <= min_utility:
+        low = low + 1 if choice.utility <= min_utility else 0
+        if low >= patience or choice.utility <= 0:
             stop = "utility 0" if choice.utility <= 0 else "utility below min_utility"
             break
         pose, q, current = np.asarray(choice.pose, float), choice.q, choice.base
