@@ -13,7 +13,6 @@
 #include "chain_checks.hpp"
 #include "collision_detail.hpp"
 #include "hinge_pairs.hpp"
-#include "shape_clearance.hpp"
 #include "common/cancel.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
@@ -72,7 +71,6 @@ struct CollisionSetup {
   Eigen::VectorXd full;       // scratch: the robot configuration of the solution checked
   detail::ShapeBoxes boxes;   // shape boxes: the links the chain never moves stay at the reference
   std::vector<int> moved_links;  // collision links the chain moves (their boxes follow each solution)
-  detail::ShapeClearance clearance;  // shape pairs certified apart without FCL (distance grids, filled on use)
 
   bool matches(const Chain& c, const std::shared_ptr<const Robot>& r, const Eigen::VectorXd& ref) const {
     return !robot.expired() && !robot.owner_before(r) && !r.owner_before(robot) && base == c.base_link() &&
@@ -106,7 +104,6 @@ struct CollisionSetup {
       if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
     r->link_poses(reference, s.poses);
     s.hinges = detail::HingePairs(c, s.moving_pairs, reference);
-    s.clearance = detail::ShapeClearance(*r);
     s.boxes = detail::ShapeBoxes();
     s.moved_links.clear();
     for (int li : r->collision_links()) {
@@ -307,7 +304,7 @@ class LmIk {
       if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
       if (fixed_state_ == 1) return false;
       for (int li : s.moved_links) s.boxes.update(robot, s.poses, li);
-      const int k = detail::first_colliding_pair(robot, s.boxes, s.hinges.uncertain(robot, s.full), s.clearance);
+      const int k = detail::first_colliding_pair(robot, s.boxes, s.hinges.uncertain(robot, s.full));
       if (k >= 0) {
         s.hinges.hit(k);
         return false;

@@ -9,7 +9,6 @@
 #include "collision_detail.hpp"
 #include "octoreach/robot.hpp"
 #include "robot_builder.hpp"
-#include "shape_clearance.hpp"
 
 namespace octoreach {
 
@@ -139,11 +138,7 @@ int detail::first_colliding_pair(const Robot& robot, const std::vector<Pose>& po
   return first_colliding_pair(robot, boxes, pairs);
 }
 
-namespace {
-
-// The pairs' shape pairs whose boxes overlap go to FCL, unless `clearance` (if any) certifies them apart.
-int first_colliding(const Robot& robot, const detail::ShapeBoxes& sb, const std::vector<std::pair<int, int>>& pairs,
-                    detail::ShapeClearance* clearance) {
+int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& sb, const std::vector<std::pair<int, int>>& pairs) {
   const auto& links = robot.links();
   const auto& boxes = sb.boxes;
   const auto& shape_poses = sb.poses;
@@ -154,23 +149,11 @@ int first_colliding(const Robot& robot, const detail::ShapeBoxes& sb, const std:
     for (std::size_t i = 0; i < sa.size(); ++i)
       for (std::size_t k = 0; k < sb_.size(); ++k) {
         if (!boxes[a][i].overlap(boxes[b][k])) continue;
-        if (clearance && clearance->apart(robot, a, i, shape_poses[a][i], b, k, shape_poses[b][k])) continue;
         if (geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb_[k].geometry.get(), shape_poses[b][k]))
           return static_cast<int>(p);
       }
   }
   return -1;
-}
-
-}  // namespace
-
-int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& sb, const std::vector<std::pair<int, int>>& pairs) {
-  return first_colliding(robot, sb, pairs, nullptr);
-}
-
-int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& sb, const std::vector<std::pair<int, int>>& pairs,
-                                 ShapeClearance& clearance) {
-  return first_colliding(robot, sb, pairs, &clearance);
 }
 
 bool Robot::in_self_collision(const Eigen::VectorXd& q) const {
