@@ -86,11 +86,10 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
       }, py::arg("poses"), py::arg("lookup") = py::none(),
       "True (N,) where tool pose (N, 4, 4) (base link frame) is reachable: the orientation nearest the pose's,\n"
       "the position by `lookup` (CapabilityLookup or its name; None: CapabilityMap.DEFAULT_LOOKUP, the vote).")
-      .def("reachable_cell", [](const CapabilityMap& cm, const Eigen::Vector3d& point, int orientation,
-                                const py::object& lookup) { return cm.reachable(point, orientation, lookup_arg(lookup)); },
-           py::arg("point"), py::arg("orientation"), py::arg("lookup") = py::none(),
-           "Orientation index `orientation` reachable at `point` by `lookup` (None: CapabilityMap.DEFAULT_LOOKUP;\n"
-           "'nearest_cell': the stored bit of the voxel holding the point).")
+      .def("reachable_cell", py::overload_cast<const Eigen::Vector3d&, int>(&CapabilityMap::reachable, py::const_),
+           py::arg("point"), py::arg("orientation"),
+           "The stored cell: orientation index `orientation` reachable in the voxel holding `point` (the\n"
+           "nearest_cell rule; reachable(poses) gives the map's answer for poses).")
       .def("solution", &CapabilityMap::solution, py::arg("point"), py::arg("orientation"),
            "Stored joint solution of a reachable cell, or None.")
       .def("voxels", [](const CapabilityMap& cm) {

@@ -592,10 +592,10 @@ class CapabilityMap:
         True (N,) where tool pose (N, 4, 4) (base link frame) is reachable: the orientation nearest the pose's,
         the position by `lookup` (CapabilityLookup or its name; None: CapabilityMap.DEFAULT_LOOKUP, the vote).
         """
-    def reachable_cell(self, point: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], orientation: typing.SupportsInt | typing.SupportsIndex, lookup: CapabilityLookup | str | None = None) -> bool:
+    def reachable_cell(self, point: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], orientation: typing.SupportsInt | typing.SupportsIndex) -> bool:
         """
-        Orientation index `orientation` reachable at `point` by `lookup` (None: CapabilityMap.DEFAULT_LOOKUP;
-        'nearest_cell': the stored bit of the voxel holding the point).
+        The stored cell: orientation index `orientation` reachable in the voxel holding `point` (the
+        nearest_cell rule; reachable(poses) gives the map's answer for poses).
         """
     def save(self, path: str, with_solutions: bool = False) -> None:
         """

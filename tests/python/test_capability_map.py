@@ -214,7 +214,7 @@ def test_reachable_poses_use_nearest_orientation(cmap, brute):
     approach = R @ np.asarray(cmap.approach_axis)
     nearest = np.argmax(approach @ cmap.orientations.directions.T, axis=1)
     expected = np.array([cmap.reachable_cell(p, int(o)) for p, o in zip(poses[:, :3, 3], nearest)])
-    got = cmap.reachable(poses)
+    got = cmap.reachable(poses, lookup="nearest_cell")  # the vote: test_default_lookup_is_the_vote
     assert got.dtype == bool
     np.testing.assert_array_equal(got, expected)
     assert 0 < got.sum() < n
@@ -271,11 +271,11 @@ def test_default_lookup_is_the_vote(cmap):
     np.testing.assert_array_equal(got[clear], expected[clear])
     assert (got != cmap.reachable(poses, lookup="nearest_cell")).any()  # the two rules differ somewhere
     np.testing.assert_array_equal(cmap.reachable(poses, lookup=octoreach.CapabilityLookup.vote), got)
-    # the single query gives the batch's answer
+    # one pose at a time gives the batch's answer; reachable_cell is the stored cell (the nearest_cell rule)
     nearest = np.argmax((poses[:, :3, :3] @ np.asarray(cmap.approach_axis)) @ cmap.orientations.directions.T, axis=1)
     for i in range(300):
-        assert cmap.reachable_cell(poses[i, :3, 3], int(nearest[i])) == got[i]
-        assert cmap.reachable_cell(poses[i, :3, 3], int(nearest[i]), lookup="nearest_cell") == \
+        assert cmap.reachable(poses[i:i + 1])[0] == got[i]
+        assert cmap.reachable_cell(poses[i, :3, 3], int(nearest[i])) == \
             cmap.reachable(poses[i:i + 1], lookup="nearest_cell")[0]
     # at the voxel centres the vote is the stored cell
     centres, _ = cmap.voxels()
@@ -284,7 +284,7 @@ def test_default_lookup_is_the_vote(cmap):
     with pytest.raises(ValueError, match="lookup"):
         cmap.reachable(poses[:2], lookup="trilinear")
     with pytest.raises(ValueError, match="lookup"):
-        cmap.reachable_cell(np.zeros(3), 0, lookup=3)
+        cmap.reachable(poses[:2], lookup=3)
 
 
 def test_vote_agrees_with_ik_at_least_as_well_as_the_nearest_cell(chain):

@@ -99,10 +99,13 @@ class CapabilityMap {
   /// \brief True when the tool pose T (base link frame) is reachable by the map: orientation nearest
   /// T's, position looked up by `lookup` (CapabilityLookup).
   bool reachable(const Pose& T, CapabilityLookup lookup = kDefaultCapabilityLookup) const;
-  /// \brief True when orientation o is reachable at p by `lookup` (nearest_cell: the stored bit of
-  /// the voxel holding p).
-  bool reachable(const Eigen::Vector3d& p, int orientation,
-                 CapabilityLookup lookup = kDefaultCapabilityLookup) const;
+  /// \brief The stored cell: true when orientation o is reachable in the voxel holding p (the
+  /// nearest_cell rule; the cell-level consumers, e.g. the point map, read cells).
+  bool reachable(const Eigen::Vector3d& p, int orientation) const {
+    return reachable(p, orientation, CapabilityLookup::nearest_cell);
+  }
+  /// \brief True when orientation o is reachable at p by `lookup`.
+  bool reachable(const Eigen::Vector3d& p, int orientation, CapabilityLookup lookup) const;
   /// \brief The stored joint solution of cell (p, orientation), if the map kept solutions.
   std::optional<Eigen::VectorXd> solution(const Eigen::Vector3d& p, int orientation) const;
   bool has_solutions() const { return !solutions_.empty(); }
