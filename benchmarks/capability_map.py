@@ -15,14 +15,16 @@ voxel edges, in the torso_lift_link frame); rotations uniform on SO(3) (unit qua
 normal deviates), so the approach direction R @ (1, 0, 0) is uniform on the sphere and the roll about
 it uniform. Truth: chain.ik_batch(mode='approach', approach_axis=(1, 0, 0), self_collision=True,
 reference=tucked posture, attempts=20, position_tolerance=1e-3, orientation_tolerance=1e-2) at the
-exact pose. The map answers map.reachable(pose): the cell of the voxel holding the position and the
-direction nearest the approach axis. A false positive is "map yes, IK no", a false negative "map no,
-IK yes"; both are given as a share of all poses and of the poses whose voxel has D > 0. A second
-truth, IK at the cell itself (voxel centre, nearest direction), separates the map's own errors from
-the discretisation (a pose is not its cell's centre): ``error_sources_percent_of_all_poses`` splits the
-false positives and negatives so, and gives the agreement of IK at the cell taken as the answer (the
-ceiling of any nearest-cell lookup). ``diagnostic_trilinear_vote_lookup`` is not the map's answer: the
-agreement of a lookup that weighs the 8 voxel centres around the position trilinearly (same truth).
+exact pose. The map answers map.reachable(pose) with its default lookup (CapabilityMap.DEFAULT_LOOKUP,
+the vote: the 8 voxel centres around the position, each asked with the direction nearest the pose's
+approach axis, weighted trilinearly; yes when the reachable ones weigh at least one half). A false
+positive is "map yes, IK no", a false negative "map no, IK yes"; both are given as a share of all poses
+and of the poses whose voxel has D > 0. ``nearest_cell_lookup`` gives the same figures for the
+nearest-cell rule (map.reachable(pose, lookup="nearest_cell"): the cell of the voxel holding the
+position), and a second truth, IK at that cell itself (voxel centre, nearest direction), separates its
+errors into the map's own and the discretisation's (a pose is not its cell's centre):
+``error_sources_percent_of_all_poses``, with the agreement of IK at the cell taken as the answer (the
+ceiling of any nearest-cell lookup).
 
 Lookups: map.reachable on one numpy batch of 1,000,000 such poses and map.reachability on 1,000,000
 such points, median of 5 runs, wall clock per item (the batch runs on every core).
@@ -31,7 +33,9 @@ Build cost on a shared machine: ``--reference PYTHONPATH`` builds the same map w
 (e.g. main's build) in child processes, interleaved with builds of this one (``--repeats`` each, child
 processes so that neither warms the other), and reports the medians of wall and CPU seconds (user +
 system of the child's build) and their ratios: CPU seconds and the ratio are what a loaded machine
-measures fairly; the wall-clock target needs a quiet one.
+measures fairly; the wall-clock target needs a quiet one. The children's maps are compared byte for
+byte (``same_bytes``: sha256 of the saved file). ``--compare-only`` runs only this comparison (at
+``--resolution``; e.g. ``--resolution 0.025 --compare-only --reference ... --repeats 1``).
 
 Prints one JSON document, with today's figures from before issue 15 (``before_issue_15``) beside the
 new ones. ``--quick`` runs at 0.1 m with fewer poses; ``--also-fine`` adds the 0.025 m build (its
@@ -40,6 +44,7 @@ agreement is measured on the same poses).
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import platform
@@ -190,7 +195,11 @@ def child_build(resolution, directions, threads, seed) -> dict:
     cmap = octoreach.CapabilityMap.build(chain, resolution=resolution, directions=directions, approach_axis=APPROACH,
                                          self_collision=True, reference=tucked, seed=seed, threads=threads)
     wall, cpu = time.perf_counter() - t0, cpu_seconds() - c0
-    return {"wall": wall, "cpu": cpu, "ik_calls": int(cmap.stats["ik_calls"]),
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "map.map")
+        cmap.save(path, with_solutions=True)
+        digest = hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    return {"wall": wall, "cpu": cpu, "ik_calls": int(cmap.stats["ik_calls"]), "sha256": digest,
             "reachable_cells": int(cmap.stats["reachable_cells"]), "octoreach": os.path.dirname(octoreach.__file__)}
 
 
@@ -217,43 +226,29 @@ def compare_builds(reference_path, resolution, directions, threads, seed, repeat
         "runs": {k: [{m: round(r[m], 2) if isinstance(r[m], float) else r[m] for m in r} for r in v]
                  for k, v in runs.items()},
         "median_seconds": med,
+        "same_bytes": len({r["sha256"] for v in runs.values() for r in v}) == 1,
         "speedup_cpu": round(med["reference"]["cpu"] / med["this"]["cpu"], 3),
         "speedup_wall": round(med["reference"]["wall"] / med["this"]["wall"], 3),
         "load_average_after": [round(x, 2) for x in os.getloadavg()],
     }
 
 
-def trilinear_vote(cmap, poses) -> np.ndarray:
-    """A diagnostic lookup (not the map's answer): the 8 voxel centres around each position, each asked
-    with the pose's own rotation (nearest direction), weighted trilinearly; yes when the weights of the
-    reachable ones reach one half. It shows how much of the disagreement the nearest-cell lookup's
-    staircase boundary costs."""
-    r = cmap.resolution
-    g = poses[:, :3, 3] / r - 0.5
-    i0 = np.floor(g)
-    f = g - i0
-    vote = np.zeros(len(poses))
-    q = poses.copy()
-    for d in np.ndindex(2, 2, 2):
-        w = np.prod(np.where(np.asarray(d, dtype=bool), f, 1 - f), axis=1)
-        q[:, :3, 3] = (i0 + np.asarray(d) + 0.5) * r
-        vote += w * np.asarray(cmap.reachable(q))
-    return vote >= 0.5
-
-
 def agreement(cmap, poses, truth, cell_truth):
     D = cmap.reachability(poses[:, :3, 3])
-    yes = cmap.reachable(poses)
+    answer = cmap.reachable(poses)  # the map's own answer: its default lookup
     inside = D > 0
     out = {
-        "all_poses": shares(yes, truth),
-        "poses_in_voxels_with_D_gt_0": shares(yes[inside], truth[inside]),
+        "lookup": cmap.DEFAULT_LOOKUP.name,
+        "all_poses": shares(answer, truth),
+        "poses_in_voxels_with_D_gt_0": shares(answer[inside], truth[inside]),
     }
+    yes = cmap.reachable(poses, lookup="nearest_cell")
+    nearest = out["nearest_cell_lookup"] = {"all_poses": shares(yes, truth)}
     if cell_truth is not None:
-        out["against_ik_at_the_cell"] = shares(yes, cell_truth)
+        nearest["against_ik_at_the_cell"] = shares(yes, cell_truth)
         # Where the disagreements come from: the map's own errors (its answer differs from IK at the
         # cell) or the discretisation (IK at the cell differs from IK at the exact pose).
-        out["error_sources_percent_of_all_poses"] = {
+        nearest["error_sources_percent_of_all_poses"] = {
             "false_positive_map_error": round(100 * float((yes & ~truth & ~cell_truth).mean()), 3),
             "false_positive_discretisation": round(100 * float((yes & ~truth & cell_truth).mean()), 3),
             "false_negative_map_error": round(100 * float((~yes & truth & cell_truth).mean()), 3),
@@ -261,7 +256,6 @@ def agreement(cmap, poses, truth, cell_truth):
             # the best any nearest-cell lookup can do: IK at the cell taken as the answer for the pose
             "nearest_cell_ceiling_agreement": round(100 * float((cell_truth == truth).mean()), 3),
         }
-    out["diagnostic_trilinear_vote_lookup"] = shares(trilinear_vote(cmap, poses), truth)
     return out
 
 
@@ -280,6 +274,8 @@ def main(argv=None) -> int:
     ap.add_argument("--reference", default=None, metavar="PYTHONPATH",
                     help="also build with the octoreach found on this PYTHONPATH (e.g. main's build), interleaved")
     ap.add_argument("--repeats", type=int, default=3, help="builds per side with --reference (medians reported)")
+    ap.add_argument("--compare-only", action="store_true",
+                    help="only the interleaved build comparison with --reference (no agreement, lookups, plot)")
     ap.add_argument("--child-build", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child_build:
@@ -287,6 +283,19 @@ def main(argv=None) -> int:
         return 0
     if args.quick:
         args.resolution, args.poses, args.lookups = 0.1, 2000, 100_000
+    if args.compare_only:
+        if not args.reference:
+            ap.error("--compare-only needs --reference")
+        out = {"benchmark": "capability_map", "resolution_m": args.resolution, "directions": args.directions,
+               "octoreach": octoreach.__version__,
+               "build_comparison": compare_builds(args.reference, args.resolution, args.directions, args.threads,
+                                                  args.seed, args.repeats)}
+        if abs(args.resolution - 0.025) < 1e-9:
+            out["targets_met"] = {"build_0.025": out["build_comparison"]["median_seconds"]["this"]["wall"]
+                                  <= TARGETS["build_seconds_0.025"]}
+        json.dump(out, sys.stdout, indent=2)
+        sys.stdout.write("\n")
+        return 0
 
     robot = robots.pr2()
     chain = robot.chain("torso_lift_link", "r_gripper_tool_frame")

@@ -40,6 +40,28 @@ void wrap_options(py::module_& m) {
   def_reference<O>(cls, "Robot configuration off the chain; None: default_reference(robot, chain).");
 }
 
+// The lookup argument of the reachable() queries: a CapabilityLookup, its name, or None (the C++ default).
+CapabilityLookup lookup_arg(const py::object& lookup) {
+  if (lookup.is_none()) return kDefaultCapabilityLookup;
+  if (py::isinstance<CapabilityLookup>(lookup)) return lookup.cast<CapabilityLookup>();
+  if (py::isinstance<py::str>(lookup)) {
+    const std::string name = lookup.cast<std::string>();
+    if (name == "vote") return CapabilityLookup::vote;
+    if (name == "nearest_cell") return CapabilityLookup::nearest_cell;
+    throw std::invalid_argument("lookup must be 'vote' or 'nearest_cell', got '" + name + "'");
+  }
+  throw std::invalid_argument("lookup must be a CapabilityLookup, 'vote', 'nearest_cell' or None");
+}
+
+void wrap_lookup(py::module_& m) {
+  py::enum_<CapabilityLookup>(m, "CapabilityLookup",
+      "How CapabilityMap.reachable answers a pose from the cells. nearest_cell: the voxel holding the position.\n"
+      "vote: the 8 voxel centres around the position weighted trilinearly; reachable when the reachable ones\n"
+      "weigh at least one half (equal to nearest_cell at voxel centres).")
+      .value("nearest_cell", CapabilityLookup::nearest_cell)
+      .value("vote", CapabilityLookup::vote);
+}
+
 void wrap_queries(py::class_<CapabilityMap>& cls) {
   cls.def("reachability", [](const CapabilityMap& cm, const py::object& points) {
         Array a = rows_arg(points, 3, "points must have shape (N, 3)");
@@ -50,7 +72,8 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
         cm.reachability(p, a.shape(0), o);
         return out;
       }, py::arg("points"), "Reachability index D (N,) of points (N, 3) in the base link frame; 0 outside.")
-      .def("reachable", [](const CapabilityMap& cm, const py::object& poses) {
+      .def("reachable", [](const CapabilityMap& cm, const py::object& poses, const py::object& lookup) {
+        const CapabilityLookup how = lookup_arg(lookup);
         Array a = array_arg(poses, "poses", "an (N, 4, 4) array");
         if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
           throw std::invalid_argument("poses must have shape (N, 4, 4)");
@@ -58,11 +81,15 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
         const double* p = a.data();
         bool* o = out.mutable_data();
         py::gil_scoped_release release;
-        cm.reachable(p, a.shape(0), o);
+        cm.reachable(p, a.shape(0), o, how);
         return out;
-      }, py::arg("poses"), "True (N,) where the cell of tool pose (N, 4, 4) (base link frame) is reachable.")
+      }, py::arg("poses"), py::arg("lookup") = py::none(),
+      "True (N,) where tool pose (N, 4, 4) (base link frame) is reachable: the orientation nearest the pose's,\n"
+      "the position by `lookup` (CapabilityLookup or its name; None: CapabilityMap.DEFAULT_LOOKUP, the vote).")
       .def("reachable_cell", py::overload_cast<const Eigen::Vector3d&, int>(&CapabilityMap::reachable, py::const_),
-           py::arg("point"), py::arg("orientation"))
+           py::arg("point"), py::arg("orientation"),
+           "The stored cell: orientation index `orientation` reachable in the voxel holding `point` (the\n"
+           "nearest_cell rule; reachable(poses) gives the map's answer for poses).")
       .def("solution", &CapabilityMap::solution, py::arg("point"), py::arg("orientation"),
            "Stored joint solution of a reachable cell, or None.")
       .def("voxels", [](const CapabilityMap& cm) {
@@ -81,6 +108,7 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
 
 void wrap_capability_map(py::module_& m) {
   wrap_options(m);
+  wrap_lookup(m);
   py::class_<CapabilityMap> cls(m, "CapabilityMap",
       "Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.");
   cls.def_static("build", [](const Chain& chain, const py::object& options, const py::object& progress, const py::kwargs& kw) {
@@ -113,6 +141,7 @@ void wrap_capability_map(py::module_& m) {
       .def("export_octovis", &CapabilityMap::export_octovis, py::arg("path"),
            "Writes a ColorOcTree (.ot) for octovis, red (low D) to blue (high D).");
   wrap_queries(cls);
+  cls.attr("DEFAULT_LOOKUP") = kDefaultCapabilityLookup;
   cls.def_property_readonly("resolution", &CapabilityMap::resolution)
       .def_property_readonly("orientations", &CapabilityMap::orientations)
       .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)

@@ -160,17 +160,49 @@ double CapabilityMap::reachability(const Eigen::Vector3d& p) const {
   return r == DenseIndex::kNone ? 0.0 : d_[r];
 }
 
-bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation) const {
+bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
+  // Grid coordinates of p in units of voxels, measured from the centre of voxel key 0 (octomap's
+  // voxel i spans [i, i + 1) * resolution; its centre is at (i + 0.5) * resolution).
+  const double inv = 1.0 / resolution_;
+  double base[3], frac[3];
+  for (int a = 0; a < 3; ++a) {
+    const double g = p[a] * inv - 0.5;
+    base[a] = std::floor(g);
+    frac[a] = g - base[a];
+  }
+  double yes = 0.0, left = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    double w = 1.0;
+    Eigen::Vector3d c;
+    for (int a = 0; a < 3; ++a) {
+      const bool up = (k >> a) & 1;
+      w *= up ? frac[a] : 1.0 - frac[a];
+      c[a] = (base[a] + (up ? 1.5 : 0.5)) * resolution_;  // the centre of the corner voxel
+    }
+    if (w <= 0.0) continue;
+    const std::uint32_t r = record(c);
+    if (r != DenseIndex::kNone && bit(r, o)) yes += w;
+    left -= w;
+    if (yes >= 0.5) return true;
+    if (yes + left < 0.5 - 1e-12) return false;  // the rest cannot reach one half
+  }
+  return yes >= 0.5;
+}
+
+bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation, CapabilityLookup lookup) const {
   if (orientation < 0 || orientation >= orientations_.size())
     throw std::invalid_argument("orientation index " + std::to_string(orientation) + " out of range [0, " +
                                 std::to_string(orientations_.size()) + ")");
+  if (lookup == CapabilityLookup::vote) return vote_(p, orientation);
   std::uint32_t r = record(p);
   return r != DenseIndex::kNone && bit(r, orientation);
 }
 
-bool CapabilityMap::reachable(const Pose& T) const {
+bool CapabilityMap::reachable(const Pose& T, CapabilityLookup lookup) const {
+  const int o = orientations_.nearest(T.linear(), approach_axis_);
+  if (lookup == CapabilityLookup::vote) return vote_(T.translation(), o);
   std::uint32_t r = record(T.translation());
-  return r != DenseIndex::kNone && bit(r, orientations_.nearest(T.linear(), approach_axis_));
+  return r != DenseIndex::kNone && bit(r, o);
 }
 
 void CapabilityMap::reachability(const double* points, std::size_t n, double* out) const {
@@ -180,16 +212,16 @@ void CapabilityMap::reachability(const double* points, std::size_t n, double* ou
   });
 }
 
-void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out) const {
+void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, CapabilityLookup lookup) const {
   detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
     Pose T;
     T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
-    out[i] = reachable(T);
+    out[i] = reachable(T, lookup);
   });
 }
 
 std::optional<Eigen::VectorXd> CapabilityMap::solution(const Eigen::Vector3d& p, int orientation) const {
-  if (!has_solutions() || !reachable(p, orientation)) return std::nullopt;
+  if (!has_solutions() || !reachable(p, orientation, CapabilityLookup::nearest_cell)) return std::nullopt;
   const float* q = record_solution(record(p), orientation);
   return Eigen::Map<const Eigen::VectorXf>(q, dof_).cast<double>();
 }

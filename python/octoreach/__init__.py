@@ -11,6 +11,7 @@ from ._core import (  # noqa: F401
     Arm,
     Cancelled,
     CapabilityBlocks,
+    CapabilityLookup,
     CapabilityMap,
     CapabilityMapOptions,
     Chain,
@@ -68,7 +69,7 @@ def view(*items, **kwargs):
     return _view(*items, **kwargs)
 
 
-__all__ = ["Arm", "Cancelled", "CapabilityBlocks", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
+__all__ = ["Arm", "Cancelled", "CapabilityBlocks", "CapabilityLookup", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
            "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
            "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
            "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis",

@@ -546,10 +546,25 @@ class CapabilityMapOptions:
     @threads.setter
     def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+class CapabilityLookup:
+    """
+    How CapabilityMap.reachable answers a pose from the cells. nearest_cell: the voxel holding the position.
+    vote: the 8 voxel centres around the position weighted trilinearly; reachable when the reachable ones
+    weigh at least one half (equal to nearest_cell at voxel centres).
+    """
+    nearest_cell: typing.ClassVar[CapabilityLookup]
+    vote: typing.ClassVar[CapabilityLookup]
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class CapabilityMap:
     """
     Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.
     """
+    DEFAULT_LOOKUP: typing.ClassVar[CapabilityLookup]
     @staticmethod
     def build(chain: Chain, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> CapabilityMap:
         """
@@ -580,12 +595,16 @@ class CapabilityMap:
         """
         Reachability index D (N,) of points (N, 3) in the base link frame; 0 outside.
         """
-    def reachable(self, poses: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
+    def reachable(self, poses: typing.Any, lookup: CapabilityLookup | str | None = None) -> numpy.typing.NDArray[numpy.bool]:
         """
-        True (N,) where the cell of tool pose (N, 4, 4) (base link frame) is reachable.
+        True (N,) where tool pose (N, 4, 4) (base link frame) is reachable: the orientation nearest the pose's,
+        the position by `lookup` (CapabilityLookup or its name; None: CapabilityMap.DEFAULT_LOOKUP, the vote).
         """
     def reachable_cell(self, point: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], orientation: typing.SupportsInt | typing.SupportsIndex) -> bool:
-        ...
+        """
+        The stored cell: orientation index `orientation` reachable in the voxel holding `point` (the
+        nearest_cell rule; reachable(poses) gives the map's answer for poses).
+        """
     def save(self, path: str, with_solutions: bool = False) -> None:
         """
         Writes the map atomically; with_solutions also stores one joint solution per reachable cell.

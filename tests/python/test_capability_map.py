@@ -214,7 +214,7 @@ def test_reachable_poses_use_nearest_orientation(cmap, brute):
     approach = R @ np.asarray(cmap.approach_axis)
     nearest = np.argmax(approach @ cmap.orientations.directions.T, axis=1)
     expected = np.array([cmap.reachable_cell(p, int(o)) for p, o in zip(poses[:, :3, 3], nearest)])
-    got = cmap.reachable(poses)
+    got = cmap.reachable(poses, lookup="nearest_cell")  # the vote: test_default_lookup_is_the_vote
     assert got.dtype == bool
     np.testing.assert_array_equal(got, expected)
     assert 0 < got.sum() < n
@@ -227,6 +227,78 @@ def test_reachable_poses_use_nearest_orientation(cmap, brute):
     bad[1, :3, :3] = np.inf
     with pytest.raises(ValueError, match="pose 1"):
         cmap.reachable(bad)
+
+
+def random_poses(lo, hi, n, rng):
+    """(n, 4, 4) poses: positions uniform in [lo, hi], rotations uniform on SO(3)."""
+    q = rng.normal(size=(n, 4))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    w, x, y, z = q.T
+    T = np.tile(np.eye(4), (n, 1, 1))
+    T[:, :3, :3] = np.stack([
+        np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
+        np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
+        np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
+    ], 1)
+    T[:, :3, 3] = rng.uniform(lo, hi, size=(n, 3))
+    return T
+
+
+def numpy_vote(m, poses):
+    """The vote lookup by brute force: the 8 voxel centres around each position asked by nearest cell with
+    the pose's rotation, weighted trilinearly; yes when the reachable ones weigh at least one half."""
+    r = m.resolution
+    g = poses[:, :3, 3] / r - 0.5
+    i0 = np.floor(g)
+    f = g - i0
+    vote = np.zeros(len(poses))
+    q = poses.copy()
+    for d in np.ndindex(2, 2, 2):
+        w = np.prod(np.where(np.asarray(d, dtype=bool), f, 1 - f), axis=1)
+        q[:, :3, 3] = (i0 + np.asarray(d) + 0.5) * r
+        vote += w * m.reachable(q, lookup="nearest_cell")
+    return vote, vote >= 0.5
+
+
+def test_default_lookup_is_the_vote(cmap):
+    assert octoreach.CapabilityMap.DEFAULT_LOOKUP == octoreach.CapabilityLookup.vote
+    rng = np.random.default_rng(5)
+    lo, hi = cmap.bounds
+    poses = random_poses(lo - cmap.resolution, hi + cmap.resolution, 20000, rng)
+    weight, expected = numpy_vote(cmap, poses)
+    clear = np.abs(weight - 0.5) > 1e-9  # a weight of exactly one half may round either way in numpy
+    got = cmap.reachable(poses)
+    np.testing.assert_array_equal(got[clear], expected[clear])
+    assert (got != cmap.reachable(poses, lookup="nearest_cell")).any()  # the two rules differ somewhere
+    np.testing.assert_array_equal(cmap.reachable(poses, lookup=octoreach.CapabilityLookup.vote), got)
+    # one pose at a time gives the batch's answer; reachable_cell is the stored cell (the nearest_cell rule)
+    nearest = np.argmax((poses[:, :3, :3] @ np.asarray(cmap.approach_axis)) @ cmap.orientations.directions.T, axis=1)
+    for i in range(300):
+        assert cmap.reachable(poses[i:i + 1])[0] == got[i]
+        assert cmap.reachable_cell(poses[i, :3, 3], int(nearest[i])) == \
+            cmap.reachable(poses[i:i + 1], lookup="nearest_cell")[0]
+    # at the voxel centres the vote is the stored cell
+    centres, _ = cmap.voxels()
+    T = cell_poses(cmap, centres[:50])
+    np.testing.assert_array_equal(cmap.reachable(T), cmap.reachable(T, lookup="nearest_cell"))
+    with pytest.raises(ValueError, match="lookup"):
+        cmap.reachable(poses[:2], lookup="trilinear")
+    with pytest.raises(ValueError, match="lookup"):
+        cmap.reachable(poses[:2], lookup=3)
+
+
+def test_vote_agrees_with_ik_at_least_as_well_as_the_nearest_cell(chain):
+    """Coarse map (0.1 m, 24 directions) against IK at the exact pose: the vote is at least as right."""
+    m = build(chain, resolution=0.1, directions=24)
+    lo, hi = m.bounds
+    poses = random_poses(lo, hi, 4000, np.random.default_rng(8))
+    _, truth = chain.ik_batch(poses, attempts=20, rng_seed=3, approach_axis=m.approach_axis, **IK_KW)
+    vote = m.reachable(poses)
+    nearest = m.reachable(poses, lookup="nearest_cell")
+    assert 0.2 < truth.mean() < 0.9
+    agree_vote, agree_nearest = (vote == truth).mean(), (nearest == truth).mean()
+    assert agree_vote >= agree_nearest, (agree_vote, agree_nearest)
+    assert (vote & ~truth).mean() <= (nearest & ~truth).mean() + 0.002  # no more false positives to speak of
 
 
 def test_orientation_rotation_points_the_approach_axis(cmap):
