@@ -138,18 +138,18 @@ int detail::first_colliding_pair(const Robot& robot, const std::vector<Pose>& po
   return first_colliding_pair(robot, boxes, pairs);
 }
 
-int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& sb, const std::vector<std::pair<int, int>>& pairs) {
+int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& shape_boxes, const std::vector<std::pair<int, int>>& pairs) {
   const auto& links = robot.links();
-  const auto& boxes = sb.boxes;
-  const auto& shape_poses = sb.poses;
+  const auto& boxes = shape_boxes.boxes;
+  const auto& shape_poses = shape_boxes.poses;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const auto [a, b] = pairs[p];
-    const auto& sa = links[a].shapes;
-    const auto& sb_ = links[b].shapes;
-    for (std::size_t i = 0; i < sa.size(); ++i)
-      for (std::size_t k = 0; k < sb_.size(); ++k) {
+    const auto& shapes_a = links[a].shapes;
+    const auto& shapes_b = links[b].shapes;
+    for (std::size_t i = 0; i < shapes_a.size(); ++i)
+      for (std::size_t k = 0; k < shapes_b.size(); ++k) {
         if (!boxes[a][i].overlap(boxes[b][k])) continue;
-        if (geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb_[k].geometry.get(), shape_poses[b][k]))
+        if (geometry_collide(shapes_a[i].geometry.get(), shape_poses[a][i], shapes_b[k].geometry.get(), shape_poses[b][k]))
           return static_cast<int>(p);
       }
   }
