@@ -50,7 +50,8 @@ CapabilityLookup lookup_arg(const py::object& lookup) {
     if (name == "nearest_cell") return CapabilityLookup::nearest_cell;
     throw std::invalid_argument("lookup must be 'vote' or 'nearest_cell', got '" + name + "'");
   }
-  throw std::invalid_argument("lookup must be a CapabilityLookup, 'vote', 'nearest_cell' or None");
+  throw py::type_error("lookup must be a CapabilityLookup, 'vote', 'nearest_cell' or None, got " +
+                       std::string(py::str(py::type::of(lookup).attr("__name__"))));
 }
 
 void wrap_lookup(py::module_& m) {

@@ -283,7 +283,7 @@ def test_default_lookup_is_the_vote(cmap):
     np.testing.assert_array_equal(cmap.reachable(T), cmap.reachable(T, lookup="nearest_cell"))
     with pytest.raises(ValueError, match="lookup"):
         cmap.reachable(poses[:2], lookup="trilinear")
-    with pytest.raises(ValueError, match="lookup"):
+    with pytest.raises(TypeError, match="lookup must be .* got int"):
         cmap.reachable(poses[:2], lookup=3)
 
 
