@@ -84,16 +84,16 @@ struct SampledCollisions {
   std::string cache_file;   ///< the cache file read or written ("" without cache)
 };
 
-/// \brief Robot model: links, joints, collision shapes, allowed-collision pairs.
-///
-/// Build it with Robot::from_urdf. A Robot never changes once built (every member function is
-/// const), so one robot serves any number of threads and chains at once. A different
-/// allowed-collision matrix makes a new robot (with_allowed_collisions), with its own model_hash().
 /// \brief What Robot::from_urdf does with SRDF groups and end effectors that name links, joints or groups the
 /// URDF lacks (an SRDF of another variant of the robot): an error naming them, or leave those entries out (as
 /// MoveIt's srdfdom does, which warns), keeping the rest; Robot::srdf_left_out() says what was left out.
 enum class SrdfMismatch { kError, kLeaveOut };
 
+/// \brief Robot model: links, joints, collision shapes, allowed-collision pairs.
+///
+/// Build it with Robot::from_urdf. A Robot never changes once built (every member function is
+/// const), so one robot serves any number of threads and chains at once. A different
+/// allowed-collision matrix makes a new robot (with_allowed_collisions), with its own model_hash().
 class Robot : public std::enable_shared_from_this<Robot> {
  public:
   /// \brief Parses a URDF (file path or XML string); resolves package:// and file:// mesh URIs
