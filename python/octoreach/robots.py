@@ -139,6 +139,19 @@ def catalogue_name(robot_name: str, urdf_hash: str = "") -> str | None:
     return None
 
 
+def loadable_name(name: str, urdf_hash: str = "") -> str:
+    """`name` if load() takes it, else catalogue_name(name, urdf_hash) (the robot whose URDF declares the
+    robot name `name`: what a Robot and a map carry); the ValueError of files(name) if neither."""
+    try:
+        files(name)
+        return name
+    except ValueError:
+        known = catalogue_name(name, urdf_hash)
+        if known is None:
+            raise
+        return known
+
+
 def complete_allowed_collisions(robot: Robot, srdf_given: bool = True, options=None, progress=False, **kwargs) -> Robot:
     """The robot with the sampled allowed-collision matrix (MoveIt setup assistant's method, cached on disk by
     model hash) added when no SRDF was given or its list is incomplete (the home posture is in self-collision);

@@ -289,6 +289,9 @@ def test_catalogue_name_of_a_urdf_robot_name():
     assert robots.catalogue_name("UF_ROBOT", xarm.urdf_hash) == "xarm7"
     assert robots.catalogue_name("UF_ROBOT", "0") is None  # another model of that name
     assert robots.catalogue_name("no_such_robot") is None
+    assert robots.loadable_name("xarm7") == "xarm7" and robots.loadable_name("UF_ROBOT", xarm.urdf_hash) == "xarm7"
+    with pytest.raises(ValueError, match="unknown robot 'no_such_robot'"):
+        robots.loadable_name("no_such_robot")
 
 
 def test_cli_single_arm_robot_needs_no_arm_name(tmp_path):

@@ -42,7 +42,7 @@ def exploration_map(source):
 def robot_by_name(name: str, urdf_hash: str = ""):
     """The robot called `name`: one of the project's own (urdf/), one of example-robot-data by the name it is
     loaded by, or (a map records its URDF's robot name) the one whose URDF declares that name and, when given,
-    has that model hash. ValueError (from robots.load: the names there are) if none is."""
+    has that model hash (robots.loadable_name). ValueError (naming the robots there are) if none is."""
     from .. import robots
     from .._core import Robot
 
@@ -51,13 +51,7 @@ def robot_by_name(name: str, urdf_hash: str = ""):
         return Robot.from_urdf(str(robots.project_urdf(own)))  # the project's own robots (urdf/)
     except ValueError:
         pass
-    try:
-        return robots.load(name)
-    except ValueError:
-        known = robots.catalogue_name(name, urdf_hash)
-        if known is None:
-            raise
-        return robots.load(known)
+    return robots.load(robots.loadable_name(name, urdf_hash))
 
 
 def reference_posture(robot, smap) -> np.ndarray:

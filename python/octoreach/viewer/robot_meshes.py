@@ -20,7 +20,8 @@ from . import colours, mesh_files
 def robot_files(name: str, urdf_hash: str = "") -> tuple[str, list[str]]:
     """(URDF path, package_dirs) of a robot that ``octoreach.robots.load(name)`` loads, of the project's own
     robots (``urdf/NAME.urdf``, whose robots are named "octoreach_NAME"), or of the robot of example-robot-data
-    whose URDF declares the robot name `name` (a Robot's name; with that model hash when given)."""
+    whose URDF declares the robot name `name` (a Robot's name; with that model hash when given; see
+    robots.loadable_name)."""
     from .. import robots
 
     own = name[len("octoreach_"):] if name.startswith("octoreach_") else name
@@ -28,13 +29,7 @@ def robot_files(name: str, urdf_hash: str = "") -> tuple[str, list[str]]:
         return str(robots.project_urdf(own)), []
     except ValueError:
         pass
-    try:
-        urdf, _, dirs = robots.files(name)
-    except ValueError:
-        known = robots.catalogue_name(name, urdf_hash)
-        if known is None:
-            raise
-        urdf, _, dirs = robots.files(known)
+    urdf, _, dirs = robots.files(robots.loadable_name(name, urdf_hash))
     return str(urdf), dirs
 
 
