@@ -143,6 +143,33 @@ void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
 // Everything an ExplorationMap maintains. `rw` is the map's reader-writer lock: insert holds it
 // exclusively, every other public method (and next_best_view for its whole search) shared, through
 // MapGuard; the caches below are rebuilt under cache_mutex by readers.
+// One unknown cell an announced view (expect_view) expected: its ray weight w, the unknown depth d of
+// that ray (unknown cells it crossed before this one) and its class (1: void cell).
+struct ExpectedCell {
+  CellKey key;
+  float weight;
+  std::uint16_t depth;
+  std::uint8_t void_cell;
+};
+
+// The visibility model's curve learned from what announced views did (view_score.cpp): per class
+// (0: unknown cells outside the voids, and frontier cells; 1: void cells) and unknown depth d (capped
+// at kDepths - 1), the cells views expected and the ones their insert turned known, and the seen share
+// made non-increasing in d (weighted isotonic regression). A ray's weight at depth d is the blend
+// (n s + kPrior w_geom) / (n + kPrior) of the learned share s over n cells and the geometric weight
+// w_geom (the product of pass probabilities), so a map no announced view taught keeps the geometric model.
+struct VisibilityCurve {
+  static constexpr int kDepths = 128;
+  static constexpr double kPrior = 30.0;  // cells: the geometric weight's worth in a depth bin
+  double expected[2][kDepths] = {}, seen[2][kDepths] = {};
+  double share[2][kDepths] = {};
+  double weight(int cls, int d, double w_geom) const {
+    if (d >= kDepths) d = kDepths - 1;
+    const double n = expected[cls][d];
+    return (n * share[cls][d] + kPrior * w_geom) / (n + kPrior);
+  }
+};
+
 struct ExplorationState {
   explicit ExplorationState(double res) : tree(res) {}
   mutable SharedMutex rw;  // writer first: a stream of queries cannot starve an insert
@@ -161,7 +188,8 @@ struct ExplorationState {
   // cells it expects with their ray weights w; the next insert multiplies s by (1 - w) for each of
   // them it left unknown. The view score counts an unknown cell with w * s.
   KeyTable<float> hidden;
-  std::vector<std::pair<CellKey, float>> expected_by_view;
+  std::vector<ExpectedCell> expected_by_view;
+  VisibilityCurve curve;  // learned from the announced views' cells (view_score.cpp)
   double seeability(CellKey k) const {
     const float* h = hidden.find(k);
     return h ? 1.0 - double(*h) : 1.0;
