@@ -148,6 +148,7 @@ void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
 struct ExpectedCell {
   CellKey key;
   float weight;
+  float beam;  // cells its coarse ray stands for at its distance (>= 1)
   std::uint16_t depth;
   std::uint8_t void_cell;
 };
@@ -163,6 +164,13 @@ struct VisibilityCurve {
   static constexpr double kPrior = 30.0;  // cells: the geometric weight's worth in a depth bin
   double expected[2][kDepths] = {}, seen[2][kDepths] = {};
   double share[2][kDepths] = {};
+  // The beam: a coarse ray stands for max(1, t^2 beam) cells at distance t; per class, the cells the
+  // announced views' inserts turned known against the beam-weighted count of the coarse-met cells
+  // they turned known (the prior: 1 worth kBeamPrior cells).
+  static constexpr double kBeamPrior = 200.0;
+  double known_total[2] = {}, known_met_beam[2] = {};
+  std::uint64_t known_at_announce[2] = {};  // the ray statistics' known cells (outside voids, void) when announced
+  double beam_scale(int cls) const { return (known_total[cls] + kBeamPrior) / (known_met_beam[cls] + kBeamPrior); }
   double weight(int cls, int d, double w_geom) const {
     if (d >= kDepths) d = kDepths - 1;
     const double n = expected[cls][d];

@@ -151,10 +151,14 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   met.for_each([&](CellKey k, double w, int depth) {
     const std::uint8_t f = g.get(k);
     const bool unknown = (f & kStateMask) == std::uint8_t(CellState::Unknown);
+    const double cells = std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
     if (unknown && unknown_met)
-      unknown_met->push_back({k, float(w), std::uint16_t(std::min(depth, 65535)), std::uint8_t((f & kVoidFlag) ? 1 : 0)});
-    // unknown cells count with their seeability (lowered by views that expected them and missed)
-    const double e = w * (unknown ? S.seeability(k) : 1.0) * std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
+      unknown_met->push_back({k, float(w), float(cells), std::uint16_t(std::min(depth, 65535)),
+                              std::uint8_t((f & kVoidFlag) ? 1 : 0)});
+    // unknown cells count with their seeability (lowered by views that expected them and missed); with
+    // the learned curve, the beam's cells are calibrated too
+    const double scale = curve ? curve->beam_scale((f & kVoidFlag) ? 1 : 0) : 1.0;
+    const double e = w * (unknown ? S.seeability(k) : 1.0) * cells * scale;
     if (unknown) {
       ++v.unknown_cells;
       v.expected_unknown += e;
@@ -217,6 +221,12 @@ void non_increasing_share(const double* n, const double* seen, double* share, in
 
 void learn_from_missed(ExplorationState& S) {
   VisibilityCurve& c = S.curve;
+  if (!S.expected_by_view.empty()) {
+    const std::uint64_t known_void = S.rays.void_to_free + S.rays.void_to_occupied;
+    const std::uint64_t known_other = S.rays.unknown_to_free + S.rays.unknown_to_occupied - known_void;
+    c.known_total[0] += double(known_other - c.known_at_announce[0]);
+    c.known_total[1] += double(known_void - c.known_at_announce[1]);
+  }
   for (const ExpectedCell& e : S.expected_by_view) {
     // the model expects w s of a cell (s: its seeability): the curve learns the seen share per unit
     // of seeability, so cells already missed weigh less in it
@@ -224,6 +234,7 @@ void learn_from_missed(ExplorationState& S) {
     c.expected[e.void_cell][d] += S.seeability(e.key);
     if (S.state(e.key) != CellState::Unknown) {
       c.seen[e.void_cell][d] += 1;
+      c.known_met_beam[e.void_cell] += e.beam;
       continue;
     }
     float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s
@@ -244,6 +255,9 @@ void expect_view(ExplorationMap& map, const CameraIntrinsics& cam, const Pose& p
   detail::MapGuard guard(S, true);
   const auto p = detail::pass_probabilities(map, opt);
   S.expected_by_view.clear();
+  const std::uint64_t known_void = S.rays.void_to_free + S.rays.void_to_occupied;
+  S.curve.known_at_announce[0] = S.rays.unknown_to_free + S.rays.unknown_to_occupied - known_void;
+  S.curve.known_at_announce[1] = known_void;
   detail::view_gains_unlocked(map, cam, pose, opt.score_width, opt.score_height, p.first, p.second,
                               opt.unknown_pass_probability < 0, &S.expected_by_view);
 }
