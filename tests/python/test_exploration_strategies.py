@@ -208,10 +208,12 @@ def test_a_missed_view_lowers_the_seeability_of_what_it_expected():
         emap.insert(cam.capture(s, T), T[:3, 3], 4.0)
         assert emap.void_cell_count > 50
         if announce:
-            _core.expect_view(emap, cam, side, score_width=24, score_height=18)
+            # announced with p = 1 (every cell on a ray fully expected: a miss rules it out from then on)
+            _core.expect_view(emap, cam, side, score_width=24, score_height=18, unknown_pass_probability=1.0)
         emap.insert(cam.capture(s, side), side[:3, 3], 4.0)
         maps.append(emap)
-    plain, learned = (_core.view_gains(m, cam, above, 24, 18) for m in maps)
+    # a fixed pass probability: the seeability alone (the learned curve also learns from the announced view)
+    plain, learned = (_core.view_gains(m, cam, above, 24, 18, 1.0) for m in maps)
     assert _core.missed_cells(maps[0]) == 0 and _core.missed_cells(maps[1]) > 0
     assert plain["void_cells"] == learned["void_cells"] > 0  # the same map, the same raw count
     assert learned["expected_void"] < 0.9 * plain["expected_void"], (plain, learned)
