@@ -164,6 +164,7 @@ struct VisibilityCurve {
   static constexpr double kPrior = 30.0;  // cells: the geometric weight's worth in a depth bin
   double expected[2][kDepths] = {}, seen[2][kDepths] = {};
   double share[2][kDepths] = {};
+  bool taught = false;  // an announced view has been learned from
   // The beam: a coarse ray stands for max(1, t^2 beam) cells at distance t; per class, the cells the
   // announced views' inserts turned known against the beam-weighted count of the coarse-met cells
   // they turned known (the prior: 1 worth kBeamPrior cells).

@@ -104,7 +104,8 @@ class MetCells {
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void, bool learned, std::vector<ExpectedCell>* unknown_met) {
   const ExplorationState& S = state(map);
-  const VisibilityCurve* curve = learned ? &S.curve : nullptr;
+  // (a curve no announced view taught is the geometric weight itself: skip it)
+  const VisibilityCurve* curve = learned && S.curve.taught ? &S.curve : nullptr;
   GridReader g(S.grid);
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
@@ -240,6 +241,7 @@ void learn_from_missed(ExplorationState& S) {
     float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s
     h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(e.weight), 0.0), 1.0)));
   }
+  if (!S.expected_by_view.empty()) c.taught = true;
   if (!S.expected_by_view.empty())
     for (int cls = 0; cls < 2; ++cls)
       non_increasing_share(c.expected[cls], c.seen[cls], c.share[cls], VisibilityCurve::kDepths);
