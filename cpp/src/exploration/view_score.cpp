@@ -43,11 +43,16 @@ namespace {
 // The cells (unknown or frontier) the rays of one view met, each with its largest weight and that
 // ray's unknown depth: a dense array over the frustum's key box (thread-local, reset through the list
 // of touched cells, so a view costs what its rays walk) or, for a box of more than kMaxDense cells, a
-// hash table. A value is (1 + w * 65534) << 16 | (65535 - depth) (0: not met): the largest is the
-// largest weight, on ties the smallest depth.
+// hash table. With V = uint32_t a value is (1 + w * 65534) << 16 | (65535 - depth) (0: not met): the
+// largest is the largest weight, on ties the smallest depth; with V = uint16_t (scoring, which needs no
+// depth: half the memory traffic) it is 1 + w * 65534.
+template <class V>
 class MetCells {
+  static constexpr bool kDepth = sizeof(V) == 4;
+
  public:
-  static constexpr std::int64_t kMaxDense = std::int64_t(1) << 24;
+ public:
+  static constexpr std::int64_t kMaxDense = std::int64_t(1) << (kDepth ? 24 : 25);  // 64 MB per thread
   MetCells(const std::int64_t klo[3], const std::int64_t n[3]) : dense_(n[0] * n[1] * n[2] <= kMaxDense) {
     for (int a = 0; a < 3; ++a) klo_[a] = klo[a], n_[a] = n[a];
     if (dense_) {
@@ -63,10 +68,10 @@ class MetCells {
   MetCells(const MetCells&) = delete;
   MetCells& operator=(const MetCells&) = delete;
   void touch(CellKey k, double w, int depth) {
-    const std::uint32_t q = (std::uint32_t(1 + std::lround(std::min(std::max(w, 0.0), 1.0) * 65534.0)) << 16) |
-                            std::uint32_t(65535 - std::min(depth, 65535));
+    const std::uint32_t wq = std::uint32_t(1 + std::lround(std::min(std::max(w, 0.0), 1.0) * 65534.0));
+    const V q = kDepth ? V((wq << 16) | std::uint32_t(65535 - std::min(depth, 65535))) : V(wq);
     if (!dense_) {
-      std::uint32_t& v = table_.at(k);
+      V& v = table_.at(k);
       if (!v) touched_.emplace_back(0, k);
       v = std::max(v, q);
       return;
@@ -75,7 +80,7 @@ class MetCells {
                        z = std::int64_t(key_z(k)) - klo_[2];
     if (x < 0 || y < 0 || z < 0 || x >= n_[0] || y >= n_[1] || z >= n_[2]) return;  // cannot happen
     const std::size_t idx = std::size_t((z * n_[1] + y) * n_[0] + x);
-    std::uint32_t& v = buffer()[idx];
+    V& v = buffer()[idx];
     if (!v) touched_.emplace_back(idx, k);
     v = std::max(v, q);
   }
@@ -84,19 +89,22 @@ class MetCells {
   void for_each(F&& f) const {
     for (const auto& t : touched_) {
       const std::uint32_t v = dense_ ? buffer()[t.first] : *table_.find(t.second);
-      f(t.second, double((v >> 16) - 1) / 65534.0, int(65535 - (v & 0xffffu)));
+      if (kDepth)
+        f(t.second, double((v >> 16) - 1) / 65534.0, int(65535 - (v & 0xffffu)));
+      else
+        f(t.second, double(v - 1) / 65534.0, 0);
     }
   }
 
  private:
-  static std::vector<std::uint32_t>& buffer() {
-    thread_local std::vector<std::uint32_t> b;
+  static std::vector<V>& buffer() {
+    thread_local std::vector<V> b;
     return b;
   }
   bool dense_;
   std::int64_t klo_[3], n_[3];
   std::vector<std::pair<std::size_t, CellKey>> touched_;
-  KeyTable<std::uint32_t> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
+  KeyTable<V> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
 };
 
 }  // namespace
@@ -126,7 +134,8 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
     klo[a] = std::int64_t(std::floor(lo[a] / res + 32768.0)) - 2;
     n[a] = std::int64_t(std::floor(hi[a] / res + 32768.0)) + 2 - klo[a] + 1;
   }
-  MetCells met(klo, n);
+  // the rays' walk and the count, over either kind of MetCells (depths only for an announcement)
+  const auto count = [&](auto& met) {
   for (const Eigen::Vector3d& d : dirs) {
     double w = 1.0;  // the geometric weight: the product of the pass probabilities so far
     int depth = 0;   // unknown cells crossed so far
@@ -173,6 +182,13 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
     }
   });
   return v;
+  };
+  if (unknown_met) {
+    MetCells<std::uint32_t> met(klo, n);
+    return count(met);
+  }
+  MetCells<std::uint16_t> met(klo, n);
+  return count(met);
 }
 
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt) {
