@@ -233,12 +233,12 @@ void wrap_next_best_view(py::module_& m) {
           CameraIntrinsics c = intrinsics_from(camera);
           Pose T = pose_from(pose, "camera_pose");
           double p = map.pass_probability(), pv = map.void_pass_probability();
-          if (!pass_probability.is_none())
-            p = pv = cast_arg<double>(pass_probability, "pass_probability", "a float in [0, 1] or None");
+          const bool learned = pass_probability.is_none();
+          if (!learned) p = pv = cast_arg<double>(pass_probability, "pass_probability", "a float in [0, 1] or None");
           ViewGains v;
           {
             py::gil_scoped_release release;
-            v = view_gains(map, c, T, sw, sh, p, pv);
+            v = view_gains(map, c, T, sw, sh, p, pv, learned);
           }
           py::dict d;
           gains_into(d, v);
@@ -249,7 +249,8 @@ void wrap_next_best_view(py::module_& m) {
         py::arg("score_height") = 36, py::arg("pass_probability") = py::none(),
         "What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight\n"
         "starts at 1 and is multiplied by pass_probability after each unknown cell; None: the map's learned\n"
-        "values, void_pass_probability for void cells and pass_probability for the others): raw distinct void_cells, unknown_cells, frontier_cells and their visibility-weighted\n"
+        "values, void_pass_probability for void cells and pass_probability for the others, and its visibility\n"
+        "curve learned from the views announced with expect_view): raw distinct void_cells, unknown_cells, frontier_cells and their visibility-weighted\n"
         "expected_void, expected_unknown, expected_frontier.");
 
   m.def("score_views", [](const ExplorationMap& map, const py::object& camera, const py::object& poses,
@@ -291,6 +292,22 @@ void wrap_next_best_view(py::module_& m) {
         "leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability.");
   m.def("missed_cells", [](const ExplorationMap& map) { return missed_cells(map); }, py::arg("map"),
         "Unknown cells whose seeability a missed view (expect_view) has lowered.");
+
+  m.def("visibility_curve", [](const ExplorationMap& map) {
+          const VisibilityCurveTable t = visibility_curve(map);
+          py::dict d;
+          const char* names[2] = {"unknown", "void"};
+          for (int c = 0; c < 2; ++c) {
+            d[(std::string(names[c]) + "_expected").c_str()] = py::array_t<double>(t.expected[c].size(), t.expected[c].data());
+            d[(std::string(names[c]) + "_seen").c_str()] = py::array_t<double>(t.seen[c].size(), t.seen[c].data());
+            d[(std::string(names[c]) + "_share").c_str()] = py::array_t<double>(t.share[c].size(), t.share[c].data());
+          }
+          return d;
+        }, py::arg("map"),
+        "The visibility curve the map learned from the views announced with expect_view: per unknown depth d\n"
+        "(index; the last holds deeper cells), for unknown cells outside the voids ('unknown_*') and void cells\n"
+        "('void_*'), the cells views expected (weighted by seeability), the cells their inserts turned known and\n"
+        "the learned non-increasing share.");
 
   m.def("accumulate_utility", [](const ExplorationMap& map, double range) {
           std::vector<std::pair<CellKey, double>> u;

@@ -1703,6 +1703,13 @@ def set_progress_factory(factory: typing.Any) -> None:
     Registers factory(progress, label) -> callable (done, total) or None, used for progress=True and
     callables; octoreach/__init__.py registers octoreach.progress.make_progress. None unregisters.
     """
+def visibility_curve(map: ExplorationMap) -> dict:
+    """
+    The visibility curve the map learned from the views announced with expect_view: per unknown depth d
+    (index; the last holds deeper cells), for unknown cells outside the voids ('unknown_*') and void cells
+    ('void_*'), the cells views expected (weighted by seeability), the cells their inserts turned known and
+    the learned non-increasing share.
+    """
 def view_gains(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, pass_probability: typing.Any = None) -> dict:
     """
     What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight

@@ -208,10 +208,12 @@ def test_a_missed_view_lowers_the_seeability_of_what_it_expected():
         emap.insert(cam.capture(s, T), T[:3, 3], 4.0)
         assert emap.void_cell_count > 50
         if announce:
-            _core.expect_view(emap, cam, side, score_width=24, score_height=18)
+            # announced with p = 1 (every cell on a ray fully expected: a miss rules it out from then on)
+            _core.expect_view(emap, cam, side, score_width=24, score_height=18, unknown_pass_probability=1.0)
         emap.insert(cam.capture(s, side), side[:3, 3], 4.0)
         maps.append(emap)
-    plain, learned = (_core.view_gains(m, cam, above, 24, 18) for m in maps)
+    # a fixed pass probability: the seeability alone (the learned curve also learns from the announced view)
+    plain, learned = (_core.view_gains(m, cam, above, 24, 18, 1.0) for m in maps)
     assert _core.missed_cells(maps[0]) == 0 and _core.missed_cells(maps[1]) > 0
     assert plain["void_cells"] == learned["void_cells"] > 0  # the same map, the same raw count
     assert learned["expected_void"] < 0.9 * plain["expected_void"], (plain, learned)
@@ -289,3 +291,40 @@ def test_bad_input():
         ex.explore(scene, cam, T, target=(1, 2, 3))
     with pytest.raises(ValueError, match="resolution"):
         ex.observable_cells(scene, resolution=0.0)
+
+
+def test_the_visibility_curve_learns_from_announced_views_what_rays_see():
+    """Two empty crates seen only from low at their sides: their insides are voids that let rays through
+    all the way to the floor, which the geometric model (one pass probability per unknown cell) does not
+    expect. A view from above into crate A is announced and taken; the map's learned curve (per unknown
+    depth, non-increasing) then expects of the view from above into crate B about what that view sees,
+    closer than the geometric weight with the map's void pass probability does."""
+    from octoreach import _core
+
+    s = Scene()
+    _floor(s)
+    s.add_crate((0.6, -0.6, 0.0), (1.0, -0.2, 0.3), 0.02)
+    s.add_crate((0.6, 0.2, 0.0), (1.0, 0.6, 0.3), 0.02)
+    emap = ExplorationMap(resolution=0.03, search_space=np.array([[0.5, -0.7, 0.0], [1.1, 0.7, 0.35]]))
+    cam = DepthCamera(160, 120, FOV, 4.0)
+    for eye in ((0.0, 0.0, 0.2), (0.8, -1.3, 0.2), (0.8, 1.3, 0.2), (1.8, 0.0, 0.2)):
+        T = ex.look_at(eye, (0.8, 0.0, 0.15))
+        emap.insert(cam.capture(s, T), T[:3, 3], 4.0)
+    assert emap.void_cell_count > 200
+    curve = _core.visibility_curve(emap)
+    assert curve["void_expected"].sum() == 0 and len(curve["void_share"]) == 128  # nothing announced yet
+    top_a = ex.look_at((0.8, -0.4, 0.9), (0.8, -0.4, 0.0))
+    _core.expect_view(emap, cam, top_a)
+    emap.insert(cam.capture(s, top_a), top_a[:3, 3], 4.0)
+    curve = _core.visibility_curve(emap)
+    assert curve["void_expected"].sum() > 50 and curve["void_seen"].sum() > 0
+    share = curve["void_share"]
+    assert np.all(np.diff(share) <= 1e-12) and 0 < share[0] <= 1  # non-increasing in the depth
+    top_b = ex.look_at((0.8, 0.4, 0.9), (0.8, 0.4, 0.0))
+    p, pv = emap.pass_probability, emap.void_pass_probability
+    geometric = _core.view_gains(emap, cam, top_b, 48, 36, pv)["expected_void"]
+    learned = _core.view_gains(emap, cam, top_b, 48, 36)["expected_void"]
+    seen = emap.insert(cam.capture(s, top_b), top_b[:3, 3], 4.0)["void_removed"]
+    assert seen > 50 and pv < 1 and p < 1
+    assert abs(learned / seen - 1) < abs(geometric / seen - 1), (geometric, learned, seen)
+    assert 0.67 < learned / seen < 1.5, (geometric, learned, seen)

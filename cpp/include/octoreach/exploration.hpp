@@ -119,10 +119,11 @@ struct RayStatistics {
   double pass_probability() const {
     return (unknown_to_free_w + 0.5 * kPrior) / (unknown_to_free_w + unknown_to_occupied_w + kPrior);
   }
-  /// \brief The same over void cells alone (cells inside the hull, mostly behind surfaces), with
-  /// pass_probability() as the prior worth kPrior.
+  /// \brief The same over void cells alone (cells inside the hull, mostly behind surfaces), with a
+  /// prior of 0.5 worth kPrior: until rays have met void cells nothing is known of the voids' insides
+  /// (open space's pass_probability(), learned from rays through air, made the first views over-expect).
   double void_pass_probability() const {
-    return (void_to_free_w + kPrior * pass_probability()) / (void_to_free_w + void_to_occupied_w + kPrior);
+    return (void_to_free_w + 0.5 * kPrior) / (void_to_free_w + void_to_occupied_w + kPrior);
   }
   static constexpr double kPrior = 100.0;  ///< m^-2: about 25 cells at 0.5 m
 };

@@ -143,6 +143,42 @@ void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
 // Everything an ExplorationMap maintains. `rw` is the map's reader-writer lock: insert holds it
 // exclusively, every other public method (and next_best_view for its whole search) shared, through
 // MapGuard; the caches below are rebuilt under cache_mutex by readers.
+// One unknown cell an announced view (expect_view) expected: its ray weight w, the unknown depth d of
+// that ray (unknown cells it crossed before this one) and its class (1: void cell).
+struct ExpectedCell {
+  CellKey key;
+  float weight;
+  float beam;  // cells its coarse ray stands for at its distance (>= 1)
+  std::uint16_t depth;
+  std::uint8_t void_cell;
+};
+
+// The visibility model's curve learned from what announced views did (view_score.cpp): per class
+// (0: unknown cells outside the voids, and frontier cells; 1: void cells) and unknown depth d (capped
+// at kDepths - 1), the cells views expected and the ones their insert turned known, and the seen share
+// made non-increasing in d (weighted isotonic regression). A ray's weight at depth d is the blend
+// (n s + kPrior w_geom) / (n + kPrior) of the learned share s over n cells and the geometric weight
+// w_geom (the product of pass probabilities), so a map no announced view taught keeps the geometric model.
+struct VisibilityCurve {
+  static constexpr int kDepths = 128;
+  static constexpr double kPrior = 30.0;  // cells: the geometric weight's worth in a depth bin
+  double expected[2][kDepths] = {}, seen[2][kDepths] = {};
+  double share[2][kDepths] = {};
+  bool taught = false;  // an announced view has been learned from
+  // The beam: a coarse ray stands for max(1, t^2 beam) cells at distance t; per class, the cells the
+  // announced views' inserts turned known against the beam-weighted count of the coarse-met cells
+  // they turned known (the prior: 1 worth kBeamPrior cells).
+  static constexpr double kBeamPrior = 200.0;
+  double known_total[2] = {}, known_met_beam[2] = {};
+  std::uint64_t known_at_announce[2] = {};  // the ray statistics' known cells (outside voids, void) when announced
+  double beam_scale(int cls) const { return (known_total[cls] + kBeamPrior) / (known_met_beam[cls] + kBeamPrior); }
+  double weight(int cls, int d, double w_geom) const {
+    if (d >= kDepths) d = kDepths - 1;
+    const double n = expected[cls][d];
+    return (n * share[cls][d] + kPrior * w_geom) / (n + kPrior);
+  }
+};
+
 struct ExplorationState {
   explicit ExplorationState(double res) : tree(res) {}
   mutable SharedMutex rw;  // writer first: a stream of queries cannot starve an insert
@@ -161,7 +197,8 @@ struct ExplorationState {
   // cells it expects with their ray weights w; the next insert multiplies s by (1 - w) for each of
   // them it left unknown. The view score counts an unknown cell with w * s.
   KeyTable<float> hidden;
-  std::vector<std::pair<CellKey, float>> expected_by_view;
+  std::vector<ExpectedCell> expected_by_view;
+  VisibilityCurve curve;  // learned from the announced views' cells (view_score.cpp)
   double seeability(CellKey k) const {
     const float* h = hidden.find(k);
     return h ? 1.0 - double(*h) : 1.0;

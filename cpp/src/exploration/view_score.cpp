@@ -40,13 +40,19 @@ namespace detail {
 
 namespace {
 
-// The cells (unknown or frontier) the rays of one view met, each with its largest weight: a dense
-// array over the frustum's key box (thread-local, reset through the list of touched cells, so a view
-// costs what its rays walk) or, for a box of more than kMaxDense cells, a hash table. Weights are kept
-// as 16-bit fractions (1 + w * 65534; 0: not met).
+// The cells (unknown or frontier) the rays of one view met, each with its largest weight and that
+// ray's unknown depth: a dense array over the frustum's key box (thread-local, reset through the list
+// of touched cells, so a view costs what its rays walk) or, for a box of more than kMaxDense cells, a
+// hash table. With V = uint32_t a value is (1 + w * 65534) << 16 | (65535 - depth) (0: not met): the
+// largest is the largest weight, on ties the smallest depth; with V = uint16_t (scoring, which needs no
+// depth: half the memory traffic) it is 1 + w * 65534.
+template <class V>
 class MetCells {
+  static constexpr bool kDepth = sizeof(V) == 4;
+
  public:
-  static constexpr std::int64_t kMaxDense = std::int64_t(1) << 25;
+ public:
+  static constexpr std::int64_t kMaxDense = std::int64_t(1) << (kDepth ? 24 : 25);  // 64 MB per thread
   MetCells(const std::int64_t klo[3], const std::int64_t n[3]) : dense_(n[0] * n[1] * n[2] <= kMaxDense) {
     for (int a = 0; a < 3; ++a) klo_[a] = klo[a], n_[a] = n[a];
     if (dense_) {
@@ -61,10 +67,11 @@ class MetCells {
   }
   MetCells(const MetCells&) = delete;
   MetCells& operator=(const MetCells&) = delete;
-  void touch(CellKey k, double w) {
-    const std::uint16_t q = std::uint16_t(1 + std::lround(std::min(std::max(w, 0.0), 1.0) * 65534.0));
+  void touch(CellKey k, double w, int depth) {
+    const std::uint32_t wq = std::uint32_t(1 + std::lround(std::min(std::max(w, 0.0), 1.0) * 65534.0));
+    const V q = kDepth ? V((wq << 16) | std::uint32_t(65535 - std::min(depth, 65535))) : V(wq);
     if (!dense_) {
-      std::uint16_t& v = table_.at(k);
+      V& v = table_.at(k);
       if (!v) touched_.emplace_back(0, k);
       v = std::max(v, q);
       return;
@@ -73,35 +80,40 @@ class MetCells {
                        z = std::int64_t(key_z(k)) - klo_[2];
     if (x < 0 || y < 0 || z < 0 || x >= n_[0] || y >= n_[1] || z >= n_[2]) return;  // cannot happen
     const std::size_t idx = std::size_t((z * n_[1] + y) * n_[0] + x);
-    std::uint16_t& v = buffer()[idx];
+    V& v = buffer()[idx];
     if (!v) touched_.emplace_back(idx, k);
     v = std::max(v, q);
   }
-  // f(key, weight) once per cell met.
+  // f(key, weight, depth) once per cell met.
   template <class F>
   void for_each(F&& f) const {
     for (const auto& t : touched_) {
-      const std::uint16_t v = dense_ ? buffer()[t.first] : *table_.find(t.second);
-      f(t.second, double(v - 1) / 65534.0);
+      const std::uint32_t v = dense_ ? buffer()[t.first] : *table_.find(t.second);
+      if (kDepth)
+        f(t.second, double((v >> 16) - 1) / 65534.0, int(65535 - (v & 0xffffu)));
+      else
+        f(t.second, double(v - 1) / 65534.0, 0);
     }
   }
 
  private:
-  static std::vector<std::uint16_t>& buffer() {
-    thread_local std::vector<std::uint16_t> b;
+  static std::vector<V>& buffer() {
+    thread_local std::vector<V> b;
     return b;
   }
   bool dense_;
   std::int64_t klo_[3], n_[3];
   std::vector<std::pair<std::size_t, CellKey>> touched_;
-  KeyTable<std::uint16_t> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
+  KeyTable<V> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
 };
 
 }  // namespace
 
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                              double p, double p_void, std::vector<std::pair<CellKey, float>>* unknown_met) {
+                              double p, double p_void, bool learned, std::vector<ExpectedCell>* unknown_met) {
   const ExplorationState& S = state(map);
+  // (a curve no announced view taught is the geometric weight itself: skip it)
+  const VisibilityCurve* curve = learned && S.curve.taught ? &S.curve : nullptr;
   GridReader g(S.grid);
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
@@ -122,18 +134,22 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
     klo[a] = std::int64_t(std::floor(lo[a] / res + 32768.0)) - 2;
     n[a] = std::int64_t(std::floor(hi[a] / res + 32768.0)) + 2 - klo[a] + 1;
   }
-  MetCells met(klo, n);
+  // the rays' walk and the count, over either kind of MetCells (depths only for an announcement)
+  const auto count = [&](auto& met) {
   for (const Eigen::Vector3d& d : dirs) {
-    double w = 1.0;
+    double w = 1.0;  // the geometric weight: the product of the pass probabilities so far
+    int depth = 0;   // unknown cells crossed so far
     walk_cells(res, o, d, cam.max_range, [&](CellKey k) {
       const std::uint8_t f = g.get(k);
       const std::uint8_t s = f & kStateMask;
       if (s == std::uint8_t(CellState::Occupied)) return false;
       if (s == std::uint8_t(CellState::Unknown)) {
-        met.touch(k, w);
-        w *= (f & kVoidFlag) ? p_void : p;
+        const bool v = f & kVoidFlag;
+        met.touch(k, curve ? curve->weight(v, depth, w) : w, depth);
+        w *= v ? p_void : p;
+        ++depth;
       } else if (f & kFrontierFlag) {
-        met.touch(k, w);
+        met.touch(k, curve ? curve->weight(0, depth, w) : w, depth);
       }
       return true;
     });
@@ -142,12 +158,17 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   // t^2 du dv / res^2 cells across (at least 1), the cells the camera's pixels see there.
   const double beam = (double(cam.width) / sw / cam.focal()) * (double(cam.height) / sh / cam.focal()) / (res * res);
   ViewGains v;
-  met.for_each([&](CellKey k, double w) {
+  met.for_each([&](CellKey k, double w, int depth) {
     const std::uint8_t f = g.get(k);
     const bool unknown = (f & kStateMask) == std::uint8_t(CellState::Unknown);
-    if (unknown && unknown_met) unknown_met->emplace_back(k, float(w));
-    // unknown cells count with their seeability (lowered by views that expected them and missed)
-    const double e = w * (unknown ? S.seeability(k) : 1.0) * std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
+    const double cells = std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
+    if (unknown && unknown_met)
+      unknown_met->push_back({k, float(w), float(cells), std::uint16_t(std::min(depth, 65535)),
+                              std::uint8_t((f & kVoidFlag) ? 1 : 0)});
+    // unknown cells count with their seeability (lowered by views that expected them and missed); with
+    // the learned curve, the beam's cells are calibrated too
+    const double scale = curve ? curve->beam_scale((f & kVoidFlag) ? 1 : 0) : 1.0;
+    const double e = w * (unknown ? S.seeability(k) : 1.0) * cells * scale;
     if (unknown) {
       ++v.unknown_cells;
       v.expected_unknown += e;
@@ -161,6 +182,13 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
     }
   });
   return v;
+  };
+  if (unknown_met) {
+    MetCells<std::uint32_t> met(klo, n);
+    return count(met);
+  }
+  MetCells<std::uint16_t> met(klo, n);
+  return count(met);
 }
 
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt) {
@@ -172,18 +200,67 @@ std::pair<double, double> pass_probabilities(const ExplorationMap& map, const Nb
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
                 std::pair<double, double> p, ViewCandidate& v) {
   static_cast<ViewGains&>(v) =
-      view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, p.first, p.second);
+      view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, p.first, p.second,
+                          opt.unknown_pass_probability < 0);
   v.gain = v.ViewGains::gain(opt.gain);
   const double res = map.resolution();
   v.utility_dm3 = v.expected_void * res * res * res * 1000.0;
 }
 
-void learn_from_missed(ExplorationState& S) {
-  for (const auto& [k, w] : S.expected_by_view) {
-    if (S.state(k) != CellState::Unknown) continue;
-    float& h = S.hidden.at(k);  // s' = s (1 - w), kept as h = 1 - s
-    h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(w), 0.0), 1.0)));
+namespace {
+
+// Weighted isotonic regression (pool adjacent violators): the non-increasing sequence closest to
+// seen[d] / n[d] in the n-weighted least squares sense; bins without cells take their left neighbour's value.
+void non_increasing_share(const double* n, const double* seen, double* share, int count) {
+  std::vector<double> val, wt;
+  std::vector<int> len;
+  for (int d = 0; d < count; ++d) {
+    if (n[d] <= 0) {
+      len.empty() ? void() : void(++len.back());  // an empty bin joins the block before it
+      if (len.empty()) val.push_back(1.0), wt.push_back(0.0), len.push_back(1);
+      continue;
+    }
+    val.push_back(seen[d] / n[d]), wt.push_back(n[d]), len.push_back(1);
+    while (val.size() > 1 && val[val.size() - 2] < val.back()) {  // a rise: pool the two blocks
+      const std::size_t b = val.size() - 1;
+      const double w = wt[b - 1] + wt[b];
+      val[b - 1] = w > 0 ? (val[b - 1] * wt[b - 1] + val[b] * wt[b]) / w : val[b];
+      wt[b - 1] = w, len[b - 1] += len[b];
+      val.pop_back(), wt.pop_back(), len.pop_back();
+    }
   }
+  int d = 0;
+  for (std::size_t b = 0; b < val.size(); ++b)
+    for (int i = 0; i < len[b]; ++i) share[d++] = val[b];
+}
+
+}  // namespace
+
+void learn_from_missed(ExplorationState& S) {
+  VisibilityCurve& c = S.curve;
+  if (!S.expected_by_view.empty()) {
+    const std::uint64_t known_void = S.rays.void_to_free + S.rays.void_to_occupied;
+    const std::uint64_t known_other = S.rays.unknown_to_free + S.rays.unknown_to_occupied - known_void;
+    c.known_total[0] += double(known_other - c.known_at_announce[0]);
+    c.known_total[1] += double(known_void - c.known_at_announce[1]);
+  }
+  for (const ExpectedCell& e : S.expected_by_view) {
+    // the model expects w s of a cell (s: its seeability): the curve learns the seen share per unit
+    // of seeability, so cells already missed weigh less in it
+    const int d = std::min<int>(e.depth, VisibilityCurve::kDepths - 1);
+    c.expected[e.void_cell][d] += S.seeability(e.key);
+    if (S.state(e.key) != CellState::Unknown) {
+      c.seen[e.void_cell][d] += 1;
+      c.known_met_beam[e.void_cell] += e.beam;
+      continue;
+    }
+    float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s
+    h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(e.weight), 0.0), 1.0)));
+  }
+  if (!S.expected_by_view.empty()) c.taught = true;
+  if (!S.expected_by_view.empty())
+    for (int cls = 0; cls < 2; ++cls)
+      non_increasing_share(c.expected[cls], c.seen[cls], c.share[cls], VisibilityCurve::kDepths);
   S.expected_by_view.clear();
 }
 
@@ -196,8 +273,11 @@ void expect_view(ExplorationMap& map, const CameraIntrinsics& cam, const Pose& p
   detail::MapGuard guard(S, true);
   const auto p = detail::pass_probabilities(map, opt);
   S.expected_by_view.clear();
+  const std::uint64_t known_void = S.rays.void_to_free + S.rays.void_to_occupied;
+  S.curve.known_at_announce[0] = S.rays.unknown_to_free + S.rays.unknown_to_occupied - known_void;
+  S.curve.known_at_announce[1] = known_void;
   detail::view_gains_unlocked(map, cam, pose, opt.score_width, opt.score_height, p.first, p.second,
-                              &S.expected_by_view);
+                              opt.unknown_pass_probability < 0, &S.expected_by_view);
 }
 
 std::size_t missed_cells(const ExplorationMap& map) {
@@ -205,8 +285,21 @@ std::size_t missed_cells(const ExplorationMap& map) {
   return detail::state(map).hidden.size();
 }
 
+VisibilityCurveTable visibility_curve(const ExplorationMap& map) {
+  auto guard = detail::read_guard(map);
+  const detail::VisibilityCurve& c = detail::state(map).curve;
+  VisibilityCurveTable t;
+  for (int cls = 0; cls < 2; ++cls) {
+    const int n = detail::VisibilityCurve::kDepths;
+    t.expected[cls].assign(c.expected[cls], c.expected[cls] + n);
+    t.seen[cls].assign(c.seen[cls], c.seen[cls] + n);
+    t.share[cls].assign(c.share[cls], c.share[cls] + n);
+  }
+  return t;
+}
+
 ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                     double p, double p_void) {
+                     double p, double p_void, bool learned) {
   cam.validate();
   if (sw <= 0 || sh <= 0)
     throw std::invalid_argument("score grid must be positive, got " + std::to_string(sw) + " x " + std::to_string(sh));
@@ -215,7 +308,7 @@ ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& cam, con
                                 std::to_string(p_void));
   if (!pose.matrix().allFinite()) throw std::invalid_argument("camera pose must be finite");
   auto guard = detail::read_guard(map);
-  return detail::view_gains_unlocked(map, cam, pose, sw, sh, p, p_void);
+  return detail::view_gains_unlocked(map, cam, pose, sw, sh, p, p_void, learned);
 }
 
 std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, const CameraIntrinsics& cam,

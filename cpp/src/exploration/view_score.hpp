@@ -13,17 +13,21 @@ class OcTree;
 
 namespace octoreach::detail {
 
+struct ExplorationState;
+struct ExpectedCell;
+
 // view_gains without taking the map's lock: the caller holds it (pool workers of next_best_view must
 // not lock again: a writer waiting in between would deadlock them against their caller).
-// With `unknown_met`, also lists every unknown cell a ray met with its largest ray weight w (before
-// seeability).
+// `learned`: ray weights from the map's learned visibility curve (with the geometric weight of p and
+// p_void as its prior), else the geometric weight alone. With `unknown_met`, also lists every unknown
+// cell a ray met with its largest ray weight w (before seeability), that ray's unknown depth and its class.
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                              double p, double p_void,
-                              std::vector<std::pair<CellKey, float>>* unknown_met = nullptr);
+                              double p, double p_void, bool learned,
+                              std::vector<ExpectedCell>* unknown_met = nullptr);
 
-struct ExplorationState;
 // After an insert: each cell the view announced by expect_view expected (weight w) and left unknown
-// has its seeability multiplied by (1 - w); the announcement is cleared. The caller holds the write lock.
+// has its seeability multiplied by (1 - w); every announced cell teaches the visibility curve (seen or
+// not, at its depth and class); the announcement is cleared. The caller holds the write lock.
 void learn_from_missed(ExplorationState& S);
 
 // Throws std::invalid_argument naming the first bad option (or camera value).
