@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import pose_error, random_configurations, reachable_targets, rot_z, translation
+from pose_helpers import pose_error, random_configurations, reachable_targets, rot_z, translation
 from octoreach import Obstacles, Robot, _bench, _core, robots
 
 POS_TOL, ROT_TOL = 1e-4, 1e-3  # the IK defaults
