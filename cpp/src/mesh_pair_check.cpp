@@ -1,5 +1,6 @@
 #include "mesh_pair_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -21,19 +22,51 @@ struct Hull {
   int n;
   const Eigen::Matrix3d R;
   const Eigen::Vector3d t;
-  // The world position of a vertex farthest along world direction d.
-  Eigen::Vector3d support(const Eigen::Vector3d& d) const {
-    const Eigen::Vector3d l = R.transpose() * d;
-    int best = 0;
-    double m = l.dot(v[0]);
-    for (int i = 1; i < n; ++i) {
+  // The index of a vertex farthest along local direction l, and its projection. Four running maxima
+  // (max is exact, so the split changes no result; ties go to the lowest index as in one pass).
+  int farthest(const Eigen::Vector3d& l, double& best) const {
+    double m[4];
+    int k[4];
+    const int n4 = n < 4 ? 0 : n - n % 4;
+    for (int j = 0; j < 4 && j < n4; ++j) {
+      m[j] = l.dot(v[j]);
+      k[j] = j;
+    }
+    for (int i = 4; i < n4; i += 4)
+      for (int j = 0; j < 4; ++j) {
+        const double s = l.dot(v[i + j]);
+        if (s > m[j]) {
+          m[j] = s;
+          k[j] = i + j;
+        }
+      }
+    int bi = n4 > 0 ? k[0] : 0;
+    double bm = n4 > 0 ? m[0] : l.dot(v[0]);
+    for (int j = 1; j < 4 && j < n4; ++j)
+      if (m[j] > bm || (m[j] == bm && k[j] < bi)) {
+        bm = m[j];
+        bi = k[j];
+      }
+    for (int i = n4; i < n; ++i) {
       const double s = l.dot(v[i]);
-      if (s > m) {
-        m = s;
-        best = i;
+      if (s > bm) {
+        bm = s;
+        bi = i;
       }
     }
-    return R * v[best] + t;
+    best = bm;
+    return bi;
+  }
+  // The world position of a vertex farthest along world direction d.
+  Eigen::Vector3d support(const Eigen::Vector3d& d) const {
+    double m;
+    return R * v[farthest(R.transpose() * d, m)] + t;
+  }
+  // max over the vertices of d . x (world).
+  double reach(const Eigen::Vector3d& d) const {
+    double m;
+    farthest(R.transpose() * d, m);
+    return m + d.dot(t);
   }
 };
 
@@ -150,6 +183,11 @@ bool apart_along(const Hull& A, const Hull& B, const Eigen::Vector3d& d, Eigen::
   return w.dot(d) > kHullMargin * d.norm();
 }
 
+// apart_along without the support point: the two vertex passes alone.
+bool apart_by(const Hull& A, const Hull& B, const Eigen::Vector3d& d) {
+  return -A.reach(-d) - B.reach(d) > kHullMargin * d.norm();
+}
+
 // GJK on the Minkowski difference A - B, started along the direction between the meshes' local box
 // centres ca, cb: v, the point of the simplex W nearest the origin, approaches the difference's
 // nearest point; each step adds the support point w against v. True (axis: unit v) when some v
@@ -192,32 +230,39 @@ bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl:
   const Mesh& mb = *mesh_of(b);
   const Hull A{ma.vertices, ma.num_vertices, ta.linear(), ta.translation()};
   const Hull B{mb.vertices, mb.num_vertices, tb.linear(), tb.translation()};
-  Eigen::Vector3d w;
   // Cheapest first: the old separating direction (two passes over the vertices), then the old
   // triangle pair, then GJK, then FCL.
-  if (witness.axis.squaredNorm() > 0 && apart_along(A, B, witness.axis, w)) return false;
+  if (witness.axis.squaredNorm() > 0 && apart_by(A, B, witness.axis)) return false;
   const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
   // A witness only ever saves work: one kept under a key the caller reused for other meshes is still
-  // a valid test of these meshes once its triangle indices are in range.
-  if (witness.tri_a >= 0 && witness.tri_a < ma.num_tris && witness.tri_b >= 0 && witness.tri_b < mb.num_tris) {
+  // a valid test of these meshes once its triangle indices are in range. The pairs are kept newest
+  // (or last confirmed) first.
+  if (witness.triangles[0][0] >= 0) {
     // FCL's leaf test (mesh_collision_traversal_node-inl.h): b's triangle moved into a's frame by the
     // relative transform FCL's traversal node computes.
     fcl::Matrix3d R;
     fcl::Vector3d T;
     fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
-    const fcl::Triangle& p = ma.tri_indices[witness.tri_a];
-    const fcl::Triangle& q = mb.tri_indices[witness.tri_b];
-    if (fcl::detail::Intersect<double>::intersect_Triangle(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]],
-                                                           mb.vertices[q[0]], mb.vertices[q[1]], mb.vertices[q[2]],
-                                                           R, T))
-      return true;
+    auto& tris = witness.triangles;
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      const int ia = tris[k][0], ib = tris[k][1];
+      if (ia < 0 || ia >= ma.num_tris || ib < 0 || ib >= mb.num_tris) break;
+      const fcl::Triangle& p = ma.tri_indices[ia];
+      const fcl::Triangle& q = mb.tri_indices[ib];
+      if (fcl::detail::Intersect<double>::intersect_Triangle(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]],
+                                                             mb.vertices[q[0]], mb.vertices[q[1]], mb.vertices[q[2]],
+                                                             R, T)) {
+        std::rotate(tris.begin(), tris.begin() + k, tris.begin() + k + 1);  // the last hit first
+        return true;
+      }
+    }
   }
   if (gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), witness.axis)) return false;
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
   if (fcl::collide(&a, fa, &b, fb, request, result) == 0) return false;
-  witness.tri_a = result.getContact(0).b1;
-  witness.tri_b = result.getContact(0).b2;
+  std::rotate(witness.triangles.begin(), witness.triangles.end() - 1, witness.triangles.end());
+  witness.triangles[0] = {{result.getContact(0).b1, result.getContact(0).b2}};
   return true;
 }
 
@@ -228,8 +273,7 @@ bool hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::Co
   if (!ma || !mb) return false;
   const Hull A{ma->vertices, ma->num_vertices, ta.linear(), ta.translation()};
   const Hull B{mb->vertices, mb->num_vertices, tb.linear(), tb.translation()};
-  Eigen::Vector3d w;
-  if (axis.squaredNorm() > 0 && apart_along(A, B, axis, w)) return true;
+  if (axis.squaredNorm() > 0 && apart_by(A, B, axis)) return true;
   return gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), axis);
 }
 

@@ -71,7 +71,7 @@ TEST(MeshPairCheck, AnswersAsFclAlongAPath) {
     ASSERT_EQ(detail::meshes_collide(*a, ta, *b, tb, witness), fcl) << "step " << i;
     fcl ? ++hits : ++misses;
     kept_axis += !fcl && before.axis.squaredNorm() > 0 && before.axis == witness.axis;
-    kept_triangles += fcl && before.tri_a >= 0 && before.tri_a == witness.tri_a && before.tri_b == witness.tri_b;
+    kept_triangles += fcl && before.triangles[0][0] >= 0 && before.triangles == witness.triangles;
     Eigen::Vector3d axis = before.axis;
     if (detail::hulls_apart(*a, ta, *b, tb, axis)) {
       // A plane claimed separates the vertex sets (b on the negative side), and FCL agrees.
@@ -97,8 +97,7 @@ TEST(MeshPairCheck, AnyWitnessGivesFclsAnswer) {
     detail::MeshPairWitness w;
     if (i % 3 == 0) detail::meshes_collide(*c, random_pose(rng, 0.15), *c, random_pose(rng, 0.15), w);
     if (i % 3 == 1) {
-      w.tri_a = tri(rng);
-      w.tri_b = tri(rng);
+      for (auto& t : w.triangles) t = {{tri(rng), tri(rng)}};
       w.axis = random_pose(rng, 1.0).translation();
     }
     const bool fcl = detail::geometry_collide(a.get(), ta, b.get(), tb);
