@@ -262,7 +262,7 @@ bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl:
   fcl::CollisionResultd result;
   if (fcl::collide(&a, fa, &b, fb, request, result) == 0) return false;
   std::rotate(witness.triangles.begin(), witness.triangles.end() - 1, witness.triangles.end());
-  witness.triangles[0] = {{result.getContact(0).b1, result.getContact(0).b2}};
+  witness.triangles[0] = {{static_cast<int>(result.getContact(0).b1), static_cast<int>(result.getContact(0).b2)}};
   return true;
 }
 
