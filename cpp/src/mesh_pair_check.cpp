@@ -3,71 +3,42 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <typeinfo>
+
+#include "exploration/hull.hpp"
 
 namespace octoreach::detail {
 namespace {
 
-using Mesh = fcl::BVHModel<fcl::OBBRSSd>;
+using Mesh = HullMesh;
 
 const Mesh* mesh_of(const fcl::CollisionGeometryd& g) {
-  if (g.getObjectType() != fcl::OT_BVH || g.getNodeType() != fcl::BV_OBBRSS) return nullptr;
+  if (g.getObjectType() != fcl::OT_BVH || g.getNodeType() != fcl::BV_OBBRSS || typeid(g) != typeid(HullMesh))
+    return nullptr;
   const auto* m = static_cast<const Mesh*>(&g);
   const bool triangles = m->getModelType() == fcl::BVH_MODEL_TRIANGLES && m->tri_indices && m->num_tris > 0;
   return triangles && m->vertices && m->num_vertices > 0 ? m : nullptr;
 }
 
-// A mesh's vertices at a world pose.
-struct Hull {
-  const fcl::Vector3d* v;
-  int n;
+// A mesh's hull support points at a world pose.
+struct Placed {
+  const HullMesh::Points& p;
   const Eigen::Matrix3d R;
   const Eigen::Vector3d t;
-  // The index of a vertex farthest along local direction l, and its projection. Four running maxima
-  // (max is exact, so the split changes no result; ties go to the lowest index as in one pass).
-  int farthest(const Eigen::Vector3d& l, double& best) const {
-    double m[4];
-    int k[4];
-    const int n4 = n < 4 ? 0 : n - n % 4;
-    for (int j = 0; j < 4 && j < n4; ++j) {
-      m[j] = l.dot(v[j]);
-      k[j] = j;
-    }
-    for (int i = 4; i < n4; i += 4)
-      for (int j = 0; j < 4; ++j) {
-        const double s = l.dot(v[i + j]);
-        if (s > m[j]) {
-          m[j] = s;
-          k[j] = i + j;
-        }
-      }
-    int bi = n4 > 0 ? k[0] : 0;
-    double bm = n4 > 0 ? m[0] : l.dot(v[0]);
-    for (int j = 1; j < 4 && j < n4; ++j)
-      if (m[j] > bm || (m[j] == bm && k[j] < bi)) {
-        bm = m[j];
-        bi = k[j];
-      }
-    for (int i = n4; i < n; ++i) {
-      const double s = l.dot(v[i]);
-      if (s > bm) {
-        bm = s;
-        bi = i;
-      }
-    }
-    best = bm;
-    return bi;
+  // The projections of the points on local direction l.
+  auto projections(const Eigen::Vector3d& l) const {
+    using Col = Eigen::Map<const Eigen::ArrayXd>;
+    const Eigen::Index n = static_cast<Eigen::Index>(p.x.size());
+    return l.x() * Col(p.x.data(), n) + l.y() * Col(p.y.data(), n) + l.z() * Col(p.z.data(), n);
   }
-  // The world position of a vertex farthest along world direction d.
+  // The world position of a point farthest along world direction d.
   Eigen::Vector3d support(const Eigen::Vector3d& d) const {
-    double m;
-    return R * v[farthest(R.transpose() * d, m)] + t;
+    Eigen::Index i = 0;
+    projections(R.transpose() * d).maxCoeff(&i);
+    return R * Eigen::Vector3d(p.x[i], p.y[i], p.z[i]) + t;
   }
-  // max over the vertices of d . x (world).
-  double reach(const Eigen::Vector3d& d) const {
-    double m;
-    farthest(R.transpose() * d, m);
-    return m + d.dot(t);
-  }
+  // max over the points of d . x (world).
+  double reach(const Eigen::Vector3d& d) const { return projections(R.transpose() * d).maxCoeff() + d.dot(t); }
 };
 
 // Closest point to the origin of the triangle (a, b, c) (Ericson, Real-Time Collision Detection
@@ -178,13 +149,13 @@ Eigen::Vector3d closest(Eigen::Vector3d* W, int& n) {
 
 // z = a - b over both hulls: w (out) minimises z . d, so z . d >= w . d everywhere. When w . d exceeds
 // the margin times |d|, the plane normal to d separates the hulls: this test is the certificate.
-bool apart_along(const Hull& A, const Hull& B, const Eigen::Vector3d& d, Eigen::Vector3d& w) {
+bool apart_along(const Placed& A, const Placed& B, const Eigen::Vector3d& d, Eigen::Vector3d& w) {
   w = A.support(-d) - B.support(d);
   return w.dot(d) > kHullMargin * d.norm();
 }
 
 // apart_along without the support point: the two vertex passes alone.
-bool apart_by(const Hull& A, const Hull& B, const Eigen::Vector3d& d) {
+bool apart_by(const Placed& A, const Placed& B, const Eigen::Vector3d& d) {
   return -A.reach(-d) - B.reach(d) > kHullMargin * d.norm();
 }
 
@@ -192,7 +163,7 @@ bool apart_by(const Hull& A, const Hull& B, const Eigen::Vector3d& d) {
 // centres ca, cb: v, the point of the simplex W nearest the origin, approaches the difference's
 // nearest point; each step adds the support point w against v. True (axis: unit v) when some v
 // certifies the separation (apart_along); false when the hulls come closer than the margin.
-bool gjk_apart(const Hull& A, const Hull& B, const Eigen::Vector3d& ca, const Eigen::Vector3d& cb,
+bool gjk_apart(const Placed& A, const Placed& B, const Eigen::Vector3d& ca, const Eigen::Vector3d& cb,
                Eigen::Vector3d& axis) {
   Eigen::Vector3d d = (A.R * ca + A.t) - (B.R * cb + B.t);
   if (!(d.squaredNorm() > 0)) d = Eigen::Vector3d::UnitX();
@@ -222,14 +193,32 @@ bool gjk_apart(const Hull& A, const Hull& B, const Eigen::Vector3d& ca, const Ei
 
 }  // namespace
 
+void HullMesh::measure() const {
+  std::vector<Eigen::Vector3d> all(vertices, vertices + num_vertices);
+  double scale = 1.0;
+  for (const auto& v : all) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  const double inside = 1e-9 * scale;  // far beyond qhull's rounding
+  Hull hull;
+  const bool ok = convex_hull(all, hull);  // false when degenerate (flat ...): every vertex is kept
+  for (const auto& v : all) {
+    bool interior = ok;
+    for (std::size_t f = 0; interior && f < hull.planes.size(); ++f)
+      interior = hull.planes[f].head<3>().dot(v) + hull.planes[f][3] < -inside;
+    if (interior) continue;
+    points_.x.push_back(v.x());
+    points_.y.push_back(v.y());
+    points_.z.push_back(v.z());
+  }
+}
+
 bool is_mesh(const fcl::CollisionGeometryd& g) { return mesh_of(g) != nullptr; }
 
 bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                     const Pose& tb, MeshPairWitness& witness) {
   const Mesh& ma = *mesh_of(a);
   const Mesh& mb = *mesh_of(b);
-  const Hull A{ma.vertices, ma.num_vertices, ta.linear(), ta.translation()};
-  const Hull B{mb.vertices, mb.num_vertices, tb.linear(), tb.translation()};
+  const Placed A{ma.hull_points(), ta.linear(), ta.translation()};
+  const Placed B{mb.hull_points(), tb.linear(), tb.translation()};
   // Cheapest first: the old separating direction (two passes over the vertices), then the old
   // triangle pair, then GJK, then FCL.
   if (witness.axis.squaredNorm() > 0 && apart_by(A, B, witness.axis)) return false;
@@ -271,8 +260,8 @@ bool hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::Co
   const Mesh* ma = mesh_of(a);
   const Mesh* mb = mesh_of(b);
   if (!ma || !mb) return false;
-  const Hull A{ma->vertices, ma->num_vertices, ta.linear(), ta.translation()};
-  const Hull B{mb->vertices, mb->num_vertices, tb.linear(), tb.translation()};
+  const Placed A{ma->hull_points(), ta.linear(), ta.translation()};
+  const Placed B{mb->hull_points(), tb.linear(), tb.translation()};
   if (axis.squaredNorm() > 0 && apart_by(A, B, axis)) return true;
   return gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), axis);
 }

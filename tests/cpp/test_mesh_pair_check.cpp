@@ -129,3 +129,22 @@ TEST(MeshPairCheck, HullsApartFindsSeparatedHulls) {
   }
   EXPECT_EQ(found, 500);
 }
+
+TEST(MeshPairCheck, HullPointsReachAsFarAsAllVertices) {
+  // The support points a mesh keeps reach as far as all its vertices in every direction, and drop some.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int m = 0; m < 20; ++m) {
+    auto mesh = soup(rng, 10 + 20 * m, 0.1);
+    const auto& h = static_cast<const detail::HullMesh&>(*mesh);
+    const auto& pts = h.hull_points();
+    if (m > 5) EXPECT_LT(static_cast<int>(pts.x.size()), h.num_vertices);
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::Vector3d d(g(rng), g(rng), g(rng));
+      double all = -1e300, kept = -1e300;
+      for (int i = 0; i < h.num_vertices; ++i) all = std::max(all, d.dot(h.vertices[i]));
+      for (std::size_t i = 0; i < pts.x.size(); ++i) kept = std::max(kept, d.dot(Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i])));
+      EXPECT_GE(kept, all - 1e-12 * d.norm()) << "mesh " << m;
+    }
+  }
+}
