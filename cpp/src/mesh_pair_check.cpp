@@ -17,7 +17,8 @@ const Mesh* mesh_of(const fcl::CollisionGeometryd& g) {
     return nullptr;
   const auto* m = static_cast<const Mesh*>(&g);
   const bool triangles = m->getModelType() == fcl::BVH_MODEL_TRIANGLES && m->tri_indices && m->num_tris > 0;
-  return triangles && m->vertices && m->num_vertices > 0 ? m : nullptr;
+  // No support points: a vertex is not finite, and planes prove nothing; FCL decides.
+  return triangles && m->vertices && m->num_vertices > 0 && !m->hull_points().x.empty() ? m : nullptr;
 }
 
 // A mesh's hull support points at a world pose.
@@ -194,7 +195,10 @@ bool gjk_apart(const Placed& A, const Placed& B, const Eigen::Vector3d& ca, cons
 }  // namespace
 
 void HullMesh::measure() const {
+  if (!vertices || num_vertices <= 0) return;
   std::vector<Eigen::Vector3d> all(vertices, vertices + num_vertices);
+  for (const auto& v : all)
+    if (!v.allFinite()) return;  // no support points: is_mesh is false
   double scale = 1.0;
   for (const auto& v : all) scale = std::max(scale, v.cwiseAbs().maxCoeff());
   const double inside = 1e-9 * scale;  // far beyond qhull's rounding
