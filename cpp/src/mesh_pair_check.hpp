@@ -63,7 +63,8 @@ class MeshPairWitnesses {
 /// also keeps the support points of its convex hull, the vertices a separating-plane test scans. They
 /// are the vertices not clearly inside the hull's facets (libqhull_r; more than 1e-9 m inside every
 /// facet plane), so that the hull of the points kept is the hull of all vertices: on the PR2, 24 of 50
-/// vertices (base) to 74 of 172 (forearm). Measured at the first use, once (thread-safe).
+/// vertices (base) to 74 of 172 (forearm). Measured at the first use, once (thread-safe); the library
+/// never updates a mesh's vertices after building it (FCL's update calls would leave these stale).
 class HullMesh : public fcl::BVHModel<fcl::OBBRSSd> {
  public:
   /// Coordinate columns of the support points.
