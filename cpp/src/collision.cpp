@@ -11,6 +11,7 @@
 #include <octomap/OcTree.h>
 
 #include "collision_detail.hpp"
+#include "mesh_pair_check.hpp"
 #include "common/octree_file.hpp"
 #include "maps/obb.hpp"
 
@@ -45,7 +46,7 @@ void collect_triangles(const aiScene* scene, const aiNode* node, const aiMatrix4
 
 std::shared_ptr<fcl::CollisionGeometryd> bvh_from(const std::vector<fcl::Vector3d>& points,
                                                   const std::vector<fcl::Triangle>& triangles) {
-  auto model = std::make_shared<BVH>();
+  auto model = std::make_shared<detail::HullMesh>();  // a BVH that also keeps its hull (mesh_pair_check.hpp)
   model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
   model->addSubModel(points, triangles);
   model->endModel();

@@ -174,22 +174,20 @@ class LmIk {
   static constexpr int kMaxWindow = 16;
 
   // Error vector (6 rows; the rotation rows are zero in Position mode) and, when asked, the
-  // matching rows of the Jacobian J_ in Jr_; plus the convergence test.
+  // matching rows of the Jacobian J_ in Jr_ (weighted_jacobian); plus the convergence test.
   void residual(const Pose& T, bool with_jacobian, Res& err, bool& converged) {
     Eigen::Vector3d ep = target_.translation() - T.translation();
     err.template head<3>() = ep;
     if (o_.mode == IkMode::Position) {
       err.template tail<3>().setZero();
-      if (with_jacobian) {
-        Jr_.template topRows<3>() = J_.template topRows<3>();
-        Jr_.template bottomRows<3>().setZero();
-      }
+      if (with_jacobian) weighted_jacobian();
       converged = ep.norm() < o_.position_tolerance;
       return;
     }
     Eigen::Vector3d er;
     double rot_err;
-    Eigen::Matrix3d P = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d& P = P_;  // kept: weighted_jacobian() of this pose needs it
+    P.setIdentity();
     if (o_.mode == IkMode::Full) {
       er = log_so3(target_.linear() * T.linear().transpose());
       rot_err = er.norm();
@@ -204,11 +202,15 @@ class LmIk {
       P -= a * a.transpose();  // roll about the approach axis does not matter
     }
     err.template tail<3>() = kRotWeight * er;
-    if (with_jacobian) {
-      Jr_.template topRows<3>() = J_.template topRows<3>();
-      Jr_.template bottomRows<3>().noalias() = kRotWeight * (P * J_.template bottomRows<3>());
-    }
+    if (with_jacobian) weighted_jacobian();
     converged = ep.norm() < o_.position_tolerance && rot_err < o_.orientation_tolerance;
+  }
+
+  // Jr_ from J_, weighted as the residual of the pose residual() saw last.
+  void weighted_jacobian() {
+    Jr_.template topRows<3>() = J_.template topRows<3>();
+    if (o_.mode == IkMode::Position) Jr_.template bottomRows<3>().setZero();
+    else Jr_.template bottomRows<3>().noalias() = kRotWeight * (P_ * J_.template bottomRows<3>());
   }
 
   // Revolute joints shifted by whole turns toward their limits, then every bounded joint clamped.
@@ -276,7 +278,10 @@ class LmIk {
         q_ = q_new_;
         J_.swap(J_new_);
         err = err_new;
-        residual(T_new, true, e_, converged);
+        // The residual at T_new is e_new_ (the same computation): only the Jacobian rows are new.
+        e_ = e_new_;
+        converged = conv_new;
+        weighted_jacobian();
         lambda = std::max(lambda * 0.3, 1e-9);
         if (slow >= 4) break;  // crawling far from the target: a local minimum or a limit
       } else {
@@ -329,6 +334,7 @@ class LmIk {
   Vec q_, q_new_, dq_, g_;
   Sq A_;
   Res e_, e_new_;
+  Eigen::Matrix3d P_ = Eigen::Matrix3d::Identity();  // residual(): projection of the rotation rows (Approach mode)
   CollisionSetup* setup_ = nullptr;  // this thread's, while the call lasts
   bool need_full_ = false;
   int fixed_state_ = -1;  // fixed pairs: -1 unknown, 0 free, 1 colliding

@@ -7,12 +7,16 @@
 #include <fcl/fcl.h>
 
 #include "collision_detail.hpp"
+#include "mesh_pair_check.hpp"
 #include "octoreach/robot.hpp"
 #include "robot_builder.hpp"
 
 namespace octoreach {
 
 using detail::geometry_collide;
+using detail::is_mesh;
+using detail::meshes_collide;
+using detail::MeshPairWitnesses;
 using detail::world_aabb;
 
 namespace detail {
@@ -142,6 +146,9 @@ int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& shape_box
   const auto& links = robot.links();
   const auto& boxes = shape_boxes.boxes;
   const auto& shape_poses = shape_boxes.poses;
+  // Mesh pairs go through their witnesses (mesh_pair_check.hpp), per thread like the scratch above,
+  // under (link, shape, link, shape): successive checks on a thread are mostly of one robot.
+  thread_local MeshPairWitnesses witnesses;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const auto [a, b] = pairs[p];
     const auto& shapes_a = links[a].shapes;
@@ -149,8 +156,14 @@ int detail::first_colliding_pair(const Robot& robot, const ShapeBoxes& shape_box
     for (std::size_t i = 0; i < shapes_a.size(); ++i)
       for (std::size_t k = 0; k < shapes_b.size(); ++k) {
         if (!boxes[a][i].overlap(boxes[b][k])) continue;
-        if (geometry_collide(shapes_a[i].geometry.get(), shape_poses[a][i], shapes_b[k].geometry.get(), shape_poses[b][k]))
-          return static_cast<int>(p);
+        const fcl::CollisionGeometryd& ga = *shapes_a[i].geometry;
+        const fcl::CollisionGeometryd& gb = *shapes_b[k].geometry;
+        const bool hit =
+            is_mesh(ga) && is_mesh(gb)
+                ? meshes_collide(ga, shape_poses[a][i], gb, shape_poses[b][k],
+                                 witnesses.of(MeshPairWitnesses::key(a, i, b, k)))
+                : geometry_collide(&ga, shape_poses[a][i], &gb, shape_poses[b][k]);
+        if (hit) return static_cast<int>(p);
       }
   }
   return -1;

@@ -1,0 +1,150 @@
+// The mesh-pair check with witnesses (cpp/src/mesh_pair_check.hpp): it answers as FCL's narrow phase,
+// whatever its witnesses hold, and its separating planes do separate the vertex sets.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "collision_detail.hpp"
+#include "mesh_pair_check.hpp"
+#include "octoreach/collision.hpp"
+
+using namespace octoreach;
+
+namespace {
+
+// A triangle soup (FCL tests triangles, so it need not be closed): n random triangles of edge ~0.1 m
+// whose corners lie within a box of half-size h, stretched along x so that hulls and meshes differ.
+std::shared_ptr<fcl::CollisionGeometryd> soup(std::mt19937_64& rng, int n, double h) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> v(3 * n, 3);
+  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d c(2.5 * h * u(rng), h * u(rng), h * u(rng));
+    for (int k = 0; k < 3; ++k) {
+      v.row(3 * i + k) = (c + 0.05 * Eigen::Vector3d(u(rng), u(rng), u(rng))).transpose();
+      t(i, k) = 3 * i + k;
+    }
+  }
+  return make_mesh(v, t);
+}
+
+Pose random_pose(std::mt19937_64& rng, double spread) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Pose T = Pose::Identity();
+  T.linear() = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+  T.translation() = spread * Eigen::Vector3d(u(rng), u(rng), u(rng));
+  return T;
+}
+
+// The vertices of a mesh at a pose, projected on d: [min, max].
+std::pair<double, double> extent(const fcl::CollisionGeometryd& g, const Pose& T, const Eigen::Vector3d& d) {
+  const auto& m = static_cast<const fcl::BVHModel<fcl::OBBRSSd>&>(g);
+  double lo = 1e300, hi = -1e300;
+  for (int i = 0; i < m.num_vertices; ++i) {
+    const double s = d.dot(T * m.vertices[i]);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
+TEST(MeshPairCheck, AnswersAsFclAlongAPath) {
+  // Two soups moving in small steps (the witnesses of one step mostly decide the next) through
+  // touching, overlapping hulls without contact, and clear separation.
+  std::mt19937_64 rng(11);
+  auto a = soup(rng, 40, 0.15), b = soup(rng, 60, 0.12);
+  ASSERT_TRUE(detail::is_mesh(*a));
+  detail::MeshPairWitness witness;
+  Pose ta = random_pose(rng, 0.1), tb = random_pose(rng, 0.1);
+  std::normal_distribution<double> step(0.0, 1.0);
+  int hits = 0, misses = 0, kept_axis = 0, kept_triangles = 0;
+  for (int i = 0; i < 6000; ++i) {
+    // Drift b around a: a slow orbit of radius 0.05-0.5 m plus small random turns.
+    const double phase = 0.002 * i, radius = 0.275 + 0.225 * std::sin(7 * phase);
+    tb.translation() = radius * Eigen::Vector3d(std::cos(phase * 5), std::sin(phase * 3), std::sin(phase * 2));
+    tb.linear() = tb.linear() * Eigen::AngleAxisd(0.02 * step(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                  Eigen::AngleAxisd(0.02 * step(rng), Eigen::Vector3d::UnitX()).toRotationMatrix();
+    const detail::MeshPairWitness before = witness;
+    const bool fcl = detail::geometry_collide(a.get(), ta, b.get(), tb);
+    ASSERT_EQ(detail::meshes_collide(*a, ta, *b, tb, witness), fcl) << "step " << i;
+    fcl ? ++hits : ++misses;
+    kept_axis += !fcl && before.axis.squaredNorm() > 0 && before.axis == witness.axis;
+    kept_triangles += fcl && before.triangles[0][0] >= 0 && before.triangles == witness.triangles;
+    Eigen::Vector3d axis = before.axis;
+    if (detail::hulls_apart(*a, ta, *b, tb, axis)) {
+      // A plane claimed separates the vertex sets (b on the negative side), and FCL agrees.
+      EXPECT_FALSE(fcl) << "step " << i;
+      const auto ea = extent(*a, ta, axis), eb = extent(*b, tb, axis);
+      EXPECT_GT(ea.first - eb.second, detail::kHullMargin * 0.999) << "step " << i;
+    }
+  }
+  // The path means something: both answers, and witnesses that carried over.
+  EXPECT_GT(hits, 300);
+  EXPECT_GT(misses, 300);
+  EXPECT_GT(kept_axis, 300);
+  EXPECT_GT(kept_triangles, 30);
+}
+
+TEST(MeshPairCheck, AnyWitnessGivesFclsAnswer) {
+  // Witnesses from other meshes, other poses or out of range (a reused key) change no answer.
+  std::mt19937_64 rng(5);
+  auto a = soup(rng, 30, 0.1), b = soup(rng, 30, 0.1), c = soup(rng, 200, 0.1);
+  std::uniform_int_distribution<int> tri(-3, 260);
+  for (int i = 0; i < 3000; ++i) {
+    const Pose ta = random_pose(rng, 0.15), tb = random_pose(rng, 0.15);
+    detail::MeshPairWitness w;
+    if (i % 3 == 0) detail::meshes_collide(*c, random_pose(rng, 0.15), *c, random_pose(rng, 0.15), w);
+    if (i % 3 == 1) {
+      for (auto& t : w.triangles) t = {{tri(rng), tri(rng)}};
+      w.axis = random_pose(rng, 1.0).translation();
+    }
+    const bool fcl = detail::geometry_collide(a.get(), ta, b.get(), tb);
+    EXPECT_EQ(detail::meshes_collide(*a, ta, *b, tb, w), fcl) << "pose " << i;
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+    if (detail::hulls_apart(*a, ta, *b, tb, axis)) {
+      EXPECT_FALSE(fcl) << "pose " << i;
+      const auto ea = extent(*a, ta, axis), eb = extent(*b, tb, axis);
+      EXPECT_GT(ea.first - eb.second, detail::kHullMargin * 0.999) << "pose " << i;
+    }
+  }
+}
+
+TEST(MeshPairCheck, HullsApartFindsSeparatedHulls) {
+  // Two unit-ish soups shifted apart along a random direction by more than their extents: GJK finds a
+  // plane from any start; shifted into each other, no plane is claimed.
+  std::mt19937_64 rng(9);
+  auto a = soup(rng, 25, 0.1), b = soup(rng, 25, 0.1);
+  int found = 0;
+  for (int i = 0; i < 500; ++i) {
+    Pose ta = random_pose(rng, 0.0), tb = random_pose(rng, 0.0);
+    const Eigen::Vector3d dir = random_pose(rng, 1.0).translation().normalized();
+    ta.translation() = 1.0 * dir;
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+    found += detail::hulls_apart(*a, ta, *b, tb, axis);
+    tb.translation() = ta.translation();  // same centre: the hulls overlap
+    Eigen::Vector3d none = Eigen::Vector3d::Zero();
+    EXPECT_FALSE(detail::hulls_apart(*a, ta, *b, tb, none)) << "pose " << i;
+  }
+  EXPECT_EQ(found, 500);
+}
+
+TEST(MeshPairCheck, HullPointsReachAsFarAsAllVertices) {
+  // The support points a mesh keeps reach as far as all its vertices in every direction, and drop some.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int m = 0; m < 20; ++m) {
+    auto mesh = soup(rng, 10 + 20 * m, 0.1);
+    const auto& h = static_cast<const detail::HullMesh&>(*mesh);
+    const auto& pts = h.hull_points();
+    if (m > 5) EXPECT_LT(static_cast<int>(pts.x.size()), h.num_vertices);
+    for (int k = 0; k < 200; ++k) {
+      const Eigen::Vector3d d(g(rng), g(rng), g(rng));
+      double all = -1e300, kept = -1e300;
+      for (int i = 0; i < h.num_vertices; ++i) all = std::max(all, d.dot(h.vertices[i]));
+      for (std::size_t i = 0; i < pts.x.size(); ++i) kept = std::max(kept, d.dot(Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i])));
+      EXPECT_GE(kept, all - 1e-12 * d.norm()) << "mesh " << m;
+    }
+  }
+}
