@@ -5,7 +5,7 @@
 #include <limits>
 #include <typeinfo>
 
-#include "exploration/hull.hpp"
+#include "common/convex_hull.hpp"
 
 namespace octoreach::detail {
 namespace {

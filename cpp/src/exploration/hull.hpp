@@ -1,26 +1,17 @@
 #pragma once
-// Internal: the convex hull of the occupied cells (Qhull) and the cells whose centre it contains.
+// Internal: the cells whose centre the convex hull of the occupied cells contains (the hull: common/convex_hull.hpp).
 #include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "common/convex_hull.hpp"
 
 namespace octomap {
 class OcTree;
 }
 
 namespace octoreach::detail {
-
-// Facet planes (outward unit normal n, offset d; inside n.x + d <= 0) and vertices, both sorted.
-struct Hull {
-  std::vector<Eigen::Vector4d> planes;
-  std::vector<Eigen::Vector3d> vertices;
-  bool empty() const { return planes.empty(); }
-};
-
-// Convex hull with libqhull_r. Returns false (and leaves `hull` alone) when the points are
-// degenerate (fewer than 4, coplanar ...).
-bool convex_hull(const std::vector<Eigen::Vector3d>& points, Hull& hull);
 
 // Per (x, y) column of cells, the key interval [lo, hi] of cells whose centre is inside the hull
 // (lo > hi: empty).
