@@ -40,7 +40,7 @@ install: sysdeps $(BUILD)/.installed
 test-cpp: install
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-# Two runs: each folder has its own conftest.py (test modules import helpers from it by name).
+# Two runs: each folder has its own conftest.py (fixtures; a single run would work too since the pose helpers moved to pose_helpers.py).
 test-python: install
 	$(PY) -m pytest -q tests/python
 	$(PY) -m pytest -q tests/fuzz
