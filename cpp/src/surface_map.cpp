@@ -309,7 +309,8 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   std::vector<detail::NearObstacles> near;
   std::vector<Candidate> cands;
   std::vector<Eigen::Vector3d> centres;  // voxel centres of the candidates (not upright only)
-  std::vector<std::uint64_t> order;      // (sort key << 32) | candidate index
+  std::vector<std::uint32_t> keys, key_start;
+  std::vector<std::pair<Candidate, std::uint32_t>> sorted;  // the candidates by key, with their index
   std::vector<std::uint32_t> counts;     // valid grasps of each candidate
   constexpr std::size_t kBlockCandidates = std::size_t(1) << 20;
   for (int ix0 = 0; ix0 < g.nx;) {
@@ -345,18 +346,25 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
           }
         }
     n.candidates += cands.size();
-    // Record by record (within a record in grid order: the answers do not depend on the order).
-    order.resize(cands.size());
+    // Record by record (within a record in grid order: the answers do not depend on the order), by a
+    // counting sort that moves the candidates themselves (reading them through a sorted index missed
+    // the cache at every candidate).
+    keys.resize(cands.size());
+    std::uint32_t key_end = 0;
     for (std::size_t c = 0; c < cands.size(); ++c) {
       const std::int32_t local = packed ? b.slots->local(cands[c].rec) : -1;
-      const std::uint64_t key = local >= 0 ? static_cast<std::uint64_t>(local) : (std::uint64_t(1) << 31) + cands[c].rec;
-      order[c] = (key << 32) | c;
+      // Packed records first, by their index in the CellSlots; the others by record.
+      keys[c] = local >= 0 ? static_cast<std::uint32_t>(local)
+                           : static_cast<std::uint32_t>(packed ? b.slots->records().size() : 0) + cands[c].rec;
+      key_end = std::max(key_end, keys[c] + 1);
     }
-    std::sort(order.begin(), order.end());
+    key_start.assign(static_cast<std::size_t>(key_end) + 1, 0);
+    for (std::uint32_t key : keys) ++key_start[key + 1];
+    for (std::size_t key = 0; key < key_end; ++key) key_start[key + 1] += key_start[key];
+    sorted.resize(cands.size());
+    for (std::size_t c = 0; c < cands.size(); ++c) sorted[key_start[keys[c]]++] = {cands[c], static_cast<std::uint32_t>(c)};
     counts.assign(cands.size(), 0);
-    for (std::uint64_t o : order) {
-      const std::uint32_t c = static_cast<std::uint32_t>(o & 0xffffffffu);
-      const Candidate& cd = cands[c];
+    for (const auto& [cd, c] : sorted) {
       const std::size_t at = cd.cell - cell0;
       const std::int32_t local = packed ? b.slots->local(cd.rec) : -1;
       const int count = local >= 0 ? packed_count(local, cd.target, world_from_arm[at], near[at])
