@@ -154,7 +154,7 @@ struct BinFrame {
   }
 
   // Fast path: true when one of the points lies inside every half-plane.
-  bool any_inside(const Eigen::Vector3f* points, std::uint32_t count, const std::vector<float>& d) const {
+  bool any_inside(const Eigen::Vector3f* points, std::uint32_t count, const float* d) const {
     for (std::uint32_t p = 0; p < count; ++p) {
       const Eigen::Vector3f& w = points[p];
       bool inside = true;
@@ -166,7 +166,7 @@ struct BinFrame {
 
   // True when a witness point of `low` lies under the surface outline. d[j] = c_j - h_j . uv_target (fast path).
   bool arm_under(const SurfaceBuild& b, const detail::LowSetRef& low, const Eigen::Vector2d& target_uv,
-                 const std::vector<float>& d) const {
+                 const float* d) const {
     if (!fast) {
       for (std::uint32_t p = 0; p < low.count; ++p)
         if (b.surface.contains(target_uv + (Af * low.points[p]).cast<double>())) return true;
@@ -220,15 +220,28 @@ struct PackedBin {
   }
 };
 
+// A (base position, target) pair of a theta bin whose target falls in a capability voxel.
+struct Candidate {
+  std::uint32_t cell;  // index into the grid's cells
+  std::uint32_t target;
+  std::uint32_t rec;   // the capability record
+};
+
 // R_S of every base position of the grid at theta bin k, into g.values. Each bin owns its cache of
 // low sets (non-upright case), so no locking is needed and the result does not depend on the thread count.
+//
+// The candidates of a block of grid rows are collected first, then evaluated record by record (the
+// arm-check data of one capability voxel, its low sets and arm boxes, stays in cache over the few
+// hundred targets that reach it; in grid order every candidate read another voxel's data), and last
+// summed per base position in grid and target order, so the sums, and the bytes, are those of a
+// position-by-position evaluation.
 BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   const BinFrame f(b, k);
   const auto& hp = b.surface.halfplanes();
+  const std::size_t nh = hp.size(), N = b.targets.size();
   std::unordered_map<std::uint64_t, detail::LowSet> own_low;
   std::vector<Pose> poses;
   detail::ArmScratch arm_scratch;
-  detail::NearObstacles near;
   auto low_points = [&](std::uint32_t rec, int orient, std::int32_t slot, const Eigen::Vector3d& centre) -> detail::LowSetRef {
     if (b.upright) return b.clearance->shared(slot);
     auto it = own_low.find(b.clearance->key(rec, orient));
@@ -240,10 +253,17 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   std::optional<PackedBin> packed;
   if (b.o.check_arm && b.upright && f.fast) packed.emplace(b, f);
   const Eigen::Vector3f* shared_points = packed ? b.clearance->shared_points() : nullptr;
-  std::vector<float> d(hp.size());
+  // Fast path: d[j] = c_j - h_j . uv of each target, nh values per target.
+  std::vector<float> dtab(f.fast ? N * nh : 0);
+  if (f.fast)
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t j = 0; j < nh; ++j)
+        dtab[i * nh + j] = static_cast<float>(hp[j].z() - hp[j].head<2>().dot(b.target_uv[i]));
   BinCounts n;
   // Grasps of the bin that pass the arm checks at a candidate (the cell's record `r`, target i).
-  auto plain_count = [&](std::uint32_t r, std::size_t i, const Eigen::Vector3d& centre, const Pose& world_from_arm) {
+  auto plain_count = [&](std::uint32_t r, std::size_t i, const Eigen::Vector3d& centre, const Pose& world_from_arm,
+                         const detail::NearObstacles& near) {
+    const float* d = f.fast ? dtab.data() + i * nh : nullptr;
     int count = 0;
     for (int mo : f.mapped) {
       if (!b.cap.record_has(r, mo)) continue;
@@ -261,18 +281,19 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
     return count;
   };
   // The same from the packed bin (`local`: the record's index in the CellSlots).
-  auto packed_count = [&](std::int32_t local, const Pose& world_from_arm) {
-    const std::size_t G = packed->G, nh = packed->nh, first = static_cast<std::size_t>(local) * G;
+  auto packed_count = [&](std::int32_t local, std::size_t i, const Pose& world_from_arm, const detail::NearObstacles& near) {
+    const float* d = dtab.data() + i * nh;
+    const std::size_t G = packed->G, first = static_cast<std::size_t>(local) * G;
     const PackedBin::Entry* E = packed->entries.data() + first;
     const float* B = packed->bounds.data() + first * nh;
-    const Eigen::Vector3f* N = packed->near.data() + first * PackedBin::kNear;
+    const Eigen::Vector3f* Np = packed->near.data() + first * PackedBin::kNear;
     int count = 0;
     for (std::size_t m = 0; m < G; ++m) {
       if (E[m].slot < 0) continue;
       bool all_outside = E[m].count == 0;
       for (std::size_t j = 0; j < nh && !all_outside; ++j) all_outside = B[m * nh + j] > d[j];
       const std::uint32_t c = E[m].count, in_near = std::min(c, PackedBin::kNear);
-      const bool under = !all_outside && (f.any_inside(N + m * PackedBin::kNear, in_near, d) ||
+      const bool under = !all_outside && (f.any_inside(Np + m * PackedBin::kNear, in_near, d) ||
                                           f.any_inside(shared_points + E[m].first + in_near, c - in_near, d));
       const bool ok = !under && !b.obstacles->collides(E[m].slot, near, world_from_arm, arm_scratch);
       if (!ok) ++n.arm;
@@ -281,45 +302,98 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
     return count;
   };
   const double inv_g = 1.0 / b.place.grasps.orientations.size(), inv_n = 1.0 / b.targets.size();
-  for (int ix = 0; ix < g.nx; ++ix)
-    for (int iy = 0; iy < g.ny; ++iy, detail::poll_cancel("surface map build cancelled"))
-      for (int iz = 0; iz < g.nz; ++iz) {
-        octomap::point3d bc = b.tree.keyToCoord(g.key(ix, iy, iz));
-        // Heights are evaluated inside the z range: a robot on the floor (z range (0, 0)) is
-        // evaluated at z = 0 exactly and stored in the voxel holding 0.
-        const Eigen::Vector3d base(bc.x(), bc.y(), std::min(std::max(double(bc.z()), b.o.z_min), b.o.z_max));
-        const Pose world_from_arm = base_pose(base.x(), base.y(), base.z(), f.theta) * b.place.reference_to_arm;
-        if (b.o.check_arm) b.obstacles->near(world_from_arm, near);
-        double sum = 0;
-        for (std::size_t i = 0; i < b.targets.size(); ++i) {
-          Eigen::Vector3d in_ref = f.Rz.transpose() * (b.targets[i] - base);
-          Eigen::Vector3d p = b.arm_from_reference * in_ref + target_offset();
-          Eigen::Vector3d centre;
-          // The voxel centre serves the low sets computed per bin (not upright) only.
-          std::int64_t rec = b.cap.record_at(p, b.upright ? nullptr : &centre);
-          if (rec < 0) continue;
-          ++n.candidates;
-          if (f.fast)
-            for (std::size_t j = 0; j < hp.size(); ++j)
-              d[j] = static_cast<float>(hp[j].z() - hp[j].head<2>().dot(b.target_uv[i]));
-          const auto r = static_cast<std::uint32_t>(rec);
-          const std::int32_t local = packed ? b.slots->local(r) : -1;
-          const int count = local >= 0 ? packed_count(local, world_from_arm)
-                                       : plain_count(r, i, centre, world_from_arm);
-          if (count) {
-            ++n.valid;
-            sum += count * inv_g;
+  // Per base position of the block: its arm pose and the obstacles near the arm there.
+  const std::size_t row = static_cast<std::size_t>(g.ny) * g.nz;
+  std::vector<Eigen::Vector3d> bases;
+  std::vector<Pose, Eigen::aligned_allocator<Pose>> world_from_arm;
+  std::vector<detail::NearObstacles> near;
+  std::vector<Candidate> cands;
+  std::vector<Eigen::Vector3d> centres;  // voxel centres of the candidates (not upright only)
+  std::vector<std::uint32_t> keys, key_start;
+  std::vector<std::pair<Candidate, std::uint32_t>> sorted;  // the candidates by key, with their index
+  std::vector<std::uint32_t> counts;     // valid grasps of each candidate
+  constexpr std::size_t kBlockCandidates = std::size_t(1) << 20;
+  for (int ix0 = 0; ix0 < g.nx;) {
+    // A block of whole grid rows ix0 .. ix1 - 1 with at most about kBlockCandidates candidates.
+    const std::size_t cell0 = static_cast<std::size_t>(ix0) * row;
+    cands.clear();
+    centres.clear();
+    bases.clear();
+    world_from_arm.clear();
+    near.clear();
+    int ix1 = ix0;
+    for (; ix1 < g.nx && (ix1 == ix0 || cands.size() < kBlockCandidates); ++ix1)
+      for (int iy = 0; iy < g.ny; ++iy, detail::poll_cancel("surface map build cancelled"))
+        for (int iz = 0; iz < g.nz; ++iz) {
+          const auto cell = static_cast<std::uint32_t>((static_cast<std::size_t>(ix1) * g.ny + iy) * g.nz + iz);
+          octomap::point3d bc = b.tree.keyToCoord(g.key(ix1, iy, iz));
+          // Heights are evaluated inside the z range: a robot on the floor (z range (0, 0)) is
+          // evaluated at z = 0 exactly and stored in the voxel holding 0.
+          const Eigen::Vector3d bs(bc.x(), bc.y(), std::min(std::max(double(bc.z()), b.o.z_min), b.o.z_max));
+          bases.push_back(bs);
+          world_from_arm.push_back(base_pose(bs.x(), bs.y(), bs.z(), f.theta) * b.place.reference_to_arm);
+          near.emplace_back();
+          if (b.o.check_arm) b.obstacles->near(world_from_arm.back(), near.back());
+          for (std::size_t i = 0; i < N; ++i) {
+            Eigen::Vector3d in_ref = f.Rz.transpose() * (b.targets[i] - bs);
+            Eigen::Vector3d p = b.arm_from_reference * in_ref + target_offset();
+            Eigen::Vector3d centre;
+            // The voxel centre serves the low sets computed per bin (not upright) only.
+            std::int64_t rec = b.cap.record_at(p, b.upright ? nullptr : &centre);
+            if (rec < 0) continue;
+            cands.push_back({cell, static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(rec)});
+            if (!b.upright) centres.push_back(centre);
           }
         }
-        if (sum <= 0) continue;
-        if (b.o.check_body &&
-            b.robot.links_in_collision(b.place.link_poses, *b.slab, b.place.root_pose(base.x(), base.y(), base.z(), f.theta),
-                                       &b.place.roles.body)) {
-          ++n.body;
-          continue;
+    n.candidates += cands.size();
+    // Record by record (within a record in grid order: the answers do not depend on the order), by a
+    // counting sort that moves the candidates themselves (reading them through a sorted index missed
+    // the cache at every candidate).
+    keys.resize(cands.size());
+    std::uint32_t key_end = 0;
+    for (std::size_t c = 0; c < cands.size(); ++c) {
+      const std::int32_t local = packed ? b.slots->local(cands[c].rec) : -1;
+      // Packed records first, by their index in the CellSlots; the others by record.
+      keys[c] = local >= 0 ? static_cast<std::uint32_t>(local)
+                           : static_cast<std::uint32_t>(packed ? b.slots->records().size() : 0) + cands[c].rec;
+      key_end = std::max(key_end, keys[c] + 1);
+    }
+    key_start.assign(static_cast<std::size_t>(key_end) + 1, 0);
+    for (std::uint32_t key : keys) ++key_start[key + 1];
+    for (std::size_t key = 0; key < key_end; ++key) key_start[key + 1] += key_start[key];
+    sorted.resize(cands.size());
+    for (std::size_t c = 0; c < cands.size(); ++c) sorted[key_start[keys[c]]++] = {cands[c], static_cast<std::uint32_t>(c)};
+    counts.assign(cands.size(), 0);
+    for (const auto& [cd, c] : sorted) {
+      const std::size_t at = cd.cell - cell0;
+      const std::int32_t local = packed ? b.slots->local(cd.rec) : -1;
+      const int count = local >= 0 ? packed_count(local, cd.target, world_from_arm[at], near[at])
+                                   : plain_count(cd.rec, cd.target, b.upright ? Eigen::Vector3d::Zero() : centres[c],
+                                                 world_from_arm[at], near[at]);
+      counts[c] = static_cast<std::uint32_t>(count);
+    }
+    // Sums per base position, in target order.
+    std::size_t c = 0;
+    for (std::size_t at = 0; at < world_from_arm.size(); ++at) {
+      const std::size_t cell = cell0 + at;
+      double sum = 0;
+      for (; c < cands.size() && cands[c].cell == cell; ++c)
+        if (counts[c]) {
+          ++n.valid;
+          sum += counts[c] * inv_g;
         }
-        g.values[((static_cast<std::size_t>(ix) * g.ny + iy) * g.nz + iz) * g.T + k] = static_cast<float>(sum * inv_n);
+      if (sum <= 0) continue;
+      const Eigen::Vector3d& bs = bases[at];
+      if (b.o.check_body &&
+          b.robot.links_in_collision(b.place.link_poses, *b.slab, b.place.root_pose(bs.x(), bs.y(), bs.z(), f.theta),
+                                     &b.place.roles.body)) {
+        ++n.body;
+        continue;
       }
+      g.values[cell * g.T + k] = static_cast<float>(sum * inv_n);
+    }
+    ix0 = ix1;
+  }
   return n;
 }
 

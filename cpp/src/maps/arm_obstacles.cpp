@@ -40,7 +40,10 @@ ArmObstacles::ArmObstacles(const Robot& robot, const CapabilityMap& cap, const A
   links_.insert(links_.end(), place.roles.tool.begin(), place.roles.tool.end());
   if (!slots_) throw std::invalid_argument("ArmObstacles: no cells given");
   if (obstacles_)
-    for (const auto& o : obstacles_->objects()) boxes_.push_back(o->getAABB());
+    for (const auto& o : obstacles_->objects()) {
+      boxes_.push_back(o->getAABB());
+      obbs_.push_back(Obb::of(*o->collisionGeometry(), Pose(o->getTransform().matrix())));
+    }
   compute(threads);
 }
 
@@ -54,10 +57,14 @@ void put_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::int16_t*
   }
 }
 
-bool meets(const std::int16_t* box, const Eigen::Vector3d& lo_cm, const Eigen::Vector3d& hi_cm) {
-  for (int k = 0; k < 3; ++k)
-    if (box[k] > hi_cm[k] || box[3 + k] < lo_cm[k]) return false;
-  return true;
+// An integer b exceeds h exactly when it exceeds floor(h), and falls short of h exactly when it falls
+// short of ceil(h); the arm boxes are within +-32000 cm, so clamping far values changes no answer.
+std::int32_t cm_floor(double v) { return static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::floor(v)))); }
+std::int32_t cm_ceil(double v) { return static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::ceil(v)))); }
+
+bool meets(const std::int16_t* box, const std::array<std::int32_t, 6>& near) {
+  return !(box[0] > near[3] || box[3] < near[0] || box[1] > near[4] || box[4] < near[1] || box[2] > near[5] ||
+           box[5] < near[2]);
 }
 
 }  // namespace
@@ -103,16 +110,19 @@ void ArmObstacles::compute(int threads) {
 }
 
 void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
-  out.lo.clear();
-  out.hi.clear();
+  out.cm.clear();
+  out.obb.clear();
   if (empty() || slots_->size() == 0) return;
   const Pose arm_from_world = world_from_arm.inverse();
-  for (const auto& b : boxes_) {
+  for (std::size_t i = 0; i < boxes_.size(); ++i) {
+    const auto& b = boxes_[i];
     Eigen::Vector3d lo, hi;
     box_in_frame(arm_from_world, b.min_, b.max_, lo, hi);
     if ((lo.array() > reach_hi_.array()).any() || (hi.array() < reach_lo_.array()).any()) continue;
-    out.lo.push_back(lo * 100);  // centimetres, as the arm boxes
-    out.hi.push_back(hi * 100);
+    const Eigen::Vector3d lo_cm = lo * 100, hi_cm = hi * 100;  // centimetres, as the arm boxes
+    out.cm.push_back({cm_ceil(lo_cm[0]), cm_ceil(lo_cm[1]), cm_ceil(lo_cm[2]), cm_floor(hi_cm[0]), cm_floor(hi_cm[1]),
+                      cm_floor(hi_cm[2])});
+    out.obb.push_back({arm_from_world * obbs_[i].centre, arm_from_world.linear() * obbs_[i].axes, obbs_[i].half});
   }
 }
 
@@ -151,22 +161,30 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
   const std::int16_t* box = boxes_cm_.data() + static_cast<std::size_t>(slot) * stride_;
   // The whole arm's box, then each link's box, against each near obstacle's box; FCL only for the
   // links whose box meets one.
-  thread_local std::vector<int> hit;
-  hit.clear();
-  for (std::size_t j = 0; j < near.lo.size(); ++j) {
-    if (!meets(box, near.lo[j], near.hi[j])) continue;
+  // (One answer whatever the order the links are tried in: any link touching means a collision.)
+  std::vector<char>& hit = scratch.hit;
+  hit.assign(shaped_.size(), 0);
+  bool any = false;
+  for (const auto& ob : near.cm) {
+    if (!meets(box, ob)) continue;
     for (std::size_t l = 0; l < shaped_.size(); ++l)
-      if (meets(box + 6 * (1 + l), near.lo[j], near.hi[j]) && std::find(hit.begin(), hit.end(), int(l)) == hit.end())
-        hit.push_back(static_cast<int>(l));
+      if (meets(box + 6 * (1 + l), ob)) any = hit[l] = 1;
   }
-  if (hit.empty()) return false;
+  if (!any) return false;
   const float* P = link_poses(slot, scratch);
-  for (int l : hit) {
+  for (std::size_t l = 0; l < shaped_.size(); ++l) {
+    if (!hit[l]) continue;
     Pose in_arm = Pose::Identity();
     in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
-    const Pose world = world_from_arm * in_arm;
-    for (const auto& s : robot_.links()[shaped_[l]].shapes)
-      if (obstacles_->collides(*s.geometry, world * s.origin)) return true;
+    for (const auto& s : robot_.links()[shaped_[l]].shapes) {
+      // The exact pre-test of Obstacles::collides in the arm frame, against the near obstacles only
+      // (the others cannot reach the arm): a shape clearly apart from all of them touches none, and
+      // the world poses, boxes and the obstacle loop are skipped.
+      const Obb shape = Obb::of(*s.geometry, in_arm * s.origin);
+      bool apart = true;
+      for (std::size_t j = 0; j < near.obb.size() && apart; ++j) apart = shape.apart(near.obb[j]);
+      if (!apart && obstacles_->collides(*s.geometry, world_from_arm * in_arm * s.origin)) return true;
+    }
   }
   return false;
 }

@@ -2,6 +2,7 @@
 // Private: does an arm, at the joint solution a capability map stored, touch an obstacle of the
 // room (boxes, meshes, OctoMaps, other surfaces)? Cheapest test first: the obstacles near the arm's
 // whole reach at a base pose, then the arm's bounding box at that solution, then FCL per link.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -12,13 +13,17 @@
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "cell_slots.hpp"
+#include "obb.hpp"
 
 namespace octoreach::detail {
 
-/// The obstacles near the arm at one base pose, as boxes in the arm frame.
+/// The obstacles near the arm at one base pose, as boxes in the arm frame: in centimetres, lo rounded
+/// up and hi rounded down (lo x y z, hi x y z), so an integer box of the arm meets one exactly when it
+/// meets the unrounded box.
 struct NearObstacles {
-  std::vector<Eigen::Vector3d> lo, hi;
-  bool empty() const { return lo.empty(); }
+  std::vector<std::array<std::int32_t, 6>> cm;
+  std::vector<Obb> obb;  // the same obstacles' oriented boxes (local AABB placed), arm frame
+  bool empty() const { return cm.empty(); }
 };
 
 /// Scratch of one thread of a build: link poses (arm frame, float 3 x 4 per shaped link) of the cells
@@ -28,6 +33,7 @@ struct ArmScratch {
   std::vector<std::uint32_t> at;  // by slot: offset into pool, or kNotYet
   std::vector<float> pool;
   std::vector<float> spare;       // a cell met once the pool is full
+  std::vector<char> hit;          // by shaped link: its box meets a near obstacle's
   static constexpr std::uint32_t kNotYet = 0xffffffffu;
 };
 
@@ -61,6 +67,7 @@ class ArmObstacles {
   const float* link_poses(std::int32_t slot, ArmScratch& scratch) const;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
+  std::vector<Obb> obbs_;           // their oriented boxes (local AABB placed), world frame
   Eigen::Vector3d reach_lo_, reach_hi_;  // union of the arm boxes (arm frame)
   void compute(int threads);
 };
