@@ -26,6 +26,14 @@ from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, next_b
 from octoreach import exploration as ex
 
 
+def cluttered_first_view():
+    """The benchmark's cluttered scene, its 640 x 480 depth camera (58 degrees, 4 m) and first view:
+    (scene, camera, camera pose, resolution, range); benchmarks/exploration_scoring.py uses it too."""
+    res, rng = 0.025, 4.0
+    cam = DepthCamera(640, 480, np.deg2rad(58.0), rng)
+    return ex.cluttered_scene(), cam, ex.look_at((-0.8, 0.0, 1.2), (1.5, 0.0, 0.0)), res, rng
+
+
 def _void_cluster_sequence(scene, cam, res, rng, poses):
     """Incremental void clusters against from scratch after each insert of a sequence of views."""
     emap = ExplorationMap(resolution=res)
@@ -63,10 +71,7 @@ def main() -> int:
     ap.add_argument("--repeats", type=int, default=5)
     ap.add_argument("--views", type=int, default=10)
     a = ap.parse_args()
-    res, rng = 0.025, 4.0
-    scene = ex.cluttered_scene()
-    cam = DepthCamera(640, 480, np.deg2rad(58.0), rng)
-    T = ex.look_at((-0.8, 0.0, 1.2), (1.5, 0.0, 0.0))
+    scene, cam, T, res, rng = cluttered_first_view()
     pts = cam.capture(scene, T)
     stock, ours, ours_clusters, same = [], [], [], True
     parts = {}

@@ -15,7 +15,8 @@ import time
 
 import numpy as np
 
-from octoreach import DepthCamera, ExplorationMap, _core, next_best_view
+from exploration import cluttered_first_view  # benchmarks/exploration.py
+from octoreach import ExplorationMap, _core, next_best_view
 from octoreach import exploration as ex
 
 
@@ -24,10 +25,7 @@ def main() -> None:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--poses", type=int, default=300)
     a = ap.parse_args()
-    res, rng = 0.025, 4.0
-    scene = ex.cluttered_scene()
-    cam = DepthCamera(640, 480, np.deg2rad(58.0), rng)
-    T = ex.look_at((-0.8, 0.0, 1.2), (1.5, 0.0, 0.0))
+    scene, cam, T, res, rng = cluttered_first_view()
     emap = ExplorationMap(resolution=res)
     emap.insert(cam.capture(scene, T), T[:3, 3], rng)
     r = np.random.default_rng(0)
