@@ -181,7 +181,7 @@ bool gjk_apart(const Placed& A, const Placed& B, const Eigen::Vector3d& ca, cons
     if (!(vv > 1e-24)) return false;  // the origin is in the difference: the hulls overlap
     if (apart_along(A, B, v, w)) {
       axis = v / std::sqrt(vv);
-        return true;
+      return true;
     }
     if (vv - w.dot(v) <= 1e-12 * vv) return false;  // converged closer than the margin
     for (int i = 0; i < n; ++i)
@@ -239,7 +239,7 @@ bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl:
     auto& tris = witness.triangles;
     for (std::size_t k = 0; k < tris.size(); ++k) {
       const int ia = tris[k][0], ib = tris[k][1];
-      if (ia < 0 || ia >= ma.num_tris || ib < 0 || ib >= mb.num_tris) break;
+      if (ia < 0 || ia >= ma.num_tris || ib < 0 || ib >= mb.num_tris) continue;  // another mesh's witness
       const fcl::Triangle& p = ma.tri_indices[ia];
       const fcl::Triangle& q = mb.tri_indices[ib];
       if (fcl::detail::Intersect<double>::intersect_Triangle(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]],

@@ -364,7 +364,9 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
     sorted.resize(cands.size());
     for (std::size_t c = 0; c < cands.size(); ++c) sorted[key_start[keys[c]]++] = {cands[c], static_cast<std::uint32_t>(c)};
     counts.assign(cands.size(), 0);
+    std::size_t done = 0;
     for (const auto& [cd, c] : sorted) {
+      if ((++done & 0xffff) == 0) detail::poll_cancel("surface map build cancelled");  // up to 2^20 per block
       const std::size_t at = cd.cell - cell0;
       const std::int32_t local = packed ? b.slots->local(cd.rec) : -1;
       const int count = local >= 0 ? packed_count(local, cd.target, world_from_arm[at], near[at])

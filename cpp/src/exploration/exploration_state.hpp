@@ -140,9 +140,6 @@ void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
   }
 }
 
-// Everything an ExplorationMap maintains. `rw` is the map's reader-writer lock: insert holds it
-// exclusively, every other public method (and next_best_view for its whole search) shared, through
-// MapGuard; the caches below are rebuilt under cache_mutex by readers.
 // One unknown cell an announced view (expect_view) expected: its ray weight w, the unknown depth d of
 // that ray (unknown cells it crossed before this one) and its class (1: void cell).
 struct ExpectedCell {
@@ -179,6 +176,9 @@ struct VisibilityCurve {
   }
 };
 
+// Everything an ExplorationMap maintains. `rw` is the map's reader-writer lock: insert holds it
+// exclusively, every other public method (and next_best_view for its whole search) shared, through
+// MapGuard; the caches below are rebuilt under cache_mutex by readers.
 struct ExplorationState {
   explicit ExplorationState(double res) : tree(res) {}
   mutable SharedMutex rw;  // writer first: a stream of queries cannot starve an insert

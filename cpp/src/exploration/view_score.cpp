@@ -51,7 +51,6 @@ class MetCells {
   static constexpr bool kDepth = sizeof(V) == 4;
 
  public:
- public:
   static constexpr std::int64_t kMaxDense = std::int64_t(1) << (kDepth ? 24 : 25);  // 64 MB per thread
   MetCells(const std::int64_t klo[3], const std::int64_t n[3]) : dense_(n[0] * n[1] * n[2] <= kMaxDense) {
     for (int a = 0; a < 3; ++a) klo_[a] = klo[a], n_[a] = n[a];

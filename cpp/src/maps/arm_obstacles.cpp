@@ -58,9 +58,14 @@ void put_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::int16_t*
 }
 
 // An integer b exceeds h exactly when it exceeds floor(h), and falls short of h exactly when it falls
-// short of ceil(h); the arm boxes are within +-32000 cm, so clamping far values changes no answer.
-std::int32_t cm_floor(double v) { return static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::floor(v)))); }
-std::int32_t cm_ceil(double v) { return static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::ceil(v)))); }
+// short of ceil(h); the arm boxes are within +-32000 cm, so clamping far values changes no answer. A NaN
+// bound widens the box (upper +1e9, lower -1e9): the obstacle then meets every link box and FCL decides.
+std::int32_t cm_floor(double v) {
+  return std::isnan(v) ? 1000000000 : static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::floor(v))));
+}
+std::int32_t cm_ceil(double v) {
+  return std::isnan(v) ? -1000000000 : static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::ceil(v))));
+}
 
 bool meets(const std::int16_t* box, const std::array<std::int32_t, 6>& near) {
   return !(box[0] > near[3] || box[3] < near[0] || box[1] > near[4] || box[4] < near[1] || box[2] > near[5] ||
