@@ -95,6 +95,8 @@ class Obstacles {
   const std::vector<std::string>& names() const { return names_; }
   /// \brief The FCL objects (world frame, AABBs computed).
   const std::vector<std::shared_ptr<fcl::CollisionObjectd>>& objects() const { return objects_; }
+  /// \brief Internal: obstacle `i`'s local AABB placed at its pose (world frame), the exact pre-test collides uses.
+  const detail::Obb& oriented_box(std::size_t i) const { return *obbs_[i]; }
   /// \brief True when `geometry` at `pose` (world frame) touches any obstacle.
   bool collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
   /// \brief True when `object` (world frame, AABB computed) touches any obstacle; AABBs reject first.

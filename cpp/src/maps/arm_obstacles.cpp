@@ -40,10 +40,7 @@ ArmObstacles::ArmObstacles(const Robot& robot, const CapabilityMap& cap, const A
   links_.insert(links_.end(), place.roles.tool.begin(), place.roles.tool.end());
   if (!slots_) throw std::invalid_argument("ArmObstacles: no cells given");
   if (obstacles_)
-    for (const auto& o : obstacles_->objects()) {
-      boxes_.push_back(o->getAABB());
-      obbs_.push_back(Obb::of(*o->collisionGeometry(), Pose(o->getTransform().matrix())));
-    }
+    for (const auto& o : obstacles_->objects()) boxes_.push_back(o->getAABB());
   compute(threads);
 }
 
@@ -127,7 +124,8 @@ void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
     const Eigen::Vector3d lo_cm = lo * 100, hi_cm = hi * 100;  // centimetres, as the arm boxes
     out.cm.push_back({cm_ceil(lo_cm[0]), cm_ceil(lo_cm[1]), cm_ceil(lo_cm[2]), cm_floor(hi_cm[0]), cm_floor(hi_cm[1]),
                       cm_floor(hi_cm[2])});
-    out.obb.push_back({arm_from_world * obbs_[i].centre, arm_from_world.linear() * obbs_[i].axes, obbs_[i].half});
+    const Obb& world = obstacles_->oriented_box(i);
+    out.obb.push_back({arm_from_world * world.centre, arm_from_world.linear() * world.axes, world.half});
   }
 }
 

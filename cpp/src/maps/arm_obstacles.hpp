@@ -67,7 +67,6 @@ class ArmObstacles {
   const float* link_poses(std::int32_t slot, ArmScratch& scratch) const;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<fcl::AABBd> boxes_;   // world boxes of the obstacles
-  std::vector<Obb> obbs_;           // their oriented boxes (local AABB placed), world frame
   Eigen::Vector3d reach_lo_, reach_hi_;  // union of the arm boxes (arm frame)
   void compute(int threads);
 };
