@@ -41,14 +41,6 @@ def load_robot(name: str):
     return robots.pr2() if name == "pr2" else robots.test_arm()
 
 
-def random_configurations(chain, n: int, seed: int) -> np.ndarray:
-    """(n, dof) joint rows uniform inside the limits; continuous joints in [-pi, pi)."""
-    rng = np.random.default_rng(seed)
-    lo = np.where(chain.continuous, -np.pi, chain.lower)
-    hi = np.where(chain.continuous, np.pi, chain.upper)
-    return rng.uniform(lo, hi, size=(n, chain.dof))
-
-
 def timed(fn, repeats: int):
     """(result of the last run, list of wall-clock seconds of each run)."""
     times, out = [], None
@@ -111,7 +103,7 @@ def ratio(a, b):
 def bench_chain(label, robot_name, base, tip, n, repeats, seed, attempts, quick):
     robot = load_robot(robot_name)
     chain = robot.chain(base, tip)
-    Q0 = random_configurations(chain, n, seed)
+    Q0 = chain.random_configurations(n, seed)
     targets = chain.fk_batch(Q0)
     res = {"chain": f"{base} -> {tip}", "dof": chain.dof, "targets": n}
 
@@ -172,7 +164,7 @@ def bench_chain(label, robot_name, base, tip, n, repeats, seed, attempts, quick)
 
     # FK: one batch call each, single-threaded, same joint rows.
     nfk = 1000 if quick else 20000
-    Qfk = random_configurations(chain, nfk, seed + 2)
+    Qfk = chain.random_configurations(nfk, seed + 2)
     Tours, t_ours = timed(lambda: chain.fk_batch(Qfk), max(repeats, 5))
     Tkdl, t_kdl = timed(lambda: _bench.kdl_fk_batch(chain, Qfk), max(repeats, 5))
     fk_ours = statistics.median(t_ours) / nfk * 1e6

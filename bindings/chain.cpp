@@ -101,9 +101,11 @@ void wrap_chain(py::module_& m) {
       .def("wrap", [](const Chain& c, const py::object& q) { return c.wrap(q_from(c, q)); },
            "Continuous joints wrapped into [-pi, pi), revolute joints shifted by 2 pi into their limits where possible.")
       .def("random_configuration", [](const Chain& c, std::uint64_t seed) {
-             std::mt19937_64 rng(seed);
-             return c.random_configuration(rng);
-           }, py::arg("seed") = 0)
+             return Eigen::VectorXd(c.random_configurations(1, seed).row(0).transpose());
+           }, py::arg("seed") = 0, "One uniform random configuration inside the limits (continuous joints in [-pi, pi)).")
+      .def("random_configurations", &Chain::random_configurations, py::arg("n"), py::arg("seed") = 0,
+           "(n, dof) uniform random configurations inside the limits (continuous joints in [-pi, pi)), one per row;\n"
+           "row 0 equals random_configuration(seed).")
       .def("to_robot_configuration", [](const Chain& c, const py::object& q, const py::object& reference) {
              Eigen::VectorXd ref = reference.is_none() ? Eigen::VectorXd() : robot_q(c.robot(), reference, "reference");
              return c.to_robot_configuration(q_from(c, q), ref);

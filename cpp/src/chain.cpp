@@ -2,6 +2,8 @@
 // joint wrapping. The IK solver is in ik.cpp.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "octoreach/chain.hpp"
 #include "octoreach/robot.hpp"
@@ -181,6 +183,14 @@ bool Chain::within_limits(const Eigen::VectorXd& q, double tol) const {
   for (int i = 0; i < dof(); ++i)
     if (!continuous_[i] && (q[i] < lower_[i] - tol || q[i] > upper_[i] + tol)) return false;
   return true;
+}
+
+Eigen::MatrixXd Chain::random_configurations(int n, std::uint64_t seed) const {
+  if (n < 0) throw std::invalid_argument("random_configurations: n must be >= 0 (got " + std::to_string(n) + ")");
+  std::mt19937_64 rng(seed);
+  Eigen::MatrixXd out(n, dof());
+  for (int r = 0; r < n; ++r) out.row(r) = random_configuration(rng).transpose();
+  return out;
 }
 
 Eigen::VectorXd Chain::wrap(const Eigen::VectorXd& q_in) const {

@@ -93,7 +93,14 @@ class Chain:
         rigid with the tip (a gripper).
         """
     def random_configuration(self, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
-        ...
+        """
+        One uniform random configuration inside the limits (continuous joints in [-pi, pi)).
+        """
+    def random_configurations(self, n: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex = 0) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (n, dof) uniform random configurations inside the limits (continuous joints in [-pi, pi)), one per row;
+        row 0 equals random_configuration(seed).
+        """
     def to_robot_configuration(self, q: typing.Any, reference: typing.Any = None) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         Full robot configuration with this chain's joints set to q, the rest from `reference` (default home).

@@ -24,9 +24,7 @@ def _ik_check(robot) -> None:
     for name in ("left_arm", "right_arm"):
         base, tip, axis = arms.resolve(robot, name)
         chain = robot.chain(base, tip)
-        rng = np.random.default_rng(1)
-        Q = np.array([[rng.uniform(lo if np.isfinite(lo) else -np.pi, hi if np.isfinite(hi) else np.pi)
-                       for lo, hi in zip(chain.lower, chain.upper)] for _ in range(20)])
+        Q = chain.random_configurations(20, seed=1)
         t = time.perf_counter()
         _, ok = chain.ik_batch(chain.fk_batch(Q), rng_seed=1)
         dt = (time.perf_counter() - t) / len(Q) * 1e3

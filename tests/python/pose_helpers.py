@@ -1,4 +1,4 @@
-"""Pose helpers of the Python tests: random configurations, reachable targets, pose errors, simple transforms.
+"""Pose helpers of the Python tests: reachable targets, pose errors, simple transforms.
 
 A plain module, not conftest.py: `pytest tests/python tests/fuzz` in one run would import the other folder's
 conftest under the same name.
@@ -8,17 +8,9 @@ from __future__ import annotations
 import numpy as np
 
 
-def random_configurations(chain, n: int, seed: int) -> np.ndarray:
-    """(n, dof) joint rows uniform inside the limits; continuous joints in [-pi, pi)."""
-    rng = np.random.default_rng(seed)
-    lo = np.where(chain.continuous, -np.pi, chain.lower)
-    hi = np.where(chain.continuous, np.pi, chain.upper)
-    return rng.uniform(lo, hi, size=(n, chain.dof))
-
-
 def reachable_targets(chain, n: int, seed: int) -> np.ndarray:
     """(n, 4, 4) tip poses (base link frame) of random configurations: reachable by construction."""
-    return chain.fk_batch(random_configurations(chain, n, seed))
+    return chain.fk_batch(chain.random_configurations(n, seed))
 
 
 def pose_error(A: np.ndarray, B: np.ndarray) -> tuple[float, float]:

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from pose_helpers import pose_error, random_configurations, reachable_targets, rot_z, translation
+from pose_helpers import pose_error, reachable_targets, rot_z, translation
 from octoreach import Obstacles, Robot, _bench, _core, robots
 
 POS_TOL, ROT_TOL = 1e-4, 1e-3  # the IK defaults
@@ -57,9 +57,27 @@ def test_fk_of_test_arm_by_hand(arm_chain):
     assert arm_chain.fk(q)[3].tolist() == [0, 0, 0, 1]
 
 
+def test_random_configurations_inside_limits_and_spread(pr2):
+    chain = pr2.chain("base_footprint", "r_wrist_roll_link")
+    Q = chain.random_configurations(2000, seed=7)
+    assert Q.shape == (2000, chain.dof)
+    lo = np.where(chain.continuous, -np.pi, chain.lower)
+    hi = np.where(chain.continuous, np.pi, chain.upper)
+    assert np.all(Q >= lo) and np.all(Q < hi)
+    # Uniform: each joint's sample mean within 5 standard errors of the interval's middle.
+    se = (hi - lo) / np.sqrt(12 * len(Q))
+    assert np.all(np.abs(Q.mean(axis=0) - (lo + hi) / 2) < 5 * se)
+    np.testing.assert_array_equal(Q[0], chain.random_configuration(7))
+    np.testing.assert_array_equal(Q, chain.random_configurations(2000, seed=7))
+    assert not np.array_equal(Q, chain.random_configurations(2000, seed=8))
+    assert chain.random_configurations(0).shape == (0, chain.dof)
+    with pytest.raises(ValueError, match="n must be >= 0"):
+        chain.random_configurations(-1)
+
+
 def test_fk_batch_equals_fk_rows(arm_chain, pr2):
     for chain in (arm_chain, pr2.chain("base_footprint", "r_wrist_roll_link")):
-        Q = random_configurations(chain, 25, seed=3)
+        Q = chain.random_configurations(25, seed=3)
         Ts = chain.fk_batch(Q)
         assert Ts.shape == (25, 4, 4)
         for q, T in zip(Q, Ts):
@@ -68,7 +86,7 @@ def test_fk_batch_equals_fk_rows(arm_chain, pr2):
 
 def test_fk_matches_plain_kdl(arm_chain, pr2):
     for chain in (arm_chain, pr2.chain("base_footprint", "r_wrist_roll_link")):
-        Q = random_configurations(chain, 50, seed=4)
+        Q = chain.random_configurations(50, seed=4)
         np.testing.assert_allclose(_bench.kdl_fk_batch(chain, Q), chain.fk_batch(Q), atol=1e-12)
 
 

@@ -98,6 +98,9 @@ class Chain {
   /// \brief Uniform random configuration inside the limits (continuous joints in [-pi, pi)).
   template <class Rng>
   Eigen::VectorXd random_configuration(Rng& rng) const;
+  /// \brief n uniform random configurations (rows) from std::mt19937_64(seed), drawn in row order:
+  /// row 0 equals random_configuration() of a fresh generator with the same seed.
+  Eigen::MatrixXd random_configurations(int n, std::uint64_t seed) const;
 
   /// \brief Inverse kinematics of the tip pose `target` (base frame); returns q or nothing.
   std::optional<Eigen::VectorXd> ik(const Pose& target, const IkOptions& options,
