@@ -380,6 +380,33 @@ def test_ray_statistics_learn_a_pass_probability():
         assert [v["gain"] for v in g["ranked"]] == sorted([v["gain"] for v in g["ranked"]], reverse=True)
 
 
+def test_utility_rays_clipped_to_the_workspace_give_the_same_search():
+    # The utility vectors are summed only inside the workspace's box and sphere (the walk ends where a
+    # ray leaves them); the same workspace given as an opaque filter sums everywhere and prunes after.
+    scene = ex.paper_scene(1)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)], (0.9, 0.0, 0.1)))
+    c, rad = np.array([0.5, 0.0, 0.6]), 0.8
+    lo, hi = np.array([0.0, -0.5, 0.2]), np.array([1.2, 0.5, 1.4])
+    in_sphere = lambda P: list(np.linalg.norm(np.asarray(P) - c, axis=1) <= rad)  # noqa: E731
+    in_box = lambda P: list(np.all((np.asarray(P) >= lo) & (np.asarray(P) <= hi), axis=1))  # noqa: E731
+    both = lambda P: [a and b for a, b in zip(in_sphere(P), in_box(P))]  # noqa: E731
+    cases = [(dict(workspace_sphere=(c, rad)), in_sphere), (dict(workspace_box=(lo, hi)), in_box),
+             (dict(workspace_sphere=(c, rad), workspace_box=(lo, hi)), both)]
+    for gain in ("frontier_void", "frontiers", "unknown"):
+        for clipped_kw, fn in cases:
+            kw = dict(min_distance=0.05, gain=gain, max_valid_poses=10, seed=5)
+            a = next_best_view(emap, cam, **clipped_kw, **kw)
+            b = next_best_view(emap, cam, workspace=fn, **kw)
+            assert a["candidate_cells"] == b["candidate_cells"] > 0
+            assert a["utility_cells"] < b["utility_cells"]  # the clipped walk summed fewer cells
+            assert len(a["ranked"]) == len(b["ranked"]) > 0
+            for x, y in zip(a["ranked"], b["ranked"]):
+                np.testing.assert_array_equal(x["pose"], y["pose"])
+                assert x["gain"] == y["gain"]
+
+
 def test_incremental_void_clusters_equal_clusters_from_scratch_after_every_insert():
     """void_clusters() re-grows only the clusters an insert can reach; the partition, the order and the
     ellipsoids equal the clustering from scratch of the same void cells after every insert."""

@@ -151,7 +151,7 @@ struct NbvResult {
   double pass_probability = 1;      ///< p the visibility model used for unknown cells outside the voids
   double void_pass_probability = 1; ///< p it used for void cells
   std::size_t utility_vectors = 0;
-  std::size_t utility_cells = 0;    ///< cells with utility > 0 before pruning
+  std::size_t utility_cells = 0;    ///< cells of the workspace's box and sphere with utility > 0 before pruning
   std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
   std::size_t capability_pruned = 0;  ///< cells the capability map removed
   std::size_t poses_scored = 0, ik_failures = 0;

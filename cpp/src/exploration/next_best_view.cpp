@@ -97,11 +97,43 @@ struct Utility {
 };
 using UtilityCell = std::pair<CellKey, Utility>;
 
+// How far along a ray (origin o, unit dir, up to `length`) a cell whose centre lies in the workspace's
+// box and sphere can be met: the exit of the box and sphere grown by half a cell diagonal (a cell the ray
+// passes through has its centre that close to the ray), plus one cell; -1 when the ray meets none.
+double workspace_reach(const SensorWorkspace& ws, double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                       double length) {
+  const double grow = 0.5 * std::sqrt(3.0) * res + 1e-9;
+  double t0 = 0, t1 = length;
+  if (ws.sphere_center) {
+    const Eigen::Vector3d oc = o - *ws.sphere_center;
+    const double b = oc.dot(dir), r = ws.sphere_radius + grow;
+    const double disc = b * b - (oc.squaredNorm() - r * r);
+    if (!(disc >= 0)) return -1;
+    t0 = std::max(t0, -b - std::sqrt(disc));
+    t1 = std::min(t1, -b + std::sqrt(disc));
+  }
+  if (ws.box)
+    for (int i = 0; i < 3; ++i) {
+      const double lo = ws.box->lo[i] - grow, hi = ws.box->hi[i] + grow;
+      if (dir[i] == 0) {
+        if (o[i] < lo || o[i] > hi) return -1;
+        continue;
+      }
+      double a = (lo - o[i]) / dir[i], b = (hi - o[i]) / dir[i];
+      if (a > b) std::swap(a, b);
+      t0 = std::max(t0, a);
+      t1 = std::min(t1, b);
+    }
+  return t0 <= t1 ? std::min(length, t1 + res) : -1;
+}
+
 // Step 2: each vector traced from its frontier cell through free cells up to `range`. The vectors
 // are cut into `slices` fixed slices, each summed into its own table and merged in slice order,
 // so the sums depend neither on the number of threads nor on scheduling. Sorted by key.
+// With `workspace`, only cells whose centre it contains are summed, and a walk ends where the ray
+// leaves it (workspace_reach): the same sums for those cells, the only ones step 3 keeps.
 std::vector<UtilityCell> accumulate(const ExplorationMap& map, const std::vector<UtilityVector>& vecs, double range,
-                                    std::size_t slices, int threads) {
+                                    std::size_t slices, int threads, const SensorWorkspace* workspace = nullptr) {
   const auto& grid = detail::state(map).grid;
   const double res = map.resolution();
   std::vector<detail::KeyTable<Utility>> tables(slices, detail::KeyTable<Utility>(2040));
@@ -111,8 +143,11 @@ std::vector<UtilityCell> accumulate(const ExplorationMap& map, const std::vector
     const std::size_t b = vecs.size() * sl / slices, e = vecs.size() * (sl + 1) / slices;
     for (std::size_t i = b; i < e; ++i) {
       const UtilityVector& v = vecs[i];
-      detail::walk_cells(res, v.from, v.dir, range, [&](CellKey k) {
+      const double length = workspace ? workspace_reach(*workspace, res, v.from, v.dir, range) : range;
+      if (length < 0) continue;
+      detail::walk_cells(res, v.from, v.dir, length, [&](CellKey k) {
         if ((g.get(k) & detail::kStateMask) != std::uint8_t(CellState::Free)) return false;
+        if (workspace && !workspace->contains(map.center(k))) return true;
         Utility& a = t.at(k);
         a.u += v.u;
         a.dir -= v.u * v.dir;
@@ -305,7 +340,7 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   const std::vector<UtilityVector> vecs =
       opt.gain == NbvGain::FrontierVoid ? utility_vectors(map) : frontier_vectors(map, opt.gain);
   r.utility_vectors = vecs.size();
-  std::vector<UtilityCell> cells = accumulate(map, vecs, cam.max_range, 8, threads);
+  std::vector<UtilityCell> cells = accumulate(map, vecs, cam.max_range, 8, threads, &opt.workspace);
   r.utility_cells = cells.size();
   r.seconds_vectors = seconds_since(t0);
 
