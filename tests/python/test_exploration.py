@@ -447,3 +447,30 @@ def test_visibility_model_expects_what_the_view_sees_when_nothing_hides_in_the_u
     assert learned["void_pass_probability"] < 1 and learned["expected_void"] < clear["expected_void"]
     seen = emap.insert(cam.capture(scene, top), top[:3, 3], cam.max_range)["void_removed"]
     assert clear["expected_void"] == pytest.approx(seen, rel=1e-3) and emap.void_cell_count == 0
+
+
+def test_a_view_in_front_of_an_opening_outside_the_search_space_is_found():
+    """A closed box opens towards the robot (-x) just inside the search space; the first view, from above,
+    saw the box's top and the floor in front of it but not the space the camera needs in front of the
+    opening, which lies outside the search space (x < 0.55) and is unknown. Utility vectors pass unknown
+    cells outside the search space (as the safe-view rule does not count them as obstacles either), so a
+    view from there into the opening is found; they stop at the ground below the search space."""
+    from octoreach import _core
+
+    s = Scene()
+    s.add_box((-2, -2, -0.05), (2, 2, 0))
+    s.add_closed_box((0.6, -0.2, 0.0), (1.0, 0.2, 0.3), 0.02, "-x", 0.14, 0.14)
+    region = np.array([[0.55, -0.3, 0.0], [1.1, 0.3, 0.35]])
+    emap = ExplorationMap(resolution=0.05, search_space=region)
+    above = DepthCamera(80, 60, np.deg2rad(40), 4.0)
+    T = ex.look_at((0.8, 0.0, 1.0), (0.8, 0.01, 0.0))
+    emap.insert(above.capture(s, T), T[:3, 3], 4.0)
+    assert emap.void_cell_count > 100
+    pos, _ = _core.accumulate_utility(emap, 4.0)
+    outside = pos[:, 0] < region[0, 0]
+    assert np.count_nonzero(outside & (emap.state(pos) == 0)) > 100  # unknown cells in front, outside S
+    assert np.all(pos[:, 2] >= region[0, 2])  # none below the search space's floor
+    cam = DepthCamera(80, 60, FOV, 4.0)
+    r = next_best_view(emap, cam, workspace_box=np.array([[0.2, -0.3, 0.02], [0.4, 0.3, 0.4]]))
+    assert r["best_pose"] is not None, r["candidate_cells"]
+    assert r["best_pose"][0, 3] <= 0.4 and r["ranked"][0]["expected_void"] > 10

@@ -6,6 +6,7 @@
 #include <memory>
 #include <algorithm>
 #include <mutex>
+#include <optional>
 #include <shared_mutex>
 #include <unordered_map>
 #include <unordered_set>
@@ -17,6 +18,7 @@
 #include "common/shared_mutex.hpp"
 #include "hull.hpp"
 #include "octoreach/exploration.hpp"
+#include "octoreach/simulation.hpp"
 
 namespace octoreach::detail {
 
@@ -142,6 +144,14 @@ void for_each_leaf_cell(const octomap::OcTree& tree, F&& f) {
 
 // One unknown cell an announced view (expect_view) expected: its ray weight w, the unknown depth d of
 // that ray (unknown cells it crossed before this one) and its class (1: void cell).
+// The camera and score grid of the view announced by expect_view: after the insert its rays are walked
+// again through the updated map, to tell a miss a newly seen surface explains from one it does not.
+struct AnnouncedView {
+  CameraIntrinsics camera;
+  Pose pose = Pose::Identity();
+  int score_width = 0, score_height = 0;
+};
+
 struct ExpectedCell {
   CellKey key;
   float weight;
@@ -195,9 +205,11 @@ struct ExplorationState {
   // The visibility model's memory of views that missed (view_score.cpp, expect_view): per unknown
   // cell, 1 - its seeability s (absent: 0, s = 1). A view announced by expect_view lists the unknown
   // cells it expects with their ray weights w; the next insert multiplies s by (1 - w) for each of
-  // them it left unknown. The view score counts an unknown cell with w * s.
+  // them it left unknown and its rays still meet in the updated map (no surface seen in between). The
+  // view score counts an unknown cell with w * s.
   KeyTable<float> hidden;
   std::vector<ExpectedCell> expected_by_view;
+  std::optional<AnnouncedView> announced;  // set with expected_by_view by expect_view
   VisibilityCurve curve;  // learned from the announced views' cells (view_score.cpp)
   double seeability(CellKey k) const {
     const float* h = hidden.find(k);

@@ -127,15 +127,20 @@ double workspace_reach(const SensorWorkspace& ws, double res, const Eigen::Vecto
   return t0 <= t1 ? std::min(length, t1 + res) : -1;
 }
 
-// Step 2: each vector traced from its frontier cell through free cells up to `range`. The vectors
+// Step 2: each vector traced from its frontier cell through free cells, and through unknown cells
+// outside the map's search space but not below its floor (the safe-view rule does not count them as
+// obstacles either: the robot's side of the scene, which no view of the search space needs to have
+// seen; below the search space lies the ground the robot stands on), up to `range`. The vectors
 // are cut into `slices` fixed slices, each summed into its own table and merged in slice order,
 // so the sums depend neither on the number of threads nor on scheduling. Sorted by key.
 // With `workspace`, only cells whose centre it contains are summed, and a walk ends where the ray
 // leaves it (workspace_reach): the same sums for those cells, the only ones step 3 keeps.
 std::vector<UtilityCell> accumulate(const ExplorationMap& map, const std::vector<UtilityVector>& vecs, double range,
                                     std::size_t slices, int threads, const SensorWorkspace* workspace = nullptr) {
-  const auto& grid = detail::state(map).grid;
+  const auto& S = detail::state(map);
+  const auto& grid = S.grid;
   const double res = map.resolution();
+  const Eigen::Vector3d s_lo = map.options().search_lo, s_hi = map.options().search_hi;
   std::vector<detail::KeyTable<Utility>> tables(slices, detail::KeyTable<Utility>(2040));
   detail::parallel_for(slices, threads, [&](std::size_t sl, int) {
     detail::GridReader g(grid);
@@ -146,7 +151,13 @@ std::vector<UtilityCell> accumulate(const ExplorationMap& map, const std::vector
       const double length = workspace ? workspace_reach(*workspace, res, v.from, v.dir, range) : range;
       if (length < 0) continue;
       detail::walk_cells(res, v.from, v.dir, length, [&](CellKey k) {
-        if ((g.get(k) & detail::kStateMask) != std::uint8_t(CellState::Free)) return false;
+        const std::uint8_t st = g.get(k) & detail::kStateMask;
+        if (st == std::uint8_t(CellState::Occupied)) return false;
+        if (st == std::uint8_t(CellState::Unknown)) {  // only outside the search space, and not below its floor
+          const Eigen::Vector3d c = S.center(k);
+          if (c.z() < s_lo.z() || ((c.array() >= s_lo.array()).all() && (c.array() <= s_hi.array()).all()))
+            return false;
+        }
         if (workspace && !workspace->contains(map.center(k))) return true;
         Utility& a = t.at(k);
         a.u += v.u;

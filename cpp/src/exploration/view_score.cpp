@@ -235,8 +235,19 @@ void non_increasing_share(const double* n, const double* seen, double* share, in
 
 }  // namespace
 
-void learn_from_missed(ExplorationState& S) {
+void learn_from_missed(const ExplorationMap& map, ExplorationState& S) {
   VisibilityCurve& c = S.curve;
+  // The announced view's rays walked again through the updated map: the unknown cells they still meet
+  // before the first occupied cell. A cell the view expected, left unknown and no longer met lies
+  // behind a surface this insert saw: the miss says nothing about views from other sides, so its
+  // seeability stays (views from this side stop at that surface anyway).
+  KeyTable<std::uint8_t> still_met(S.announced ? S.expected_by_view.size() : 0);
+  if (S.announced && !S.expected_by_view.empty()) {
+    std::vector<ExpectedCell> met;
+    const AnnouncedView& a = *S.announced;
+    view_gains_unlocked(map, a.camera, a.pose, a.score_width, a.score_height, 1.0, 1.0, false, &met);
+    for (const ExpectedCell& e : met) still_met.at(e.key) = 1;
+  }
   if (!S.expected_by_view.empty()) {
     const std::uint64_t known_void = S.rays.void_to_free + S.rays.void_to_occupied;
     const std::uint64_t known_other = S.rays.unknown_to_free + S.rays.unknown_to_occupied - known_void;
@@ -253,6 +264,7 @@ void learn_from_missed(ExplorationState& S) {
       c.known_met_beam[e.void_cell] += e.beam;
       continue;
     }
+    if (S.announced && !still_met.find(e.key)) continue;  // explained by a surface seen in between
     float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s
     h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(e.weight), 0.0), 1.0)));
   }
@@ -261,6 +273,7 @@ void learn_from_missed(ExplorationState& S) {
     for (int cls = 0; cls < 2; ++cls)
       non_increasing_share(c.expected[cls], c.seen[cls], c.share[cls], VisibilityCurve::kDepths);
   S.expected_by_view.clear();
+  S.announced.reset();
 }
 
 }  // namespace detail
@@ -272,6 +285,7 @@ void expect_view(ExplorationMap& map, const CameraIntrinsics& cam, const Pose& p
   detail::MapGuard guard(S, true);
   const auto p = detail::pass_probabilities(map, opt);
   S.expected_by_view.clear();
+  S.announced = detail::AnnouncedView{cam, pose, opt.score_width, opt.score_height};
   const std::uint64_t known_void = S.rays.void_to_free + S.rays.void_to_occupied;
   S.curve.known_at_announce[0] = S.rays.unknown_to_free + S.rays.unknown_to_occupied - known_void;
   S.curve.known_at_announce[1] = known_void;

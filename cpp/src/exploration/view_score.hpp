@@ -25,10 +25,11 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
                               double p, double p_void, bool learned,
                               std::vector<ExpectedCell>* unknown_met = nullptr);
 
-// After an insert: each cell the view announced by expect_view expected (weight w) and left unknown
-// has its seeability multiplied by (1 - w); every announced cell teaches the visibility curve (seen or
-// not, at its depth and class); the announcement is cleared. The caller holds the write lock.
-void learn_from_missed(ExplorationState& S);
+// After an insert: each cell the view announced by expect_view expected (weight w), left unknown and
+// still met by the view's rays in the updated map (no surface seen in between) has its seeability
+// multiplied by (1 - w); every announced cell teaches the visibility curve (seen or not, at its depth
+// and class); the announcement is cleared. S is map's state; the caller holds the write lock.
+void learn_from_missed(const ExplorationMap& map, ExplorationState& S);
 
 // Throws std::invalid_argument naming the first bad option (or camera value).
 void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt);

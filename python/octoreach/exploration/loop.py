@@ -27,6 +27,20 @@ STOP_UTILITY = 20.0
 # should not end the exploration; the low view is taken, and the next search starts from its map).
 STOP_PATIENCE = 2
 
+# The loop's search breadth for frontier_void (round 8), wider than next_best_view's defaults (the
+# paper's N = 50 valid poses from the best 400 cells): in paper scene 2 the views that see into the
+# boxes' last corners and into the small box with the low opening are valid and expected to see a lot,
+# but their cells rank below the first 50 valid poses, and the loop stopped with 81-84 % seen. About
+# 2-3x the search's scoring time (docs/exploration.md, round 8).
+LOOP_VALID_POSES = 150
+LOOP_CANDIDATE_CELLS = 1200
+
+# A view not taken because its arm would touch the scene's true geometry (physical_check) is a motion
+# that failed: the loop does not choose views within this distance (m) of its camera again, as a robot
+# whose motion to a view failed would not try the same view again (else a search on an unchanged map
+# picks it again and again until the budget).
+FAILED_VIEW_RADIUS = 0.1
+
 STOP_REASONS = ("utility 0", "utility below min_utility", "view budget", "nothing to explore", "no valid view")
 
 
@@ -232,9 +246,11 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     (explorer_capability_map).
     `resolution`, `void_fit_threshold` go to ExplorationMap; `max_valid_poses`, `orientations_per_cell`,
     `max_candidate_cells`, `score_size` ((width, height)), `min_reachability` and `capability_orientations`
-    to next_best_view / score_views; None keeps their defaults. View k searches with seed `seed + k`.
+    to next_best_view / score_views; None keeps their defaults (but max_valid_poses and max_candidate_cells
+    default to the loop's LOOP_VALID_POSES and LOOP_CANDIDATE_CELLS). View k searches with seed `seed + k`.
     `physical_check` (with a robot): a chosen view whose arm touches the scene's true geometry is not
-    taken (counted as a view, `physically_valid` False, nothing integrated). `target` ((2, 3) lo, hi):
+    taken (counted as a view, `physically_valid` False, nothing integrated), and no later view within
+    FAILED_VIEW_RADIUS of its camera is chosen. `target` ((2, 3) lo, hi):
     each row counts the points of its cloud on it (usar_scenes.points_on).
     `learn_misses`: before each insert the loop announces the view to the map (next_best_view.expect_view),
     so the void (and unknown) cells that view was expected to see and did not lose seeability; views
@@ -259,8 +275,9 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     # min_distance: 0.05 m rather than next_best_view's 0 on purpose: the loop's camera keeps clear of surfaces
     options = dict(workspace_box=workspace_box, workspace=workspace, chain=chain, capability_map=capability_map,
                    min_distance=min_distance,
-                   **given(max_valid_poses=max_valid_poses, orientations_per_cell=orientations_per_cell,
-                           max_candidate_cells=max_candidate_cells, score_width=width, score_height=height,
+                   max_valid_poses=LOOP_VALID_POSES if max_valid_poses is None else max_valid_poses,
+                   max_candidate_cells=LOOP_CANDIDATE_CELLS if max_candidate_cells is None else max_candidate_cells,
+                   **given(orientations_per_cell=orientations_per_cell, score_width=width, score_height=height,
                            min_reachability=min_reachability, capability_orientations=capability_orientations))
     if strategy != "frontier_void":  # score_views has no search of its own
         for k in ("max_valid_poses", "orientations_per_cell", "max_candidate_cells"):
@@ -270,6 +287,15 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     def sphere_of(bp):
         return (bp[:3, 3].copy(), reach) if auto_sphere else workspace_sphere
 
+    failed = []  # camera positions of the views not taken
+
+    def away_from_failed(P):
+        P = np.asarray(P, float)
+        keep = np.ones(len(P), bool) if workspace is None else np.asarray(workspace(P), bool)
+        for f in failed:
+            keep &= np.sum((P - f) ** 2, axis=1) > FAILED_VIEW_RADIUS ** 2
+        return keep
+
     current, q, valid, low = 0, None, True, 0
     rows, poses, stop = [], [], "view budget"
     void_before = np.zeros((0, 3))
@@ -277,6 +303,9 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     for view in range(1, max_views + 1):
         poses.append(pose)
         valid = physics.valid(q, bases[current]) if view > 1 else True
+        if not valid:
+            failed.append(pose[:3, 3].copy())
+            options["workspace"] = away_from_failed
         t0 = time.perf_counter()
         pts, stats = None, {}
         if valid:
