@@ -20,9 +20,10 @@ the issue's goals on these figures.
 
 Every strategy stops by the same stated rule: its chosen view's utility at or below --min-utility
 (exploration.STOP_UTILITY) for --patience (STOP_PATIENCE) views in a row, or utility 0, or no valid
-view; the budget (--views, 30) is large so that the rule, not the budget, ends the runs.
+view; the budget (--views, 60: paper scene 2 takes 44-52 views) is large so that the rule, not the
+budget, ends the runs.
 
-Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 30]
+Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 60]
      [--plot docs/images/exploration_strategies.png] [--markdown table.md]
 Quick: --seeds 2 --generated 2 --views 8 --image 160 120 --resolution 0.05
 In parts (two cores): --scenes paper_1 usar_0 > a.json; --scenes paper_2 usar_1 > b.json; then
@@ -191,7 +192,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=10, help="exploration seeds per strategy and scene (>= 10 for the record)")
     ap.add_argument("--generated", type=int, default=4, help="generated USAR scenes (usar_scene(0..k-1))")
-    ap.add_argument("--views", type=int, default=30,
+    ap.add_argument("--views", type=int, default=60,
                     help="view budget (large, so that the stopping rule ends the runs, not the budget)")
     ap.add_argument("--patience", type=int, default=ex.STOP_PATIENCE,
                     help="... for this many chosen views in a row (default: exploration.STOP_PATIENCE)")

@@ -4,8 +4,10 @@
 ///
 /// 1. Utility vectors: for every frontier-void, from the void's centre and its six extremes
 ///    (centroid +- semi-axis along each eigenvector) through each frontier cell touching the void.
-/// 2. Each vector is ray-traced from its frontier cell through free cells up to the sensor range
-///    (stopping at the first cell that is not free), adding the void's volume to every cell.
+/// 2. Each vector is ray-traced from its frontier cell through free cells, and through the unknown
+///    cells outside the map's search space that are not below its floor (not obstacles for the
+///    safe-view rule either), up to the sensor range and the workspace's edge (stopping at any other
+///    cell), adding the void's volume to every cell.
 /// 3. Cells outside the sensor's workspace are pruned: a box, a sphere, a user callback and/or a
 ///    capability map of the arm carrying the sensor (cells whose voxel has a reachability index
 ///    at or below a threshold go). The arm's IK stays the final check of each pose (step 4).
