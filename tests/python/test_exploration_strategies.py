@@ -334,3 +334,18 @@ def test_the_visibility_curve_learns_from_announced_views_what_rays_see():
     assert seen > 50 and pv < 1 and p < 1
     assert abs(learned / seen - 1) < abs(geometric / seen - 1), (geometric, learned, seen)
     assert 0.67 < learned / seen < 1.5, (geometric, learned, seen)
+
+
+def test_views_near_a_failed_view_are_not_chosen_again():
+    """After a view whose arm would touch the true scene (not taken), the loop's workspace drops candidate
+    positions within FAILED_VIEW_RADIUS of its camera, keeps the others, and still asks the user's workspace."""
+    from octoreach.exploration.loop import away_from
+
+    failed = []
+    user = lambda P: P[:, 2] > 0.0  # noqa: E731
+    keep = away_from(failed, user)
+    P = np.array([[0.5, 0.0, 0.2], [0.5, 0.05, 0.2], [0.8, 0.0, 0.2], [0.5, 0.0, -0.1]])
+    assert keep(P).tolist() == [True, True, True, False]
+    failed.append(np.array([0.5, 0.0, 0.2]))  # the loop appends as views fail
+    assert keep(P).tolist() == [False, ex.FAILED_VIEW_RADIUS <= 0.05, True, False]
+    assert away_from(failed)(P).tolist() == [False, ex.FAILED_VIEW_RADIUS <= 0.05, True, True]

@@ -200,6 +200,19 @@ def _row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, po
                    target_points=points_on(target, pts) if target is not None and pts is not None else 0)
 
 
+def away_from(failed, workspace=None, radius: float = FAILED_VIEW_RADIUS) -> Callable:
+    """A workspace callable ((N, 3) positions -> (N,) bools) that keeps what `workspace` keeps (all when
+    None) farther than `radius` from every position in `failed` (a list the loop appends to)."""
+    def keep(P):
+        P = np.asarray(P, float).reshape(-1, 3)
+        ok = np.ones(len(P), bool) if workspace is None else np.asarray(workspace(P), bool)
+        for f in failed:
+            ok &= np.sum((P - f) ** 2, axis=1) > radius ** 2
+        return ok
+
+    return keep
+
+
 def _seen(emap, void_before) -> int:
     """How many of the cells at `void_before` (centres) the map now knows."""
     return int(np.count_nonzero(emap.state(void_before) != 0)) if len(void_before) else 0
@@ -289,13 +302,6 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
 
     failed = []  # camera positions of the views not taken
 
-    def away_from_failed(P):
-        P = np.asarray(P, float)
-        keep = np.ones(len(P), bool) if workspace is None else np.asarray(workspace(P), bool)
-        for f in failed:
-            keep &= np.sum((P - f) ** 2, axis=1) > FAILED_VIEW_RADIUS ** 2
-        return keep
-
     current, q, valid, low = 0, None, True, 0
     rows, poses, stop = [], [], "view budget"
     void_before = np.zeros((0, 3))
@@ -305,7 +311,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         valid = physics.valid(q, bases[current]) if view > 1 else True
         if not valid:
             failed.append(pose[:3, 3].copy())
-            options["workspace"] = away_from_failed
+            options["workspace"] = away_from(failed, workspace)
         t0 = time.perf_counter()
         pts, stats = None, {}
         if valid:
