@@ -31,9 +31,9 @@ STOP_PATIENCE = 2
 # paper's N = 50 valid poses from the best 400 cells): in paper scene 2 the views that see into the
 # boxes' last corners and into the small box with the low opening are valid and expected to see a lot,
 # but their cells rank below the first 50 valid poses, and the loop stopped with 81-84 % seen. About
-# 2-3x the search's scoring time (docs/exploration.md, round 8).
-LOOP_VALID_POSES = 150
-LOOP_CANDIDATE_CELLS = 1200
+# 1.3x the search's CPU time (docs/exploration.md, round 8; 150 / 1200 did no better at 1.8x).
+LOOP_VALID_POSES = 100
+LOOP_CANDIDATE_CELLS = 800
 
 # A view not taken because its arm would touch the scene's true geometry (physical_check) is a motion
 # that failed: the loop does not choose views within this distance (m) of its camera again, as a robot
