@@ -20,7 +20,7 @@ the issue's goals on these figures.
 
 Every strategy stops by the same stated rule: its chosen view's utility at or below --min-utility
 (exploration.STOP_UTILITY) for --patience (STOP_PATIENCE) views in a row, or utility 0, or no valid
-view; the budget (--views, 60: paper scene 2 takes 44-52 views) is large so that the rule, not the
+view; the budget (--views, 60: paper scene 2 takes 44-53 views) is large so that the rule, not the
 budget, ends the runs.
 
 Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 60]
