@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <fcl/fcl.h>
@@ -75,7 +76,11 @@ void ArmObstacles::compute(int threads) {
   if (empty()) return;
   const CellSlots& slots = *slots_;
   for (int li : links_)
-    if (!robot_.links()[li].shapes.empty()) shaped_.push_back(li);
+    if (!robot_.links()[li].shapes.empty()) {
+      shaped_.push_back(li);
+      shape_id_.push_back(shapes_);
+      shapes_ += robot_.links()[li].shapes.size();
+    }
   stride_ = 6 * (1 + shaped_.size());
   boxes_cm_.assign(slots.size() * stride_, 0);
   const auto& records = slots.records();
@@ -114,6 +119,7 @@ void ArmObstacles::compute(int threads) {
 void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
   out.cm.clear();
   out.obb.clear();
+  out.index.clear();
   if (empty() || slots_->size() == 0) return;
   const Pose arm_from_world = world_from_arm.inverse();
   for (std::size_t i = 0; i < boxes_.size(); ++i) {
@@ -126,6 +132,7 @@ void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
                       cm_floor(hi_cm[2])});
     const Obb& world = obstacles_->oriented_box(i);
     out.obb.push_back({arm_from_world * world.centre, arm_from_world.linear() * world.axes, world.half});
+    out.index.push_back(static_cast<std::uint32_t>(i));
   }
 }
 
@@ -175,18 +182,32 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
   }
   if (!any) return false;
   const float* P = link_poses(slot, scratch);
+  const auto& objects = obstacles_->objects();
+  if (scratch.box_witness.empty()) scratch.box_witness.resize(shapes_ * objects.size());
   for (std::size_t l = 0; l < shaped_.size(); ++l) {
     if (!hit[l]) continue;
     Pose in_arm = Pose::Identity();
     in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
-    for (const auto& s : robot_.links()[shaped_[l]].shapes) {
-      // The exact pre-test of Obstacles::collides in the arm frame, against the near obstacles only
-      // (the others cannot reach the arm): a shape clearly apart from all of them touches none, and
-      // the world poses, boxes and the obstacle loop are skipped.
+    const auto& shapes = robot_.links()[shaped_[l]].shapes;
+    for (std::size_t k = 0; k < shapes.size(); ++k) {
+      const auto& s = shapes[k];
+      // The exact pre-test of Obstacles::collides in the arm frame, against the near obstacles whose
+      // box meets the link's (the others cannot reach it); then FCL's answer for the pair, through the
+      // mesh-box check with this thread's witnesses where it applies.
       const Obb shape = Obb::of(*s.geometry, in_arm * s.origin);
-      bool apart = true;
-      for (std::size_t j = 0; j < near.obb.size() && apart; ++j) apart = shape.apart(near.obb[j]);
-      if (!apart && obstacles_->collides(*s.geometry, world_from_arm * in_arm * s.origin)) return true;
+      std::optional<Pose> world;  // the shape's world pose, as Obstacles::collides is given it
+      for (std::size_t j = 0; j < near.cm.size(); ++j) {
+        if (!meets(box + 6 * (1 + l), near.cm[j]) || shape.apart(near.obb[j])) continue;
+        if (!world) world = world_from_arm * in_arm * s.origin;
+        const std::uint32_t i = near.index[j];
+        const fcl::CollisionGeometryd& og = *objects[i]->collisionGeometry();
+        const Pose at(objects[i]->getTransform().matrix());
+        const bool touches =
+            mesh_box_pair(*s.geometry, og)
+                ? mesh_box_collide(*s.geometry, *world, og, at, scratch.box_witness[(shape_id_[l] + k) * objects.size() + i])
+                : geometry_collide(s.geometry.get(), *world, &og, at);
+        if (touches) return true;
+      }
     }
   }
   return false;

@@ -12,6 +12,7 @@
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
+#include "../mesh_box_check.hpp"
 #include "cell_slots.hpp"
 #include "obb.hpp"
 
@@ -23,6 +24,7 @@ namespace octoreach::detail {
 struct NearObstacles {
   std::vector<std::array<std::int32_t, 6>> cm;
   std::vector<Obb> obb;  // the same obstacles' oriented boxes (local AABB placed), arm frame
+  std::vector<std::uint32_t> index;  // the same obstacles' indices in the Obstacles
   bool empty() const { return cm.empty(); }
 };
 
@@ -34,6 +36,7 @@ struct ArmScratch {
   std::vector<float> pool;
   std::vector<float> spare;       // a cell met once the pool is full
   std::vector<char> hit;          // by shaped link: its box meets a near obstacle's
+  std::vector<MeshBoxWitness> box_witness;  // by (link shape, obstacle): what decided their last check
   static constexpr std::uint32_t kNotYet = 0xffffffffu;
 };
 
@@ -58,6 +61,8 @@ class ArmObstacles {
   Eigen::VectorXd reference_;
   std::vector<int> links_;          // links moved by the arm (arm and tool roles)
   std::vector<int> shaped_;         // those of them with collision shapes
+  std::vector<std::size_t> shape_id_;  // by shaped link: the number of its first shape among all shaped links' shapes
+  std::size_t shapes_ = 0;
   // Per slot: the box of the whole arm, then one box per shaped link, arm frame, in centimetres
   // rounded outwards (lo x y z, hi x y z): stride_ = 6 (1 + shaped links) int16 from slot * stride_.
   std::vector<std::int16_t> boxes_cm_;
