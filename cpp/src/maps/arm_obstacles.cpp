@@ -65,9 +65,19 @@ std::int32_t cm_ceil(double v) {
   return std::isnan(v) ? -1000000000 : static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::ceil(v))));
 }
 
-bool meets(const std::int16_t* box, const std::array<std::int32_t, 6>& near) {
+// cm_floor / cm_ceil clamped to the int16 range: the arm boxes lie within +-32000 cm, so an arm box
+// meets the clamped box exactly when it meets the unclamped one.
+std::int16_t cm16(std::int32_t v) { return static_cast<std::int16_t>(std::max(-32768, std::min(32767, v))); }
+
+bool meets(const std::int16_t* box, const std::array<std::int16_t, 6>& near) {
   return !(box[0] > near[3] || box[3] < near[0] || box[1] > near[4] || box[4] < near[1] || box[2] > near[5] ||
            box[5] < near[2]);
+}
+
+// Link l's box (rows of `lanes` values from `rows`) meets `near`.
+bool link_meets(const std::int16_t* rows, std::size_t lanes, std::size_t l, const std::array<std::int16_t, 6>& near) {
+  return !(rows[l] > near[3] || rows[3 * lanes + l] < near[0] || rows[lanes + l] > near[4] ||
+           rows[4 * lanes + l] < near[1] || rows[2 * lanes + l] > near[5] || rows[5 * lanes + l] < near[2]);
 }
 
 }  // namespace
@@ -81,7 +91,8 @@ void ArmObstacles::compute(int threads) {
       shape_id_.push_back(shapes_);
       shapes_ += robot_.links()[li].shapes.size();
     }
-  stride_ = 6 * (1 + shaped_.size());
+  lanes_ = (shaped_.size() + 15) / 16 * 16;
+  stride_ = 6 * (1 + lanes_);
   boxes_cm_.assign(slots.size() * stride_, 0);
   const auto& records = slots.records();
   detail::parallel_for(records.size(), threads, [&](std::size_t i, int) {
@@ -100,11 +111,15 @@ void ArmObstacles::compute(int threads) {
           llo = llo.cwiseMin(b.min_);
           lhi = lhi.cwiseMax(b.max_);
         }
-        put_box(llo, lhi, out + 6 * (1 + j));
+        std::int16_t link[6];
+        put_box(llo, lhi, link);
+        for (int r = 0; r < 6; ++r) out[6 + r * lanes_ + j] = link[r];
         lo = lo.cwiseMin(llo);
         hi = hi.cwiseMax(lhi);
       }
       put_box(lo, hi, out);
+      for (std::size_t j = shaped_.size(); j < lanes_; ++j)  // spare lanes: an empty box, never read
+        for (int r = 0; r < 6; ++r) out[6 + r * lanes_ + j] = r < 3 ? 32767 : -32768;
     }
   }, 4);
   for (std::size_t s = 0; s < slots.size(); ++s) {
@@ -128,8 +143,8 @@ void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
     box_in_frame(arm_from_world, b.min_, b.max_, lo, hi);
     if ((lo.array() > reach_hi_.array()).any() || (hi.array() < reach_lo_.array()).any()) continue;
     const Eigen::Vector3d lo_cm = lo * 100, hi_cm = hi * 100;  // centimetres, as the arm boxes
-    out.cm.push_back({cm_ceil(lo_cm[0]), cm_ceil(lo_cm[1]), cm_ceil(lo_cm[2]), cm_floor(hi_cm[0]), cm_floor(hi_cm[1]),
-                      cm_floor(hi_cm[2])});
+    out.cm.push_back({cm16(cm_ceil(lo_cm[0])), cm16(cm_ceil(lo_cm[1])), cm16(cm_ceil(lo_cm[2])),
+                      cm16(cm_floor(hi_cm[0])), cm16(cm_floor(hi_cm[1])), cm16(cm_floor(hi_cm[2]))});
     const Obb& world = obstacles_->oriented_box(i);
     out.obb.push_back({arm_from_world * world.centre, arm_from_world.linear() * world.axes, world.half});
     out.index.push_back(static_cast<std::uint32_t>(i));
@@ -172,14 +187,19 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
   // The whole arm's box, then each link's box, against each near obstacle's box; FCL only for the
   // links whose box meets one.
   // (One answer whatever the order the links are tried in: any link touching means a collision.)
-  std::vector<char>& hit = scratch.hit;
-  hit.assign(shaped_.size(), 0);
-  bool any = false;
+  const std::int16_t* rows = box + 6;
+  const std::size_t L = lanes_;
+  scratch.hit.assign(L, 0);
+  std::uint8_t* hit = scratch.hit.data();
   for (const auto& ob : near.cm) {
     if (!meets(box, ob)) continue;
-    for (std::size_t l = 0; l < shaped_.size(); ++l)
-      if (meets(box + 6 * (1 + l), ob)) any = hit[l] = 1;
+    for (std::size_t l = 0; l < L; ++l)  // link_meets for every lane, branch-free
+      hit[l] |= static_cast<std::uint8_t>((rows[l] <= ob[3]) & (rows[3 * L + l] >= ob[0]) & (rows[L + l] <= ob[4]) &
+                                          (rows[4 * L + l] >= ob[1]) & (rows[2 * L + l] <= ob[5]) &
+                                          (rows[5 * L + l] >= ob[2]));
   }
+  std::uint8_t any = 0;
+  for (std::size_t l = 0; l < shaped_.size(); ++l) any |= hit[l];  // (a spare lane may meet an unbounded box)
   if (!any) return false;
   const float* P = link_poses(slot, scratch);
   const auto& objects = obstacles_->objects();
@@ -197,7 +217,7 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
       const Obb shape = Obb::of(*s.geometry, in_arm * s.origin);
       std::optional<Pose> world;  // the shape's world pose, as Obstacles::collides is given it
       for (std::size_t j = 0; j < near.cm.size(); ++j) {
-        if (!meets(box + 6 * (1 + l), near.cm[j]) || shape.apart(near.obb[j])) continue;
+        if (!link_meets(rows, L, l, near.cm[j]) || shape.apart(near.obb[j])) continue;
         if (!world) world = world_from_arm * in_arm * s.origin;
         const std::uint32_t i = near.index[j];
         const fcl::CollisionGeometryd& og = *objects[i]->collisionGeometry();
