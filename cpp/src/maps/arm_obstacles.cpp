@@ -190,15 +190,16 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
   const std::int16_t* rows = box + 6;
   const std::size_t L = lanes_;
   scratch.hit.assign(L, 0);
-  std::uint8_t* hit = scratch.hit.data();
+  std::int32_t* hit = scratch.hit.data();
   for (const auto& ob : near.cm) {
     if (!meets(box, ob)) continue;
-    for (std::size_t l = 0; l < L; ++l)  // link_meets for every lane, branch-free
-      hit[l] |= static_cast<std::uint8_t>((rows[l] <= ob[3]) & (rows[3 * L + l] >= ob[0]) & (rows[L + l] <= ob[4]) &
-                                          (rows[4 * L + l] >= ob[1]) & (rows[2 * L + l] <= ob[5]) &
-                                          (rows[5 * L + l] >= ob[2]));
+    // link_meets for every lane, branch-free: all six differences >= 0 (no overflow in 32 bits).
+    const std::int32_t lo0 = ob[0], lo1 = ob[1], lo2 = ob[2], hi0 = ob[3], hi1 = ob[4], hi2 = ob[5];
+    for (std::size_t l = 0; l < L; ++l)
+      hit[l] |= ~((hi0 - rows[l]) | (rows[3 * L + l] - lo0) | (hi1 - rows[L + l]) | (rows[4 * L + l] - lo1) |
+                  (hi2 - rows[2 * L + l]) | (rows[5 * L + l] - lo2)) >> 31;
   }
-  std::uint8_t any = 0;
+  std::int32_t any = 0;
   for (std::size_t l = 0; l < shaped_.size(); ++l) any |= hit[l];  // (a spare lane may meet an unbounded box)
   if (!any) return false;
   const float* P = link_poses(slot, scratch);

@@ -36,7 +36,7 @@ struct ArmScratch {
   std::vector<std::uint32_t> at;  // by slot: offset into pool, or kNotYet
   std::vector<float> pool;
   std::vector<float> spare;       // a cell met once the pool is full
-  std::vector<std::uint8_t> hit;  // by shaped link (lane): its box meets a near obstacle's
+  std::vector<std::int32_t> hit;  // by shaped link (lane): its box meets a near obstacle's (-1) or not (0)
   std::vector<MeshBoxWitness> box_witness;  // by (link shape, obstacle): what decided their last check
   static constexpr std::uint32_t kNotYet = 0xffffffffu;
 };
