@@ -190,18 +190,19 @@ struct PackedBin {
     std::uint32_t first, count;  // the low set's points in ArmClearance::shared_points()
   };
   // The first kNear points of each low set (the nearest to the target, which end most tests) are
-  // copied beside the entries.
+  // kept beside the entries as their products with the half-planes, g_j . w (the values any_inside
+  // compares), so a test of them is nh comparisons per point.
   static constexpr std::uint32_t kNear = 2;
   std::size_t G = 0, nh = 0;
   std::vector<Entry> entries;  // [local record * G + grasp]
   std::vector<float> bounds;   // [(local record * G + grasp) * nh + half-plane]
-  std::vector<Eigen::Vector3f> near;  // [(local record * G + grasp) * kNear + point]
+  std::vector<float> near;     // [((local record * G + grasp) * kNear + point) * nh + half-plane]
 
   PackedBin(const SurfaceBuild& b, const BinFrame& f) : G(f.mapped.size()), nh(f.g.size()) {
     const auto& records = b.slots->records();
     entries.resize(records.size() * G);
     bounds.resize(entries.size() * nh);
-    near.resize(entries.size() * kNear, Eigen::Vector3f::Zero());
+    near.resize(entries.size() * kNear * nh, 0.0f);
     for (std::size_t l = 0; l < records.size(); ++l)
       for (std::size_t m = 0; m < G; ++m) {
         const std::size_t e = l * G + m;
@@ -215,7 +216,8 @@ struct PackedBin {
         entries[e] = {slot, b.clearance->shared_start(slot), b.clearance->shared_count(slot)};
         const detail::LowSetRef low = b.clearance->shared(slot);
         for (std::size_t j = 0; j < nh; ++j) bounds[e * nh + j] = f.bound(low, j);
-        std::copy(low.points, low.points + std::min(low.count, kNear), near.begin() + e * kNear);
+        for (std::uint32_t p = 0; p < std::min(low.count, kNear); ++p)
+          for (std::size_t j = 0; j < nh; ++j) near[(e * kNear + p) * nh + j] = f.g[j].dot(low.points[p]);
       }
   }
 };
@@ -286,15 +288,20 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
     const std::size_t G = packed->G, first = static_cast<std::size_t>(local) * G;
     const PackedBin::Entry* E = packed->entries.data() + first;
     const float* B = packed->bounds.data() + first * nh;
-    const Eigen::Vector3f* Np = packed->near.data() + first * PackedBin::kNear;
+    const float* Np = packed->near.data() + first * PackedBin::kNear * nh;
     int count = 0;
     for (std::size_t m = 0; m < G; ++m) {
       if (E[m].slot < 0) continue;
       bool all_outside = E[m].count == 0;
       for (std::size_t j = 0; j < nh && !all_outside; ++j) all_outside = B[m * nh + j] > d[j];
       const std::uint32_t c = E[m].count, in_near = std::min(c, PackedBin::kNear);
-      const bool under = !all_outside && (f.any_inside(Np + m * PackedBin::kNear, in_near, d) ||
-                                          f.any_inside(shared_points + E[m].first + in_near, c - in_near, d));
+      bool under = false;
+      for (std::uint32_t p = 0; p < in_near && !all_outside && !under; ++p) {
+        const float* np = Np + (m * PackedBin::kNear + p) * nh;
+        under = true;
+        for (std::size_t j = 0; j < nh && under; ++j) under = np[j] <= d[j];
+      }
+      under = under || (!all_outside && f.any_inside(shared_points + E[m].first + in_near, c - in_near, d));
       const bool ok = !under && !b.obstacles->collides(E[m].slot, near, world_from_arm, arm_scratch);
       if (!ok) ++n.arm;
       count += ok;
