@@ -65,6 +65,13 @@ std::int32_t cm_ceil(double v) {
   return std::isnan(v) ? -1000000000 : static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::ceil(v))));
 }
 
+// A link pose kept as float 3 x 4 (column-major), as a Pose.
+Pose link_in_arm(const float* m) {
+  Pose in_arm = Pose::Identity();
+  in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(m).cast<double>();
+  return in_arm;
+}
+
 // cm_floor / cm_ceil clamped to the int16 range: the arm boxes lie within +-32000 cm, so an arm box
 // meets the clamped box exactly when it meets the unclamped one.
 std::int16_t cm16(std::int32_t v) { return static_cast<std::int16_t>(std::max(-32768, std::min(32767, v))); }
@@ -90,6 +97,10 @@ void ArmObstacles::compute(int threads) {
       shaped_.push_back(li);
       shape_id_.push_back(shapes_);
       shapes_ += robot_.links()[li].shapes.size();
+      for (const auto& sh : robot_.links()[li].shapes) {
+        const fcl::AABBd& local = sh.geometry->aabb_local;
+        shape_half_.push_back(0.5 * (local.max_ - local.min_));
+      }
     }
   lanes_ = (shaped_.size() + 15) / 16 * 16;
   stride_ = 6 * (1 + lanes_);
@@ -151,8 +162,9 @@ void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
   }
 }
 
-// Link poses (arm frame) of the shaped links at the stored solution of a cell, from the scratch's
-// cache, computed and cached on first use (the cache stops growing at 32 MB).
+// Link poses (arm frame) of the shaped links at the stored solution of a cell, then the oriented boxes
+// of their shapes (as Obb::of gives them for those poses: centre, axes), from the scratch's cache,
+// computed and cached on first use (the cache stops growing at 64 MB).
 const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
   if (s.at.empty()) s.at.assign(slots_->size(), ArmScratch::kNotYet);
   const std::uint32_t cached = s.at[static_cast<std::size_t>(slot)];
@@ -161,8 +173,8 @@ const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
   const float* qf = cap_.record_solution(c.rec, c.orient);
   Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
   robot_.link_poses(arm_.to_robot_configuration(q, reference_), s.poses);
-  const std::size_t n = 12 * shaped_.size();
-  const bool keep = s.pool.size() + n <= (std::size_t(32) << 20) / sizeof(float);
+  const std::size_t n = 12 * (shaped_.size() + shapes_);
+  const bool keep = s.pool.size() + n <= (std::size_t(64) << 20) / sizeof(float);
   const std::size_t at = s.pool.size();
   float* out;
   if (keep) {
@@ -172,9 +184,20 @@ const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
     s.spare.resize(n);
     out = s.spare.data();
   }
+  float* boxes = out + 12 * shaped_.size();
   for (std::size_t j = 0; j < shaped_.size(); ++j) {
     Eigen::Matrix<float, 3, 4> m = (arm_from_root_ * s.poses[shaped_[j]]).matrix().topRows<3>().cast<float>();
     std::copy(m.data(), m.data() + 12, out + 12 * j);
+    const Pose in_arm = link_in_arm(out + 12 * j);
+    const auto& shapes = robot_.links()[shaped_[j]].shapes;
+    for (std::size_t k = 0; k < shapes.size(); ++k) {
+      const Obb o = Obb::of(*shapes[k].geometry, in_arm * shapes[k].origin);
+      float* b = boxes + 12 * (shape_id_[j] + k);
+      Eigen::Map<Eigen::Vector3f> centre(b);
+      Eigen::Map<Eigen::Matrix3f> axes(b + 3);
+      centre = o.centre.cast<float>();
+      axes = o.axes.cast<float>();
+    }
   }
   if (keep) s.at[static_cast<std::size_t>(slot)] = static_cast<std::uint32_t>(at);
   return out;
@@ -203,29 +226,31 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
   for (std::size_t l = 0; l < shaped_.size(); ++l) any |= hit[l];  // (a spare lane may meet an unbounded box)
   if (!any) return false;
   const float* P = link_poses(slot, scratch);
+  const float* boxes = P + 12 * shaped_.size();
   const auto& objects = obstacles_->objects();
   if (scratch.box_witness.empty()) scratch.box_witness.resize(shapes_ * objects.size());
   for (std::size_t l = 0; l < shaped_.size(); ++l) {
     if (!hit[l]) continue;
-    Pose in_arm = Pose::Identity();
-    in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
     const auto& shapes = robot_.links()[shaped_[l]].shapes;
     for (std::size_t k = 0; k < shapes.size(); ++k) {
       const auto& s = shapes[k];
-      // The exact pre-test of Obstacles::collides in the arm frame, against the near obstacles whose
-      // box meets the link's (the others cannot reach it); then FCL's answer for the pair, through the
-      // mesh-box check with this thread's witnesses where it applies.
-      const Obb shape = Obb::of(*s.geometry, in_arm * s.origin);
+      // The exact pre-test of Obstacles::collides in the arm frame (the shape's oriented box, kept in
+      // float: far below the test's 0.1 mm margin), against the near obstacles whose box meets the
+      // link's (the others cannot reach it); then FCL's answer for the pair, through the mesh-box
+      // check with this thread's witnesses where it applies.
+      const std::size_t id = shape_id_[l] + k;
+      const Obb shape{Eigen::Map<const Eigen::Vector3f>(boxes + 12 * id).cast<double>(),
+                      Eigen::Map<const Eigen::Matrix3f>(boxes + 12 * id + 3).cast<double>(), shape_half_[id]};
       std::optional<Pose> world;  // the shape's world pose, as Obstacles::collides is given it
       for (std::size_t j = 0; j < near.cm.size(); ++j) {
         if (!link_meets(rows, L, l, near.cm[j]) || shape.apart(near.obb[j])) continue;
-        if (!world) world = world_from_arm * in_arm * s.origin;
+        if (!world) world = world_from_arm * link_in_arm(P + 12 * l) * s.origin;
         const std::uint32_t i = near.index[j];
         const fcl::CollisionGeometryd& og = *objects[i]->collisionGeometry();
         const Pose at(objects[i]->getTransform().matrix());
         const bool touches =
             mesh_box_pair(*s.geometry, og)
-                ? mesh_box_collide(*s.geometry, *world, og, at, scratch.box_witness[(shape_id_[l] + k) * objects.size() + i])
+                ? mesh_box_collide(*s.geometry, *world, og, at, scratch.box_witness[id * objects.size() + i])
                 : geometry_collide(s.geometry.get(), *world, &og, at);
         if (touches) return true;
       }

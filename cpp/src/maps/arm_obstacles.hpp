@@ -29,8 +29,9 @@ struct NearObstacles {
   bool empty() const { return cm.empty(); }
 };
 
-/// Scratch of one thread of a build: link poses (arm frame, float 3 x 4 per shaped link) of the cells
-/// checked so far, so a cell met again from another base position needs no forward kinematics.
+/// Scratch of one thread of a build: link poses (arm frame, float 3 x 4 per shaped link) and their
+/// shapes' oriented boxes (centre, axes) of the cells checked so far, so a cell met again from another
+/// base position needs no forward kinematics.
 struct ArmScratch {
   std::vector<Pose> poses;
   std::vector<std::uint32_t> at;  // by slot: offset into pool, or kNotYet
@@ -64,6 +65,7 @@ class ArmObstacles {
   std::vector<int> shaped_;         // those of them with collision shapes
   std::vector<std::size_t> shape_id_;  // by shaped link: the number of its first shape among all shaped links' shapes
   std::size_t shapes_ = 0;
+  std::vector<Eigen::Vector3d> shape_half_;  // by shape number: half extents of its local AABB
   // Per slot: the box of the whole arm (lo x y z, hi x y z), then the boxes of the shaped links as six
   // rows of lanes_ values (lo x, lo y, lo z, hi x, hi y, hi z; link j in lane j, the spare lanes never
   // meet), arm frame, in centimetres rounded outwards: stride_ = 6 (1 + lanes_) int16 from slot * stride_.
