@@ -212,8 +212,9 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
   // (One answer whatever the order the links are tried in: any link touching means a collision.)
   const std::int16_t* rows = box + 6;
   const std::size_t L = lanes_;
-  scratch.hit.assign(L, 0);
+  if (scratch.hit.size() != L) scratch.hit.resize(L);
   std::int32_t* hit = scratch.hit.data();
+  std::fill(hit, hit + L, 0);
   for (const auto& ob : near.cm) {
     if (!meets(box, ob)) continue;
     // link_meets for every lane, branch-free: all six differences >= 0 (no overflow in 32 bits).
