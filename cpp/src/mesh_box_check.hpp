@@ -7,13 +7,18 @@
 //    the one that separated the pair last time, the box's three face planes, then one found by GJK;
 //    each is checked by projecting the support points and the box on its normal, so the answer rests
 //    on that check alone.
-//  - touching: the triangles FCL found touching the box lately are retested with FCL's own leaf test
-//    (the narrow-phase solver FCL's collide builds, on the same transforms); if one still touches,
-//    FCL's traversal, which reaches every triangle whose bounding volume meets the box's, reports a
-//    collision too.
-//  - otherwise FCL decides, and the triangle of its hit, if any, joins the witnesses.
-// Order: the kept plane, the face planes, the kept triangles, GJK, FCL. The witnesses are per thread
-// (the caller keeps them): a witness only ever changes the cost of a check.
+//  - touching: the triangles found touching the box lately are retested with FCL's own leaf test
+//    (the narrow-phase solver fcl::collide builds for a default request, on the same transforms); if
+//    one still touches, FCL's traversal, which reaches every triangle whose bounding volume meets the
+//    box's, reports a collision too.
+//  - otherwise the mesh's own bounding-volume tree (FCL's OBBRSS nodes) is traversed: a node or a
+//    triangle more than kBoxMargin from the box on a separating axis holds no touching triangle (FCL's
+//    leaf test is a GJK to a tolerance far below the margin), every other triangle gets FCL's leaf
+//    test, and the first that touches joins the witnesses. FCL reports a collision exactly when its
+//    leaf test holds for some triangle, so this is FCL's answer without fcl::collide (which also fits
+//    a bounding volume to the box on every call).
+// Order: the kept plane, the face planes, the kept triangles, GJK, the traversal. The witnesses are
+// per thread (the caller keeps them): a witness only ever changes the cost of a check.
 #include <array>
 
 #include <fcl/fcl.h>

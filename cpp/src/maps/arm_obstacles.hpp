@@ -1,7 +1,9 @@
 #pragma once
 // Private: does an arm, at the joint solution a capability map stored, touch an obstacle of the
 // room (boxes, meshes, OctoMaps, other surfaces)? Cheapest test first: the obstacles near the arm's
-// whole reach at a base pose, then the arm's bounding box at that solution, then FCL per link.
+// whole reach at a base pose, then the arm's bounding box at that solution, then each link's box, then
+// each shape's oriented box against each near obstacle, then FCL's answer for that pair (the mesh-box
+// check with witnesses for a mesh against a box, mesh_box_check.hpp; FCL for the rest).
 #include <array>
 #include <cstdint>
 #include <memory>
