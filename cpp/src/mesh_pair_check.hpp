@@ -82,8 +82,32 @@ class HullMesh : public fcl::BVHModel<fcl::OBBRSSd> {
   mutable Points points_;
 };
 
+/// `g` as a HullMesh of triangles with support points (the geometries meshes_collide handles), or null.
+const HullMesh* hull_mesh(const fcl::CollisionGeometryd& g);
+
 /// True when `g` is a geometry meshes_collide handles: a HullMesh of triangles.
 bool is_mesh(const fcl::CollisionGeometryd& g);
+
+/// A mesh's hull support points at a world pose (the support function GJK and the plane checks read).
+struct PlacedHull {
+  const HullMesh::Points& p;
+  const Eigen::Matrix3d R;
+  const Eigen::Vector3d t;
+  // The projections of the points on local direction l.
+  auto projections(const Eigen::Vector3d& l) const {
+    using Col = Eigen::Map<const Eigen::ArrayXd>;
+    const Eigen::Index n = static_cast<Eigen::Index>(p.x.size());
+    return l.x() * Col(p.x.data(), n) + l.y() * Col(p.y.data(), n) + l.z() * Col(p.z.data(), n);
+  }
+  // The world position of a point farthest along world direction d.
+  Eigen::Vector3d support(const Eigen::Vector3d& d) const {
+    Eigen::Index i = 0;
+    projections(R.transpose() * d).maxCoeff(&i);
+    return R * Eigen::Vector3d(p.x[i], p.y[i], p.z[i]) + t;
+  }
+  // max over the points of d . x (world).
+  double reach(const Eigen::Vector3d& d) const { return projections(R.transpose() * d).maxCoeff() + d.dot(t); }
+};
 
 /// FCL's answer for two meshes (both is_mesh) at world poses, using and refreshing `witness`.
 bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,

@@ -3,15 +3,20 @@
 // boxes, arm-frame oriented boxes) may only skip shapes that cannot touch, so the answers must agree.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "maps/arm_obstacles.hpp"
+#include "mesh_pair_check.hpp"
 #include "octoreach/capability_map.hpp"
 
 using namespace octoreach;
 
-TEST(SurfaceMapArmObstacles, EqualsFclOnEveryLinkShape) {
-  auto robot = Robot::from_urdf(std::string(OCTOREACH_URDF_DIR) + "/test_arm.urdf");
+namespace {
+
+// The arm check against FCL on every link shape of the arm `robot` at many base poses.
+void expect_equals_fcl(std::shared_ptr<Robot> robot) {
   Chain chain = robot->chain("base_link", "tool0");
   CapabilityMapOptions co;
   co.resolution = 0.15;
@@ -76,4 +81,61 @@ TEST(SurfaceMapArmObstacles, EqualsFclOnEveryLinkShape) {
   // Both answers occur, so the comparison means something.
   EXPECT_GT(hits, 0u);
   EXPECT_LT(hits, checked);
+}
+
+// An open square tube along z (four walls, no ends) as an ASCII STL: its hull holds room a table leg can
+// pass through without touching a triangle, so the mesh-box check's every step is needed.
+std::string write_tube(const std::filesystem::path& dir, const std::string& name, double w, double length) {
+  const std::filesystem::path path = dir / (name + ".stl");
+  std::ofstream f(path);
+  f << "solid " << name << "\n";
+  const double h = w / 2;
+  const double c[4][2] = {{-h, -h}, {h, -h}, {h, h}, {-h, h}};
+  auto facet = [&](const double* a, const double* b, double za, double zb, double zc, const double* cc) {
+    f << "facet normal 0 0 0\nouter loop\n";
+    f << "vertex " << a[0] << " " << a[1] << " " << za << "\n";
+    f << "vertex " << b[0] << " " << b[1] << " " << zb << "\n";
+    f << "vertex " << cc[0] << " " << cc[1] << " " << zc << "\n";
+    f << "endloop\nendfacet\n";
+  };
+  for (int i = 0; i < 4; ++i) {
+    const double* a = c[i];
+    const double* b = c[(i + 1) % 4];
+    facet(a, b, 0.0, 0.0, length, b);
+    facet(a, b, 0.0, length, length, a);
+  }
+  f << "endsolid " << name << "\n";
+  return path.string();
+}
+
+}  // namespace
+
+TEST(SurfaceMapArmObstacles, EqualsFclOnEveryLinkShape) {
+  expect_equals_fcl(Robot::from_urdf(std::string(OCTOREACH_URDF_DIR) + "/test_arm.urdf"));
+}
+
+TEST(SurfaceMapArmObstacles, EqualsFclOnMeshLinks) {
+  // The test arm with its upper arm and forearm as open tubes (meshes: the mesh-box check decides
+  // them against the boxes).
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "octoreach_arm_obstacles_meshes";
+  std::filesystem::create_directories(dir);
+  std::ifstream in(std::string(OCTOREACH_URDF_DIR) + "/test_arm.urdf");
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto swap = [&](const std::string& from, const std::string& to) {
+    const auto at = urdf.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    urdf.replace(at, from.size(), to);
+  };
+  swap("<origin xyz=\"0 0 0.2\"/><geometry><box size=\"0.06 0.06 0.36\"/>",
+       "<origin xyz=\"0 0 0.02\"/><geometry><mesh filename=\"" + write_tube(dir, "upper", 0.09, 0.36) + "\"/>");
+  swap("<origin xyz=\"0 0 0.15\"/><geometry><box size=\"0.05 0.05 0.26\"/>",
+       "<origin xyz=\"0 0 0.02\"/><geometry><mesh filename=\"" + write_tube(dir, "fore", 0.08, 0.26) + "\"/>");
+  const std::filesystem::path path = dir / "mesh_arm.urdf";
+  std::ofstream(path) << urdf;
+  auto robot = Robot::from_urdf(path.string());
+  bool meshes = false;
+  for (const auto& link : robot->links())
+    for (const auto& s : link.shapes) meshes = meshes || detail::hull_mesh(*s.geometry) != nullptr;
+  ASSERT_TRUE(meshes);
+  expect_equals_fcl(robot);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <fcl/fcl.h>
@@ -64,9 +65,26 @@ std::int32_t cm_ceil(double v) {
   return std::isnan(v) ? -1000000000 : static_cast<std::int32_t>(std::max(-1e9, std::min(1e9, std::ceil(v))));
 }
 
-bool meets(const std::int16_t* box, const std::array<std::int32_t, 6>& near) {
+// A link pose kept as float 3 x 4 (column-major), as a Pose.
+Pose link_in_arm(const float* m) {
+  Pose in_arm = Pose::Identity();
+  in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(m).cast<double>();
+  return in_arm;
+}
+
+// cm_floor / cm_ceil clamped to the int16 range: the arm boxes lie within +-32000 cm, so an arm box
+// meets the clamped box exactly when it meets the unclamped one.
+std::int16_t cm16(std::int32_t v) { return static_cast<std::int16_t>(std::max(-32768, std::min(32767, v))); }
+
+bool meets(const std::int16_t* box, const std::array<std::int16_t, 6>& near) {
   return !(box[0] > near[3] || box[3] < near[0] || box[1] > near[4] || box[4] < near[1] || box[2] > near[5] ||
            box[5] < near[2]);
+}
+
+// Link l's box (rows of `lanes` values from `rows`) meets `near`.
+bool link_meets(const std::int16_t* rows, std::size_t lanes, std::size_t l, const std::array<std::int16_t, 6>& near) {
+  return !(rows[l] > near[3] || rows[3 * lanes + l] < near[0] || rows[lanes + l] > near[4] ||
+           rows[4 * lanes + l] < near[1] || rows[2 * lanes + l] > near[5] || rows[5 * lanes + l] < near[2]);
 }
 
 }  // namespace
@@ -75,8 +93,17 @@ void ArmObstacles::compute(int threads) {
   if (empty()) return;
   const CellSlots& slots = *slots_;
   for (int li : links_)
-    if (!robot_.links()[li].shapes.empty()) shaped_.push_back(li);
-  stride_ = 6 * (1 + shaped_.size());
+    if (!robot_.links()[li].shapes.empty()) {
+      shaped_.push_back(li);
+      shape_id_.push_back(shapes_);
+      shapes_ += robot_.links()[li].shapes.size();
+      for (const auto& sh : robot_.links()[li].shapes) {
+        const fcl::AABBd& local = sh.geometry->aabb_local;
+        shape_half_.push_back(0.5 * (local.max_ - local.min_));
+      }
+    }
+  lanes_ = (shaped_.size() + 15) / 16 * 16;
+  stride_ = 6 * (1 + lanes_);
   boxes_cm_.assign(slots.size() * stride_, 0);
   const auto& records = slots.records();
   detail::parallel_for(records.size(), threads, [&](std::size_t i, int) {
@@ -95,11 +122,15 @@ void ArmObstacles::compute(int threads) {
           llo = llo.cwiseMin(b.min_);
           lhi = lhi.cwiseMax(b.max_);
         }
-        put_box(llo, lhi, out + 6 * (1 + j));
+        std::int16_t link[6];
+        put_box(llo, lhi, link);
+        for (int r = 0; r < 6; ++r) out[6 + r * lanes_ + j] = link[r];
         lo = lo.cwiseMin(llo);
         hi = hi.cwiseMax(lhi);
       }
       put_box(lo, hi, out);
+      for (std::size_t j = shaped_.size(); j < lanes_; ++j)  // spare lanes: an empty box, never read
+        for (int r = 0; r < 6; ++r) out[6 + r * lanes_ + j] = r < 3 ? 32767 : -32768;
     }
   }, 4);
   for (std::size_t s = 0; s < slots.size(); ++s) {
@@ -114,6 +145,7 @@ void ArmObstacles::compute(int threads) {
 void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
   out.cm.clear();
   out.obb.clear();
+  out.index.clear();
   if (empty() || slots_->size() == 0) return;
   const Pose arm_from_world = world_from_arm.inverse();
   for (std::size_t i = 0; i < boxes_.size(); ++i) {
@@ -122,15 +154,17 @@ void ArmObstacles::near(const Pose& world_from_arm, NearObstacles& out) const {
     box_in_frame(arm_from_world, b.min_, b.max_, lo, hi);
     if ((lo.array() > reach_hi_.array()).any() || (hi.array() < reach_lo_.array()).any()) continue;
     const Eigen::Vector3d lo_cm = lo * 100, hi_cm = hi * 100;  // centimetres, as the arm boxes
-    out.cm.push_back({cm_ceil(lo_cm[0]), cm_ceil(lo_cm[1]), cm_ceil(lo_cm[2]), cm_floor(hi_cm[0]), cm_floor(hi_cm[1]),
-                      cm_floor(hi_cm[2])});
+    out.cm.push_back({cm16(cm_ceil(lo_cm[0])), cm16(cm_ceil(lo_cm[1])), cm16(cm_ceil(lo_cm[2])),
+                      cm16(cm_floor(hi_cm[0])), cm16(cm_floor(hi_cm[1])), cm16(cm_floor(hi_cm[2]))});
     const Obb& world = obstacles_->oriented_box(i);
     out.obb.push_back({arm_from_world * world.centre, arm_from_world.linear() * world.axes, world.half});
+    out.index.push_back(static_cast<std::uint32_t>(i));
   }
 }
 
-// Link poses (arm frame) of the shaped links at the stored solution of a cell, from the scratch's
-// cache, computed and cached on first use (the cache stops growing at 32 MB).
+// Link poses (arm frame) of the shaped links at the stored solution of a cell, then the oriented boxes
+// of their shapes (as Obb::of gives them for those poses: centre, axes), from the scratch's cache,
+// computed and cached on first use (the cache stops growing at 64 MB).
 const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
   if (s.at.empty()) s.at.assign(slots_->size(), ArmScratch::kNotYet);
   const std::uint32_t cached = s.at[static_cast<std::size_t>(slot)];
@@ -139,8 +173,8 @@ const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
   const float* qf = cap_.record_solution(c.rec, c.orient);
   Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
   robot_.link_poses(arm_.to_robot_configuration(q, reference_), s.poses);
-  const std::size_t n = 12 * shaped_.size();
-  const bool keep = s.pool.size() + n <= (std::size_t(32) << 20) / sizeof(float);
+  const std::size_t n = 12 * (shaped_.size() + shapes_);
+  const bool keep = s.pool.size() + n <= (std::size_t(64) << 20) / sizeof(float);
   const std::size_t at = s.pool.size();
   float* out;
   if (keep) {
@@ -150,9 +184,20 @@ const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
     s.spare.resize(n);
     out = s.spare.data();
   }
+  float* boxes = out + 12 * shaped_.size();
   for (std::size_t j = 0; j < shaped_.size(); ++j) {
     Eigen::Matrix<float, 3, 4> m = (arm_from_root_ * s.poses[shaped_[j]]).matrix().topRows<3>().cast<float>();
     std::copy(m.data(), m.data() + 12, out + 12 * j);
+    const Pose in_arm = link_in_arm(out + 12 * j);
+    const auto& shapes = robot_.links()[shaped_[j]].shapes;
+    for (std::size_t k = 0; k < shapes.size(); ++k) {
+      const Obb o = Obb::of(*shapes[k].geometry, in_arm * shapes[k].origin);
+      float* b = boxes + 12 * (shape_id_[j] + k);
+      Eigen::Map<Eigen::Vector3f> centre(b);
+      Eigen::Map<Eigen::Matrix3f> axes(b + 3);
+      centre = o.centre.cast<float>();
+      axes = o.axes.cast<float>();
+    }
   }
   if (keep) s.at[static_cast<std::size_t>(slot)] = static_cast<std::uint32_t>(at);
   return out;
@@ -165,28 +210,51 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
   // The whole arm's box, then each link's box, against each near obstacle's box; FCL only for the
   // links whose box meets one.
   // (One answer whatever the order the links are tried in: any link touching means a collision.)
-  std::vector<char>& hit = scratch.hit;
-  hit.assign(shaped_.size(), 0);
-  bool any = false;
+  const std::int16_t* rows = box + 6;
+  const std::size_t L = lanes_;
+  if (scratch.hit.size() != L) scratch.hit.resize(L);
+  std::int32_t* hit = scratch.hit.data();
+  std::fill(hit, hit + L, 0);
   for (const auto& ob : near.cm) {
     if (!meets(box, ob)) continue;
-    for (std::size_t l = 0; l < shaped_.size(); ++l)
-      if (meets(box + 6 * (1 + l), ob)) any = hit[l] = 1;
+    // link_meets for every lane, branch-free: all six differences >= 0 (no overflow in 32 bits).
+    const std::int32_t lo0 = ob[0], lo1 = ob[1], lo2 = ob[2], hi0 = ob[3], hi1 = ob[4], hi2 = ob[5];
+    for (std::size_t l = 0; l < L; ++l)
+      hit[l] |= ~((hi0 - rows[l]) | (rows[3 * L + l] - lo0) | (hi1 - rows[L + l]) | (rows[4 * L + l] - lo1) |
+                  (hi2 - rows[2 * L + l]) | (rows[5 * L + l] - lo2)) >> 31;
   }
+  std::int32_t any = 0;
+  for (std::size_t l = 0; l < shaped_.size(); ++l) any |= hit[l];  // (a spare lane may meet an unbounded box)
   if (!any) return false;
   const float* P = link_poses(slot, scratch);
+  const float* boxes = P + 12 * shaped_.size();
+  const auto& objects = obstacles_->objects();
+  if (scratch.box_witness.empty()) scratch.box_witness.resize(shapes_ * objects.size());
   for (std::size_t l = 0; l < shaped_.size(); ++l) {
     if (!hit[l]) continue;
-    Pose in_arm = Pose::Identity();
-    in_arm.matrix().topRows<3>() = Eigen::Map<const Eigen::Matrix<float, 3, 4>>(P + 12 * l).cast<double>();
-    for (const auto& s : robot_.links()[shaped_[l]].shapes) {
-      // The exact pre-test of Obstacles::collides in the arm frame, against the near obstacles only
-      // (the others cannot reach the arm): a shape clearly apart from all of them touches none, and
-      // the world poses, boxes and the obstacle loop are skipped.
-      const Obb shape = Obb::of(*s.geometry, in_arm * s.origin);
-      bool apart = true;
-      for (std::size_t j = 0; j < near.obb.size() && apart; ++j) apart = shape.apart(near.obb[j]);
-      if (!apart && obstacles_->collides(*s.geometry, world_from_arm * in_arm * s.origin)) return true;
+    const auto& shapes = robot_.links()[shaped_[l]].shapes;
+    for (std::size_t k = 0; k < shapes.size(); ++k) {
+      const auto& s = shapes[k];
+      // The exact pre-test of Obstacles::collides in the arm frame (the shape's oriented box, kept in
+      // float: far below the test's 0.1 mm margin), against the near obstacles whose box meets the
+      // link's (the others cannot reach it); then FCL's answer for the pair, through the mesh-box
+      // check with this thread's witnesses where it applies.
+      const std::size_t id = shape_id_[l] + k;
+      const Obb shape{Eigen::Map<const Eigen::Vector3f>(boxes + 12 * id).cast<double>(),
+                      Eigen::Map<const Eigen::Matrix3f>(boxes + 12 * id + 3).cast<double>(), shape_half_[id]};
+      std::optional<Pose> world;  // the shape's world pose, as Obstacles::collides is given it
+      for (std::size_t j = 0; j < near.cm.size(); ++j) {
+        if (!link_meets(rows, L, l, near.cm[j]) || shape.apart(near.obb[j])) continue;
+        if (!world) world = world_from_arm * link_in_arm(P + 12 * l) * s.origin;
+        const std::uint32_t i = near.index[j];
+        const fcl::CollisionGeometryd& og = *objects[i]->collisionGeometry();
+        const Pose at(objects[i]->getTransform().matrix());
+        const bool touches =
+            mesh_box_pair(*s.geometry, og)
+                ? mesh_box_collide(*s.geometry, *world, og, at, scratch.box_witness[id * objects.size() + i])
+                : geometry_collide(s.geometry.get(), *world, &og, at);
+        if (touches) return true;
+      }
     }
   }
   return false;

@@ -1,7 +1,9 @@
 #pragma once
 // Private: does an arm, at the joint solution a capability map stored, touch an obstacle of the
 // room (boxes, meshes, OctoMaps, other surfaces)? Cheapest test first: the obstacles near the arm's
-// whole reach at a base pose, then the arm's bounding box at that solution, then FCL per link.
+// whole reach at a base pose, then the arm's bounding box at that solution, then each link's box, then
+// each shape's oriented box against each near obstacle, then FCL's answer for that pair (the mesh-box
+// check with witnesses for a mesh against a box, mesh_box_check.hpp; FCL for the rest).
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -12,6 +14,7 @@
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
+#include "../mesh_box_check.hpp"
 #include "cell_slots.hpp"
 #include "obb.hpp"
 
@@ -19,21 +22,25 @@ namespace octoreach::detail {
 
 /// The obstacles near the arm at one base pose, as boxes in the arm frame: in centimetres, lo rounded
 /// up and hi rounded down (lo x y z, hi x y z), so an integer box of the arm meets one exactly when it
-/// meets the unrounded box.
+/// meets the unrounded box; clamped to the int16 range (the arm boxes lie within +-32000 cm, so no
+/// answer changes).
 struct NearObstacles {
-  std::vector<std::array<std::int32_t, 6>> cm;
+  std::vector<std::array<std::int16_t, 6>> cm;
   std::vector<Obb> obb;  // the same obstacles' oriented boxes (local AABB placed), arm frame
+  std::vector<std::uint32_t> index;  // the same obstacles' indices in the Obstacles
   bool empty() const { return cm.empty(); }
 };
 
-/// Scratch of one thread of a build: link poses (arm frame, float 3 x 4 per shaped link) of the cells
-/// checked so far, so a cell met again from another base position needs no forward kinematics.
+/// Scratch of one thread of a build: link poses (arm frame, float 3 x 4 per shaped link) and their
+/// shapes' oriented boxes (centre, axes) of the cells checked so far, so a cell met again from another
+/// base position needs no forward kinematics.
 struct ArmScratch {
   std::vector<Pose> poses;
   std::vector<std::uint32_t> at;  // by slot: offset into pool, or kNotYet
   std::vector<float> pool;
   std::vector<float> spare;       // a cell met once the pool is full
-  std::vector<char> hit;          // by shaped link: its box meets a near obstacle's
+  std::vector<std::int32_t> hit;  // by shaped link (lane): its box meets a near obstacle's (-1) or not (0)
+  std::vector<MeshBoxWitness> box_witness;  // by (link shape, obstacle): what decided their last check
   static constexpr std::uint32_t kNotYet = 0xffffffffu;
 };
 
@@ -58,10 +65,15 @@ class ArmObstacles {
   Eigen::VectorXd reference_;
   std::vector<int> links_;          // links moved by the arm (arm and tool roles)
   std::vector<int> shaped_;         // those of them with collision shapes
-  // Per slot: the box of the whole arm, then one box per shaped link, arm frame, in centimetres
-  // rounded outwards (lo x y z, hi x y z): stride_ = 6 (1 + shaped links) int16 from slot * stride_.
+  std::vector<std::size_t> shape_id_;  // by shaped link: the number of its first shape among all shaped links' shapes
+  std::size_t shapes_ = 0;
+  std::vector<Eigen::Vector3d> shape_half_;  // by shape number: half extents of its local AABB
+  // Per slot: the box of the whole arm (lo x y z, hi x y z), then the boxes of the shaped links as six
+  // rows of lanes_ values (lo x, lo y, lo z, hi x, hi y, hi z; link j in lane j, the spare lanes never
+  // meet), arm frame, in centimetres rounded outwards: stride_ = 6 (1 + lanes_) int16 from slot * stride_.
+  // The rows let one pass test every link against an obstacle (the compiler vectorises it).
   std::vector<std::int16_t> boxes_cm_;
-  std::size_t stride_ = 0;
+  std::size_t stride_ = 0, lanes_ = 0;
   std::shared_ptr<const CellSlots> slots_;
   Pose arm_from_root_;
   const float* link_poses(std::int32_t slot, ArmScratch& scratch) const;
