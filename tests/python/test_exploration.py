@@ -236,6 +236,31 @@ def test_views_whose_arm_touches_occupied_cells_are_rejected():
     assert free["best_pose"] is not None
 
 
+def test_views_whose_arm_touches_itself_are_rejected():
+    # Camera poses of self-colliding arm configurations: IK may find another, clear solution for a few;
+    # no view the search calls valid may have the arm touching the robot itself.
+    from octoreach import Obstacles
+
+    scene = ex.paper_scene(2)
+    robot, chain = ex.explorer_robot()
+    base = robot.link_poses(robot.home())[chain.base_link]
+    cam = DepthCamera(160, 120, FOV, 3.0)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    list(survey(emap, scene, cam, [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)], (0.9, 0.0, 0.1)))
+    nothing = Obstacles()
+
+    def self_colliding(q):
+        return robot.in_collision(chain.to_robot_configuration(q), nothing, self_collision=True)
+
+    Q = [q for q in chain.random_configurations(400, seed=3) if self_colliding(q)]
+    assert len(Q) > 20
+    sv = score_views(emap, cam, np.array([base @ chain.fk(q) for q in Q]), chain=chain, chain_base=base,
+                     unknown_is_obstacle=False)
+    valid = [q for st, q in zip(sv["status"], sv["q"]) if st == "valid"]
+    assert sv["status"].count("arm_collision") > len(Q) / 2
+    assert not any(self_colliding(q) for q in valid)
+
+
 def test_nbv_options_object_and_keywords_are_one_thing():
     from octoreach import _core
 

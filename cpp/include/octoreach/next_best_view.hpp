@@ -101,7 +101,8 @@ struct NbvOptions {
   IkOptions ik = default_ik();
   /// With a chain: reject IK solutions where a link of the chain's robot (its collision shapes, the
   /// rest of the robot at home, the robot placed so the chain base sits at chain_base) touches an
-  /// occupied cell of the map (and, with unknown_is_obstacle, an unknown cell of the search space).
+  /// occupied cell of the map (and, with unknown_is_obstacle, an unknown cell of the search space), or
+  /// another link of the robot (self-collision, the robot's allowed pairs excepted).
   bool arm_collisions = true;
   /// Capability map of the arm carrying the camera (positions in its base link frame): candidate
   /// cells whose voxel has reachability index D <= min_reachability are pruned before any IK.
@@ -157,7 +158,7 @@ struct NbvResult {
   std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
   std::size_t capability_pruned = 0;  ///< cells the capability map removed
   std::size_t poses_scored = 0, ik_failures = 0;
-  std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied (or unknown) cell
+  std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied (or unknown) cell or itself
   std::size_t camera_not_clear = 0; ///< sampled poses whose camera is not in observed-free space
   std::size_t capability_rejected = 0;  ///< sampled poses the capability map ruled out before IK
   double seconds = 0;

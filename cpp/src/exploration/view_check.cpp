@@ -66,9 +66,12 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   if (!opt.unknown_is_obstacle || !search_key_box(S, map.options(), search_lo_, search_hi_)) {
     for (int a = 0; a < 3; ++a) search_lo_[a] = 1, search_hi_[a] = 0;  // empty
   }
-  if (!opt.chain || !opt.arm_collisions || S.tree.size() == 0) return;
+  if (!opt.chain || !opt.arm_collisions) return;
   const Robot& robot = opt.chain->robot();
-  obstacles_.emplace();
+  obstacles_.emplace();  // with no cell known yet, the arm is still checked against itself
+  reference_ = robot.home();
+  robot_root_ = opt.chain_base * robot.link_poses(reference_)[robot.link_index(opt.chain->base_link())].inverse();
+  if (S.tree.size() == 0) return;
   // The map's occupied cells (the tree is not copied: the map outlives the search).
   obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
   if (opt.unknown_is_obstacle && search_lo_[0] <= search_hi_[0]) {
@@ -88,8 +91,6 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
       obstacles_->add_octree(unknown_tree_);
     }
   }
-  reference_ = robot.home();
-  robot_root_ = opt.chain_base * robot.link_poses(reference_)[robot.link_index(opt.chain->base_link())].inverse();
 }
 
 ViewChecker::~ViewChecker() = default;
@@ -136,8 +137,9 @@ ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t se
   o.seed = ik_.seed + seed_offset;
   auto q = opt_.chain->ik(base_inv_ * pose, o);
   if (!q) return ViewStatus::NoIk;
-  if (obstacles_ &&
-      opt_.chain->robot().in_collision(opt_.chain->to_robot_configuration(*q, reference_), *obstacles_, robot_root_))
+  // The arm against the map's occupied (and, safe views, unknown) cells and against the robot itself.
+  if (obstacles_ && opt_.chain->robot().in_collision(opt_.chain->to_robot_configuration(*q, reference_), *obstacles_,
+                                                     robot_root_, /*check_self=*/true))
     return ViewStatus::ArmCollision;
   q_out = *q;
   pose = opt_.chain_base * opt_.chain->fk(*q);  // the roll the arm actually reaches

@@ -169,7 +169,8 @@ def _check_loop_args(strategy, max_views, min_utility, candidates, start_pose):
 
 
 class _Physics:
-    """Whether an arm configuration is clear of the scene's true geometry (robot known), else always True."""
+    """Whether an arm configuration is clear of the scene's true geometry and of the robot itself (robot
+    known), else always True."""
 
     def __init__(self, robot, chain, scene, enabled):
         self.on = bool(enabled and robot is not None and chain is not None)
@@ -182,7 +183,8 @@ class _Physics:
         if not self.on or q is None:
             return True
         root = self.root_of(self.robot, self.chain, chain_base)
-        return not self.robot.in_collision(self.chain.to_robot_configuration(np.asarray(q, float)), self.obstacles, root)
+        q_robot = self.chain.to_robot_configuration(np.asarray(q, float))
+        return not self.robot.in_collision(q_robot, self.obstacles, root, self_collision=True)
 
 
 def _row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, pose, base, valid, target,

@@ -1,13 +1,13 @@
 """The observable interior of a scene, by brute force: a test and benchmark utility, not the planner.
 
 A cell is observable when a camera pose the arm can reach without touching the scene's true geometry
-sees it: a ray of a noiseless capture from that pose passes through it (free) or ends in it (hit).
+or itself sees it: a ray of a noiseless capture from that pose passes through it (free) or ends in it (hit).
 The oracle samples camera poses densely in two ways and keeps the collision-free ones:
 
 - random joint configurations of the arm (forward kinematics: reachable by construction), and
 - aimed poses: from sample points of the interiors, random directions whose segment leaves the
   point without meeting a surface give an eye position 0.15-0.7 m away looking back at the point;
-  IK (approach mode, obstacles = the true scene) decides whether the arm gets the camera there.
+  IK (approach mode, obstacles = the true scene, self-collision checked) decides whether the arm gets the camera there.
 
 Each kept pose's capture (noiseless, low resolution) is integrated into one map at the exploration's
 resolution; the observable cells are the interior sample points that map knows. The same sample
@@ -82,7 +82,7 @@ def _joint_poses(robot, chain, chain_base, root, obstacles, n, rng):
     tips = chain.fk_batch(Q)
     out = []
     for q, T in zip(Q, tips):
-        if not robot.in_collision(chain.to_robot_configuration(q), obstacles, root):
+        if not robot.in_collision(chain.to_robot_configuration(q), obstacles, root, self_collision=True):
             out.append(chain_base @ T)
     return out
 
@@ -115,7 +115,7 @@ def _aimed_poses(scene, robot, chain, chain_base, root, obstacles, points, n, rn
     inv = np.linalg.inv(chain_base)
     Ts = np.array([inv @ look_at(e, t) for e, t in zip(eyes, targets)])
     Q, ok = chain.ik_batch(Ts, mode="approach", approach_axis=(0.0, 0.0, 1.0), attempts=ik_attempts,
-                           position_tolerance=1e-3, orientation_tolerance=1e-2, obstacles=obstacles,
+                           position_tolerance=1e-3, orientation_tolerance=1e-2, obstacles=obstacles, self_collision=True,
                            base_pose=root, rng_seed=int(rng.integers(1 << 31)))
     return [chain_base @ chain.fk(q) for q in Q[ok]]
 
