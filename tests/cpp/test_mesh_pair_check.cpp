@@ -7,34 +7,13 @@
 #include "collision_detail.hpp"
 #include "mesh_pair_check.hpp"
 #include "octoreach/collision.hpp"
+#include "random_shapes.hpp"
 
 using namespace octoreach;
+using test::random_pose;
+using test::soup;
 
 namespace {
-
-// A triangle soup (FCL tests triangles, so it need not be closed): n random triangles of edge ~0.1 m
-// whose corners lie within a box of half-size h, stretched along x so that hulls and meshes differ.
-std::shared_ptr<fcl::CollisionGeometryd> soup(std::mt19937_64& rng, int n, double h) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> v(3 * n, 3);
-  Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor> t(n, 3);
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d c(2.5 * h * u(rng), h * u(rng), h * u(rng));
-    for (int k = 0; k < 3; ++k) {
-      v.row(3 * i + k) = (c + 0.05 * Eigen::Vector3d(u(rng), u(rng), u(rng))).transpose();
-      t(i, k) = 3 * i + k;
-    }
-  }
-  return make_mesh(v, t);
-}
-
-Pose random_pose(std::mt19937_64& rng, double spread) {
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Pose T = Pose::Identity();
-  T.linear() = Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
-  T.translation() = spread * Eigen::Vector3d(u(rng), u(rng), u(rng));
-  return T;
-}
 
 // The vertices of a mesh at a pose, projected on d: [min, max].
 std::pair<double, double> extent(const fcl::CollisionGeometryd& g, const Pose& T, const Eigen::Vector3d& d) {
