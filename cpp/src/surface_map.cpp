@@ -155,16 +155,19 @@ struct BinFrame {
 
   // Fast path: true when one of the points lies inside every half-plane. Blocks of eight points are
   // tested against every half-plane at once (the compiler vectorises it); the products and sums are
-  // Eigen's dot product's, x + (y + z), so the answers are the same.
+  // Eigen's dot product's, x + (y + z), so the answers are the same. NH: the number of half-planes
+  // when known at compile time (the loops unrolled), 0 for any.
+  template <std::size_t NH = 0>
   bool any_inside(const Eigen::Vector3f* points, std::uint32_t count, const float* d) const {
     static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "points are read as a flat float array");
     constexpr std::uint32_t kBlock = 8;
+    const std::size_t nh = NH ? NH : g.size();
     std::uint32_t p = 0;
     for (; p + kBlock <= count; p += kBlock) {
       const float* w = points[p].data();
       std::int32_t in[kBlock];
       for (std::uint32_t i = 0; i < kBlock; ++i) in[i] = -1;
-      for (std::size_t j = 0; j < g.size(); ++j) {
+      for (std::size_t j = 0; j < nh; ++j) {
         const float gx = g[j].x(), gy = g[j].y(), gz = g[j].z(), dj = d[j];
         for (std::uint32_t i = 0; i < kBlock; ++i)
           in[i] &= -static_cast<std::int32_t>(gx * w[3 * i] + (gy * w[3 * i + 1] + gz * w[3 * i + 2]) <= dj);
@@ -175,7 +178,7 @@ struct BinFrame {
     }
     for (; p < count; ++p) {
       bool inside = true;
-      for (std::size_t j = 0; j < g.size() && inside; ++j) inside = g[j].dot(points[p]) <= d[j];
+      for (std::size_t j = 0; j < nh && inside; ++j) inside = g[j].dot(points[p]) <= d[j];
       if (inside) return true;
     }
     return false;
@@ -214,6 +217,24 @@ struct PackedBin {
   std::vector<Entry> entries;  // [local record * G + grasp]
   std::vector<float> bounds;   // [(local record * G + grasp) * nh + half-plane]
   std::vector<float> near;     // [((local record * G + grasp) * kNear + point) * nh + half-plane]
+
+  // True when a witness point of entry e lies under the outline (BinFrame::arm_under on the packed
+  // data, the same comparisons). NH as in BinFrame::any_inside.
+  template <std::size_t NH = 0>
+  bool under(const BinFrame& f, std::size_t e, const Eigen::Vector3f* shared_points, const float* d) const {
+    const std::size_t n = NH ? NH : nh;
+    const std::uint32_t c = entries[e].count, in_near = std::min(c, kNear);
+    bool all_outside = c == 0;
+    for (std::size_t j = 0; j < n; ++j) all_outside |= bounds[e * n + j] > d[j];
+    if (all_outside) return false;
+    for (std::uint32_t p = 0; p < in_near; ++p) {
+      const float* np = near.data() + (e * kNear + p) * n;
+      bool inside = true;
+      for (std::size_t j = 0; j < n; ++j) inside &= np[j] <= d[j];
+      if (inside) return true;
+    }
+    return f.any_inside<NH>(shared_points + entries[e].first + in_near, c - in_near, d);
+  }
 
   PackedBin(const SurfaceBuild& b, const BinFrame& f) : G(f.mapped.size()), nh(f.g.size()) {
     const auto& records = b.slots->records();
@@ -303,23 +324,13 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
   auto packed_count = [&](std::int32_t local, std::size_t i, const Pose& world_from_arm, const detail::NearObstacles& near) {
     const float* d = dtab.data() + i * nh;
     const std::size_t G = packed->G, first = static_cast<std::size_t>(local) * G;
-    const PackedBin::Entry* E = packed->entries.data() + first;
-    const float* B = packed->bounds.data() + first * nh;
-    const float* Np = packed->near.data() + first * PackedBin::kNear * nh;
     int count = 0;
     for (std::size_t m = 0; m < G; ++m) {
-      if (E[m].slot < 0) continue;
-      bool all_outside = E[m].count == 0;
-      for (std::size_t j = 0; j < nh && !all_outside; ++j) all_outside = B[m * nh + j] > d[j];
-      const std::uint32_t c = E[m].count, in_near = std::min(c, PackedBin::kNear);
-      bool under = false;
-      for (std::uint32_t p = 0; p < in_near && !all_outside && !under; ++p) {
-        const float* np = Np + (m * PackedBin::kNear + p) * nh;
-        under = true;
-        for (std::size_t j = 0; j < nh && under; ++j) under = np[j] <= d[j];
-      }
-      under = under || (!all_outside && f.any_inside(shared_points + E[m].first + in_near, c - in_near, d));
-      const bool ok = !under && !b.obstacles->collides(E[m].slot, near, world_from_arm, arm_scratch);
+      const std::int32_t slot = packed->entries[first + m].slot;
+      if (slot < 0) continue;
+      const bool under = nh == 4 ? packed->under<4>(f, first + m, shared_points, d)  // a rectangle: unrolled
+                                 : packed->under(f, first + m, shared_points, d);
+      const bool ok = !under && !b.obstacles->collides(slot, near, world_from_arm, arm_scratch);
       if (!ok) ++n.arm;
       count += ok;
     }
