@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -155,19 +156,27 @@ struct BinFrame {
 
   // Fast path: true when one of the points lies inside every half-plane. Blocks of eight points are
   // tested against every half-plane at once (the compiler vectorises it); the products and sums are
-  // Eigen's dot product's, x + (y + z), so the answers are the same.
+  // Eigen's dot product's, x + (y + z), so the answers are the same. NH: the number of half-planes
+  // when known at compile time (the loops unrolled), 0 for any.
+  template <std::size_t NH = 0>
   bool any_inside(const Eigen::Vector3f* points, std::uint32_t count, const float* d) const {
     static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "points are read as a flat float array");
     constexpr std::uint32_t kBlock = 8;
+    const std::size_t nh = NH ? NH : g.size();
     std::uint32_t p = 0;
     for (; p + kBlock <= count; p += kBlock) {
       const float* w = points[p].data();
+      float x[kBlock], y[kBlock], z[kBlock];  // the block's coordinates side by side (vector lanes)
       std::int32_t in[kBlock];
-      for (std::uint32_t i = 0; i < kBlock; ++i) in[i] = -1;
-      for (std::size_t j = 0; j < g.size(); ++j) {
+      for (std::uint32_t i = 0; i < kBlock; ++i) {
+        x[i] = w[3 * i];
+        y[i] = w[3 * i + 1];
+        z[i] = w[3 * i + 2];
+        in[i] = -1;
+      }
+      for (std::size_t j = 0; j < nh; ++j) {
         const float gx = g[j].x(), gy = g[j].y(), gz = g[j].z(), dj = d[j];
-        for (std::uint32_t i = 0; i < kBlock; ++i)
-          in[i] &= -static_cast<std::int32_t>(gx * w[3 * i] + (gy * w[3 * i + 1] + gz * w[3 * i + 2]) <= dj);
+        for (std::uint32_t i = 0; i < kBlock; ++i) in[i] &= -static_cast<std::int32_t>(gx * x[i] + (gy * y[i] + gz * z[i]) <= dj);
       }
       std::int32_t any = 0;
       for (std::uint32_t i = 0; i < kBlock; ++i) any |= in[i];
@@ -175,7 +184,7 @@ struct BinFrame {
     }
     for (; p < count; ++p) {
       bool inside = true;
-      for (std::size_t j = 0; j < g.size() && inside; ++j) inside = g[j].dot(points[p]) <= d[j];
+      for (std::size_t j = 0; j < nh && inside; ++j) inside = g[j].dot(points[p]) <= d[j];
       if (inside) return true;
     }
     return false;
@@ -198,28 +207,52 @@ struct BinFrame {
 
 // The arm-check cells of one theta bin (upright arm, convex outline), packed record by record: for
 // each record of the CellSlots and each grasp of the bin, the slot, where its low set lies and the
-// low set's bounds along the half-planes, side by side. A candidate then reads one short run of
-// memory instead of a scattered low set per grasp (the build was bound by those memory reads).
-// The bounds are the ones arm_under computes, so the answers are the same.
+// low set's bounds along the half-planes. A candidate then reads one short run of memory instead of a
+// scattered low set per grasp (the build was bound by those memory reads), and tests the bounds of
+// all grasps of its record in one pass (grasps side by side: the compiler vectorises it). The bounds
+// are the ones arm_under computes, so the answers are the same.
 struct PackedBin {
   struct Entry {
     std::int32_t slot;  // CellSlots::kNone: no stored solution there
     std::uint32_t first, count;  // the low set's points in ArmClearance::shared_points()
   };
   // The first kNear points of each low set (the nearest to the target, which end most tests) are
-  // kept beside the entries as their products with the half-planes, g_j . w (the values any_inside
-  // compares), so a test of them is nh comparisons per point.
+  // kept beside the bounds as their products with the half-planes, g_j . w (the values any_inside
+  // compares), so a test of them is nh comparisons per point. A missing point or bound is +inf (a
+  // missing point is never inside; no low set means every point outside).
   static constexpr std::uint32_t kNear = 2;
+  enum State : std::int32_t { kOutside = 0, kUnder = 1, kUndecided = 2 };
   std::size_t G = 0, nh = 0;
   std::vector<Entry> entries;  // [local record * G + grasp]
-  std::vector<float> bounds;   // [(local record * G + grasp) * nh + half-plane]
-  std::vector<float> near;     // [((local record * G + grasp) * kNear + point) * nh + half-plane]
+  std::vector<float> bounds;   // [(local record * nh + half-plane) * G + grasp]
+  std::vector<float> near;     // [((local record * kNear + point) * nh + half-plane) * G + grasp]
+
+  // Per grasp of record `local` at a target (d): kOutside when a bound puts every witness point
+  // outside an edge, else kUnder when one of the first kNear points lies inside every half-plane,
+  // else kUndecided (the remaining points decide). NH as in BinFrame::any_inside.
+  template <std::size_t NH = 0>
+  void classify(std::size_t local, const float* d, std::int32_t* state) const {
+    const std::size_t n = NH ? NH : nh;
+    const float* B = bounds.data() + local * n * G;
+    const float* P = near.data() + local * kNear * n * G;
+    for (std::size_t m = 0; m < G; ++m) {  // branch-free masks (-1: true), vectorised over the grasps
+      std::int32_t outside = 0, under = 0;
+      for (std::size_t j = 0; j < n; ++j) outside |= -static_cast<std::int32_t>(B[j * G + m] > d[j]);
+      for (std::uint32_t p = 0; p < kNear; ++p) {
+        std::int32_t inside = -1;
+        for (std::size_t j = 0; j < n; ++j) inside &= -static_cast<std::int32_t>(P[(p * n + j) * G + m] <= d[j]);
+        under |= inside;
+      }
+      state[m] = ~outside & (kUndecided + under);  // kOutside, else kUnder (under = -1) or kUndecided
+    }
+  }
 
   PackedBin(const SurfaceBuild& b, const BinFrame& f) : G(f.mapped.size()), nh(f.g.size()) {
     const auto& records = b.slots->records();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
     entries.resize(records.size() * G);
-    bounds.resize(entries.size() * nh);
-    near.resize(entries.size() * kNear * nh, 0.0f);
+    bounds.assign(entries.size() * nh, kInf);
+    near.assign(entries.size() * kNear * nh, kInf);
     for (std::size_t l = 0; l < records.size(); ++l)
       for (std::size_t m = 0; m < G; ++m) {
         const std::size_t e = l * G + m;
@@ -232,9 +265,9 @@ struct PackedBin {
         }
         entries[e] = {slot, b.clearance->shared_start(slot), b.clearance->shared_count(slot)};
         const detail::LowSetRef low = b.clearance->shared(slot);
-        for (std::size_t j = 0; j < nh; ++j) bounds[e * nh + j] = f.bound(low, j);
+        for (std::size_t j = 0; j < nh && low.count > 0; ++j) bounds[(l * nh + j) * G + m] = f.bound(low, j);
         for (std::uint32_t p = 0; p < std::min(low.count, kNear); ++p)
-          for (std::size_t j = 0; j < nh; ++j) near[(e * kNear + p) * nh + j] = f.g[j].dot(low.points[p]);
+          for (std::size_t j = 0; j < nh; ++j) near[((l * kNear + p) * nh + j) * G + m] = f.g[j].dot(low.points[p]);
       }
   }
 };
@@ -300,25 +333,22 @@ BinCounts evaluate_bin(const SurfaceBuild& b, int k, SurfaceGrid& g) {
     return count;
   };
   // The same from the packed bin (`local`: the record's index in the CellSlots).
+  std::vector<std::int32_t> state(packed ? packed->G : 0);
   auto packed_count = [&](std::int32_t local, std::size_t i, const Pose& world_from_arm, const detail::NearObstacles& near) {
     const float* d = dtab.data() + i * nh;
-    const std::size_t G = packed->G, first = static_cast<std::size_t>(local) * G;
-    const PackedBin::Entry* E = packed->entries.data() + first;
-    const float* B = packed->bounds.data() + first * nh;
-    const float* Np = packed->near.data() + first * PackedBin::kNear * nh;
+    const bool rectangle = nh == 4;  // the loops unrolled
+    if (rectangle) packed->classify<4>(local, d, state.data());
+    else packed->classify(local, d, state.data());
+    const PackedBin::Entry* E = packed->entries.data() + static_cast<std::size_t>(local) * packed->G;
     int count = 0;
-    for (std::size_t m = 0; m < G; ++m) {
+    for (std::size_t m = 0; m < packed->G; ++m) {
       if (E[m].slot < 0) continue;
-      bool all_outside = E[m].count == 0;
-      for (std::size_t j = 0; j < nh && !all_outside; ++j) all_outside = B[m * nh + j] > d[j];
-      const std::uint32_t c = E[m].count, in_near = std::min(c, PackedBin::kNear);
-      bool under = false;
-      for (std::uint32_t p = 0; p < in_near && !all_outside && !under; ++p) {
-        const float* np = Np + (m * PackedBin::kNear + p) * nh;
-        under = true;
-        for (std::size_t j = 0; j < nh && under; ++j) under = np[j] <= d[j];
+      bool under = state[m] == PackedBin::kUnder;
+      if (state[m] == PackedBin::kUndecided) {
+        const std::uint32_t in_near = std::min(E[m].count, PackedBin::kNear), c = E[m].count - in_near;
+        const Eigen::Vector3f* rest = shared_points + E[m].first + in_near;
+        under = rectangle ? f.any_inside<4>(rest, c, d) : f.any_inside(rest, c, d);
       }
-      under = under || (!all_outside && f.any_inside(shared_points + E[m].first + in_near, c - in_near, d));
       const bool ok = !under && !b.obstacles->collides(E[m].slot, near, world_from_arm, arm_scratch);
       if (!ok) ++n.arm;
       count += ok;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <stdexcept>
 
 #include <fcl/fcl.h>
@@ -242,17 +241,19 @@ bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const 
       const std::size_t id = shape_id_[l] + k;
       const Obb shape{Eigen::Map<const Eigen::Vector3f>(boxes + 12 * id).cast<double>(),
                       Eigen::Map<const Eigen::Matrix3f>(boxes + 12 * id + 3).cast<double>(), shape_half_[id]};
-      std::optional<Pose> world;  // the shape's world pose, as Obstacles::collides is given it
+      Pose world;  // the shape's world pose, as Obstacles::collides is given it (set on first use)
+      bool placed = false;
       for (std::size_t j = 0; j < near.cm.size(); ++j) {
         if (!link_meets(rows, L, l, near.cm[j]) || shape.apart(near.obb[j])) continue;
-        if (!world) world = world_from_arm * link_in_arm(P + 12 * l) * s.origin;
+        if (!placed) world = world_from_arm * link_in_arm(P + 12 * l) * s.origin;
+        placed = true;
         const std::uint32_t i = near.index[j];
         const fcl::CollisionGeometryd& og = *objects[i]->collisionGeometry();
         const Pose at(objects[i]->getTransform().matrix());
         const bool touches =
             mesh_box_pair(*s.geometry, og)
-                ? mesh_box_collide(*s.geometry, *world, og, at, scratch.box_witness[id * objects.size() + i])
-                : geometry_collide(s.geometry.get(), *world, &og, at);
+                ? mesh_box_collide(*s.geometry, world, og, at, scratch.box_witness[id * objects.size() + i])
+                : geometry_collide(s.geometry.get(), world, &og, at);
         if (touches) return true;
       }
     }

@@ -23,13 +23,15 @@ struct Obb {
   /// True when a plane separates the two boxes with more than `margin` (metres) to spare on the
   /// 15 axes of the separating-axis theorem: then they cannot touch. False may still mean apart.
   bool apart(const Obb& b, double margin = 1e-4) const {
-    const Eigen::Matrix3d R = axes.transpose() * b.axes;
-    const Eigen::Matrix3d A = R.cwiseAbs().array() + 1e-9;  // guards near-parallel edge axes
     const Eigen::Vector3d t = axes.transpose() * (b.centre - centre);
+    Eigen::Matrix3d R, A;  // A guards near-parallel edge axes
+    for (int j = 0; j < 3; ++j) {  // axes of b first, R column by column (most apart pairs end here)
+      R.col(j) = axes.transpose() * b.axes.col(j);
+      A.col(j) = R.col(j).cwiseAbs().array() + 1e-9;
+      if (std::abs(t.dot(R.col(j))) > half.dot(A.col(j)) + b.half[j] + margin) return true;
+    }
     for (int i = 0; i < 3; ++i)  // axes of this box
       if (std::abs(t[i]) > half[i] + A.row(i).dot(b.half) + margin) return true;
-    for (int j = 0; j < 3; ++j)  // axes of b
-      if (std::abs(t.dot(R.col(j))) > half.dot(A.col(j)) + b.half[j] + margin) return true;
     for (int i = 0; i < 3; ++i)  // cross products of one axis of each
       for (int j = 0; j < 3; ++j) {
         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
