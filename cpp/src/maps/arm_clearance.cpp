@@ -53,10 +53,17 @@ void witness_points(const Shape& s, std::vector<Eigen::Vector3d>& out) {
 }  // namespace
 
 void LowSet::summarise() {
+  // The kDirs directions (cos, sin), computed once.
+  static const std::array<std::array<float, 2>, kDirs> dirs = [] {
+    std::array<std::array<float, 2>, kDirs> d{};
+    for (int k = 0; k < kDirs; ++k)
+      d[k] = {static_cast<float>(std::cos(2 * M_PI * k / kDirs)), static_cast<float>(std::sin(2 * M_PI * k / kDirs))};
+    return d;
+  }();
   r_max = 0;
   for (const auto& w : points) r_max = std::max(r_max, w.head<2>().norm());
   for (int k = 0; k < kDirs; ++k) {
-    float c = static_cast<float>(std::cos(2 * M_PI * k / kDirs)), s = static_cast<float>(std::sin(2 * M_PI * k / kDirs));
+    const float c = dirs[k][0], s = dirs[k][1];
     float m = std::numeric_limits<float>::infinity();
     for (const auto& w : points) m = std::min(m, c * w.x() + s * w.y());
     min_proj[k] = m;
@@ -75,6 +82,7 @@ ArmClearance::ArmClearance(const Robot& robot, const CapabilityMap& cap, const A
       orientations_(cap.orientations().size()) {
   for (int li : arm_links_)
     for (const auto& s : robot.links()[li].shapes) witness_points(s, link_witness_[li]);
+  placing_ = robot.joints_placing(arm_links_);
 }
 
 void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d& centre, const Eigen::Vector3d& n_arm,
@@ -82,7 +90,7 @@ void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d&
   std::vector<Eigen::Vector3f>& out = low.points;
   const float* qf = cap_.record_solution(rec, orient);
   Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
-  robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
+  robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses, placing_);
   for (int li : arm_links_) {
     Pose in_arm = root_from_arm_base_ * poses[li];
     for (const auto& w : link_witness_[li]) {
