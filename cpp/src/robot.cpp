@@ -90,6 +90,16 @@ inline Pose joint_motion(const Joint& j, double q) {
 }
 }  // namespace
 
+namespace {
+// The pose of joint j's child link from its parent's, at configuration q (one step of link_poses).
+void place_child(const std::vector<Joint>& joints, const Joint& j, const Eigen::VectorXd& q, std::vector<Pose>& out) {
+  double v = 0.0;
+  if (j.index >= 0) v = q[j.index];
+  else if (j.mimic >= 0) v = q[joints[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
+  out[j.child_link] = out[j.parent_link] * j.origin * joint_motion(j, v);
+}
+}  // namespace
+
 void Robot::link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out) const {
   if (q.size() != dof())
     throw std::invalid_argument("configuration has " + std::to_string(q.size()) + " entries, robot '" + name_ +
@@ -97,12 +107,30 @@ void Robot::link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out) const {
   out.resize(links_.size());
   out[root_link_] = Pose::Identity();
   // joints_ are stored in breadth-first order of their child links: parents first.
-  for (const Joint& j : joints_) {
-    double v = 0.0;
-    if (j.index >= 0) v = q[j.index];
-    else if (j.mimic >= 0) v = q[joints_[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
-    out[j.child_link] = out[j.parent_link] * j.origin * joint_motion(j, v);
+  for (const Joint& j : joints_) place_child(joints_, j, q, out);
+}
+
+std::vector<int> Robot::joints_placing(const std::vector<int>& links) const {
+  std::vector<char> in(joints_.size(), 0);
+  for (int l : links) {
+    if (l < 0 || l >= static_cast<int>(links_.size()))
+      throw std::out_of_range("link index " + std::to_string(l) + " out of range (robot '" + name_ + "' has " +
+                              std::to_string(links_.size()) + " links)");
+    for (int j = links_[l].parent_joint; j >= 0 && !in[j]; j = links_[joints_[j].parent_link].parent_joint) in[j] = 1;
   }
+  std::vector<int> out;
+  for (std::size_t j = 0; j < joints_.size(); ++j)
+    if (in[j]) out.push_back(static_cast<int>(j));
+  return out;
+}
+
+void Robot::link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out, const std::vector<int>& joints) const {
+  if (q.size() != dof())
+    throw std::invalid_argument("configuration has " + std::to_string(q.size()) + " entries, robot '" + name_ +
+                                "' expects " + std::to_string(dof()));
+  out.resize(links_.size());
+  out[root_link_] = Pose::Identity();
+  for (int j : joints) place_child(joints_, joints_.at(static_cast<std::size_t>(j)), q, out);  // ascending: parents first
 }
 
 std::vector<Pose> Robot::link_poses(const Eigen::VectorXd& q) const {

@@ -17,6 +17,7 @@
 #include "common/format.hpp"
 #include "common/thread_pool.hpp"
 #include "map_io.hpp"
+#include "common/vector_clones.hpp"
 #include "maps/arm_clearance.hpp"
 #include "maps/arm_obstacles.hpp"
 #include "maps/batch.hpp"
@@ -159,7 +160,7 @@ struct BinFrame {
   // Eigen's dot product's, x + (y + z), so the answers are the same. NH: the number of half-planes
   // when known at compile time (the loops unrolled), 0 for any.
   template <std::size_t NH = 0>
-  bool any_inside(const Eigen::Vector3f* points, std::uint32_t count, const float* d) const {
+  OCTOREACH_VECTOR_CLONES bool any_inside(const Eigen::Vector3f* points, std::uint32_t count, const float* d) const {
     static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "points are read as a flat float array");
     constexpr std::uint32_t kBlock = 8;
     const std::size_t nh = NH ? NH : g.size();
@@ -231,7 +232,7 @@ struct PackedBin {
   // outside an edge, else kUnder when one of the first kNear points lies inside every half-plane,
   // else kUndecided (the remaining points decide). NH as in BinFrame::any_inside.
   template <std::size_t NH = 0>
-  void classify(std::size_t local, const float* d, std::int32_t* state) const {
+  OCTOREACH_VECTOR_CLONES void classify(std::size_t local, const float* d, std::int32_t* state) const {
     const std::size_t n = NH ? NH : nh;
     const float* B = bounds.data() + local * n * G;
     const float* P = near.data() + local * kNear * n * G;

@@ -54,6 +54,39 @@ TEST(Robot, ForwardKinematicsByHand) {
   EXPECT_NEAR((T.translation() - Eigen::Vector3d(0.45, 0, 0.6)).norm(), 0.0, 1e-12);
 }
 
+TEST(Robot, ForwardKinematicsOfSomeLinks) {
+  // link_poses(q, out, joints_placing(links)) gives exactly link_poses(q)'s poses for those links and
+  // their ancestors, leaves the other entries alone, and rejects a bad link index.
+  for (const auto& r : {arm_robot(), Robot::from_urdf(std::string(OCTOREACH_URDF_DIR) + "/explorer.urdf")}) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.5, 1.5);
+    const int n = static_cast<int>(r->links().size());
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::VectorXd q(r->dof());
+      for (int i = 0; i < q.size(); ++i) q[i] = u(rng);
+      const std::vector<Pose> all = r->link_poses(q);
+      std::vector<int> some{static_cast<int>(rng() % n), static_cast<int>(rng() % n)};
+      const std::vector<int> joints = r->joints_placing(some);
+      EXPECT_TRUE(std::is_sorted(joints.begin(), joints.end()));
+      std::vector<Pose> out(r->links().size(), Pose(Eigen::Translation3d(9, 9, 9)));
+      r->link_poses(q, out, joints);
+      std::vector<char> placed(n, 0);
+      placed[r->root_link()] = 1;
+      for (int j : joints) placed[r->joints()[j].child_link] = 1;
+      for (int l : some) EXPECT_TRUE(placed[l]) << r->links()[l].name;
+      for (int l = 0; l < n; ++l) {
+        if (placed[l])
+          EXPECT_TRUE(out[l].matrix() == all[l].matrix()) << r->links()[l].name;  // bit for bit
+        else
+          EXPECT_EQ(out[l].translation(), Eigen::Vector3d(9, 9, 9)) << r->links()[l].name;
+      }
+    }
+    EXPECT_TRUE(r->joints_placing({r->root_link()}).empty());
+    EXPECT_THROW(r->joints_placing({n}), std::out_of_range);
+    EXPECT_THROW(r->joints_placing({-1}), std::out_of_range);
+  }
+}
+
 TEST(Robot, MatchesKdlForwardKinematics) {
   auto r = arm_robot();
   Chain c = r->chain("base_link", "tool0");

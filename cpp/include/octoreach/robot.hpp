@@ -162,6 +162,13 @@ class Robot : public std::enable_shared_from_this<Robot> {
   std::vector<Pose> link_poses(const Eigen::VectorXd& q) const;
   /// \brief Same as link_poses(q), into `out` (reused storage).
   void link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out) const;
+  /// \brief The joints (indices into joints(), in the order link_poses evaluates them) between the
+  /// root link and `links` (indices into links()): what link_poses(q, out, joints) evaluates.
+  std::vector<int> joints_placing(const std::vector<int>& links) const;
+  /// \brief link_poses(q, out) for the links `joints` (from joints_placing) place only: the same
+  /// poses for those links and the root, far less work for a few links of a large robot; the other
+  /// entries of `out` are left as they were.
+  void link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out, const std::vector<int>& joints) const;
 
   /// \brief True when two links not allowed to touch are in collision at q.
   bool in_self_collision(const Eigen::VectorXd& q) const;

@@ -53,13 +53,24 @@ void witness_points(const Shape& s, std::vector<Eigen::Vector3d>& out) {
 }  // namespace
 
 void LowSet::summarise() {
+  // The kDirs directions (cos, sin), computed once.
+  static const std::array<std::array<float, 2>, kDirs> dirs = [] {
+    std::array<std::array<float, 2>, kDirs> d{};
+    for (int k = 0; k < kDirs; ++k)
+      d[k] = {static_cast<float>(std::cos(2 * M_PI * k / kDirs)), static_cast<float>(std::sin(2 * M_PI * k / kDirs))};
+    return d;
+  }();
   r_max = 0;
   for (const auto& w : points) r_max = std::max(r_max, w.head<2>().norm());
-  for (int k = 0; k < kDirs; ++k) {
-    float c = static_cast<float>(std::cos(2 * M_PI * k / kDirs)), s = static_cast<float>(std::sin(2 * M_PI * k / kDirs));
-    float m = std::numeric_limits<float>::infinity();
-    for (const auto& w : points) m = std::min(m, c * w.x() + s * w.y());
-    min_proj[k] = m;
+  // Point by point, every direction at once (lanes): per direction the same products and minimum
+  // (std::min(m, v) is v < m ? v : m) in the same order as one direction at a time.
+  min_proj.fill(std::numeric_limits<float>::infinity());
+  for (const auto& w : points) {
+    const float x = w.x(), y = w.y();
+    for (int k = 0; k < kDirs; ++k) {
+      const float v = dirs[k][0] * x + dirs[k][1] * y;
+      min_proj[k] = v < min_proj[k] ? v : min_proj[k];
+    }
   }
 }
 
@@ -75,6 +86,7 @@ ArmClearance::ArmClearance(const Robot& robot, const CapabilityMap& cap, const A
       orientations_(cap.orientations().size()) {
   for (int li : arm_links_)
     for (const auto& s : robot.links()[li].shapes) witness_points(s, link_witness_[li]);
+  placing_ = robot.joints_placing(arm_links_);
 }
 
 void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d& centre, const Eigen::Vector3d& n_arm,
@@ -82,7 +94,7 @@ void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d&
   std::vector<Eigen::Vector3f>& out = low.points;
   const float* qf = cap_.record_solution(rec, orient);
   Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
-  robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
+  robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses, placing_);
   for (int li : arm_links_) {
     Pose in_arm = root_from_arm_base_ * poses[li];
     for (const auto& w : link_witness_[li]) {
@@ -91,10 +103,16 @@ void ArmClearance::compute(std::uint32_t rec, int orient, const Eigen::Vector3d&
       if (n_arm.dot(rel) < -grasp_height_ - 1e-3) out.push_back(rel.cast<float>());
     }
   }
-  // Nearest to the target first: those fall inside the outline soonest, ending the test early.
-  std::sort(out.begin(), out.end(), [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
-    return a.head<2>().squaredNorm() < b.head<2>().squaredNorm();
-  });
+  // Nearest to the target first: those fall inside the outline soonest, ending the test early (the
+  // order changes no answer, only how soon a test ends). Sorted by key, the keys computed once.
+  thread_local std::vector<std::pair<float, std::uint32_t>> order;
+  thread_local std::vector<Eigen::Vector3f> sorted;
+  order.resize(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) order[i] = {out[i].head<2>().squaredNorm(), static_cast<std::uint32_t>(i)};
+  std::sort(order.begin(), order.end());
+  sorted.resize(out.size());
+  for (std::size_t i = 0; i < out.size(); ++i) sorted[i] = out[order[i].second];
+  out.swap(sorted);
   low.summarise();
 }
 

@@ -65,6 +65,7 @@ class ArmClearance {
   Chain arm_;
   Eigen::VectorXd reference_;
   std::vector<int> arm_links_;
+  std::vector<int> placing_;  // the joints that place arm_links_ (forward kinematics of those only)
   std::vector<std::vector<Eigen::Vector3d>> link_witness_;
   Pose root_from_arm_base_;
   double grasp_height_;

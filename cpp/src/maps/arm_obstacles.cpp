@@ -9,6 +9,7 @@
 
 #include "../collision_detail.hpp"
 #include "../common/thread_pool.hpp"
+#include "../common/vector_clones.hpp"
 
 namespace octoreach::detail {
 namespace {
@@ -38,6 +39,7 @@ ArmObstacles::ArmObstacles(const Robot& robot, const CapabilityMap& cap, const A
       reach_hi_(-reach_lo_) {
   links_ = place.roles.arm;
   links_.insert(links_.end(), place.roles.tool.begin(), place.roles.tool.end());
+  placing_ = robot.joints_placing(links_);
   if (!slots_) throw std::invalid_argument("ArmObstacles: no cells given");
   if (obstacles_)
     for (const auto& o : obstacles_->objects()) boxes_.push_back(o->getAABB());
@@ -110,7 +112,7 @@ void ArmObstacles::compute(int threads) {
     for (std::uint32_t s = records[i].first; s < records[i].last; ++s) {
       const float* qf = cap_.record_solution(records[i].rec, slots.cell(s).orient);
       Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
-      robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses);
+      robot_.link_poses(arm_.to_robot_configuration(q, reference_), poses, placing_);
       std::int16_t* out = boxes_cm_.data() + s * stride_;
       Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
       for (std::size_t j = 0; j < shaped_.size(); ++j) {
@@ -171,7 +173,7 @@ const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
   const CellSlots::Cell& c = slots_->cell(static_cast<std::size_t>(slot));
   const float* qf = cap_.record_solution(c.rec, c.orient);
   Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXf>(qf, arm_.dof()).cast<double>();
-  robot_.link_poses(arm_.to_robot_configuration(q, reference_), s.poses);
+  robot_.link_poses(arm_.to_robot_configuration(q, reference_), s.poses, placing_);
   const std::size_t n = 12 * (shaped_.size() + shapes_);
   const bool keep = s.pool.size() + n <= (std::size_t(64) << 20) / sizeof(float);
   const std::size_t at = s.pool.size();
@@ -202,7 +204,7 @@ const float* ArmObstacles::link_poses(std::int32_t slot, ArmScratch& s) const {
   return out;
 }
 
-bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const Pose& world_from_arm,
+OCTOREACH_VECTOR_CLONES bool ArmObstacles::collides(std::int32_t slot, const NearObstacles& near, const Pose& world_from_arm,
                             ArmScratch& scratch) const {
   if (near.empty()) return false;
   const std::int16_t* box = boxes_cm_.data() + static_cast<std::size_t>(slot) * stride_;

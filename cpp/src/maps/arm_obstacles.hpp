@@ -64,6 +64,7 @@ class ArmObstacles {
   Chain arm_;
   Eigen::VectorXd reference_;
   std::vector<int> links_;          // links moved by the arm (arm and tool roles)
+  std::vector<int> placing_;        // the joints that place them (forward kinematics of those only)
   std::vector<int> shaped_;         // those of them with collision shapes
   std::vector<std::size_t> shape_id_;  // by shaped link: the number of its first shape among all shaped links' shapes
   std::size_t shapes_ = 0;
