@@ -27,7 +27,8 @@ Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--gener
      [--plot docs/images/exploration_strategies.png] [--markdown table.md]
 Quick: --seeds 2 --generated 2 --views 8 --image 160 120 --resolution 0.05
 In parts (two cores): --scenes paper_1 usar_0 > a.json; --scenes paper_2 usar_1 > b.json; then
-     --combine a.json b.json --plot p.png --markdown t.md
+     --combine a.json b.json --plot p.png --markdown t.md (parts may also split the seeds:
+     --seeds 5 > a.json; --seeds 5 --first-seed 5 > b.json; the same code and settings, checked)
 """
 from __future__ import annotations
 
@@ -38,6 +39,7 @@ import time
 
 import numpy as np
 
+import octoreach
 from octoreach import DepthCamera
 from octoreach import exploration as ex
 
@@ -57,6 +59,18 @@ def _camera(a, seed):
     return DepthCamera(a.image[0], a.image[1], np.deg2rad(58.0), 4.0, noise=a.noise, seed=seed, **extra)
 
 
+def _code_version() -> str:
+    """The commit of this checkout (+ "-dirty" with local changes), else the package version: parts of
+    a record must come from the same code."""
+    import os
+    import subprocess
+    try:
+        return subprocess.run(["git", "describe", "--always", "--dirty"], cwd=os.path.dirname(os.path.abspath(__file__)),
+                              capture_output=True, text=True, timeout=10, check=True).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return getattr(octoreach, "__version__", "unknown")
+
+
 def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
     cover = []
 
@@ -70,6 +84,7 @@ def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
     views = len(r.rows)
     per_view = [x.integration_s + x.search_s for x in r.rows]
     return {
+        "seed": seed,
         "coverage": [round(c, 4) for c in cover],
         "views": views,
         "stop_reason": r.stop_reason,
@@ -162,15 +177,34 @@ def _markdown(summary, strategies):
 
 
 def _combine(a) -> int:
-    """One output from several (their scenes and strategies side by side; setups must agree but for the
-    scenes and strategies; a later file's (scene, strategy) replaces an earlier one's)."""
+    """One output from several: their scenes and strategies side by side, and the runs of one (scene,
+    strategy) from parts with other seeds (--first-seed) pooled, by seed (a later file's run of a seed
+    replaces an earlier one's); summaries recomputed. The setups must agree but for the scenes,
+    strategies and seeds (checked: a mix of code or settings is no record)."""
     parts = [json.load(open(f)) for f in a.combine]
+    ignore = {"scenes", "strategies", "seeds", "first_seed", "capability_map_s", "note"}
+    for f, p in zip(a.combine[1:], parts[1:]):
+        diff = sorted(k for k in set(p["setup"]) | set(parts[0]["setup"])
+                      if k not in ignore and p["setup"].get(k) != parts[0]["setup"].get(k))
+        if diff:
+            raise SystemExit(f"--combine: {f} has another setup than {a.combine[0]} ({', '.join(diff)})")
     out = {"setup": dict(parts[0]["setup"]), "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
+    by_seed = {}
     for p in parts:
         out["oracle"].update(p["oracle"])
-        for k in ("summary", "runs"):
-            for scene, per in p[k].items():
-                out[k].setdefault(scene, {}).update(per)
+        for scene, per in p["runs"].items():
+            for strategy, runs in per.items():
+                slot = by_seed.setdefault(scene, {}).setdefault(strategy, {})
+                for i, r in enumerate(runs):
+                    slot[r.get("seed", p["setup"].get("first_seed", 0) + i)] = r
+    for scene, per in by_seed.items():
+        has_target = out["oracle"][scene].get("has_target", not scene.startswith("paper"))
+        for strategy, runs in per.items():
+            out["runs"].setdefault(scene, {})[strategy] = [runs[k] for k in sorted(runs)]
+            out["summary"].setdefault(scene, {})[strategy] = _summary(out["runs"][scene][strategy], out["setup"]["views"],
+                                                                      has_target)
+    seeds = sorted({k for per in by_seed.values() for runs in per.values() for k in runs})
+    out["setup"].update(seeds=len(seeds), first_seed=seeds[0] if seeds else 0)
     names = {s for p in parts for s in p["setup"]["strategies"]}
     out["setup"]["strategies"] = [s for s in ex.STRATEGIES if s in names]
     for k in ("oracle", "summary", "runs"):  # paper scenes first, then usar_0, usar_1, ...
@@ -191,6 +225,8 @@ def _combine(a) -> int:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=10, help="exploration seeds per strategy and scene (>= 10 for the record)")
+    ap.add_argument("--first-seed", type=int, default=0,
+                    help="seeds first_seed .. first_seed + seeds - 1 (a record in parts: --combine pools them)")
     ap.add_argument("--generated", type=int, default=4, help="generated USAR scenes (usar_scene(0..k-1))")
     ap.add_argument("--views", type=int, default=60,
                     help="view budget (large, so that the stopping rule ends the runs, not the budget)")
@@ -216,17 +252,18 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     if a.combine:
         return _combine(a)
-    if a.seeds < 1 or a.views < 1 or a.generated < 0:
-        ap.error("--seeds and --views must be >= 1, --generated >= 0")
+    if a.seeds < 1 or a.views < 1 or a.generated < 0 or a.first_seed < 0:
+        ap.error("--seeds and --views must be >= 1, --generated and --first-seed >= 0")
     for s in a.strategies:
         ex.strategies.check_strategy(s)
     t_all = time.perf_counter()
     _, chain = ex.explorer_robot()
     t0 = time.perf_counter()
     cmap = ex.explorer_capability_map(chain)
-    out = {"setup": {"seeds": a.seeds, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "resolution_m": a.resolution, "image": list(a.image),
+    out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "resolution_m": a.resolution, "image": list(a.image),
                      "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
-                     "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy"},
+                     "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy",
+                     "code": _code_version()},
            "oracle": {}, "summary": {}, "runs": {}}
     curves = {}
     for name, scene, target in _scenes(a.generated):
@@ -237,10 +274,11 @@ def main(argv=None) -> int:
                                      aimed_samples=a.oracle_samples)
         out["oracle"][name] = {"seconds": time.perf_counter() - t0, "poses_valid": oracle.poses_valid,
                                "interior_points": len(oracle.points), "observable_points": oracle.count,
-                               "observable_fraction": oracle.fraction}
+                               "observable_fraction": oracle.fraction, "has_target": target is not None}
         out["summary"][name], out["runs"][name], curves[name] = {}, {}, {}
         for s in a.strategies:
-            runs = [_run(a, scene, target, s, seed, oracle, cmap, chain) for seed in range(a.seeds)]
+            runs = [_run(a, scene, target, s, seed, oracle, cmap, chain)
+                    for seed in range(a.first_seed, a.first_seed + a.seeds)]
             out["runs"][name][s] = runs
             out["summary"][name][s] = _summary(runs, a.views, target is not None)
             curves[name][s] = [r["coverage"] for r in runs]

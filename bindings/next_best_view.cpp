@@ -254,7 +254,7 @@ void wrap_next_best_view(py::module_& m) {
         "expected_void, expected_unknown, expected_frontier.");
 
   m.def("score_views", [](const ExplorationMap& map, const py::object& camera, const py::object& poses,
-                          const py::object& options, const py::kwargs& kwargs) {
+                          const py::object& options, bool score_invalid, const py::kwargs& kwargs) {
           CameraIntrinsics c = intrinsics_from(camera);
           std::vector<Pose> T = poses_from(poses, "poses");
           NbvOptions o = options_from<NbvOptions>(options, kwargs, "score_views");
@@ -263,11 +263,12 @@ void wrap_next_best_view(py::module_& m) {
           std::pair<double, double> p{o.unknown_pass_probability, o.unknown_pass_probability};
           {
             py::gil_scoped_release release;
-            r = score_views(map, c, T, o);
+            r = score_views(map, c, T, o, score_invalid);
             if (o.unknown_pass_probability < 0) p = {map.pass_probability(), map.void_pass_probability()};
           }
           return scored_dict(r, o, p);
-        }, py::arg("map"), py::arg("camera"), py::arg("poses"), py::arg("options") = py::none(),
+        }, py::arg("map"), py::arg("camera"), py::arg("poses"), py::arg("options") = py::none(), py::kw_only(),
+        py::arg("score_invalid") = true,
         "Gains and validity of given camera poses (N, 4, 4) (camera -> map) with the checks and ray casting\n"
         "of next_best_view (same options: workspace_*, capability_map, chain, chain_base, arm_collisions,\n"
         "min_distance, unknown_is_obstacle, unknown_margin, gain, unknown_pass_probability, score_*).\n"
@@ -276,7 +277,8 @@ void wrap_next_best_view(py::module_& m) {
         "reaches when IK succeeds, else the given one), q ((N, dof), NaN rows without a solution; None\n"
         "without a chain), void_cells, unknown_cells, frontier_cells (N,) int, expected_void,\n"
         "expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name), pass_probability and\n"
-        "void_pass_probability.");
+        "void_pass_probability. score_invalid=False: poses that fail a check are not ray cast (cell counts 0,\n"
+        "expected gains NaN), far less work when most fail.");
 
   m.def("expect_view", [](ExplorationMap& map, const py::object& camera, const py::object& pose,
                           const py::object& options, const py::kwargs& kwargs) {

@@ -1693,7 +1693,7 @@ def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any 
     capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.
     arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.
     """
-def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, options: typing.Any = None, **kwargs) -> dict:
+def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, options: typing.Any = None, *, score_invalid: bool = True, **kwargs) -> dict:
     """
     Gains and validity of given camera poses (N, 4, 4) (camera -> map) with the checks and ray casting
     of next_best_view (same options: workspace_*, capability_map, chain, chain_base, arm_collisions,
@@ -1703,7 +1703,8 @@ def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, opti
     reaches when IK succeeds, else the given one), q ((N, dof), NaN rows without a solution; None
     without a chain), void_cells, unknown_cells, frontier_cells (N,) int, expected_void,
     expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name), pass_probability and
-    void_pass_probability.
+    void_pass_probability. score_invalid=False: poses that fail a check are not ray cast (cell counts 0,
+    expected gains NaN), far less work when most fail.
     """
 def set_progress_factory(factory: typing.Any) -> None:
     """

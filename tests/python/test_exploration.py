@@ -261,6 +261,31 @@ def test_views_whose_arm_touches_itself_are_rejected():
     assert not any(self_colliding(q) for q in valid)
 
 
+def test_score_views_can_skip_the_ray_casting_of_invalid_poses():
+    # score_invalid=False: the same statuses, q and gains for the valid poses; the others are not ray
+    # cast (NaN gains, 0 cells). Without it every pose is scored.
+    scene = ex.paper_scene(2)
+    robot, chain = ex.explorer_robot()
+    base = robot.link_poses(robot.home())[chain.base_link]
+    cam = DepthCamera(80, 60, FOV, 3.0)
+    emap = ExplorationMap(resolution=0.05, search_space=ex.scene_region(scene))
+    list(survey(emap, scene, cam, [(0.45, 0.0, 1.1)], (0.9, 0.0, 0.1)))
+    rng = np.random.default_rng(5)
+    poses = np.array([ex.look_at(rng.uniform((0.0, -0.8, 0.3), (1.2, 0.8, 1.4)), (0.9, 0.0, 0.1)) for _ in range(60)])
+    kw = dict(chain=chain, chain_base=base, seed=2)
+    full = score_views(emap, cam, poses, **kw)
+    some = score_views(emap, cam, poses, score_invalid=False, **kw)
+    assert some["status"] == full["status"]
+    v = np.asarray(full["valid"])
+    assert 0 < v.sum() < len(v)
+    for key in ("expected_void", "expected_unknown", "expected_frontier", "void_cells", "unknown_cells"):
+        np.testing.assert_array_equal(np.asarray(some[key])[v], np.asarray(full[key])[v])
+    assert np.isnan(np.asarray(some["expected_unknown"])[~v]).all()
+    assert (np.asarray(some["unknown_cells"])[~v] == 0).all()
+    assert np.isfinite(np.asarray(full["expected_unknown"])).all() and (np.asarray(full["unknown_cells"])[~v] > 0).any()
+    np.testing.assert_array_equal(np.asarray(some["q"])[v], np.asarray(full["q"])[v])
+
+
 def test_nbv_options_object_and_keywords_are_one_thing():
     from octoreach import _core
 

@@ -235,8 +235,11 @@ struct ScoredView {
 /// \brief The gains and validity of given camera poses (camera -> map), with the very checks and ray
 /// casting of next_best_view (workspace, capability map, camera clearance, IK with the chain at
 /// chain_base, arm collisions; samples, candidate counts and max_valid_poses play no part). Poses are
-/// scored in parallel; pose i uses IK seed ik.seed + i. \throws std::invalid_argument for a non-finite pose.
+/// scored in parallel; pose i uses IK seed ik.seed + i. `score_invalid` false: the poses that fail a
+/// check are not ray cast (their cell counts 0, expected gains NaN), far less work when most fail.
+/// \throws std::invalid_argument for a non-finite pose.
 std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntrinsics& camera,
-                                    const std::vector<Pose>& poses, const NbvOptions& options);
+                                    const std::vector<Pose>& poses, const NbvOptions& options,
+                                    bool score_invalid = true);
 
 }  // namespace octoreach

@@ -1,5 +1,6 @@
 // What makes a camera pose a view: camera clearance (observed-free space), the capability map's axis,
 // IK and the arm's collisions against the occupied and (safe views) unknown cells; and score_views.
+#include <limits>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -161,7 +162,7 @@ const char* status_name(ViewStatus s) {
 }
 
 std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntrinsics& cam,
-                                    const std::vector<Pose>& poses, const NbvOptions& opt) {
+                                    const std::vector<Pose>& poses, const NbvOptions& opt, bool score_invalid) {
   detail::validate_options(cam, opt);
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (!poses[i].matrix().allFinite())
@@ -192,7 +193,12 @@ std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntri
       s.status = ViewStatus::CameraNotClear;
     else if (opt.chain)
       s.status = checker.reach(s.view.pose, s.view.q, i);
-    detail::score_view(map, cam, opt, p, s.view);
+    if (score_invalid || s.valid()) {
+      detail::score_view(map, cam, opt, p, s.view);
+      return;
+    }
+    constexpr double kNotScored = std::numeric_limits<double>::quiet_NaN();
+    s.view.expected_void = s.view.expected_unknown = s.view.expected_frontier = s.view.gain = s.view.utility_dm3 = kNotScored;
   }, 1);
   return out;
 }

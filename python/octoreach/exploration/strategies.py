@@ -92,7 +92,7 @@ def _score(emap, camera, poses, options):
     """score_views as a list of dicts (pose, valid, status, void_cells, expected_* gains, q)."""
     if len(poses) == 0:
         return []
-    r = _core.score_views(emap, camera, poses, **options)
+    r = _core.score_views(emap, camera, poses, score_invalid=False, **options)  # gains of valid poses only
     q = r["q"]
     out = []
     for i in range(len(poses)):
