@@ -236,17 +236,24 @@ def test_views_whose_arm_touches_occupied_cells_are_rejected():
     assert free["best_pose"] is not None
 
 
+def _explorer_at_scene_2(resolution, image, eyes):
+    """The explorer robot (robot, chain, its base pose), a camera of `image` (w, h) pixels and a map of
+    paper scene 2 at `resolution` that has seen the scene from `eyes` (looking at its middle)."""
+    scene = ex.paper_scene(2)
+    robot, chain = ex.explorer_robot()
+    base = robot.link_poses(robot.home())[chain.base_link]
+    cam = DepthCamera(image[0], image[1], FOV, 3.0)
+    emap = ExplorationMap(resolution=resolution, search_space=ex.scene_region(scene))
+    list(survey(emap, scene, cam, eyes, (0.9, 0.0, 0.1)))
+    return robot, chain, base, cam, emap
+
+
 def test_views_whose_arm_touches_itself_are_rejected():
     # Camera poses of self-colliding arm configurations: IK may find another, clear solution for a few;
     # no view the search calls valid may have the arm touching the robot itself.
     from octoreach import Obstacles
 
-    scene = ex.paper_scene(2)
-    robot, chain = ex.explorer_robot()
-    base = robot.link_poses(robot.home())[chain.base_link]
-    cam = DepthCamera(160, 120, FOV, 3.0)
-    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
-    list(survey(emap, scene, cam, [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)], (0.9, 0.0, 0.1)))
+    robot, chain, base, cam, emap = _explorer_at_scene_2(0.04, (160, 120), [(0.45, 0.0, 1.1), (0.4, -0.6, 0.9)])
     nothing = Obstacles()
 
     def self_colliding(q):
@@ -264,12 +271,7 @@ def test_views_whose_arm_touches_itself_are_rejected():
 def test_score_views_can_skip_the_ray_casting_of_invalid_poses():
     # score_invalid=False: the same statuses, q and gains for the valid poses; the others are not ray
     # cast (NaN gains, 0 cells). Without it every pose is scored.
-    scene = ex.paper_scene(2)
-    robot, chain = ex.explorer_robot()
-    base = robot.link_poses(robot.home())[chain.base_link]
-    cam = DepthCamera(80, 60, FOV, 3.0)
-    emap = ExplorationMap(resolution=0.05, search_space=ex.scene_region(scene))
-    list(survey(emap, scene, cam, [(0.45, 0.0, 1.1)], (0.9, 0.0, 0.1)))
+    robot, chain, base, cam, emap = _explorer_at_scene_2(0.05, (80, 60), [(0.45, 0.0, 1.1)])
     rng = np.random.default_rng(5)
     poses = np.array([ex.look_at(rng.uniform((0.0, -0.8, 0.3), (1.2, 0.8, 1.4)), (0.9, 0.0, 0.1)) for _ in range(60)])
     kw = dict(chain=chain, chain_base=base, seed=2)
