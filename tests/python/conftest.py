@@ -1,13 +1,18 @@
 """Shared fixtures of the Python tests: robots and chains (pose helpers: pose_helpers.py)."""
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
 import tempfile
 
 import pytest
 
-# The CLI looks maps up in the map cache: the tests keep theirs out of the user's cache directory.
-os.environ.setdefault("OCTOREACH_CACHE_DIR", tempfile.mkdtemp(prefix="octoreach-test-cache-"))
+# The CLI looks maps up in the map cache: the tests keep theirs out of the user's cache directory, in a
+# folder of their own that goes when the test run ends.
+if "OCTOREACH_CACHE_DIR" not in os.environ:
+    os.environ["OCTOREACH_CACHE_DIR"] = tempfile.mkdtemp(prefix="octoreach-test-cache-")
+    atexit.register(shutil.rmtree, os.environ["OCTOREACH_CACHE_DIR"], ignore_errors=True)
 
 from octoreach import robots
 
