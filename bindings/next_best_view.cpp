@@ -268,7 +268,7 @@ void wrap_next_best_view(py::module_& m) {
           }
           return scored_dict(r, o, p);
         }, py::arg("map"), py::arg("camera"), py::arg("poses"), py::arg("options") = py::none(), py::kw_only(),
-        py::arg("score_invalid") = true,
+        py::arg("score_invalid").noconvert() = true,
         "Gains and validity of given camera poses (N, 4, 4) (camera -> map) with the checks and ray casting\n"
         "of next_best_view (same options: workspace_*, capability_map, chain, chain_base, arm_collisions,\n"
         "min_distance, unknown_is_obstacle, unknown_margin, gain, unknown_pass_probability, score_*).\n"

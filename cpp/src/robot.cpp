@@ -130,7 +130,14 @@ void Robot::link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out, const s
                                 "' expects " + std::to_string(dof()));
   out.resize(links_.size());
   out[root_link_] = Pose::Identity();
-  for (int j : joints) place_child(joints_, joints_.at(static_cast<std::size_t>(j)), q, out);  // ascending: parents first
+  int last = -1;
+  for (int j : joints) {  // ascending: parents first
+    if (j <= last)
+      throw std::invalid_argument("link_poses: joint indices must ascend (as joints_placing gives them), got " +
+                                  std::to_string(j) + " after " + std::to_string(last));
+    place_child(joints_, joints_.at(static_cast<std::size_t>(j)), q, out);
+    last = j;
+  }
 }
 
 std::vector<Pose> Robot::link_poses(const Eigen::VectorXd& q) const {

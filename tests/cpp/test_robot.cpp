@@ -84,6 +84,11 @@ TEST(Robot, ForwardKinematicsOfSomeLinks) {
     EXPECT_TRUE(r->joints_placing({r->root_link()}).empty());
     EXPECT_THROW(r->joints_placing({n}), std::out_of_range);
     EXPECT_THROW(r->joints_placing({-1}), std::out_of_range);
+    const std::vector<int> two = r->joints_placing({n - 1});
+    if (two.size() >= 2) {
+      std::vector<Pose> out;
+      EXPECT_THROW(r->link_poses(r->home(), out, {two[1], two[0]}), std::invalid_argument);
+    }
   }
 }
 

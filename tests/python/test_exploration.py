@@ -286,6 +286,8 @@ def test_score_views_can_skip_the_ray_casting_of_invalid_poses():
     assert (np.asarray(some["unknown_cells"])[~v] == 0).all()
     assert np.isfinite(np.asarray(full["expected_unknown"])).all() and (np.asarray(full["unknown_cells"])[~v] > 0).any()
     np.testing.assert_array_equal(np.asarray(some["q"])[v], np.asarray(full["q"])[v])
+    with pytest.raises(TypeError):  # a bool, not anything truthy
+        score_views(emap, cam, poses, score_invalid=None, **kw)
 
 
 def test_nbv_options_object_and_keywords_are_one_thing():

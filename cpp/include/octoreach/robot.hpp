@@ -165,9 +165,11 @@ class Robot : public std::enable_shared_from_this<Robot> {
   /// \brief The joints (indices into joints(), in the order link_poses evaluates them) between the
   /// root link and `links` (indices into links()): what link_poses(q, out, joints) evaluates.
   std::vector<int> joints_placing(const std::vector<int>& links) const;
-  /// \brief link_poses(q, out) for the links `joints` (from joints_placing) place only: the same
-  /// poses for those links and the root, far less work for a few links of a large robot; the other
-  /// entries of `out` are left as they were.
+  /// \brief link_poses(q, out) for the links `joints` place only: the same poses for those links and
+  /// the root, far less work for a few links of a large robot; the other entries of `out` are left as
+  /// they were. `joints` must be what joints_placing gave (every joint between the root and a placed
+  /// link, ascending): a joint whose parent link is not placed reads that link's stale entry.
+  /// \throws std::invalid_argument for indices that do not ascend, std::out_of_range for a bad index.
   void link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out, const std::vector<int>& joints) const;
 
   /// \brief True when two links not allowed to touch are in collision at q.
