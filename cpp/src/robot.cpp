@@ -88,9 +88,7 @@ inline Pose joint_motion(const Joint& j, double q) {
     m.linear() = Eigen::AngleAxisd(q, j.axis).toRotationMatrix();
   return m;
 }
-}  // namespace
 
-namespace {
 // The pose of joint j's child link from its parent's, at configuration q (one step of link_poses).
 void place_child(const std::vector<Joint>& joints, const Joint& j, const Eigen::VectorXd& q, std::vector<Pose>& out) {
   double v = 0.0;
@@ -98,12 +96,17 @@ void place_child(const std::vector<Joint>& joints, const Joint& j, const Eigen::
   else if (j.mimic >= 0) v = q[joints[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
   out[j.child_link] = out[j.parent_link] * j.origin * joint_motion(j, v);
 }
+
+// `q` has one entry per degree of freedom of the robot `name`, else std::invalid_argument.
+void check_configuration(const Eigen::VectorXd& q, int dof, const std::string& name) {
+  if (q.size() != dof)
+    throw std::invalid_argument("configuration has " + std::to_string(q.size()) + " entries, robot '" + name +
+                                "' expects " + std::to_string(dof));
+}
 }  // namespace
 
 void Robot::link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out) const {
-  if (q.size() != dof())
-    throw std::invalid_argument("configuration has " + std::to_string(q.size()) + " entries, robot '" + name_ +
-                                "' expects " + std::to_string(dof()));
+  check_configuration(q, dof(), name_);
   out.resize(links_.size());
   out[root_link_] = Pose::Identity();
   // joints_ are stored in breadth-first order of their child links: parents first.
@@ -125,9 +128,7 @@ std::vector<int> Robot::joints_placing(const std::vector<int>& links) const {
 }
 
 void Robot::link_poses(const Eigen::VectorXd& q, std::vector<Pose>& out, const std::vector<int>& joints) const {
-  if (q.size() != dof())
-    throw std::invalid_argument("configuration has " + std::to_string(q.size()) + " entries, robot '" + name_ +
-                                "' expects " + std::to_string(dof()));
+  check_configuration(q, dof(), name_);
   out.resize(links_.size());
   out[root_link_] = Pose::Identity();
   int last = -1;

@@ -1,8 +1,8 @@
 // What makes a camera pose a view: camera clearance (observed-free space), the capability map's axis,
 // IK and the arm's collisions against the occupied and (safe views) unknown cells; and score_views.
-#include <limits>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
