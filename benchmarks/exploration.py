@@ -22,8 +22,9 @@ import time
 
 import numpy as np
 
-from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, next_best_view
+from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, _core, next_best_view, score_views
 from octoreach import exploration as ex
+from octoreach.exploration.strategies import AIMED_POSES, aimed_poses
 
 
 def cluttered_first_view():
@@ -96,6 +97,22 @@ def main() -> int:
         for k in ("seconds_vectors", "seconds_prune", "seconds_score"):
             nbv_parts.setdefault(k, []).append(nbv[k])
     med = statistics.median
+    # the loop's search: void cells also weighted by their enclosure (LOOP_ENCLOSURE_POWER); the enclosure
+    # is computed once per map and search (cached until the next insert: each repeat asks for another range
+    # so that every repeat pays it), and the second look (AIMED_POSES poses aimed at void cells, scored)
+    loop_s, enclosure_s, aimed_s = [], [], []
+    for i in range(a.repeats):
+        t0 = time.perf_counter()
+        _core.void_enclosure(emap, 0.5 + 1e-9 * (i + 1))
+        enclosure_s.append(time.perf_counter() - t0)
+        loop_s.append(next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
+                                     enclosure_power=ex.LOOP_ENCLOSURE_POWER,
+                                     enclosure_range=0.5 + 1e-9 * (i + 1))["seconds"])
+        P = aimed_poses(np.random.default_rng(i), emap, sphere=((0.5, 0.0, 0.5), 1.0))
+        t0 = time.perf_counter()
+        score_views(emap, cam, P, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05, score_invalid=False,
+                    enclosure_power=ex.LOOP_ENCLOSURE_POWER)
+        aimed_s.append(time.perf_counter() - t0)
     inc = _void_cluster_runs(scene, cam, res, rng)
     # the search with the safe-view rule off (the cost of the unknown-cell obstacles and clearance)
     loose_s = [next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
@@ -122,6 +139,9 @@ def main() -> int:
             "best_expected_void": nbv["expected_void"], "pass_probability": nbv["pass_probability"],
             "void_pass_probability": nbv["void_pass_probability"],
             "median_s_without_unknown_obstacles": med(loose_s),
+            "median_s_loop_enclosure_power": med(loop_s), "loop_enclosure_power": ex.LOOP_ENCLOSURE_POWER,
+            "void_enclosure_s": med(enclosure_s),
+            "second_look_s": med(aimed_s), "second_look_poses": AIMED_POSES,
             "score_grid": [48, 36],
         },
         "void_clusters": inc,

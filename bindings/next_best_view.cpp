@@ -118,7 +118,13 @@ void wrap_nbv_options(py::module_& m) {
       .def_readwrite("unknown_is_obstacle", &NbvOptions::unknown_is_obstacle,
                      "safe views: unknown cells of the map's search space are obstacles for the arm and the camera")
       .def_readwrite("unknown_margin", &NbvOptions::unknown_margin,
-                     "metres around the camera with no unknown cell of the search space (unknown_is_obstacle)");
+                     "metres around the camera with no unknown cell of the search space (unknown_is_obstacle)")
+      .def_readwrite("enclosure_power", &NbvOptions::enclosure_power,
+                     "gain 'frontier_void': each void cell also counts with e^power in the ranking and the voids'\n"
+                     "utility, e its enclosure (share of the six axis directions that meet a surface before free\n"
+                     "space within enclosure_range); 0: the paper's plain count")
+      .def_readwrite("enclosure_range", &NbvOptions::enclosure_range,
+                     "metres walked from a void cell per direction for its enclosure");
   def_workspace(cls);
   def_arm(cls);
 }
@@ -130,6 +136,7 @@ void gains_into(py::dict& d, const ViewGains& v) {
   d["expected_void"] = v.expected_void;
   d["expected_unknown"] = v.expected_unknown;
   d["expected_frontier"] = v.expected_frontier;
+  d["expected_enclosed_void"] = v.expected_enclosed_void;
 }
 
 py::dict view_dict(const ViewCandidate& v) {
@@ -292,6 +299,24 @@ void wrap_next_best_view(py::module_& m) {
         "expected to see (score_width x score_height rays, unknown_pass_probability as in next_best_view)\n"
         "are recorded with their ray weights w, and the next insert multiplies the seeability of each one it\n"
         "leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability.");
+  m.def("void_enclosure", [](const ExplorationMap& map, double range) {
+          std::vector<std::pair<CellKey, double>> e;
+          {
+            py::gil_scoped_release release;
+            e = void_enclosure(map, range);
+          }
+          std::vector<CellKey> keys(e.size());
+          py::array_t<double> enc(static_cast<py::ssize_t>(e.size()));
+          for (std::size_t i = 0; i < e.size(); ++i) {
+            keys[i] = e[i].first;
+            enc.mutable_data()[i] = e[i].second;
+          }
+          return py::make_tuple(key_array(keys), enc);
+        }, py::arg("map"), py::arg("range") = 0.5,
+        "How enclosed each void cell is, as next_best_view's enclosure_power weighs it: (keys (N,) uint64\n"
+        "sorted as map.void_keys(), enclosure (N,) in [0, 1]): the share of the six axis directions that, walking\n"
+        "from the cell through unknown cells up to `range` metres, meet an occupied cell (1) rather than a\n"
+        "free one (0; unknown all the way: 1/2).");
   m.def("missed_cells", [](const ExplorationMap& map) { return missed_cells(map); }, py::arg("map"),
         "Unknown cells whose seeability a missed view (expect_view) has lowered.");
 

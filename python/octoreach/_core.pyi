@@ -1480,6 +1480,24 @@ class NbvOptions:
     def chain_base(self, arg1: typing.Any) -> None:
         ...
     @property
+    def enclosure_power(self) -> float:
+        """
+        gain 'frontier_void': each void cell also counts with e^power in the ranking and the voids'
+        utility, e its enclosure (share of the six axis directions that meet a surface before free
+        space within enclosure_range); 0: the paper's plain count
+        """
+    @enclosure_power.setter
+    def enclosure_power(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def enclosure_range(self) -> float:
+        """
+        metres walked from a void cell per direction for its enclosure
+        """
+    @enclosure_range.setter
+    def enclosure_range(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def gain(self) -> str:
         """
         what views are ranked by: 'frontier_void' (expected void cells), 'frontiers' (expected
@@ -1718,6 +1736,15 @@ def visibility_curve(map: ExplorationMap) -> dict:
     ('void_*'), the cells views expected (weighted by seeability), the cells their inserts turned known and
     the learned non-increasing share.
     """
+def void_enclosure(map: ExplorationMap, range: typing.SupportsFloat | typing.SupportsIndex = 0.5) -> tuple[numpy.typing.NDArray[numpy.uint64], numpy.typing.NDArray[numpy.float64]]:
+    """
+    How enclosed each void cell is, as next_best_view's enclosure_power weighs it: (keys (N,) uint64
+    sorted as map.void_keys(), enclosure (N,) in [0, 1]): the share of the six axis directions that, walking
+    from the cell through unknown cells up to `range` metres, meet an occupied cell (1) rather than a
+    free one (0; unknown all the way: 1/2).
+    """
+__version__: str = '0.1.0'
+
 def view_gains(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, pass_probability: typing.Any = None) -> dict:
     """
     What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight

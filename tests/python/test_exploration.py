@@ -533,3 +533,111 @@ def test_a_view_in_front_of_an_opening_outside_the_search_space_is_found():
     r = next_best_view(emap, cam, workspace_box=np.array([[0.2, -0.3, 0.02], [0.4, 0.3, 0.4]]))
     assert r["best_pose"] is not None, r["candidate_cells"]
     assert r["best_pose"][0, 3] <= 0.4 and r["ranked"][0]["expected_void"] > 10
+
+
+def test_void_enclosure_by_hand_and_the_ranking_it_weighs():
+    """An open crate seen from the sides and a solid block beside it. A void cell in the middle of the
+    crate meets the four walls (closed: 2 halves each), free space above it (open: 0) and unknown space
+    below it to the range (the crate's floor was never seen: 1 half): 9 of 12 halves. The crate's inside
+    is more enclosed than the shadows around it. With enclosure_power, the ranking gain is the expected
+    void cells each weighted by enclosure^power (at 0: the plain expected void cells)."""
+    from octoreach import _core
+
+    scene = Scene()
+    scene.add_box((-2, -2, -0.05), (2, 2, 0))
+    scene.add_crate((0.6, -0.2, 0), (1.0, 0.2, 0.3), 0.02)
+    scene.add_box((0.6, 0.5, 0), (0.75, 0.65, 0.3))
+    cam = DepthCamera(160, 120, FOV, 2.0)
+    emap = ExplorationMap(resolution=0.03, search_space=ex.scene_region(scene))
+    list(survey(emap, scene, cam, [(0.0, 0.0, 0.5), (0.8, -0.9, 0.45), (1.7, 0.0, 0.45), (0.0, 0.6, 0.5)],
+                (0.8, 0.0, 0.15)))
+    keys, enc = _core.void_enclosure(emap)
+    np.testing.assert_array_equal(keys, emap.void_keys())
+    assert np.all((enc >= 0) & (enc <= 1))
+    middle = np.flatnonzero(keys == emap.key_of((0.8, 0.0, 0.15)))
+    assert len(middle) == 1 and enc[middle[0]] == pytest.approx(9 / 12)
+    C = emap.centers(keys)
+    lo, hi = map(np.asarray, scene.interiors[0])
+    crate = np.all((C > lo) & (C < hi), axis=1)
+    block = np.all((C > (0.6, 0.5, 0.0)) & (C < (0.75, 0.65, 0.3)), axis=1)
+    shadows = ~crate & ~block
+    assert crate.sum() > 300 and shadows.sum() > 300
+    assert np.median(enc[crate]) == pytest.approx(9 / 12) and np.median(enc[shadows]) <= 5 / 12
+    # within one cell all six neighbours of the middle cell are unknown (1/2 each); within 1 m its walls
+    # still close four directions, the free space above opens one and below stays unknown
+    assert _core.void_enclosure(emap, 0.03)[1][middle[0]] == pytest.approx(0.5)
+    assert _core.void_enclosure(emap, 1.0)[1][middle[0]] == pytest.approx(9 / 12)
+    top = ex.look_at((0.8, 0.0, 0.9), (0.8, 0.0, 0.0))
+    plain = score_views(emap, cam, top[None])
+    weighted = score_views(emap, cam, top[None], enclosure_power=2.0)
+    assert plain["expected_gain"][0] == pytest.approx(plain["expected_void"][0])
+    assert weighted["expected_void"][0] == pytest.approx(plain["expected_void"][0])
+    # into the crate (its cells weigh (9/12)^2 = 0.56, the shadows around it less) against down into the
+    # shadow behind the block: the crate keeps more than twice the share of its expected void cells
+    shadow = ex.look_at((0.95, 0.58, 0.8), (0.85, 0.58, 0.0))
+    behind = score_views(emap, cam, shadow[None], enclosure_power=2.0)
+    share_crate = weighted["expected_gain"][0] / weighted["expected_void"][0]
+    share_shadow = behind["expected_gain"][0] / behind["expected_void"][0]
+    assert behind["expected_void"][0] > 20 and share_crate < 9 / 16 and share_crate > 2 * share_shadow
+    # the unknown and frontier gains do not change
+    assert score_views(emap, cam, top[None], gain="unknown", enclosure_power=2.0)["expected_gain"][0] == \
+        pytest.approx(plain["expected_unknown"][0])
+    r = next_best_view(emap, cam, workspace_sphere=((0.8, 0.0, 0.3), 1.0), min_distance=0.05, enclosure_power=2.0)
+    gains = [c["gain"] for c in r["ranked"]]
+    assert gains == sorted(gains, reverse=True)
+    assert r["ranked"] and all(c["gain"] == pytest.approx(c["expected_enclosed_void"]) for c in r["ranked"])
+    assert all(c["expected_enclosed_void"] < c["expected_void"] for c in r["ranked"])
+    for bad in (dict(enclosure_power=-1.0), dict(enclosure_power=float("nan")), dict(enclosure_range=0.0)):
+        with pytest.raises(ValueError, match="enclosure_"):
+            score_views(emap, cam, top[None], **bad)
+    with pytest.raises(ValueError, match="range"):
+        _core.void_enclosure(emap, -1.0)
+
+
+def test_aimed_poses_look_at_void_cells_from_inside_the_reach():
+    """The second look's poses: each looks at a void cell from 0.3-1.0 m, not from below, inside the
+    given sphere and above the floor; a map without voids gives none."""
+    from octoreach.exploration.strategies import aimed_poses
+
+    scene = ex.closed_box_scene("+y", 0.16)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    cam = DepthCamera(120, 90, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (1.6, -0.3, 0.9)], (0.8, 0.0, 0.2)))
+    sphere = ((0.3, 0.0, 0.8), 0.9)
+    P = aimed_poses(np.random.default_rng(0), emap, sphere=sphere, n=100)
+    assert 0 < len(P) <= 100
+    eyes, axes = P[:, :3, 3], P[:, :3, 2]
+    assert np.all(np.linalg.norm(eyes - sphere[0], axis=1) <= sphere[1] + 1e-9) and np.all(eyes[:, 2] >= 0.05)
+    void = set(np.asarray(emap.void_keys()).tolist())
+    for eye, axis in zip(eyes, axes):  # the optical axis passes through a void cell 0.3-1.0 m ahead
+        hits = {int(emap.key_of(eye + t * axis)) for t in np.arange(0.29, 1.01, 0.005)}
+        assert hits & void
+    assert len(aimed_poses(np.random.default_rng(0), ExplorationMap(resolution=0.04), n=10)) == 0
+
+
+def test_the_second_look_finds_the_view_a_narrow_search_missed():
+    """next_best_view limited to one candidate cell and one orientation finds a poor view of the closed
+    box's inside or none; with widen_below above its utility, poses aimed at the void cells are scored
+    too and a view expecting more is taken (details["aimed"]); without it the narrow answer stays."""
+    from octoreach.exploration.strategies import choose_view
+
+    scene = ex.closed_box_scene("+y", 0.16)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    cam = DepthCamera(120, 90, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (1.6, -0.3, 0.9), (0.8, -0.9, 0.9)], (0.8, 0.0, 0.2)))
+    options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
+                   max_valid_poses=1, max_candidate_cells=1, orientations_per_cell=1)
+    region = ex.scene_region(scene)
+
+    def sphere_of(_):
+        return ((0.8, 0.0, 0.3), 1.0)
+
+    narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region)
+    wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region,
+                       widen_below=narrow.utility + 1.0)
+    assert "aimed" not in narrow.details
+    assert wide.details.get("aimed") and wide.pose is not None
+    assert wide.utility > max(2 * narrow.utility, 20.0), (narrow.utility, wide.utility)
+    # the aimed view is a real view: its gains are what score_views gives for its pose
+    again = score_views(emap, cam, wide.pose[None], workspace_sphere=sphere_of(None), min_distance=0.05)
+    assert again["valid"][0] and again["expected_void"][0] == pytest.approx(wide.expected_void)

@@ -125,6 +125,14 @@ struct NbvOptions {
   /// obstacles.
   bool unknown_is_obstacle = true;
   double unknown_margin = 0.05;  ///< metres around the camera that must be observed (not unknown)
+  /// Enclosed voids first (gain FrontierVoid): each void cell also counts with e^enclosure_power in the
+  /// ranking gain (ViewGains::expected_enclosed_void) and in its void's utility (step 1), e its
+  /// enclosure: the share of the six axis directions that, walking from the cell through unknown
+  /// cells up to enclosure_range, meet an occupied cell (1) rather than a free one (0; unknown to the
+  /// range: 1/2). The inside of a box whose walls have been seen counts more than the shadow behind an
+  /// object, where victims and objects do not hide. 0: the paper's plain count (every void cell 1).
+  double enclosure_power = 0.0;
+  double enclosure_range = 0.5;  ///< metres walked from a void cell per direction (enclosure_power > 0)
 };
 
 /// \brief What one camera pose sees under the visibility model (see the file comment).
@@ -135,6 +143,9 @@ struct ViewGains {
   double expected_void = 0;       ///< void cells weighted by their expected visibility
   double expected_unknown = 0;    ///< unknown cells weighted likewise (void cells included)
   double expected_frontier = 0;   ///< frontier cells weighted likewise
+  /// expected_void with each void cell also weighted by its enclosure (NbvOptions::enclosure_power;
+  /// equal to expected_void at power 0): the gain FrontierVoid ranks by.
+  double expected_enclosed_void = 0;
   /// \brief The expected gain of kind g (expected_void, expected_frontier or expected_unknown).
   double gain(NbvGain g) const;
 };
@@ -198,6 +209,12 @@ ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& camera, 
 void expect_view(ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, const NbvOptions& options);
 /// \brief Unknown cells whose seeability a missed view has lowered (some may be known by now).
 std::size_t missed_cells(const ExplorationMap& map);
+
+/// \brief The enclosure e in [0, 1] of every void cell (sorted by key), as NbvOptions::enclosure_power
+/// weighs it: the share of the six axis directions that, walking from the cell through unknown cells up
+/// to `range` metres, meet an occupied cell (1) rather than a free cell (0); a direction that stays in
+/// unknown space to the range counts 1/2. \throws std::invalid_argument for a range that is not > 0.
+std::vector<std::pair<CellKey, double>> void_enclosure(const ExplorationMap& map, double range = 0.5);
 
 /// \brief The visibility curve a map learned from its announced views (see the file comment), per
 /// class (index 0: unknown cells outside the voids, 1: void cells) and unknown depth d (the last

@@ -230,6 +230,9 @@ struct ExplorationState {
   mutable std::vector<CellKey> void_slot_seed;
   mutable KeyTable<int> void_slot_of;
   mutable std::vector<CellKey> void_added, void_removed;
+  // How enclosed each void cell is (void_enclosure.cpp), for enclosure_range; dropped by every insert.
+  mutable std::shared_ptr<const KeyTable<std::uint8_t>> enclosure;
+  mutable double enclosure_range = -1;
 
   CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }
   Eigen::Vector3d center(CellKey k) const {

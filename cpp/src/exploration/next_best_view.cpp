@@ -31,7 +31,7 @@ struct UtilityVector {
   double u;
 };
 
-std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
+std::vector<UtilityVector> utility_vectors(const ExplorationMap& map, const detail::VoidWeights& weights = {}) {
   std::vector<UtilityVector> out;
   const auto& vcs = detail::cached_void_clusters(map);
   const auto& S = detail::state(map);
@@ -40,10 +40,11 @@ std::vector<UtilityVector> utility_vectors(const ExplorationMap& map) {
     const VoidCluster& v = vcs[fv.void_index];
     // the paper's u_i, "the expectation of the void volume that will be discovered": the void's volume,
     // each cell weighted by its seeability (1 until views that expected it missed it, see expect_view)
+    // and, with enclosure_power, by its enclosure
     double utility = fv.utility;
-    if (S.hidden.size()) {
+    if (S.hidden.size() || weights) {
       utility = 0;
-      for (CellKey k : v.cells) utility += S.seeability(k) * cell;
+      for (CellKey k : v.cells) utility += S.seeability(k) * weights.of(k) * cell;
     }
     if (utility <= 0) continue;
     std::vector<Eigen::Vector3d> corners{v.centroid};
@@ -237,9 +238,9 @@ struct Slot {
 class PoseScorer {
  public:
   PoseScorer(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-             const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, std::pair<double, double> p)
+             const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, const detail::ScoreModel& model)
       : map_(map), cam_(cam), opt_(opt), cells_(cells), per_cell_(std::size_t(opt.orientations_per_cell)),
-        checker_(checker), p_(p) {}
+        checker_(checker), model_(model) {}
   std::size_t total() const { return cells_.size() * per_cell_; }
   // Pose idx: orientation idx % per_cell of cell idx / per_cell, sampled from its own stream.
   Slot score(std::size_t idx) const;
@@ -253,7 +254,7 @@ class PoseScorer {
   const std::vector<UtilityCell>& cells_;
   const std::size_t per_cell_;
   const detail::ViewChecker& checker_;
-  const std::pair<double, double> p_;
+  const detail::ScoreModel& model_;
 };
 
 // Orientation 0 looks along the mean direction; the others are drawn in a cone around it.
@@ -288,7 +289,7 @@ Slot PoseScorer::score(std::size_t idx) const {
     s.collides = st == ViewStatus::ArmCollision;
     if (st != ViewStatus::Valid) return s;
   }
-  detail::score_view(map_, cam_, opt_, p_, s.view);
+  detail::score_view(map_, cam_, opt_, model_, s.view);
   s.valid = true;
   return s;
 }
@@ -296,9 +297,9 @@ Slot PoseScorer::score(std::size_t idx) const {
 // Step 4: poses in batches of a few per thread, in index order, until max_valid_poses are valid;
 // ranked by void cells, then unknown cells, then index.
 void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-                      const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker, int threads,
-                      NbvResult& r) {
-  const PoseScorer scorer(map, cam, opt, cells, checker, {r.pass_probability, r.void_pass_probability});
+                      const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker,
+                      const detail::ScoreModel& model, int threads, NbvResult& r) {
+  const PoseScorer scorer(map, cam, opt, cells, checker, model);
   const std::size_t total = scorer.total(), max_valid = std::size_t(opt.max_valid_poses);
   const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
@@ -346,10 +347,11 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   detail::validate_options(cam, opt);
   auto guard = detail::read_guard(map);
   NbvResult r;
-  std::tie(r.pass_probability, r.void_pass_probability) = detail::pass_probabilities(map, opt);
+  const detail::ScoreModel model = detail::score_model(map, opt);
+  std::tie(r.pass_probability, r.void_pass_probability) = model.p;
   const int threads = detail::default_threads(opt.threads);
   const std::vector<UtilityVector> vecs =
-      opt.gain == NbvGain::FrontierVoid ? utility_vectors(map) : frontier_vectors(map, opt.gain);
+      opt.gain == NbvGain::FrontierVoid ? utility_vectors(map, model.void_weights) : frontier_vectors(map, opt.gain);
   r.utility_vectors = vecs.size();
   std::vector<UtilityCell> cells = accumulate(map, vecs, cam.max_range, 8, threads, &opt.workspace);
   r.utility_cells = cells.size();
@@ -365,12 +367,12 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   r.seconds_prune = seconds_since(t_prune);
 
   auto t_score = Clock::now();
-  score_candidates(map, cam, opt, batch, checker, threads, r);
+  score_candidates(map, cam, opt, batch, checker, model, threads, r);
   // The paper walks the cells by utility until it has valid poses: when the best max_candidate_cells
   // cells give none (arm collisions, no IK), the next ones are tried, up to kMaxCellBatches batches.
   for (int round = 1; round < kMaxCellBatches && r.ranked.empty() && next < cells.size(); ++round) {
     next = keep_clear_cells(checker, map, opt, cells, next, batch, r);
-    score_candidates(map, cam, opt, batch, checker, threads, r);
+    score_candidates(map, cam, opt, batch, checker, model, threads, r);
   }
   r.seconds_score = seconds_since(t_score);
   r.seconds = seconds_since(t0);

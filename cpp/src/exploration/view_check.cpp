@@ -51,6 +51,11 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
                                 std::to_string(opt.unknown_pass_probability));
   if (!(opt.unknown_margin >= 0) || !std::isfinite(opt.unknown_margin))
     throw std::invalid_argument("unknown_margin must be a non-negative number of metres");
+  if (!(opt.enclosure_power >= 0) || !std::isfinite(opt.enclosure_power))
+    throw std::invalid_argument("enclosure_power must be a finite number >= 0, got " + std::to_string(opt.enclosure_power));
+  if (!(opt.enclosure_range > 0) || !std::isfinite(opt.enclosure_range))
+    throw std::invalid_argument("enclosure_range must be a positive number of metres, got " +
+                                std::to_string(opt.enclosure_range));
   if (opt.score_width <= 0 || opt.score_height <= 0)
     throw std::invalid_argument("score_width and score_height must be positive");
 }
@@ -177,7 +182,7 @@ std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntri
                                   std::to_string(poses.size()) + " positions");
   }
   auto guard = detail::read_guard(map);
-  const auto p = detail::pass_probabilities(map, opt);
+  const detail::ScoreModel model = detail::score_model(map, opt);
   const detail::ViewChecker checker(map, opt);
   const Pose to_arm = opt.capability_base.inverse();
   std::vector<ScoredView> out(poses.size());
@@ -194,11 +199,12 @@ std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntri
     else if (opt.chain)
       s.status = checker.reach(s.view.pose, s.view.q, i);
     if (score_invalid || s.valid()) {
-      detail::score_view(map, cam, opt, p, s.view);
+      detail::score_view(map, cam, opt, model, s.view);
       return;
     }
     constexpr double kNotScored = std::numeric_limits<double>::quiet_NaN();
-    s.view.expected_void = s.view.expected_unknown = s.view.expected_frontier = s.view.gain = s.view.utility_dm3 = kNotScored;
+    s.view.expected_void = s.view.expected_unknown = s.view.expected_frontier = s.view.gain = s.view.utility_dm3 =
+        s.view.expected_enclosed_void = kNotScored;
   }, 1);
   return out;
 }

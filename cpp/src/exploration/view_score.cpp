@@ -29,7 +29,7 @@ NbvGain gain_from_name(const std::string& name) {
 
 double ViewGains::gain(NbvGain g) const {
   switch (g) {
-    case NbvGain::FrontierVoid: return expected_void;
+    case NbvGain::FrontierVoid: return expected_enclosed_void;
     case NbvGain::Frontiers: return expected_frontier;
     case NbvGain::Unknown: return expected_unknown;
   }
@@ -109,7 +109,8 @@ class MetCells {
 }  // namespace
 
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                              double p, double p_void, bool learned, std::vector<ExpectedCell>* unknown_met) {
+                              double p, double p_void, bool learned, std::vector<ExpectedCell>* unknown_met,
+                              const VoidWeights* void_weights) {
   const ExplorationState& S = state(map);
   // (a curve no announced view taught is the geometric weight itself: skip it)
   const VisibilityCurve* curve = learned && S.curve.taught ? &S.curve : nullptr;
@@ -174,6 +175,7 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
       if (f & kVoidFlag) {
         ++v.void_cells;
         v.expected_void += e;
+        v.expected_enclosed_void += void_weights ? e * void_weights->of(k) : e;
       }
     } else {
       ++v.frontier_cells;
@@ -196,11 +198,19 @@ std::pair<double, double> pass_probabilities(const ExplorationMap& map, const Nb
   return {r.pass_probability(), r.void_pass_probability()};
 }
 
-void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-                std::pair<double, double> p, ViewCandidate& v) {
+ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt) {
+  ScoreModel m;
+  m.p = pass_probabilities(map, opt);
+  if (opt.gain == NbvGain::FrontierVoid)
+    m.void_weights = void_weights(state(map), map.resolution(), opt.enclosure_power, opt.enclosure_range);
+  return m;
+}
+
+void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
+                ViewCandidate& v) {
   static_cast<ViewGains&>(v) =
-      view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, p.first, p.second,
-                          opt.unknown_pass_probability < 0);
+      view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, m.p.first, m.p.second,
+                          opt.unknown_pass_probability < 0, nullptr, m.void_weights ? &m.void_weights : nullptr);
   v.gain = v.ViewGains::gain(opt.gain);
   const double res = map.resolution();
   v.utility_dm3 = v.expected_void * res * res * res * 1000.0;

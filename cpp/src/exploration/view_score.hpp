@@ -6,6 +6,7 @@
 
 #include "octoreach/collision.hpp"
 #include "octoreach/next_best_view.hpp"
+#include "void_enclosure.hpp"
 
 namespace octomap {
 class OcTree;
@@ -23,7 +24,8 @@ struct ExpectedCell;
 // cell a ray met with its largest ray weight w (before seeability), that ray's unknown depth and its class.
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void, bool learned,
-                              std::vector<ExpectedCell>* unknown_met = nullptr);
+                              std::vector<ExpectedCell>* unknown_met = nullptr,
+                              const VoidWeights* void_weights = nullptr);
 
 // After an insert: each cell the view announced by expect_view expected (weight w), left unknown and
 // still met by the view's rays in the updated map (no surface seen in between) has its seeability
@@ -37,9 +39,17 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt);
 // p (unknown cells outside the voids) and p_void of a search: the fixed option or the map's learned values.
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt);
 
+// What every view score of one search shares: p and p_void, and the void weights (enclosure_power).
+struct ScoreModel {
+  std::pair<double, double> p{1.0, 1.0};
+  VoidWeights void_weights;
+};
+// The model of a search on `map` with `opt` (the caller holds the map's lock).
+ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);
+
 // Fills gains, gain and utility_dm3 of `v` (its pose set).
-void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-                std::pair<double, double> p, ViewCandidate& v);
+void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
+                ViewCandidate& v);
 
 // The checks of one search that make a pose a view: camera clearance, the capability map's axis,
 // IK and the arm's collisions. Built once per search (the obstacles: the map's occupied cells and,

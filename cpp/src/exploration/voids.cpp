@@ -80,6 +80,7 @@ void update_voids(ExplorationState& s, const std::vector<CellChange>& changed, c
   }
   std::lock_guard<std::mutex> lock(s.cache_mutex);
   s.voids_dirty = true;
+  s.enclosure.reset();
   st.seconds_voids = since(t0);
 }
 

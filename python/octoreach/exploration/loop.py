@@ -36,6 +36,12 @@ STOP_PATIENCE = 3
 LOOP_VALID_POSES = 100
 LOOP_CANDIDATE_CELLS = 800
 
+# The loop's ranking of frontier_void views: each void cell also counts with its enclosure^power (NbvOptions::
+# enclosure_power; next_best_view's default 0 is the paper's plain count). Voids inside boxes first, the
+# shadows behind objects later (docs/exploration.md, round 10). The stopping rule still looks at the plain
+# expected void cells.
+LOOP_ENCLOSURE_POWER = 2.0
+
 # A view not taken because its arm would touch the scene's true geometry (physical_check) is a motion
 # that failed: the loop does not choose views within this distance (m) of its camera again, as a robot
 # whose motion to a view failed would not try the same view again (else a search on an unchanged map
@@ -230,7 +236,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
             min_distance: float = 0.05, score_size=None, void_fit_threshold: Optional[float] = None, seed: int = 0,
             search_space=None, capability_map=None, min_reachability: Optional[float] = None,
             capability_orientations: Optional[bool] = None, base_moves=None, target=None,
-            physical_check: bool = True, learn_misses: bool = True,
+            physical_check: bool = True, learn_misses: bool = True, enclosure_power: Optional[float] = None,
+            second_look: bool = True,
             on_view: Optional[Callable] = None) -> ExplorationResult:
     """Runs the paper's loop from `start_pose` (4x4 camera -> world) and returns the per-view table.
 
@@ -263,7 +270,12 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     `resolution`, `void_fit_threshold` go to ExplorationMap; `max_valid_poses`, `orientations_per_cell`,
     `max_candidate_cells`, `score_size` ((width, height)), `min_reachability` and `capability_orientations`
     to next_best_view / score_views; None keeps their defaults (but max_valid_poses and max_candidate_cells
-    default to the loop's LOOP_VALID_POSES and LOOP_CANDIDATE_CELLS). View k searches with seed `seed + k`.
+    default to the loop's LOOP_VALID_POSES and LOOP_CANDIDATE_CELLS). `enclosure_power` (frontier_void):
+    enclosed voids first (NbvOptions.enclosure_power; None: LOOP_ENCLOSURE_POWER, 0: the paper's plain
+    count). `second_look` (frontier_void): when the search's best view expects at most `min_utility`
+    void cells (or none), AIMED_POSES poses aimed at void cells are scored too and the better view is
+    taken (strategies.aimed_poses), so the loop stops only when neither finds a view worth taking.
+    View k searches with seed `seed + k`.
     `physical_check` (with a robot): a chosen view whose arm touches the scene's true geometry is not
     taken (counted as a view, `physically_valid` False, nothing integrated), and no later view within
     FAILED_VIEW_RADIUS of its camera is chosen. `target` ((2, 3) lo, hi):
@@ -295,7 +307,9 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
                    max_candidate_cells=LOOP_CANDIDATE_CELLS if max_candidate_cells is None else max_candidate_cells,
                    **given(orientations_per_cell=orientations_per_cell, score_width=width, score_height=height,
                            min_reachability=min_reachability, capability_orientations=capability_orientations))
-    if strategy != "frontier_void":  # score_views has no search of its own
+    if strategy == "frontier_void":
+        options["enclosure_power"] = LOOP_ENCLOSURE_POWER if enclosure_power is None else enclosure_power
+    else:  # score_views has no search of its own; the baselines rank by their own gains
         for k in ("max_valid_poses", "orientations_per_cell", "max_candidate_cells"):
             options.pop(k, None)
     physics = _Physics(rob, chain, scene, physical_check)
@@ -336,7 +350,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
         void_before = emap.centers(emap.void_keys())
         t0 = time.perf_counter()
         choice = choose_view(strategy, emap, camera, bases, current, sphere_of, options, seed + view, region,
-                             candidates)
+                             candidates, widen_below=min_utility if second_look else None)
         t_search = time.perf_counter() - t0
         rows.append(_row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, pose, current, valid,
                          target, pts))

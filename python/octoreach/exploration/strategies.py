@@ -25,6 +25,13 @@ STRATEGIES = ("frontier_void", "random", "frontiers", "unknown")
 GAIN_OF = {"frontier_void": "expected_void", "random": "expected_void", "frontiers": "expected_frontier",
            "unknown": "expected_unknown"}
 CANDIDATES = 200  # sampled poses per view and base for the baselines
+# frontier_void's second look: when next_best_view's best valid view expects at most the stopping threshold
+# (or nothing), this many camera poses aimed at random void cells (from 0.3-1.0 m, inside the arm's reach)
+# are scored too, and the better view is taken. The paper's candidate cells come from utility vectors
+# through frontier cells; the last voids of a box (its corners, seen only through a small opening) have
+# few vectors that leave the box, and valid views that expect 70-100 void cells were missed while the loop
+# stopped with "utility 0" (docs/exploration.md, round 10).
+AIMED_POSES = 400
 
 
 def check_strategy(strategy) -> str:
@@ -100,12 +107,55 @@ def _score(emap, camera, poses, options):
                     "void_cells": int(r["void_cells"][i]), "expected_void": float(r["expected_void"][i]),
                     "expected_unknown": float(r["expected_unknown"][i]),
                     "expected_frontier": float(r["expected_frontier"][i]),
+                    "expected_gain": float(r["expected_gain"][i]),
                     "q": None if q is None or not r["valid"][i] else np.asarray(q[i])})
     return out
 
 
-def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed) -> Choice:
-    """next_best_view over all bases (the current one first, so ties keep it)."""
+def aimed_poses(rng, emap, sphere=None, box=None, n: int = AIMED_POSES, floor: float = 0.05,
+                distance=(0.3, 1.0)) -> np.ndarray:
+    """Up to `n` camera poses (n, 4, 4), each looking at a random void cell of `emap` from a random direction
+    (not from below) at a distance drawn from `distance` (m), kept inside the sphere (centre, radius)
+    and/or box ((2, 3)) and above `floor`."""
+    keys = np.asarray(emap.void_keys())
+    if len(keys) == 0 or n <= 0:
+        return np.zeros((0, 4, 4))
+    targets = np.asarray(emap.centers(keys[rng.integers(len(keys), size=4 * n)]), float).reshape(-1, 3)
+    d = rng.normal(size=targets.shape)
+    d[:, 2] = np.abs(d[:, 2])
+    d /= np.linalg.norm(d, axis=1, keepdims=True)
+    eyes = targets + d * rng.uniform(distance[0], distance[1], size=(len(targets), 1))
+    ok = eyes[:, 2] >= floor
+    if sphere is not None:
+        ok &= np.linalg.norm(eyes - np.asarray(sphere[0], float), axis=1) <= float(sphere[1])
+    if box is not None:
+        lo, hi = np.asarray(box, float)
+        ok &= np.all((eyes >= lo) & (eyes <= hi), axis=1)
+    idx = np.flatnonzero(ok)[:n]
+    return np.array([look_at(eyes[i], targets[i]) for i in idx]).reshape(-1, 4, 4)
+
+
+def _aimed_choice(emap, camera, base, i, sphere, options, seed) -> Optional[Choice]:
+    """The best valid of AIMED_POSES poses aimed at void cells (frontier_void's gain), or None."""
+    rng = np.random.default_rng(seed)
+    poses = aimed_poses(rng, emap, sphere=sphere, box=options.get("workspace_box"))
+    opts = {k: v for k, v in options.items() if k not in ("max_valid_poses", "orientations_per_cell", "max_candidate_cells")}
+    opts.update(chain_base=base, workspace_sphere=sphere, seed=seed, gain="frontier_void",
+                capability_base=None if options.get("capability_map") is None else base)
+    valid = [v for v in _score(emap, camera, poses, opts) if v["valid"]]
+    if not valid:
+        return None
+    v = max(valid, key=lambda w: (w["expected_gain"], w["expected_unknown"]))
+    res = emap.resolution
+    return Choice(pose=np.asarray(v["pose"]), void_cells=v["void_cells"], expected_void=v["expected_void"],
+                  expected_unknown=v["expected_unknown"], expected_frontier=v["expected_frontier"],
+                  utility=v["expected_void"], utility_dm3=v["expected_void"] * res ** 3 * 1000, q=v.get("q"), base=i,
+                  candidates=len(poses), valid=len(valid), details={"aimed": True})
+
+
+def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_below=None) -> Choice:
+    """next_best_view over all bases (the current one first, so ties keep it); with `widen_below`, a
+    best view expecting at most that many void cells gets a second look (AIMED_POSES aimed poses)."""
     best = None
     for i in [current] + [j for j in range(len(bases)) if j != current]:
         bp = bases[i]
@@ -121,6 +171,12 @@ def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed) -> Choic
                    q=top.get("q"), base=i, candidates=int(r["poses_scored"]), valid=len(r["ranked"]), details=r)
         if best is None or c.utility > best.utility:
             best = c
+    if widen_below is not None and best.utility <= widen_below:
+        for i in [current] + [j for j in range(len(bases)) if j != current]:
+            a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), options, seed)
+            if a is not None and a.utility > best.utility:
+                a.details = dict(best.details, aimed=True)
+                best = a
     return best
 
 
@@ -157,11 +213,11 @@ def _sampled_choice(strategy, emap, camera, bases, current, sphere_of, options, 
 
 
 def choose_view(strategy, emap, camera, bases, current, sphere_of, options, seed, region,
-                candidates: int = CANDIDATES) -> Choice:
+                candidates: int = CANDIDATES, widen_below=None) -> Choice:
     """The next view of `strategy` (see the module) from any of `bases` (chain base poses; the current
     one first). `sphere_of(base)` is the reach sphere around a base (or the fixed workspace sphere),
     `options` next_best_view's keywords without seed, chain_base and the workspace sphere."""
     check_strategy(strategy)
     if strategy == "frontier_void":
-        return _nbv_choice(emap, camera, bases, current, sphere_of, options, seed)
+        return _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_below)
     return _sampled_choice(strategy, emap, camera, bases, current, sphere_of, options, seed, region, candidates)
