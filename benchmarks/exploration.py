@@ -102,12 +102,12 @@ def main() -> int:
     # so that every repeat pays it), and the second look (AIMED_POSES poses aimed at void cells, scored)
     loop_s, enclosure_s, aimed_s = [], [], []
     for i in range(a.repeats):
-        t0 = time.perf_counter()
-        _core.void_enclosure(emap, 0.5 + 1e-9 * (i + 1))
-        enclosure_s.append(time.perf_counter() - t0)
         loop_s.append(next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
                                      enclosure_power=ex.LOOP_ENCLOSURE_POWER,
-                                     enclosure_range=0.5 + 1e-9 * (i + 1))["seconds"])
+                                     enclosure_range=0.5 + 1e-9 * (2 * i + 1))["seconds"])
+        t0 = time.perf_counter()
+        _core.void_enclosure(emap, 0.5 + 1e-9 * (2 * i + 2))
+        enclosure_s.append(time.perf_counter() - t0)
         P = aimed_poses(np.random.default_rng(i), emap, sphere=((0.5, 0.0, 0.5), 1.0))
         t0 = time.perf_counter()
         score_views(emap, cam, P, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05, score_invalid=False,

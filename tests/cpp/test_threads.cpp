@@ -96,6 +96,44 @@ TEST(Threads, NextBestViewWhileInserting) {
   EXPECT_GT(runs, 0);
 }
 
+// The void enclosure is cached per map until the next insert: searches from several threads (with
+// different ranges, so the cache is rebuilt under them) while another thread inserts.
+TEST(Threads, EnclosureWeightedSearchesWhileInserting) {
+  ExplorationOptions o;
+  o.resolution = 0.05;
+  ExplorationMap m(o);
+  m.insert(cloud(3000, 0, 1), {0, 0, 0.5}, -1);
+  CameraIntrinsics cam;
+  cam.width = 32;
+  cam.height = 24;
+  cam.max_range = 3.0;
+  std::atomic<bool> done{false};
+  std::atomic<int> runs{0};
+  std::thread writer([&] {
+    for (int i = 1; i < 5; ++i) m.insert(cloud(3000, 0.01 * i, 20 + i), {0, 0, 0.5}, -1);
+    done = true;
+  });
+  std::vector<std::thread> readers;
+  for (int t = 0; t < 2; ++t)
+    readers.emplace_back([&, t] {
+      NbvOptions nbv;
+      nbv.threads = 1;
+      nbv.enclosure_power = 2.0;
+      nbv.enclosure_range = 0.3 + 0.1 * t;
+      while (!done || runs.load() < 2) {
+        (void)next_best_view(m, cam, nbv);
+        (void)void_enclosure(m, nbv.enclosure_range);
+        ++runs;
+      }
+    });
+  writer.join();
+  for (auto& t : readers) t.join();
+  EXPECT_GE(runs.load(), 2);
+  const auto e = void_enclosure(m, 0.5);
+  EXPECT_EQ(e.size(), m.void_cell_count());
+  for (const auto& [k, v] : e) EXPECT_TRUE(v >= 0.0 && v <= 1.0) << k;
+}
+
 TEST(Threads, SceneAddWhileCapturing) {
   Scene s;
   s.add_box({1, -1, 0}, {1.2, 1, 1});

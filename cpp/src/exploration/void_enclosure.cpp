@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/thread_pool.hpp"
 #include "exploration_state.hpp"
 #include "octoreach/next_best_view.hpp"
 
@@ -50,9 +51,14 @@ std::shared_ptr<const EnclosureTable> cached_void_enclosure(const ExplorationSta
   std::lock_guard<std::mutex> lock(s.cache_mutex);
   if (s.enclosure && s.enclosure_range == range) return s.enclosure;
   const int steps = std::max(1, int(std::ceil(range / resolution - 1e-9)));
-  auto table = std::make_shared<EnclosureTable>(s.void_set.size());
-  GridReader g(s.grid);
-  for (CellKey k : s.void_set) table->at(k) = closed_halves(g, k, steps);
+  const std::vector<CellKey> keys(s.void_set.begin(), s.void_set.end());
+  std::vector<std::uint8_t> halves(keys.size());
+  parallel_for(keys.size(), 0, [&](std::size_t i, int) {
+    const GridReader g(s.grid);
+    halves[i] = closed_halves(g, keys[i], steps);
+  }, 256);
+  auto table = std::make_shared<EnclosureTable>(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) table->at(keys[i]) = halves[i];
   s.enclosure = table;
   s.enclosure_range = range;
   return table;
