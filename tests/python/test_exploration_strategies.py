@@ -67,6 +67,34 @@ def test_oracle_honours_the_arm_reach():
     assert not obs.observable[away].any()
 
 
+def test_a_robot_standing_on_the_floor_is_not_in_collision_with_it():
+    """example-robot-data's Panda at the origin: its base link's bottom lies at z = 0, on the scene's floor
+    (touching it). The checks of views against the true scene test the links the arm moves
+    (robot.moved_links), so the oracle finds the open crate observable from above (before: no pose at
+    all was collision-free), while the arm itself still may not touch the floor or the crate."""
+    from octoreach import Obstacles, robots
+
+    robot = robots.load("panda")
+    chain = robot.chain("panda_link0", "panda_hand")
+    moved = ex.moved_links(robot, chain)
+    assert "panda_link0" not in moved and {"panda_link7", "panda_hand"} <= set(moved)
+    s = Scene()
+    _floor(s)
+    s.add_crate((0.4, -0.15, 0.0), (0.65, 0.15, 0.2), 0.02)
+    floor = Obstacles()
+    floor.add_box((4.0, 4.0, 0.05), np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, -0.025], [0, 0, 0, 1.0]]))
+    assert robot.in_collision(robot.home(), floor)  # all links: the base touches the floor
+    assert not robot.in_collision(robot.home(), floor, links=moved)
+    base = robot.link_poses(robot.home())[chain.base_link]
+    obs = ex.observable_cells(s, chain=chain, robot=robot, base_pose=base, resolution=RES, joint_samples=300,
+                              aimed_samples=300, width=48, height=36)
+    assert obs.poses_valid > 50 and obs.fraction > 0.8
+    # the arm itself still may not touch the floor: the hand's flange 2 cm above it, looking down
+    down = chain.ik(ex.look_at((0.5, 0.0, 0.02), (0.5, 0.0, -1.0)), mode="approach", attempts=20)
+    assert down is not None
+    assert robot.in_collision(chain.to_robot_configuration(down), floor, links=moved)
+
+
 def test_usar_scenes_are_seeded_and_hide_the_target_in_a_container():
     a, b, c = ex.usar_scene(3), ex.usar_scene(3), ex.usar_scene(4)
     assert [tuple(map(tuple, x)) for x in a.scene.boxes] == [tuple(map(tuple, x)) for x in b.scene.boxes]

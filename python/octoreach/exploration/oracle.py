@@ -1,7 +1,7 @@
 """The observable interior of a scene, by brute force: a test and benchmark utility, not the planner.
 
 A cell is observable when a camera pose the arm can reach without touching the scene's true geometry
-or itself sees it: a ray of a noiseless capture from that pose passes through it (free) or ends in it (hit).
+(with the links the chain moves: robot.moved_links) or itself sees it: a ray of a noiseless capture from that pose passes through it (free) or ends in it (hit).
 The oracle samples camera poses densely in two ways and keeps the collision-free ones:
 
 - random joint configurations of the arm (forward kinematics: reachable by construction), and
@@ -22,7 +22,7 @@ import numpy as np
 
 from .._core import DepthCamera, ExplorationMap, Obstacles, Scene
 from .metrics import region_points
-from .robot import arm_base_pose, arm_reach, explorer_robot
+from .robot import arm_base_pose, arm_reach, explorer_robot, moved_links
 
 
 @dataclass
@@ -80,9 +80,10 @@ def _joint_poses(robot, chain, chain_base, root, obstacles, n, rng):
     hi = np.where(np.isfinite(chain.upper), chain.upper, np.pi)
     Q = rng.uniform(lo, hi, size=(n, chain.dof))
     tips = chain.fk_batch(Q)
+    links = moved_links(robot, chain)
     out = []
     for q, T in zip(Q, tips):
-        if not robot.in_collision(chain.to_robot_configuration(q), obstacles, root, self_collision=True):
+        if not robot.in_collision(chain.to_robot_configuration(q), obstacles, root, self_collision=True, links=links):
             out.append(chain_base @ T)
     return out
 
@@ -116,7 +117,7 @@ def _aimed_poses(scene, robot, chain, chain_base, root, obstacles, points, n, rn
     Ts = np.array([inv @ look_at(e, t) for e, t in zip(eyes, targets)])
     Q, ok = chain.ik_batch(Ts, mode="approach", approach_axis=(0.0, 0.0, 1.0), attempts=ik_attempts,
                            position_tolerance=1e-3, orientation_tolerance=1e-2, obstacles=obstacles, self_collision=True,
-                           base_pose=root, rng_seed=int(rng.integers(1 << 31)))
+                           base_pose=root, rng_seed=int(rng.integers(1 << 31)), obstacle_links=moved_links(robot, chain))
     return [chain_base @ chain.fk(q) for q in Q[ok]]
 
 
