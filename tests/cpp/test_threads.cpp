@@ -26,6 +26,21 @@ std::vector<Eigen::Vector3d> cloud(int n, double shift, std::uint64_t seed) {
   return p;
 }
 
+// A 5 cm map after one cloud, and a small camera: what the search-while-inserting tests start from.
+ExplorationOptions coarse_map_options() {
+  ExplorationOptions o;
+  o.resolution = 0.05;
+  return o;
+}
+
+CameraIntrinsics small_camera() {
+  CameraIntrinsics cam;
+  cam.width = 32;
+  cam.height = 24;
+  cam.max_range = 3.0;
+  return cam;
+}
+
 }  // namespace
 
 TEST(Threads, ExplorationMapInsertWhileReading) {
@@ -72,14 +87,9 @@ TEST(Threads, ExplorationMapInsertWhileReading) {
 }
 
 TEST(Threads, NextBestViewWhileInserting) {
-  ExplorationOptions o;
-  o.resolution = 0.05;
-  ExplorationMap m(o);
+  ExplorationMap m(coarse_map_options());
   m.insert(cloud(3000, 0, 1), {0, 0, 0.5}, -1);
-  CameraIntrinsics cam;
-  cam.width = 32;
-  cam.height = 24;
-  cam.max_range = 3.0;
+  const CameraIntrinsics cam = small_camera();
   NbvOptions nbv;
   nbv.threads = 2;
   std::atomic<bool> done{false};
@@ -99,14 +109,9 @@ TEST(Threads, NextBestViewWhileInserting) {
 // The void enclosure is cached per map until the next insert: searches from several threads (with
 // different ranges, so the cache is rebuilt under them) while another thread inserts.
 TEST(Threads, EnclosureWeightedSearchesWhileInserting) {
-  ExplorationOptions o;
-  o.resolution = 0.05;
-  ExplorationMap m(o);
+  ExplorationMap m(coarse_map_options());
   m.insert(cloud(3000, 0, 1), {0, 0, 0.5}, -1);
-  CameraIntrinsics cam;
-  cam.width = 32;
-  cam.height = 24;
-  cam.max_range = 3.0;
+  const CameraIntrinsics cam = small_camera();
   std::atomic<bool> done{false};
   std::atomic<int> runs{0};
   std::thread writer([&] {
