@@ -47,6 +47,12 @@ def test_oracle_sealed_box_unobservable_open_crate_observable_from_above():
     assert sealed.sum() > 10 and crate.sum() > 50
     assert not obs.observable[sealed].any()  # nothing sees into a sealed box
     assert obs.observable[crate].mean() > 0.95  # the crate's inside is seen from above
+    # the kept poses are the oracle's answer: what each one's capture sees, together, is what is observable
+    assert obs.poses.shape == (obs.poses_valid, 4, 4)
+    union = np.zeros(len(obs.points), bool)
+    for T in obs.poses:
+        union |= obs.sees(T, s)
+    np.testing.assert_array_equal(union, obs.observable)
     # an exploration map that knows nothing sees nothing; one that knows everything sees all that is observable
     empty = ExplorationMap(resolution=RES)
     assert obs.share(empty) == 0.0 and obs.seen_unobservable(empty) == 0

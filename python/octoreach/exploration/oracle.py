@@ -16,7 +16,7 @@ share of the observable interior an exploration map knows.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -35,6 +35,22 @@ class Observable:
     resolution: float
     poses_sampled: int
     poses_valid: int
+    fov: float = np.deg2rad(58.0)  # the captures' camera
+    max_range: float = 4.0
+    width: int = 64
+    height: int = 48
+    poses: np.ndarray = field(default_factory=lambda: np.zeros((0, 4, 4)))  # (poses_valid, 4, 4) the kept camera poses
+
+    def sees(self, pose, scene, points=None) -> np.ndarray:
+        """Which of `points` (default: the regions' sample points) a noiseless capture from `pose` (4x4)
+        turns known, as the oracle's own captures do."""
+        pts = self.points if points is None else np.asarray(points, float).reshape(-1, 3)
+        cam = DepthCamera(self.width, self.height, self.fov, self.max_range, noise=0.0)
+        m = ExplorationMap(resolution=self.resolution, track_voids=False)
+        cloud = cam.capture(scene, np.asarray(pose, float))
+        if len(cloud):
+            m.insert(cloud, np.asarray(pose, float)[:3, 3], self.max_range)
+        return m.state(pts) != 0 if len(pts) else np.zeros(0, bool)
 
     @property
     def count(self) -> int:
@@ -158,4 +174,6 @@ def observable_cells(scene: Scene, chain=None, base_pose=None, robot=None, regio
             emap.insert(pts, T[:3, 3], max_range)
     seen = emap.state(points) != 0 if len(points) else np.zeros(0, bool)
     return Observable(points=points, observable=seen, resolution=resolution,
-                      poses_sampled=joint_samples + aimed_samples, poses_valid=len(poses))
+                      poses_sampled=joint_samples + aimed_samples, poses_valid=len(poses),
+                      poses=np.array(poses, float).reshape(-1, 4, 4), fov=fov, max_range=max_range, width=width,
+                      height=height)
