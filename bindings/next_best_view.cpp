@@ -119,6 +119,9 @@ void wrap_nbv_options(py::module_& m) {
                      "safe views: unknown cells of the map's search space are obstacles for the arm and the camera")
       .def_readwrite("unknown_margin", &NbvOptions::unknown_margin,
                      "metres around the camera with no unknown cell of the search space (unknown_is_obstacle)")
+      .def_readwrite("ground_is_obstacle", &NbvOptions::ground_is_obstacle,
+                     "with a chain: the ground below the map's search space is an obstacle for the links the chain\n"
+                     "moves (its unknown cells are not obstacles otherwise)")
       .def_readwrite("enclosure_power", &NbvOptions::enclosure_power,
                      "gain 'frontier_void': each void cell also counts with e^power in the ranking and the voids'\n"
                      "utility, e its enclosure (share of the six axis directions that meet a surface before free\n"

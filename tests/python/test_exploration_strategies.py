@@ -383,3 +383,29 @@ def test_views_near_a_failed_view_are_not_chosen_again():
     failed.append(np.array([0.5, 0.0, 0.2]))  # the loop appends as views fail
     assert keep(P).tolist() == [False, ex.FAILED_VIEW_RADIUS <= 0.05, True, False]
     assert away_from(failed)(P).tolist() == [False, ex.FAILED_VIEW_RADIUS <= 0.05, True, True]
+
+
+def test_ground_below_the_search_space_is_an_obstacle_for_the_arm_on_request():
+    """The Panda looking straight down with its camera (hand) 2 cm above a floor the map has never seen:
+    that floor lies below the search space, where unknown cells are no obstacles, so the pose is a valid
+    view unless ground_is_obstacle makes the ground an obstacle for the links the arm moves (the base,
+    which stands on the floor, is not tested against it)."""
+    from octoreach import _core, robots
+
+    robot = robots.load("panda")
+    chain = robot.chain("panda_link0", "panda_hand")
+    s = Scene()
+    _floor(s)
+    s.add_crate((0.4, -0.15, 0.0), (0.65, 0.15, 0.2), 0.02)
+    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.3, -0.3, 0.0], [0.8, 0.3, 0.4]]))
+    cam = DepthCamera(64, 48, FOV, 3.0)
+    T = ex.look_at((0.5, 0.0, 1.0), (0.5, 0.0, 0.0))
+    emap.insert(cam.capture(s, T), T[:3, 3], 3.0)
+    down = ex.look_at((0.3, 0.3, 0.02), (0.3, 0.3, -1.0))[None]
+    common = dict(chain=chain, chain_base=np.eye(4), unknown_is_obstacle=False, seed=3)
+    plain = _core.score_views(emap, cam, down, **common)
+    ground = _core.score_views(emap, cam, down, ground_is_obstacle=True, **common)
+    assert plain["status"] == ["valid"] and ground["status"] == ["arm_collision"]
+    # a pose well above the ground stays valid with it
+    up = ex.look_at((0.3, 0.3, 0.5), (0.5, 0.0, 0.1))[None]
+    assert _core.score_views(emap, cam, up, ground_is_obstacle=True, **common)["status"] == ["valid"]

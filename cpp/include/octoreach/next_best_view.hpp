@@ -125,6 +125,12 @@ struct NbvOptions {
   /// obstacles.
   bool unknown_is_obstacle = true;
   double unknown_margin = 0.05;  ///< metres around the camera that must be observed (not unknown)
+  /// With a chain and arm_collisions: the ground below the map's search space (ExplorationOptions::
+  /// search_lo's z) is an obstacle for the links the chain moves (the links it does not move, a base
+  /// standing on the floor, are not tested against it). Unknown cells outside the search space are no
+  /// obstacles otherwise, and a camera looking down could take the arm's wrist into the floor the map
+  /// has not seen (the physical check then refused the view). No effect without a search space.
+  bool ground_is_obstacle = false;
   /// Enclosed voids first (gain FrontierVoid): each void cell also counts with e^enclosure_power in the
   /// ranking gain (ViewGains::expected_enclosed_void) and in its void's utility (step 1), e its
   /// enclosure: the share of the six axis directions that, walking from the cell through unknown

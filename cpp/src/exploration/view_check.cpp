@@ -77,6 +77,18 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   obstacles_.emplace();  // with no cell known yet, the arm is still checked against itself
   reference_ = robot.home();
   robot_root_ = opt.chain_base * robot.link_poses(reference_)[robot.link_index(opt.chain->base_link())].inverse();
+  const ExplorationOptions& mo = map.options();
+  if (opt.ground_is_obstacle && mo.search_lo.z() > -1e8) {  // (-1e9: no search space, no floor)
+    // a slab 1 m deep whose top is the search space's floor, 100 m across around the chain's base
+    constexpr double kSide = 100.0, kDepth = 1.0;
+    Pose slab = Pose::Identity();
+    slab.translation() = Eigen::Vector3d(opt.chain_base.translation().x(), opt.chain_base.translation().y(),
+                                         mo.search_lo.z() - kDepth / 2);
+    ground_.emplace();
+    ground_->add_box(Eigen::Vector3d(kSide, kSide, kDepth), slab);
+    for (int li : robot.collision_links())
+      if (opt.chain->link_mask(li)) moved_links_.push_back(li);
+  }
   if (S.tree.size() == 0) return;
   // The map's occupied cells (the tree is not copied: the map outlives the search).
   obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
@@ -144,8 +156,10 @@ ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t se
   auto q = opt_.chain->ik(base_inv_ * pose, o);
   if (!q) return ViewStatus::NoIk;
   // The arm against the map's occupied (and, safe views, unknown) cells and against the robot itself.
-  if (obstacles_ && opt_.chain->robot().in_collision(opt_.chain->to_robot_configuration(*q, reference_), *obstacles_,
-                                                     robot_root_, /*check_self=*/true))
+  const Eigen::VectorXd q_robot = opt_.chain->to_robot_configuration(*q, reference_);
+  if (obstacles_ && opt_.chain->robot().in_collision(q_robot, *obstacles_, robot_root_, /*check_self=*/true))
+    return ViewStatus::ArmCollision;
+  if (ground_ && opt_.chain->robot().in_collision(q_robot, *ground_, robot_root_, false, &moved_links_))
     return ViewStatus::ArmCollision;
   q_out = *q;
   pose = opt_.chain_base * opt_.chain->fk(*q);  // the roll the arm actually reaches

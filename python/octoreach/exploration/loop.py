@@ -238,7 +238,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
             search_space=None, capability_map=None, min_reachability: Optional[float] = None,
             capability_orientations: Optional[bool] = None, base_moves=None, target=None,
             physical_check: bool = True, learn_misses: bool = True, enclosure_power: Optional[float] = None,
-            second_look: bool = True,
+            second_look: bool = True, ground_is_obstacle: bool = False,
             on_view: Optional[Callable] = None) -> ExplorationResult:
     """Runs the paper's loop from `start_pose` (4x4 camera -> world) and returns the per-view table.
 
@@ -276,6 +276,9 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     count). `second_look` (frontier_void): when the search's best view expects at most `min_utility`
     void cells (or none), AIMED_POSES poses aimed at void cells are scored too and the better view is
     taken (strategies.aimed_poses), so the loop stops only when neither finds a view worth taking.
+    `ground_is_obstacle` (all strategies, with a chain): the ground below the search space is an obstacle
+    for the links the arm moves (NbvOptions.ground_is_obstacle; off until the benchmark's record is run
+    with it).
     View k searches with seed `seed + k`.
     `physical_check` (with a robot): a chosen view whose arm touches the scene's true geometry is not
     taken (counted as a view, `physically_valid` False, nothing integrated), and no later view within
@@ -308,6 +311,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
                    max_candidate_cells=LOOP_CANDIDATE_CELLS if max_candidate_cells is None else max_candidate_cells,
                    **given(orientations_per_cell=orientations_per_cell, score_width=width, score_height=height,
                            min_reachability=min_reachability, capability_orientations=capability_orientations))
+    if ground_is_obstacle:
+        options["ground_is_obstacle"] = True
     if strategy == "frontier_void":
         options["enclosure_power"] = LOOP_ENCLOSURE_POWER if enclosure_power is None else enclosure_power
     else:  # score_views has no search of its own; the baselines rank by their own gains
