@@ -386,26 +386,31 @@ def test_views_near_a_failed_view_are_not_chosen_again():
 
 
 def test_ground_below_the_search_space_is_an_obstacle_for_the_arm_on_request():
-    """The Panda looking straight down with its camera (hand) 2 cm above a floor the map has never seen:
-    that floor lies below the search space, where unknown cells are no obstacles, so the pose is a valid
-    view unless ground_is_obstacle makes the ground an obstacle for the links the arm moves (the base,
-    which stands on the floor, is not tested against it)."""
+    """The Panda looking straight down with its hand 7 cm above a ground the map has never seen (the map
+    knows only the air in front of a wall, seen from the side): the ground lies below the search space,
+    where unknown cells are no obstacles, so the pose is a valid view, unless ground_is_obstacle makes the
+    ground an obstacle for the links the arm moves (its fingers reach below z = 0; the base, standing on the
+    floor, is not tested against it). 12 cm up the pose is valid either way."""
     from octoreach import _core, robots
 
     robot = robots.load("panda")
     chain = robot.chain("panda_link0", "panda_hand")
     s = Scene()
-    _floor(s)
-    s.add_crate((0.4, -0.15, 0.0), (0.65, 0.15, 0.2), 0.02)
-    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.3, -0.3, 0.0], [0.8, 0.3, 0.4]]))
+    s.add_box((1.0, -1.0, 0.0), (1.05, 1.0, 0.6))  # a wall, no floor: the map never sees the ground
+    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.2, -0.5, 0.0], [1.1, 0.5, 0.6]]))
     cam = DepthCamera(64, 48, FOV, 3.0)
-    T = ex.look_at((0.5, 0.0, 1.0), (0.5, 0.0, 0.0))
-    emap.insert(cam.capture(s, T), T[:3, 3], 3.0)
-    down = ex.look_at((0.3, 0.3, 0.02), (0.3, 0.3, -1.0))[None]
+    for z in (0.07, 0.2):
+        T = ex.look_at((0.0, 0.0, z), (1.0, 0.0, z))
+        emap.insert(cam.capture(s, T), T[:3, 3], 3.0)
     common = dict(chain=chain, chain_base=np.eye(4), unknown_is_obstacle=False, seed=3)
-    plain = _core.score_views(emap, cam, down, **common)
-    ground = _core.score_views(emap, cam, down, ground_is_obstacle=True, **common)
-    assert plain["status"] == ["valid"] and ground["status"] == ["arm_collision"]
-    # a pose well above the ground stays valid with it
-    up = ex.look_at((0.3, 0.3, 0.5), (0.5, 0.0, 0.1))[None]
-    assert _core.score_views(emap, cam, up, ground_is_obstacle=True, **common)["status"] == ["valid"]
+    low = ex.look_at((0.5, 0.0, 0.07), (0.5, 0.0, -1.0))[None]
+    assert _core.score_views(emap, cam, low, **common)["status"] == ["valid"]
+    assert _core.score_views(emap, cam, low, ground_is_obstacle=True, **common)["status"] == ["arm_collision"]
+    high = ex.look_at((0.5, 0.0, 0.12), (0.5, 0.0, -1.0))[None]
+    assert _core.score_views(emap, cam, high, ground_is_obstacle=True, **common)["status"] == ["valid"]
+    # without a search space there is no floor to stand for the ground: no effect
+    free = ExplorationMap(resolution=RES)
+    for z in (0.07, 0.2):
+        T = ex.look_at((0.0, 0.0, z), (1.0, 0.0, z))
+        free.insert(cam.capture(s, T), T[:3, 3], 3.0)
+    assert _core.score_views(free, cam, low, ground_is_obstacle=True, **common)["status"] == ["valid"]
