@@ -1507,6 +1507,15 @@ class NbvOptions:
     def gain(self, arg1: str) -> None:
         ...
     @property
+    def ground_is_obstacle(self) -> bool:
+        """
+        with a chain: the ground below the map's search space is an obstacle for the links the chain
+        moves (its unknown cells are not obstacles otherwise)
+        """
+    @ground_is_obstacle.setter
+    def ground_is_obstacle(self, arg0: bool) -> None:
+        ...
+    @property
     def ik_attempts(self) -> int:
         ...
     @ik_attempts.setter
