@@ -13,7 +13,7 @@ from ._options import given
 from .metrics import observed_share
 from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot, moved_links
 from .scenes import scene_region
-from .strategies import CANDIDATES, Choice, check_strategy, choose_view
+from .strategies import CANDIDATES, SEARCH_ONLY_OPTIONS, Choice, check_strategy, choose_view
 from .usar_scenes import points_on
 
 VIEW_BUDGET = 10  # views of one exploration unless told otherwise (explore, run_demo, the demo's --views)
@@ -316,7 +316,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     if strategy == "frontier_void":
         options["enclosure_power"] = LOOP_ENCLOSURE_POWER if enclosure_power is None else enclosure_power
     else:  # score_views has no search of its own; the baselines rank by their own gains
-        for k in ("max_valid_poses", "orientations_per_cell", "max_candidate_cells"):
+        for k in SEARCH_ONLY_OPTIONS:
             options.pop(k, None)
     physics = _Physics(rob, chain, scene, physical_check)
 

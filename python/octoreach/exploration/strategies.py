@@ -32,6 +32,8 @@ CANDIDATES = 200  # sampled poses per view and base for the baselines
 # few vectors that leave the box, and valid views that expect 70-100 void cells were missed while the loop
 # stopped with "utility 0" (docs/exploration.md, round 10).
 AIMED_POSES = 400
+# next_best_view's search breadth: score_views, which scores given poses, has no search of its own
+SEARCH_ONLY_OPTIONS = ("max_valid_poses", "orientations_per_cell", "max_candidate_cells")
 
 
 def check_strategy(strategy) -> str:
@@ -112,6 +114,27 @@ def _score(emap, camera, poses, options):
     return out
 
 
+def _base_order(bases, current) -> list:
+    """Indices of `bases`, the current one first (so ties keep it)."""
+    return [current] + [j for j in range(len(bases)) if j != current]
+
+
+def _score_options(options, base, sphere, seed, **extra) -> dict:
+    """score_views' keywords for one base: `options` without the search's breadth, the base, its sphere."""
+    opts = {k: v for k, v in options.items() if k not in SEARCH_ONLY_OPTIONS}
+    opts.update(chain_base=base, workspace_sphere=sphere, seed=seed,
+                capability_base=None if options.get("capability_map") is None else base, **extra)
+    return opts
+
+
+def _view_choice(v, base, utility, emap, candidates, valid, details) -> Choice:
+    """The Choice of a scored view `v` (a _score dict) from base index `base`."""
+    return Choice(pose=np.asarray(v["pose"]), void_cells=v["void_cells"], expected_void=float(v["expected_void"]),
+                  expected_unknown=float(v["expected_unknown"]), expected_frontier=float(v["expected_frontier"]),
+                  utility=utility, utility_dm3=float(v["expected_void"]) * emap.resolution ** 3 * 1000, q=v.get("q"),
+                  base=base, candidates=candidates, valid=valid, details=details)
+
+
 def aimed_poses(rng, emap, sphere=None, box=None, n: int = AIMED_POSES, floor: float = 0.05,
                 distance=(0.3, 1.0)) -> np.ndarray:
     """Up to `n` camera poses (n, 4, 4), each looking at a random void cell of `emap` from a random direction
@@ -139,25 +162,19 @@ def _aimed_choice(emap, camera, base, i, sphere, options, seed) -> Optional[Choi
     """The best valid of AIMED_POSES poses aimed at void cells (frontier_void's gain), or None."""
     rng = np.random.default_rng(seed)
     poses = aimed_poses(rng, emap, sphere=sphere, box=options.get("workspace_box"))
-    opts = {k: v for k, v in options.items() if k not in ("max_valid_poses", "orientations_per_cell", "max_candidate_cells")}
-    opts.update(chain_base=base, workspace_sphere=sphere, seed=seed, gain="frontier_void",
-                capability_base=None if options.get("capability_map") is None else base)
+    opts = _score_options(options, base, sphere, seed, gain="frontier_void")
     valid = [v for v in _score(emap, camera, poses, opts) if v["valid"]]
     if not valid:
         return None
     v = max(valid, key=lambda w: (w["expected_gain"], w["expected_unknown"]))
-    res = emap.resolution
-    return Choice(pose=np.asarray(v["pose"]), void_cells=v["void_cells"], expected_void=v["expected_void"],
-                  expected_unknown=v["expected_unknown"], expected_frontier=v["expected_frontier"],
-                  utility=v["expected_void"], utility_dm3=v["expected_void"] * res ** 3 * 1000, q=v.get("q"), base=i,
-                  candidates=len(poses), valid=len(valid), details={"aimed": True})
+    return _view_choice(v, i, float(v["expected_void"]), emap, len(poses), len(valid), {"aimed": True})
 
 
 def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_below=None) -> Choice:
     """next_best_view over all bases (the current one first, so ties keep it); with `widen_below`, a
     best view expecting at most that many void cells gets a second look (AIMED_POSES aimed poses)."""
     best = None
-    for i in [current] + [j for j in range(len(bases)) if j != current]:
+    for i in _base_order(bases, current):
         bp = bases[i]
         cap_base = None if options.get("capability_map") is None else bp
         r = _core.next_best_view(emap, camera, seed=seed, workspace_sphere=sphere_of(bp), chain_base=bp,
@@ -172,7 +189,7 @@ def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_be
         if best is None or c.utility > best.utility:
             best = c
     if widen_below is not None and best.utility <= widen_below:
-        for i in [current] + [j for j in range(len(bases)) if j != current]:
+        for i in _base_order(bases, current):
             a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), options, seed)
             if a is not None and a.utility > best.utility:
                 a.details = dict(best.details, aimed=True)
@@ -185,13 +202,11 @@ def _sampled_choice(strategy, emap, camera, bases, current, sphere_of, options, 
     rng = np.random.default_rng(seed)
     gain = GAIN_OF[strategy]
     best, pool = None, []
-    for i in [current] + [j for j in range(len(bases)) if j != current]:
+    for i in _base_order(bases, current):
         bp = bases[i]
         sphere = sphere_of(bp)
         poses = sample_poses(rng, region, sphere=sphere, box=options.get("workspace_box"), n=candidates)
-        opts = dict(options, chain_base=bp, workspace_sphere=sphere, seed=seed,
-                    capability_base=None if options.get("capability_map") is None else bp)
-        views = _score(emap, camera, poses, opts)
+        views = _score(emap, camera, poses, _score_options(options, bp, sphere, seed))
         pool += [(i, v) for v in views]
     valid = [(i, v) for i, v in pool if v["valid"]]
     statuses = {}
@@ -205,11 +220,7 @@ def _sampled_choice(strategy, emap, camera, bases, current, sphere_of, options, 
         i, v = max(valid, key=lambda iv: (iv[1][gain], iv[1]["expected_unknown"]))
     # the stopping rule: the strategy's gain of the best valid view (random: the best void gain on offer)
     utility = max(float(w["expected_void"]) for _, w in valid) if strategy == "random" else float(v[gain])
-    res = emap.resolution
-    return Choice(pose=np.asarray(v["pose"]), void_cells=v["void_cells"], expected_void=float(v["expected_void"]),
-                  expected_unknown=float(v["expected_unknown"]), expected_frontier=float(v["expected_frontier"]),
-                  utility=utility, utility_dm3=float(v["expected_void"]) * res ** 3 * 1000, q=v.get("q"), base=i,
-                  candidates=len(pool), valid=len(valid), details={"status_counts": statuses})
+    return _view_choice(v, i, utility, emap, len(pool), len(valid), {"status_counts": statuses})
 
 
 def choose_view(strategy, emap, camera, bases, current, sphere_of, options, seed, region,
