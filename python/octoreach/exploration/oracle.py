@@ -45,12 +45,8 @@ class Observable:
         """Which of `points` (default: the regions' sample points) a noiseless capture from `pose` (4x4)
         turns known, as the oracle's own captures do."""
         pts = self.points if points is None else np.asarray(points, float).reshape(-1, 3)
-        cam = DepthCamera(self.width, self.height, self.fov, self.max_range, noise=0.0)
-        m = ExplorationMap(resolution=self.resolution, track_voids=False)
-        cloud = cam.capture(scene, np.asarray(pose, float))
-        if len(cloud):
-            m.insert(cloud, np.asarray(pose, float)[:3, 3], self.max_range)
-        return m.state(pts) != 0 if len(pts) else np.zeros(0, bool)
+        return _known_after(scene, [np.asarray(pose, float)], pts, self.resolution, self.fov, self.max_range,
+                            self.width, self.height)
 
     @property
     def count(self) -> int:
@@ -90,13 +86,24 @@ def robot_root(robot, chain, chain_base) -> np.ndarray:
     return np.asarray(chain_base, float) @ np.linalg.inv(robot.link_poses(robot.home())[chain.base_link])
 
 
-def _joint_poses(robot, chain, chain_base, root, obstacles, n, rng):
-    """Camera poses (world) of `n` random joint configurations whose robot is clear of `obstacles`."""
+def _known_after(scene, poses, points, resolution, fov, max_range, width, height, seed=0) -> np.ndarray:
+    """Which of `points` a map knows after noiseless captures of `scene` from `poses` (the oracle's captures)."""
+    cam = DepthCamera(width, height, fov, max_range, noise=0.0, seed=seed)
+    emap = ExplorationMap(resolution=resolution, track_voids=False)
+    for T in poses:
+        pts = cam.capture(scene, T)
+        if len(pts):
+            emap.insert(pts, T[:3, 3], max_range)
+    return emap.state(points) != 0 if len(points) else np.zeros(0, bool)
+
+
+def _joint_poses(robot, chain, chain_base, root, obstacles, links, n, rng):
+    """Camera poses (world) of `n` random joint configurations whose `links` are clear of `obstacles` and
+    whose robot is clear of itself."""
     lo = np.where(np.isfinite(chain.lower), chain.lower, -np.pi)
     hi = np.where(np.isfinite(chain.upper), chain.upper, np.pi)
     Q = rng.uniform(lo, hi, size=(n, chain.dof))
     tips = chain.fk_batch(Q)
-    links = moved_links(robot, chain)
     out = []
     for q, T in zip(Q, tips):
         if not robot.in_collision(chain.to_robot_configuration(q), obstacles, root, self_collision=True, links=links):
@@ -104,7 +111,7 @@ def _joint_poses(robot, chain, chain_base, root, obstacles, n, rng):
     return out
 
 
-def _aimed_poses(scene, robot, chain, chain_base, root, obstacles, points, n, rng, reach, ik_attempts):
+def _aimed_poses(scene, robot, chain, chain_base, root, obstacles, links, points, n, rng, reach, ik_attempts):
     """Camera poses (world) looking at random sample points from random clear directions, kept when IK
     with the true scene as obstacles reaches them (approach mode: position and optical axis)."""
     from .camera import look_at
@@ -133,7 +140,7 @@ def _aimed_poses(scene, robot, chain, chain_base, root, obstacles, points, n, rn
     Ts = np.array([inv @ look_at(e, t) for e, t in zip(eyes, targets)])
     Q, ok = chain.ik_batch(Ts, mode="approach", approach_axis=(0.0, 0.0, 1.0), attempts=ik_attempts,
                            position_tolerance=1e-3, orientation_tolerance=1e-2, obstacles=obstacles, self_collision=True,
-                           base_pose=root, rng_seed=int(rng.integers(1 << 31)), obstacle_links=moved_links(robot, chain))
+                           base_pose=root, rng_seed=int(rng.integers(1 << 31)), obstacle_links=links)
     return [chain_base @ chain.fk(q) for q in Q[ok]]
 
 
@@ -163,16 +170,11 @@ def observable_cells(scene: Scene, chain=None, base_pose=None, robot=None, regio
     rng = np.random.default_rng(seed)
     obstacles = scene_obstacles(scene)
     reach = arm_reach(chain, seed)
-    poses = _joint_poses(robot, chain, chain_base, root, obstacles, joint_samples, rng)
-    poses += _aimed_poses(scene, robot, chain, chain_base, root, obstacles, points, aimed_samples, rng, reach,
+    links = moved_links(robot, chain)
+    poses = _joint_poses(robot, chain, chain_base, root, obstacles, links, joint_samples, rng)
+    poses += _aimed_poses(scene, robot, chain, chain_base, root, obstacles, links, points, aimed_samples, rng, reach,
                           ik_attempts)
-    cam = DepthCamera(width, height, fov, max_range, noise=0.0, seed=seed)
-    emap = ExplorationMap(resolution=resolution, track_voids=False)
-    for T in poses:
-        pts = cam.capture(scene, T)
-        if len(pts):
-            emap.insert(pts, T[:3, 3], max_range)
-    seen = emap.state(points) != 0 if len(points) else np.zeros(0, bool)
+    seen = _known_after(scene, poses, points, resolution, fov, max_range, width, height, seed)
     return Observable(points=points, observable=seen, resolution=resolution,
                       poses_sampled=joint_samples + aimed_samples, poses_valid=len(poses),
                       poses=np.array(poses, float).reshape(-1, 4, 4), fov=fov, max_range=max_range, width=width,
