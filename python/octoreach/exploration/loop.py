@@ -273,9 +273,10 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     to next_best_view / score_views; None keeps their defaults (but max_valid_poses and max_candidate_cells
     default to the loop's LOOP_VALID_POSES and LOOP_CANDIDATE_CELLS). `enclosure_power` (frontier_void):
     enclosed voids first (NbvOptions.enclosure_power; None: LOOP_ENCLOSURE_POWER, 0: the paper's plain
-    count). `second_look` (frontier_void): when the search's best view expects at most `min_utility`
-    void cells (or none), AIMED_POSES poses aimed at void cells are scored too and the better view is
-    taken (strategies.aimed_poses), so the loop stops only when neither finds a view worth taking.
+    count). `second_look` (frontier_void): on every view, AIMED_POSES poses aimed at void cells are scored
+    too and the better view is taken (strategies.aimed_poses; by the ranking gain, or by expected void
+    cells when the search's best expects at most `min_utility`), so the loop stops only when neither
+    finds a view worth taking.
     `ground_is_obstacle` (all strategies, with a chain): the ground below the search space is an obstacle
     for the links the arm moves (NbvOptions.ground_is_obstacle; off until the benchmark's record is run
     with it).

@@ -25,12 +25,13 @@ STRATEGIES = ("frontier_void", "random", "frontiers", "unknown")
 GAIN_OF = {"frontier_void": "expected_void", "random": "expected_void", "frontiers": "expected_frontier",
            "unknown": "expected_unknown"}
 CANDIDATES = 200  # sampled poses per view and base for the baselines
-# frontier_void's second look: when next_best_view's best valid view expects at most the stopping threshold
-# (or nothing), this many camera poses aimed at random void cells (from 0.3-1.0 m, inside the arm's reach)
-# are scored too, and the better view is taken. The paper's candidate cells come from utility vectors
-# through frontier cells; the last voids of a box (its corners, seen only through a small opening) have
-# few vectors that leave the box, and valid views that expect 70-100 void cells were missed while the loop
-# stopped with "utility 0" (docs/exploration.md, round 10).
+# frontier_void's second look: on every view, this many camera poses aimed at random void cells (from
+# 0.3-1.0 m, inside the arm's reach) are scored too, and the better view is taken (by the ranking gain; by
+# expected void cells when next_best_view's best expects at most the stopping threshold). The paper's
+# candidate cells come from utility vectors through frontier cells; the last voids of a box (its corners,
+# seen only through a small opening) have few vectors that leave the box, and valid views that expect
+# 70-100 void cells were missed while the loop stopped with "utility 0" (round 10, then only at low
+# views); the views straight down into open crates are missed the same way (round 11: every view).
 AIMED_POSES = 400
 # next_best_view's search breadth: score_views, which scores given poses, has no search of its own
 SEARCH_ONLY_OPTIONS = ("max_valid_poses", "orientations_per_cell", "max_candidate_cells")
@@ -59,6 +60,7 @@ class Choice:
     candidates: int = 0  # poses scored
     valid: int = 0  # of them valid
     details: dict = field(default_factory=dict)  # next_best_view's result (frontier_void) or counts by status
+    rank_gain: float = 0.0  # frontier_void: the gain views are ranked by (expected_gain: enclosure-weighted void cells)
 
     def info(self) -> dict:
         """What on_view gets: best_pose plus the figures above (and next_best_view's keys for frontier_void)."""
@@ -167,12 +169,15 @@ def _aimed_choice(emap, camera, base, i, sphere, options, seed) -> Optional[Choi
     if not valid:
         return None
     v = max(valid, key=lambda w: (w["expected_gain"], w["expected_unknown"]))
-    return _view_choice(v, i, float(v["expected_void"]), emap, len(poses), len(valid), {"aimed": True})
+    c = _view_choice(v, i, float(v["expected_void"]), emap, len(poses), len(valid), {"aimed": True})
+    c.rank_gain = float(v["expected_gain"])
+    return c
 
 
 def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_below=None) -> Choice:
-    """next_best_view over all bases (the current one first, so ties keep it); with `widen_below`, a
-    best view expecting at most that many void cells gets a second look (AIMED_POSES aimed poses)."""
+    """next_best_view over all bases (the current one first, so ties keep it); with `widen_below`, every
+    view gets a second look (AIMED_POSES aimed poses per base) and the better view is taken: by the ranking
+    gain, or by expected void cells when the search's best expects at most `widen_below` of them."""
     best = None
     for i in _base_order(bases, current):
         bp = bases[i]
@@ -186,14 +191,19 @@ def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_be
                    expected_frontier=float(top.get("expected_frontier", 0.0)),
                    utility=float(top.get("expected_void", 0.0)), utility_dm3=float(r["utility_dm3"]),
                    q=top.get("q"), base=i, candidates=int(r["poses_scored"]), valid=len(r["ranked"]), details=r)
+        c.rank_gain = float(r["expected_gain"]) if r["ranked"] else 0.0
         if best is None or c.utility > best.utility:
             best = c
-    if widen_below is not None and best.utility <= widen_below:
-        for i in _base_order(bases, current):
-            a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), options, seed)
-            if a is not None and a.utility > best.utility:
-                a.details = dict(best.details, aimed=True)
-                best = a
+    if widen_below is None:
+        return best
+    # the second look; when the search's best is low, the better view is the one the stopping rule would
+    # take (more expected void cells), else the one the search would rank first (its ranking gain)
+    low = best.utility <= widen_below
+    for i in _base_order(bases, current):
+        a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), options, seed)
+        if a is not None and (a.utility > best.utility if low else a.rank_gain > best.rank_gain):
+            a.details = dict(best.details, aimed=True)
+            best = a
     return best
 
 
