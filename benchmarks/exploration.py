@@ -24,7 +24,7 @@ import numpy as np
 
 from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, _core, next_best_view, score_views
 from octoreach import exploration as ex
-from octoreach.exploration.strategies import AIMED_POSES, aimed_poses
+from octoreach.exploration.strategies import AIMED_POSES, aimed_poses, choose_view
 
 
 def cluttered_first_view():
@@ -113,6 +113,18 @@ def main() -> int:
         score_views(emap, cam, P, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05, score_invalid=False,
                     enclosure_power=ex.LOOP_ENCLOSURE_POWER)
         aimed_s.append(time.perf_counter() - t0)
+    # the loop's whole search per view as explore() runs it (free camera here): next_best_view with the loop's
+    # breadth (LOOP_VALID_POSES from LOOP_CANDIDATE_CELLS) and enclosure weighting, then the second look
+    view_s = []
+    view_options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
+                        max_valid_poses=ex.LOOP_VALID_POSES, max_candidate_cells=ex.LOOP_CANDIDATE_CELLS,
+                        enclosure_power=ex.LOOP_ENCLOSURE_POWER)
+    for i in range(a.repeats):
+        t0 = time.perf_counter()  # a range of its own per repeat: each pays the enclosure, as after an insert
+        choose_view("frontier_void", emap, cam, [None], 0, lambda _: ((0.5, 0.0, 0.5), 1.0),
+                    dict(view_options, enclosure_range=0.5 + 1e-9 * (1000 + i)), i, ex.scene_region(scene),
+                    widen_below=ex.STOP_UTILITY)
+        view_s.append(time.perf_counter() - t0)
     inc = _void_cluster_runs(scene, cam, res, rng)
     # the search with the safe-view rule off (the cost of the unknown-cell obstacles and clearance)
     loose_s = [next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
@@ -142,6 +154,7 @@ def main() -> int:
             "median_s_loop_enclosure_power": med(loop_s), "loop_enclosure_power": ex.LOOP_ENCLOSURE_POWER,
             "void_enclosure_s": med(enclosure_s),
             "second_look_s": med(aimed_s), "second_look_poses": AIMED_POSES,
+            "loop_view_search_s": med(view_s),
             "score_grid": [48, 36],
         },
         "void_clusters": inc,

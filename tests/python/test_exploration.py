@@ -641,3 +641,30 @@ def test_the_second_look_finds_the_view_a_narrow_search_missed():
     # the aimed view is a real view: its gains are what score_views gives for its pose
     again = score_views(emap, cam, wide.pose[None], workspace_sphere=sphere_of(None), min_distance=0.05)
     assert again["valid"][0] and again["expected_void"][0] == pytest.approx(wide.expected_void)
+
+
+def test_the_second_look_on_every_view_takes_the_better_view_by_the_ranking_gain():
+    """Not only at low views: with widen_below below the narrow search's utility (its best is not low),
+    the aimed poses are still scored and the view with the larger ranking gain (expected_gain, with the
+    enclosure weighting) is taken; its rank_gain is what score_views gives for its pose."""
+    from octoreach.exploration.strategies import choose_view
+
+    scene = ex.closed_box_scene("+y", 0.16)
+    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
+    cam = DepthCamera(120, 90, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (1.6, -0.3, 0.9), (0.8, -0.9, 0.9)], (0.8, 0.0, 0.2)))
+    options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
+                   max_valid_poses=1, max_candidate_cells=8, orientations_per_cell=1, enclosure_power=2.0)
+    region = ex.scene_region(scene)
+
+    def sphere_of(_):
+        return ((0.8, 0.0, 0.3), 1.0)
+
+    narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region)
+    assert narrow.pose is not None and narrow.utility > 0 and narrow.rank_gain > 0
+    wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=0.0)
+    assert wide.details.get("aimed") and wide.rank_gain > narrow.rank_gain, (narrow.rank_gain, wide.rank_gain)
+    again = score_views(emap, cam, wide.pose[None], workspace_sphere=sphere_of(None), min_distance=0.05,
+                        gain="frontier_void", enclosure_power=2.0)
+    assert again["valid"][0] and again["expected_gain"][0] == pytest.approx(wide.rank_gain)
+    assert again["expected_void"][0] == pytest.approx(wide.expected_void)
