@@ -97,6 +97,12 @@ void wrap_chain(py::module_& m) {
            py::arg("link"),
            "Bit i set when chain joint i moves `link`: 0 for links the chain does not move, all bits for links\n"
            "rigid with the tip (a gripper).")
+      .def_property_readonly("moved_links", [](const Chain& c) {
+             std::vector<std::string> names;
+             for (int li : c.moved_collision_links()) names.push_back(c.robot().links()[li].name);
+             return names;
+           }, "The robot's collision links that this chain's joints move (its arm links and what they carry), in\n"
+              "Robot.collision_links order.")
       .def("within_limits", [](const Chain& c, const py::object& q) { return c.within_limits(q_from(c, q)); })
       .def("wrap", [](const Chain& c, const py::object& q) { return c.wrap(q_from(c, q)); },
            "Continuous joints wrapped into [-pi, pi), revolute joints shifted by 2 pi into their limits where possible.")

@@ -218,6 +218,13 @@ Eigen::VectorXd Chain::to_robot_configuration(const Eigen::VectorXd& q, const Ei
   return full;
 }
 
+std::vector<int> Chain::moved_collision_links() const {
+  std::vector<int> out;
+  for (int li : robot_->collision_links())
+    if (link_masks_[li]) out.push_back(li);
+  return out;
+}
+
 void Chain::split_collision_pairs(std::vector<std::pair<int, int>>& moving,
                                   std::vector<std::pair<int, int>>& fixed) const {
   moving.clear();

@@ -129,6 +129,12 @@ class Chain:
         Lower joint limits (-inf for continuous joints).
         """
     @property
+    def moved_links(self) -> list[str]:
+        """
+        The robot's collision links that this chain's joints move (its arm links and what they carry), in
+        Robot.collision_links order.
+        """
+    @property
     def robot_indices(self) -> list[int]:
         """
         Positions of this chain's joints in the robot configuration vector.

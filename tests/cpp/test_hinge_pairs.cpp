@@ -99,6 +99,7 @@ TEST(ShapeBoxes, KeptBoxesOfStillLinksAnswerAsFreshOnes) {
     if (chain.link_mask(li) != 0) moved.push_back(li);
   }
   EXPECT_EQ(moved.size(), 4u);  // shoulder, upper, cover, fore
+  EXPECT_EQ(chain.moved_collision_links(), moved);  // the chain's own list, in collision_links order
   std::mt19937_64 rng(11);
   int colliding = 0;
   for (int i = 0; i < 2000; ++i) {

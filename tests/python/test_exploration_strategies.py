@@ -84,6 +84,11 @@ def test_a_robot_standing_on_the_floor_is_not_in_collision_with_it():
     chain = robot.chain("panda_link0", "panda_hand")
     moved = ex.moved_links(robot, chain)
     assert "panda_link0" not in moved and {"panda_link7", "panda_hand"} <= set(moved)
+    # the chain's own answer (C++, also the search's ground check) against the masks link by link
+    assert moved == chain.moved_links == [n for n in robot.collision_links if chain.link_mask(n) != 0]
+    # a chain from link 2 moves neither link 1 nor link 2 (its first joint is joint 3), but all beyond
+    assert robot.chain("panda_link2", "panda_hand").moved_links == [n for n in moved
+                                                                   if n not in ("panda_link1", "panda_link2")]
     s = Scene()
     _floor(s)
     s.add_crate((0.4, -0.15, 0.0), (0.65, 0.15, 0.2), 0.02)

@@ -119,6 +119,11 @@ class Chain {
   /// all dof bits: rigidly attached to the tip, e.g. a gripper).
   std::uint64_t link_mask(int link) const { return link_masks_.at(link); }
 
+  /// \brief The robot's collision links (indices, in Robot::collision_links order) that this chain's
+  /// joints move: its arm links and what they carry. The links it does not move stand where the robot
+  /// was placed (a base standing on the floor touches it without any arm motion being at fault).
+  std::vector<int> moved_collision_links() const;
+
   /// \brief Splits the robot's checked self-collision pairs into those whose relative pose this
   /// chain's joints change (`moving`) and those it never changes (`fixed`).
   void split_collision_pairs(std::vector<std::pair<int, int>>& moving, std::vector<std::pair<int, int>>& fixed) const;

@@ -86,8 +86,7 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
                                          mo.search_lo.z() - kDepth / 2);
     ground_.emplace();
     ground_->add_box(Eigen::Vector3d(kSide, kSide, kDepth), slab);
-    for (int li : robot.collision_links())
-      if (opt.chain->link_mask(li)) moved_links_.push_back(li);
+    moved_links_ = opt.chain->moved_collision_links();
   }
   if (S.tree.size() == 0) return;
   // The map's occupied cells (the tree is not copied: the map outlives the search).
@@ -156,11 +155,13 @@ ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t se
   auto q = opt_.chain->ik(base_inv_ * pose, o);
   if (!q) return ViewStatus::NoIk;
   // The arm against the map's occupied (and, safe views, unknown) cells and against the robot itself.
-  const Eigen::VectorXd q_robot = opt_.chain->to_robot_configuration(*q, reference_);
-  if (obstacles_ && opt_.chain->robot().in_collision(q_robot, *obstacles_, robot_root_, /*check_self=*/true))
-    return ViewStatus::ArmCollision;
-  if (ground_ && opt_.chain->robot().in_collision(q_robot, *ground_, robot_root_, false, &moved_links_))
-    return ViewStatus::ArmCollision;
+  if (obstacles_ || ground_) {
+    const Eigen::VectorXd q_robot = opt_.chain->to_robot_configuration(*q, reference_);
+    if (obstacles_ && opt_.chain->robot().in_collision(q_robot, *obstacles_, robot_root_, /*check_self=*/true))
+      return ViewStatus::ArmCollision;
+    if (ground_ && opt_.chain->robot().in_collision(q_robot, *ground_, robot_root_, false, &moved_links_))
+      return ViewStatus::ArmCollision;
+  }
   q_out = *q;
   pose = opt_.chain_base * opt_.chain->fk(*q);  // the roll the arm actually reaches
   return ViewStatus::Valid;

@@ -23,7 +23,7 @@ def moved_links(robot, chain) -> list:
     the links the chain does not move stand where the robot was placed, and a base standing on the floor
     touches it (example-robot-data's Panda: its base link's bottom is at z = 0) without any view being
     at fault."""
-    return [name for name in robot.collision_links if chain.link_mask(name) != 0]
+    return list(chain.moved_links)
 
 
 def arm_base_pose(robot, chain, footprint=None) -> np.ndarray:
