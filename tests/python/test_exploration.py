@@ -615,23 +615,26 @@ def test_aimed_poses_look_at_void_cells_from_inside_the_reach():
     assert len(aimed_poses(np.random.default_rng(0), ExplorationMap(resolution=0.04), n=10)) == 0
 
 
+def _box_seen_from_three_sides():
+    """The second look's tests: a closed box opening on +y, seen from -x, +x and -y (its inside is void),
+    a camera, the search space and a reach sphere around the box: (emap, cam, region, sphere_of)."""
+    scene = ex.closed_box_scene("+y", 0.16)
+    region = ex.scene_region(scene)
+    emap = ExplorationMap(resolution=0.04, search_space=region)
+    cam = DepthCamera(120, 90, FOV, 3.0)
+    list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (1.6, -0.3, 0.9), (0.8, -0.9, 0.9)], (0.8, 0.0, 0.2)))
+    return emap, cam, region, lambda _: ((0.8, 0.0, 0.3), 1.0)
+
+
 def test_the_second_look_finds_the_view_a_narrow_search_missed():
     """next_best_view limited to one candidate cell and one orientation finds a poor view of the closed
     box's inside or none; with widen_below above its utility, poses aimed at the void cells are scored
     too and a view expecting more is taken (details["aimed"]); without it the narrow answer stays."""
     from octoreach.exploration.strategies import choose_view
 
-    scene = ex.closed_box_scene("+y", 0.16)
-    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
-    cam = DepthCamera(120, 90, FOV, 3.0)
-    list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (1.6, -0.3, 0.9), (0.8, -0.9, 0.9)], (0.8, 0.0, 0.2)))
+    emap, cam, region, sphere_of = _box_seen_from_three_sides()
     options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
                    max_valid_poses=1, max_candidate_cells=1, orientations_per_cell=1)
-    region = ex.scene_region(scene)
-
-    def sphere_of(_):
-        return ((0.8, 0.0, 0.3), 1.0)
-
     narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region)
     wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region,
                        widen_below=narrow.utility + 1.0)
@@ -649,17 +652,9 @@ def test_the_second_look_on_every_view_takes_the_better_view_by_the_ranking_gain
     enclosure weighting) is taken; its rank_gain is what score_views gives for its pose."""
     from octoreach.exploration.strategies import choose_view
 
-    scene = ex.closed_box_scene("+y", 0.16)
-    emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
-    cam = DepthCamera(120, 90, FOV, 3.0)
-    list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (1.6, -0.3, 0.9), (0.8, -0.9, 0.9)], (0.8, 0.0, 0.2)))
+    emap, cam, region, sphere_of = _box_seen_from_three_sides()
     options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
                    max_valid_poses=1, max_candidate_cells=8, orientations_per_cell=1, enclosure_power=2.0)
-    region = ex.scene_region(scene)
-
-    def sphere_of(_):
-        return ((0.8, 0.0, 0.3), 1.0)
-
     narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region)
     assert narrow.pose is not None and narrow.utility > 0 and narrow.rank_gain > 0
     wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=0.0)
