@@ -76,16 +76,16 @@ def test_oracle_honours_the_arm_reach():
 def test_a_robot_standing_on_the_floor_is_not_in_collision_with_it():
     """example-robot-data's Panda at the origin: its base link's bottom lies at z = 0, on the scene's floor
     (touching it). The checks of views against the true scene test the links the arm moves
-    (robot.moved_links), so the oracle finds the open crate observable from above (before: no pose at
+    (Chain.moved_links), so the oracle finds the open crate observable from above (before: no pose at
     all was collision-free), while the arm itself still may not touch the floor or the crate."""
     from octoreach import Obstacles, robots
 
     robot = robots.load("panda")
     chain = robot.chain("panda_link0", "panda_hand")
-    moved = ex.moved_links(robot, chain)
+    moved = chain.moved_links
     assert "panda_link0" not in moved and {"panda_link7", "panda_hand"} <= set(moved)
     # the chain's own answer (C++, also the search's ground check) against the masks link by link
-    assert moved == chain.moved_links == [n for n in robot.collision_links if chain.link_mask(n) != 0]
+    assert moved == [n for n in robot.collision_links if chain.link_mask(n) != 0]
     # a chain from link 2 moves neither link 1 nor link 2 (its first joint is joint 3), but all beyond
     assert robot.chain("panda_link2", "panda_hand").moved_links == [n for n in moved
                                                                    if n not in ("panda_link1", "panda_link2")]

@@ -27,7 +27,7 @@ from .loop import (FAILED_VIEW_RADIUS, LOOP_CANDIDATE_CELLS, LOOP_ENCLOSURE_POWE
 from .metrics import coverage_after, observed_share, region_points, seen_expected_ratios, views_to_reach
 from .oracle import Observable, observable_cells
 from .plots import plot_coverage, plot_map
-from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot, moved_links
+from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot
 from .scenes import closed_box_scene, cluttered_scene, paper_scene, scene_region
 from .strategies import STRATEGIES
 from .usar_scenes import UsarScene, points_on, usar_scene
@@ -56,7 +56,6 @@ __all__ = [
     "explorer_robot",
     "look_at",
     "main",
-    "moved_links",
     "observable_cells",
     "observed_share",
     "paper_scene",

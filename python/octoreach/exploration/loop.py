@@ -11,7 +11,7 @@ from .. import _core
 from .._core import DepthCamera, ExplorationMap, Scene
 from ._options import given
 from .metrics import observed_share
-from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot, moved_links
+from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot
 from .scenes import scene_region
 from .strategies import CANDIDATES, SEARCH_ONLY_OPTIONS, Choice, check_strategy, choose_view
 from .usar_scenes import points_on
@@ -177,7 +177,7 @@ def _check_loop_args(strategy, max_views, min_utility, candidates, start_pose):
 
 class _Physics:
     """Whether an arm configuration is clear of the scene's true geometry (the links the chain moves:
-    robot.moved_links) and of the robot itself (robot known), else always True."""
+    Chain.moved_links) and of the robot itself (robot known), else always True."""
 
     def __init__(self, robot, chain, scene, enabled):
         self.on = bool(enabled and robot is not None and chain is not None)
@@ -185,7 +185,7 @@ class _Physics:
             from .oracle import robot_root, scene_obstacles
 
             self.robot, self.chain, self.obstacles, self.root_of = robot, chain, scene_obstacles(scene), robot_root
-            self.links = moved_links(robot, chain)
+            self.links = chain.moved_links
 
     def valid(self, q, chain_base) -> bool:
         if not self.on or q is None:

@@ -1,7 +1,7 @@
 """The observable interior of a scene, by brute force: a test and benchmark utility, not the planner.
 
 A cell is observable when a camera pose the arm can reach without touching the scene's true geometry
-(with the links the chain moves: robot.moved_links) or itself sees it: a ray of a noiseless capture from that pose passes through it (free) or ends in it (hit).
+(with the links the chain moves: Chain.moved_links) or itself sees it: a ray of a noiseless capture from that pose passes through it (free) or ends in it (hit).
 The oracle samples camera poses densely in two ways and keeps the collision-free ones:
 
 - random joint configurations of the arm (forward kinematics: reachable by construction), and
@@ -22,7 +22,7 @@ import numpy as np
 
 from .._core import DepthCamera, ExplorationMap, Obstacles, Scene
 from .metrics import region_points
-from .robot import arm_base_pose, arm_reach, explorer_robot, moved_links
+from .robot import arm_base_pose, arm_reach, explorer_robot
 
 
 @dataclass
@@ -170,7 +170,7 @@ def observable_cells(scene: Scene, chain=None, base_pose=None, robot=None, regio
     rng = np.random.default_rng(seed)
     obstacles = scene_obstacles(scene)
     reach = arm_reach(chain, seed)
-    links = moved_links(robot, chain)
+    links = chain.moved_links
     poses = _joint_poses(robot, chain, chain_base, root, obstacles, links, joint_samples, rng)
     poses += _aimed_poses(scene, robot, chain, chain_base, root, obstacles, links, points, aimed_samples, rng, reach,
                           ik_attempts)

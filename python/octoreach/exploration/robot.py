@@ -17,15 +17,6 @@ def explorer_robot():
     return robot, robot.chain("arm_base_link", "camera_optical_frame")
 
 
-def moved_links(robot, chain) -> list:
-    """The robot's collision links that `chain`'s joints move (its arm links and what they carry). The
-    checks of a view against the scene's true geometry (the loop's physical check, the oracle) test these:
-    the links the chain does not move stand where the robot was placed, and a base standing on the floor
-    touches it (example-robot-data's Panda: its base link's bottom is at z = 0) without any view being
-    at fault."""
-    return list(chain.moved_links)
-
-
 def arm_base_pose(robot, chain, footprint=None) -> np.ndarray:
     """Pose (4x4, world) of `chain`'s base link with the robot at its home configuration and its
     root at `footprint` (4x4, world; default the origin)."""
