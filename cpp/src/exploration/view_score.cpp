@@ -2,6 +2,7 @@
 // (next_best_view.hpp, "Visibility model"), and the names of the gains.
 #include "view_score.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -57,17 +58,18 @@ class MetCells {
     if (dense_) {
       auto& b = buffer();
       if (b.size() < std::size_t(n[0] * n[1] * n[2])) b.assign(std::size_t(n[0] * n[1] * n[2]), 0);
+      dense_cells_ = b.data();  // once: the thread-local lookup costs a call per touch in a shared library
     }
   }
   ~MetCells() {
     if (!dense_) return;
-    auto& b = buffer();
-    for (const auto& t : touched_) b[t.first] = 0;
+    for (const auto& t : touched_) dense_cells_[t.first] = 0;
   }
   MetCells(const MetCells&) = delete;
   MetCells& operator=(const MetCells&) = delete;
   void touch(CellKey k, double w, int depth) {
-    const std::uint32_t wq = std::uint32_t(1 + std::lround(std::min(std::max(w, 0.0), 1.0) * 65534.0));
+    // w * 65534 + 0.5 rounded down: lround for w in [0, 1], without its library call
+    const std::uint32_t wq = 1 + std::uint32_t(std::min(std::max(w, 0.0), 1.0) * 65534.0 + 0.5);
     const V q = kDepth ? V((wq << 16) | std::uint32_t(65535 - std::min(depth, 65535))) : V(wq);
     if (!dense_) {
       V& v = table_.at(k);
@@ -79,7 +81,7 @@ class MetCells {
                        z = std::int64_t(key_z(k)) - klo_[2];
     if (x < 0 || y < 0 || z < 0 || x >= n_[0] || y >= n_[1] || z >= n_[2]) return;  // cannot happen
     const std::size_t idx = std::size_t((z * n_[1] + y) * n_[0] + x);
-    V& v = buffer()[idx];
+    V& v = dense_cells_[idx];
     if (!v) touched_.emplace_back(idx, k);
     v = std::max(v, q);
   }
@@ -87,7 +89,7 @@ class MetCells {
   template <class F>
   void for_each(F&& f) const {
     for (const auto& t : touched_) {
-      const std::uint32_t v = dense_ ? buffer()[t.first] : *table_.find(t.second);
+      const std::uint32_t v = dense_ ? dense_cells_[t.first] : *table_.find(t.second);
       if (kDepth)
         f(t.second, double((v >> 16) - 1) / 65534.0, int(65535 - (v & 0xffffu)));
       else
@@ -101,17 +103,53 @@ class MetCells {
     return b;
   }
   bool dense_;
+  V* dense_cells_ = nullptr;
   std::int64_t klo_[3], n_[3];
   std::vector<std::pair<std::size_t, CellKey>> touched_;
   KeyTable<V> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
 };
 
+// The part of the ray o + t dir (dir unit), t in [0, range], that can meet a cell of `clip`: its length up to
+// the exit (plus half a cell, so the exit cell is walked), or -1 when it misses the box.
+double clipped_length(const RayClip& clip, double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                      double range) {
+  double t0 = 0, t1 = range;
+  for (int i = 0; i < 3; ++i) {
+    if (dir[i] == 0) {
+      if (o[i] < clip.lo[i] || o[i] > clip.hi[i]) return -1;
+      continue;
+    }
+    double a = (clip.lo[i] - o[i]) / dir[i], b = (clip.hi[i] - o[i]) / dir[i];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  return t0 <= t1 ? std::min(range, t1 + 0.5 * res) : -1;
+}
+
 }  // namespace
+
+RayClip void_box(const ExplorationMap& map) {
+  const ExplorationState& S = state(map);
+  RayClip c;
+  if (S.void_set.empty()) return c;
+  std::uint32_t lo[3] = {0xffff, 0xffff, 0xffff}, hi[3] = {0, 0, 0};
+  for (CellKey k : S.void_set) {
+    const std::uint32_t x[3] = {key_x(k), key_y(k), key_z(k)};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], x[a]), hi[a] = std::max(hi[a], x[a]);
+  }
+  const double half = 0.5 * map.resolution();
+  const Eigen::Vector3d clo = S.center(pack_key(lo[0], lo[1], lo[2])), chi = S.center(pack_key(hi[0], hi[1], hi[2]));
+  c.lo = clo.array() - half;
+  c.hi = chi.array() + half;
+  return c;
+}
 
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void, bool learned, std::vector<ExpectedCell>* unknown_met,
-                              const VoidWeights* void_weights) {
+                              const VoidWeights* void_weights, const RayClip* clip) {
   const ExplorationState& S = state(map);
+  if (clip && clip->empty()) return {};  // no void cell: nothing counts
   // (a curve no announced view taught is the geometric weight itself: skip it)
   const VisibilityCurve* curve = learned && S.curve.taught ? &S.curve : nullptr;
   GridReader g(S.grid);
@@ -119,13 +157,17 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   const Eigen::Vector3d o = pose.translation();
   const double res = map.resolution();
   std::vector<Eigen::Vector3d> dirs(std::size_t(sw) * sh);
+  std::vector<double> lengths(dirs.size(), cam.max_range);
   // key box of the frustum (every walked cell lies within a cell of a ray's end points)
   Eigen::Vector3d lo = o, hi = o;
   for (int j = 0; j < sh; ++j)
     for (int i = 0; i < sw; ++i) {
+      const std::size_t r = std::size_t(j) * sw + i;
       Eigen::Vector3d d = R * cam.ray((i + 0.5) * cam.width / sw, (j + 0.5) * cam.height / sh);
-      dirs[std::size_t(j) * sw + i] = d;
-      Eigen::Vector3d e = o + d.normalized() * cam.max_range;
+      dirs[r] = d;
+      if (clip) lengths[r] = clipped_length(*clip, res, o, d.normalized(), cam.max_range);
+      if (lengths[r] < 0) continue;
+      Eigen::Vector3d e = o + d.normalized() * lengths[r];
       lo = lo.cwiseMin(e);
       hi = hi.cwiseMax(e);
     }
@@ -136,10 +178,11 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   }
   // the rays' walk and the count, over either kind of MetCells (depths only for an announcement)
   const auto count = [&](auto& met) {
-  for (const Eigen::Vector3d& d : dirs) {
+  for (std::size_t r = 0; r < dirs.size(); ++r) {
+    if (lengths[r] < 0) continue;  // misses the clip box
     double w = 1.0;  // the geometric weight: the product of the pass probabilities so far
     int depth = 0;   // unknown cells crossed so far
-    walk_cells(res, o, d, cam.max_range, [&](CellKey k) {
+    walk_cells(res, o, dirs[r], lengths[r], [&](CellKey k) {
       const std::uint8_t f = g.get(k);
       const std::uint8_t s = f & kStateMask;
       if (s == std::uint8_t(CellState::Occupied)) return false;
@@ -201,8 +244,10 @@ std::pair<double, double> pass_probabilities(const ExplorationMap& map, const Nb
 ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt) {
   ScoreModel m;
   m.p = pass_probabilities(map, opt);
-  if (opt.gain == NbvGain::FrontierVoid)
+  if (opt.gain == NbvGain::FrontierVoid) {
     m.void_weights = void_weights(state(map), map.resolution(), opt.enclosure_power, opt.enclosure_range);
+    m.clip = void_box(map);
+  }
   return m;
 }
 
@@ -210,7 +255,8 @@ void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const Nb
                 ViewCandidate& v) {
   static_cast<ViewGains&>(v) =
       view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, m.p.first, m.p.second,
-                          opt.unknown_pass_probability < 0, nullptr, m.void_weights ? &m.void_weights : nullptr);
+                          opt.unknown_pass_probability < 0, nullptr, m.void_weights ? &m.void_weights : nullptr,
+                          m.clip ? &*m.clip : nullptr);
   v.gain = v.ViewGains::gain(opt.gain);
   const double res = map.resolution();
   v.utility_dm3 = v.expected_void * res * res * res * 1000.0;

@@ -17,15 +17,27 @@ namespace octoreach::detail {
 struct ExplorationState;
 struct ExpectedCell;
 
+// Where a view's rays can still meet a cell that counts for the gain (map frame, cell bounds): with the
+// FrontierVoid gain, the box of the map's void cells; a ray ends where it leaves it (it cannot meet a
+// void cell beyond) and a ray that misses it is not walked. Empty: no void cell at all.
+struct RayClip {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = -Eigen::Vector3d::Ones();
+  bool empty() const { return (hi.array() < lo.array()).any(); }
+};
+// The box of the map's void cells (the caller holds the map's lock).
+RayClip void_box(const ExplorationMap& map);
+
 // view_gains without taking the map's lock: the caller holds it (pool workers of next_best_view must
 // not lock again: a writer waiting in between would deadlock them against their caller).
 // `learned`: ray weights from the map's learned visibility curve (with the geometric weight of p and
 // p_void as its prior), else the geometric weight alone. With `unknown_met`, also lists every unknown
 // cell a ray met with its largest ray weight w (before seeability), that ray's unknown depth and its class.
+// With `clip`, rays end where they leave it (the void and enclosed-void figures stay those of whole rays;
+// the unknown and frontier figures count what the rays met up to there).
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void, bool learned,
                               std::vector<ExpectedCell>* unknown_met = nullptr,
-                              const VoidWeights* void_weights = nullptr);
+                              const VoidWeights* void_weights = nullptr, const RayClip* clip = nullptr);
 
 // After an insert: each cell the view announced by expect_view expected (weight w), left unknown and
 // still met by the view's rays in the updated map (no surface seen in between) has its seeability
@@ -39,10 +51,12 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt);
 // p (unknown cells outside the voids) and p_void of a search: the fixed option or the map's learned values.
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt);
 
-// What every view score of one search shares: p and p_void, and the void weights (enclosure_power).
+// What every view score of one search shares: p and p_void, the void weights (enclosure_power) and,
+// with the FrontierVoid gain, the box the rays are clipped to (the void cells').
 struct ScoreModel {
   std::pair<double, double> p{1.0, 1.0};
   VoidWeights void_weights;
+  std::optional<RayClip> clip;
 };
 // The model of a search on `map` with `opt` (the caller holds the map's lock).
 ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);
