@@ -79,7 +79,8 @@ def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
 
     r = ex.explore(scene, _camera(a, seed), ex.look_at(*START), robot=True, strategy=strategy, max_views=a.views,
                    resolution=a.resolution, seed=seed, capability_map=cmap, target=target, min_utility=a.min_utility,
-                   patience=a.patience, enclosure_power=a.enclosure_power, second_look=not a.no_second_look,
+                   patience=a.patience, enclosure_power=a.enclosure_power, unexposed_weight=a.unexposed_weight,
+                   second_look=not a.no_second_look,
                    ground_is_obstacle=a.ground_is_obstacle,
                    score_size=tuple(a.score) if a.score else None, on_view=on_view)
     views = len(r.rows)
@@ -238,6 +239,8 @@ def main(argv=None) -> int:
                          "this (default: exploration.STOP_UTILITY; 0: the paper's utility 0)")
     ap.add_argument("--enclosure-power", type=float, default=ex.LOOP_ENCLOSURE_POWER,
                     help="frontier_void: void cells also weighted by enclosure^power (0: the paper's plain count)")
+    ap.add_argument("--unexposed-weight", type=float, default=ex.LOOP_UNEXPOSED_WEIGHT,
+                    help="frontier_void: void cells with no observed free neighbour count with this factor (1: the paper's count)")
     ap.add_argument("--no-second-look", action="store_true",
                     help="frontier_void: stop on next_best_view's answer alone (no aimed poses when it is low)")
     ap.add_argument("--ground-is-obstacle", action="store_true",
@@ -267,7 +270,7 @@ def main(argv=None) -> int:
     _, chain = ex.explorer_robot()
     t0 = time.perf_counter()
     cmap = ex.explorer_capability_map(chain)
-    out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "enclosure_power": a.enclosure_power, "second_look": not a.no_second_look, "ground_is_obstacle": a.ground_is_obstacle, "resolution_m": a.resolution, "image": list(a.image),
+    out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "enclosure_power": a.enclosure_power, "unexposed_weight": a.unexposed_weight, "second_look": not a.no_second_look, "ground_is_obstacle": a.ground_is_obstacle, "resolution_m": a.resolution, "image": list(a.image),
                      "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy",
                      "code": _code_version()},

@@ -127,7 +127,10 @@ void wrap_nbv_options(py::module_& m) {
                      "utility, e its enclosure (share of the six axis directions that meet a surface before free\n"
                      "space within enclosure_range); 0: the paper's plain count")
       .def_readwrite("enclosure_range", &NbvOptions::enclosure_range,
-                     "metres walked from a void cell per direction for its enclosure");
+                     "metres walked from a void cell per direction for its enclosure")
+      .def_readwrite("unexposed_weight", &NbvOptions::unexposed_weight,
+                     "gain 'frontier_void': a void cell with no observed free cell among its 26 neighbours counts\n"
+                     "with this factor in [0, 1] in the ranking and the voids' utility (1: none)");
   def_workspace(cls);
   def_arm(cls);
 }

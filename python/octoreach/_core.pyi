@@ -1608,6 +1608,15 @@ class NbvOptions:
     def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
+    def unexposed_weight(self) -> float:
+        """
+        gain 'frontier_void': a void cell with no observed free cell among its 26 neighbours counts
+        with this factor in [0, 1] in the ranking and the voids' utility (1: none)
+        """
+    @unexposed_weight.setter
+    def unexposed_weight(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def unknown_is_obstacle(self) -> bool:
         """
         safe views: unknown cells of the map's search space are obstacles for the arm and the camera

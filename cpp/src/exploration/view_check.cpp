@@ -53,6 +53,8 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
     throw std::invalid_argument("unknown_margin must be a non-negative number of metres");
   if (!(opt.enclosure_power >= 0) || !std::isfinite(opt.enclosure_power))
     throw std::invalid_argument("enclosure_power must be a finite number >= 0, got " + std::to_string(opt.enclosure_power));
+  if (!(opt.unexposed_weight >= 0 && opt.unexposed_weight <= 1))
+    throw std::invalid_argument("unexposed_weight must be a number in [0, 1], got " + std::to_string(opt.unexposed_weight));
   if (!(opt.enclosure_range > 0) || !std::isfinite(opt.enclosure_range))
     throw std::invalid_argument("enclosure_range must be a positive number of metres, got " +
                                 std::to_string(opt.enclosure_range));

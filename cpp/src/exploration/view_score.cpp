@@ -245,7 +245,8 @@ ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt) {
   ScoreModel m;
   m.p = pass_probabilities(map, opt);
   if (opt.gain == NbvGain::FrontierVoid) {
-    m.void_weights = void_weights(state(map), map.resolution(), opt.enclosure_power, opt.enclosure_range);
+    m.void_weights =
+        void_weights(state(map), map.resolution(), opt.enclosure_power, opt.enclosure_range, opt.unexposed_weight);
     m.clip = void_box(map);
   }
   return m;

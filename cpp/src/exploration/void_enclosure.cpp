@@ -37,13 +37,26 @@ std::uint8_t closed_halves(const GridReader& g, CellKey k, int steps) {
     }
     halves += h;
   }
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int a = x + dx, b = y + dy, c = z + dz;
+        if ((dx | dy | dz) == 0 || a < 0 || b < 0 || c < 0 || a > 0xffff || b > 0xffff || c > 0xffff) continue;
+        if ((g.get(pack_key(std::uint32_t(a), std::uint32_t(b), std::uint32_t(c))) & kStateMask) ==
+            std::uint8_t(CellState::Free))
+          return std::uint8_t(halves | kExposed);
+      }
   return std::uint8_t(halves);
 }
 
 }  // namespace
 
-VoidWeights::VoidWeights(std::shared_ptr<const EnclosureTable> table, double power) : table_(std::move(table)) {
-  for (int h = 0; h <= 12; ++h) weight_[h] = std::pow(h / 12.0, power);
+VoidWeights::VoidWeights(std::shared_ptr<const EnclosureTable> table, double power, double unexposed_weight)
+    : table_(std::move(table)) {
+  for (int h = 0; h <= 12; ++h) {
+    weight_[h] = std::pow(h / 12.0, power) * unexposed_weight;
+    weight_[h | kExposed] = std::pow(h / 12.0, power);
+  }
 }
 
 std::shared_ptr<const EnclosureTable> cached_void_enclosure(const ExplorationState& s, double resolution,
@@ -64,9 +77,10 @@ std::shared_ptr<const EnclosureTable> cached_void_enclosure(const ExplorationSta
   return table;
 }
 
-VoidWeights void_weights(const ExplorationState& s, double resolution, double power, double range) {
-  if (power <= 0) return {};
-  return VoidWeights(cached_void_enclosure(s, resolution, range), power);
+VoidWeights void_weights(const ExplorationState& s, double resolution, double power, double range,
+                         double unexposed_weight) {
+  if (power <= 0 && unexposed_weight == 1) return {};
+  return VoidWeights(cached_void_enclosure(s, resolution, range), power, unexposed_weight);
 }
 
 }  // namespace octoreach::detail
@@ -80,7 +94,7 @@ std::vector<std::pair<CellKey, double>> void_enclosure(const ExplorationMap& map
   const auto table = detail::cached_void_enclosure(detail::state(map), map.resolution(), range);
   std::vector<std::pair<CellKey, double>> out;
   out.reserve(table->size());
-  table->for_each([&](CellKey k, std::uint8_t h) { out.emplace_back(k, h / 12.0); });
+  table->for_each([&](CellKey k, std::uint8_t h) { out.emplace_back(k, (h & detail::kHalvesMask) / 12.0); });
   std::sort(out.begin(), out.end());
   return out;
 }

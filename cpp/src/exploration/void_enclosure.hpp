@@ -13,25 +13,29 @@ struct ExplorationState;
 // Per void cell, how many of the six axis directions are closed, in halves (0..12): from the cell, a
 // direction walks up to `range` through unknown cells; it is closed (2) when it meets an occupied cell,
 // open (0) when it meets a free cell, and half (1) when it stays in unknown space to the range. A cell
-// inside a box whose walls have been seen counts 10-12, a shadow behind one object 2-5.
+// inside a box whose walls have been seen counts 10-12, a shadow behind one object 2-5. Bit kExposed is set
+// when one of the cell's 26 neighbours is observed free (the face of a void that observed space shows).
 using EnclosureTable = KeyTable<std::uint8_t>;
+constexpr std::uint8_t kExposed = 16;
+constexpr std::uint8_t kHalvesMask = 15;
 
-// The void weights of one search: enclosure^power per void cell (cells not in the table: 1).
+// The void weights of one search: enclosure^power per void cell, times unexposed_weight for a cell with no
+// observed free neighbour (cells not in the table: 1).
 class VoidWeights {
  public:
   VoidWeights() = default;
-  VoidWeights(std::shared_ptr<const EnclosureTable> table, double power);
+  VoidWeights(std::shared_ptr<const EnclosureTable> table, double power, double unexposed_weight);
   // The weight of void cell k (1 without a table).
   double of(CellKey k) const {
     if (!table_) return 1.0;
     const std::uint8_t* h = table_->find(k);
-    return h ? weight_[*h] : 1.0;
+    return h ? weight_[*h & (kExposed | kHalvesMask)] : 1.0;
   }
   explicit operator bool() const { return bool(table_); }
 
  private:
   std::shared_ptr<const EnclosureTable> table_;
-  double weight_[13] = {};
+  double weight_[32] = {};
 };
 
 // The enclosure of the map's void cells for `range` (m): cached until the next insert (the caller holds
@@ -39,7 +43,9 @@ class VoidWeights {
 std::shared_ptr<const EnclosureTable> cached_void_enclosure(const ExplorationState& s, double resolution,
                                                             double range);
 
-// The weights of a search with `power` (0: none, every void cell weighs 1) and `range`.
-VoidWeights void_weights(const ExplorationState& s, double resolution, double power, double range);
+// The weights of a search with `power`, `range` and `unexposed_weight` (power 0 and unexposed_weight 1: none,
+// every void cell weighs 1).
+VoidWeights void_weights(const ExplorationState& s, double resolution, double power, double range,
+                         double unexposed_weight);
 
 }  // namespace octoreach::detail

@@ -22,7 +22,7 @@ from __future__ import annotations
 from .._core import DepthCamera, ExplorationMap, Scene, next_best_view  # noqa: F401  (as before the split)
 from .camera import look_at
 from .demo import main, run_demo
-from .loop import (FAILED_VIEW_RADIUS, LOOP_CANDIDATE_CELLS, LOOP_ENCLOSURE_POWER, LOOP_VALID_POSES, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY,
+from .loop import (FAILED_VIEW_RADIUS, LOOP_CANDIDATE_CELLS, LOOP_ENCLOSURE_POWER, LOOP_UNEXPOSED_WEIGHT, LOOP_VALID_POSES, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY,
                    ExplorationResult, ViewRow, explore)
 from .metrics import coverage_after, observed_share, region_points, seen_expected_ratios, views_to_reach
 from .oracle import Observable, observable_cells
@@ -36,6 +36,7 @@ __all__ = [
     "FAILED_VIEW_RADIUS",
     "LOOP_CANDIDATE_CELLS",
     "LOOP_ENCLOSURE_POWER",
+    "LOOP_UNEXPOSED_WEIGHT",
     "LOOP_VALID_POSES",
     "STOP_PATIENCE",
     "STOP_REASONS",

@@ -37,6 +37,10 @@ CANDIDATES = 200  # sampled poses per view and base for the baselines
 # 70-100 void cells were missed while the loop stopped with "utility 0" (round 10, then only at low
 # views); the views straight down into open crates are missed the same way (round 11: every view).
 AIMED_POSES = 400
+# ... and when the better of the two expects at most the stopping threshold (the loop is about to count a
+# low view), this many more, aimed at any void cell (exposed or not), before the low view is taken: the
+# last voids of a closed box lie deep behind its small opening (round 12: a cheaper search pays for it).
+LOW_AIMED_POSES = 1200
 # next_best_view's search breadth: score_views, which scores given poses, has no search of its own
 SEARCH_ONLY_OPTIONS = ("max_valid_poses", "orientations_per_cell", "max_candidate_cells")
 
@@ -173,17 +177,19 @@ def in_line_of_sight(emap, targets, eyes) -> np.ndarray:
 
 
 def aimed_poses(rng, emap, sphere=None, box=None, n: int = AIMED_POSES, floor: float = 0.05,
-                distance=(0.3, 1.0)) -> np.ndarray:
+                distance=(0.3, 1.0), unexposed_share: Optional[float] = None) -> np.ndarray:
     """Up to `n` camera poses (n, 4, 4), each looking at a random void cell of `emap` from a random direction
     (not from below) at a distance drawn from `distance` (m), kept inside the sphere (centre, radius)
     and/or box ((2, 3)), above `floor`, and in line of sight of the cell (no occupied cell of the map
     between them: in_line_of_sight). Round 12: without that test most poses aimed at the last slivers of
-    an open crate looked at them through the crate's own wall."""
+    an open crate looked at them through the crate's own wall. The cells are drawn among the exposed
+    ones (exposed()) and `unexposed_share` (default UNEXPOSED_SHARE) of the others."""
     keys = np.asarray(emap.void_keys())
     if len(keys) == 0 or n <= 0:
         return np.zeros((0, 4, 4))
     targets = np.asarray(emap.centers(keys[rng.integers(len(keys), size=8 * n)]), float).reshape(-1, 3)
-    keep = exposed(emap, targets) | (rng.random(len(targets)) < UNEXPOSED_SHARE)
+    share = UNEXPOSED_SHARE if unexposed_share is None else unexposed_share
+    keep = exposed(emap, targets) | (rng.random(len(targets)) < share)
     targets = targets[keep][:4 * n]
     d = rng.normal(size=targets.shape)
     d[:, 2] = np.abs(d[:, 2])
@@ -200,15 +206,18 @@ def aimed_poses(rng, emap, sphere=None, box=None, n: int = AIMED_POSES, floor: f
     return np.array([look_at(eyes[i], targets[i]) for i in idx]).reshape(-1, 4, 4)
 
 
-def _aimed_choice(emap, camera, base, i, sphere, options, seed) -> Optional[Choice]:
-    """The best valid of AIMED_POSES poses aimed at void cells (frontier_void's gain), or None."""
+def _aimed_choice(emap, camera, base, i, sphere, options, seed, n: int = AIMED_POSES,
+                  unexposed_share: Optional[float] = None, by: str = "expected_gain") -> Optional[Choice]:
+    """The best valid of `n` poses aimed at void cells (aimed_poses; frontier_void's gain) by `by` (the
+    ranking gain, or "expected_void"), or None."""
     rng = np.random.default_rng(seed)
-    poses = aimed_poses(rng, emap, sphere=sphere, box=options.get("workspace_box"))
+    poses = aimed_poses(rng, emap, sphere=sphere, box=options.get("workspace_box"), n=n,
+                        unexposed_share=unexposed_share)
     opts = _score_options(options, base, sphere, seed, gain="frontier_void")
     valid = [v for v in _score(emap, camera, poses, opts) if v["valid"]]
     if not valid:
         return None
-    v = max(valid, key=lambda w: (w["expected_gain"], w["expected_unknown"]))
+    v = max(valid, key=lambda w: (w[by], w["expected_unknown"]))
     c = _view_choice(v, i, float(v["expected_void"]), emap, len(poses), len(valid), {"aimed": True})
     c.rank_gain = float(v["expected_gain"])
     return c
@@ -217,7 +226,8 @@ def _aimed_choice(emap, camera, base, i, sphere, options, seed) -> Optional[Choi
 def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_below=None) -> Choice:
     """next_best_view over all bases (the current one first, so ties keep it); with `widen_below`, every
     view gets a second look (AIMED_POSES aimed poses per base) and the better view is taken: by the ranking
-    gain, or by expected void cells when the search's best expects at most `widen_below` of them."""
+    gain, or by expected void cells when the search's best expects at most `widen_below` of them; when the
+    better still expects at most `widen_below`, LOW_AIMED_POSES more aimed poses per base (any void cell)."""
     best = None
     for i in _base_order(bases, current):
         bp = bases[i]
@@ -225,13 +235,18 @@ def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_be
         r = _core.next_best_view(emap, camera, seed=seed, workspace_sphere=sphere_of(bp), chain_base=bp,
                                  capability_base=cap_base, gain="frontier_void", **options)
         top = r["ranked"][0] if r["ranked"] else {}
+        if widen_below is not None and r["ranked"] and top["expected_void"] <= widen_below:
+            # the best by the ranking gain is a low view: a view is low only when none on offer expects more
+            top = max(r["ranked"], key=lambda v: v["expected_void"])
         c = Choice(pose=r["best_pose"], void_cells=int(top.get("void_cells", 0)),
                    expected_void=float(top.get("expected_void", 0.0)),
                    expected_unknown=float(top.get("expected_unknown", 0.0)),
                    expected_frontier=float(top.get("expected_frontier", 0.0)),
                    utility=float(top.get("expected_void", 0.0)), utility_dm3=float(r["utility_dm3"]),
                    q=top.get("q"), base=i, candidates=int(r["poses_scored"]), valid=len(r["ranked"]), details=r)
-        c.rank_gain = float(r["expected_gain"]) if r["ranked"] else 0.0
+        c.rank_gain = float(top.get("expected_enclosed_void", 0.0))
+        if top.get("pose") is not None:
+            c.pose = np.asarray(top["pose"])
         if best is None or c.utility > best.utility:
             best = c
     if widen_below is None:
@@ -239,10 +254,23 @@ def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_be
     # the second look; when the search's best is low, the better view is the one the stopping rule would
     # take (more expected void cells), else the one the search would rank first (its ranking gain)
     low = best.utility <= widen_below
+    most = best  # the view on offer with the most expected void cells
     for i in _base_order(bases, current):
-        a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), options, seed)
+        a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), options, seed,
+                          by="expected_void" if low else "expected_gain")
         if a is not None and (a.utility > best.utility if low else a.rank_gain > best.rank_gain):
             a.details = dict(best.details, aimed=True)
+            best = a
+        most = best if best.utility > most.utility else most
+    if best.utility > widen_below:
+        return best
+    best = most
+    # about to take a low view: LOW_AIMED_POSES more, aimed at any void cell, by expected void cells
+    for i in _base_order(bases, current):
+        a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), options, seed + 7919, n=LOW_AIMED_POSES,
+                          unexposed_share=1.0, by="expected_void")
+        if a is not None and a.utility > best.utility:
+            a.details = dict(best.details, aimed=True, harder=True)
             best = a
     return best
 

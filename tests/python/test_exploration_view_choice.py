@@ -1,0 +1,132 @@
+"""How frontier-void chooses a view (round 12): its rays end at the box of the void cells with the very
+same void figures, void cells with no observed free neighbour weigh less (unexposed_weight), and the
+second look aims along lines of sight at the exposed faces of voids. Coarse maps, small images."""
+import numpy as np
+import pytest
+
+from octoreach import DepthCamera, ExplorationMap, Scene, score_views
+from octoreach import exploration as ex
+from octoreach.exploration import strategies
+from octoreach.exploration.strategies import aimed_poses, exposed, in_line_of_sight, sample_poses
+
+FOV = np.deg2rad(58.0)
+
+
+def _surveyed(scene, eyes, target, res=0.05, image=(120, 90)):
+    cam = DepthCamera(image[0], image[1], FOV, 3.0)
+    emap = ExplorationMap(resolution=res, search_space=ex.scene_region(scene))
+    for eye in eyes:
+        T = ex.look_at(eye, target)
+        emap.insert(cam.capture(scene, T), T[:3, 3], cam.max_range)
+    return emap, cam
+
+
+def _crate_and_block():
+    """An open crate and a solid block beside it, seen from three sides (as the enclosure test)."""
+    scene = Scene()
+    scene.add_box((-2, -2, -0.05), (2, 2, 0))
+    scene.add_crate((0.6, -0.2, 0), (1.0, 0.2, 0.3), 0.02)
+    scene.add_box((0.6, 0.5, 0), (0.85, 0.75, 0.35))
+    emap, cam = _surveyed(scene, [(0.0, 0.0, 0.5), (0.8, -0.9, 0.45), (0.0, 0.6, 0.5)], (0.8, 0.0, 0.15), res=0.03,
+                          image=(160, 120))
+    return scene, emap, cam
+
+
+def test_frontier_void_rays_end_at_the_void_box_with_the_same_void_figures():
+    """With the frontier_void gain a ray ends where it leaves the box of the map's void cells: the void
+    figures of every pose are bit for bit those of whole rays (gain "unknown" walks whole rays), the
+    unknown figures count less (what lies beyond is not walked), and a map with no void cell expects
+    nothing."""
+    scene = ex.paper_scene(1)
+    region = ex.scene_region(scene)
+    emap, cam = _surveyed(scene, [(0.45, 0.0, 1.1), (0.7, 0.9, 0.8)], (0.9, 0.0, 0.0))
+    P = sample_poses(np.random.default_rng(0), region, box=np.array([region[0] - 0.6, region[1] + 0.6]), n=120)
+    clipped = score_views(emap, cam, P, gain="frontier_void", unknown_is_obstacle=False)
+    whole = score_views(emap, cam, P, gain="unknown", unknown_is_obstacle=False)
+    assert np.count_nonzero(whole["void_cells"]) > 30
+    np.testing.assert_array_equal(clipped["void_cells"], whole["void_cells"])
+    np.testing.assert_array_equal(clipped["expected_void"], whole["expected_void"])
+    assert np.all(clipped["unknown_cells"] <= whole["unknown_cells"])
+    assert np.sum(clipped["unknown_cells"]) < 0.8 * np.sum(whole["unknown_cells"])
+    # the ranking gain at enclosure power 0 is the plain expected void, clipped or not
+    np.testing.assert_array_equal(clipped["expected_gain"], whole["expected_void"])
+    # no void: nothing counts for this gain (the unknown gain still sees the unknown space)
+    floor = Scene()
+    floor.add_box((-2, -2, -0.05), (2, 2, 0))
+    free = ExplorationMap(resolution=0.05, search_space=region)
+    T = ex.look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))
+    free.insert(cam.capture(floor, T), T[:3, 3], cam.max_range)
+    assert free.void_cell_count == 0
+    none = score_views(free, cam, P[:5], gain="frontier_void", unknown_is_obstacle=False)
+    assert np.all(none["expected_void"] == 0) and np.all(none["unknown_cells"] == 0)
+    assert np.any(score_views(free, cam, P[:5], gain="unknown", unknown_is_obstacle=False)["unknown_cells"] > 0)
+
+
+def test_exposed_by_hand():
+    """exposed(): a cell with an observed free cell among its 26 neighbours (checked one neighbour at a
+    time); the inside of a solid block seen from outside has none, the crate's void (seen from the sides
+    only) has some next to the air the views saw through its open top."""
+    scene, emap, _ = _crate_and_block()
+    C = np.asarray(emap.centers(emap.void_keys()))
+    e = exposed(emap, C)
+    # by hand: the 26 neighbour centres, one at a time
+    some = np.random.default_rng(1).choice(len(C), 200, replace=False)
+    for i in some:
+        nb = [C[i] + emap.resolution * (np.array(d) - 1) for d in np.ndindex(3, 3, 3) if d != (1, 1, 1)]
+        assert e[i] == bool(np.any(np.asarray(emap.state(np.array(nb))) == 1))
+    block = np.all((C > (0.66, 0.56, 0.06)) & (C < (0.79, 0.69, 0.29)), axis=1)  # a cell deep inside the block
+    lo, hi = map(np.asarray, scene.interiors[0])
+    crate = np.all((C > lo) & (C < hi), axis=1)
+    assert block.sum() >= 8 and crate.sum() > 50
+    assert not e[block].any() and 0.1 < e[crate].mean() < 1
+
+
+def test_unexposed_void_cells_weigh_less_in_the_ranking():
+    """unexposed_weight w scales the void cells with no observed free neighbour: the ranking gain is
+    linear in w, equal to the enclosure-weighted gain at w = 1 (the default); both views see exposed and
+    unexposed cells, and the view of the solid block's unseen side keeps under half its gain at w = 0.
+    The plain expected void cells do not change; values outside [0, 1] are refused."""
+    _, emap, cam = _crate_and_block()
+    views = np.stack([ex.look_at((0.8, 0.0, 0.9), (0.8, 0.0, 0.0)),      # down into the crate
+                      ex.look_at((1.5, 0.62, 0.3), (0.7, 0.62, 0.15))])   # at the block's unseen +x side
+    g = {w: score_views(emap, cam, views, enclosure_power=2.0, unexposed_weight=w, unknown_is_obstacle=False)
+         for w in (0.0, 0.5, 1.0)}
+    default = score_views(emap, cam, views, enclosure_power=2.0, unknown_is_obstacle=False)
+    np.testing.assert_array_equal(g[1.0]["expected_gain"], default["expected_gain"])
+    np.testing.assert_allclose(g[0.5]["expected_gain"], 0.5 * (g[0.0]["expected_gain"] + g[1.0]["expected_gain"]),
+                               rtol=1e-9)
+    for w in (0.0, 0.5):
+        np.testing.assert_array_equal(g[w]["expected_void"], g[1.0]["expected_void"])
+    kept = g[0.0]["expected_gain"] / g[1.0]["expected_gain"]
+    assert np.all(g[1.0]["expected_gain"] > 0) and np.all((kept > 0) & (kept < 1)) and kept[1] < 0.5, kept
+    for bad in (-0.1, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="unexposed_weight"):
+            score_views(emap, cam, views, unexposed_weight=bad)
+
+
+def test_aimed_poses_see_their_target_past_no_known_surface(monkeypatch):
+    """in_line_of_sight by hand (a wall the map has seen between target and eye: no; beside it: yes;
+    unknown cells on the way do not block), and the cameras of the second look meet unknown space
+    before any known surface along their optical axes.""" 
+    scene = Scene()
+    scene.add_box((-2, -2, -0.05), (2, 2, 0))
+    scene.add_box((0.7, -0.4, 0.0), (0.75, 0.4, 0.6))  # a wall
+    scene.add_crate((0.8, -0.2, 0.0), (1.1, 0.2, 0.3), 0.02)  # behind it
+    emap, cam = _surveyed(scene, [(0.0, 0.0, 0.8), (0.9, -1.0, 0.9), (0.9, 1.0, 0.9)], (0.9, 0.0, 0.15))
+    target = np.array([[0.95, 0.0, 0.1]])
+    assert not in_line_of_sight(emap, target, [[0.2, 0.0, 0.2]])[0]    # through the wall
+    assert in_line_of_sight(emap, target, [[0.95, 0.0, 1.0]])[0]       # from above, through the open top
+    assert len(in_line_of_sight(emap, np.zeros((0, 3)), np.zeros((0, 3)))) == 0
+    def unknown_first(P):
+        """Share of the poses whose optical axis meets unknown space before any known surface."""
+        t = np.arange(0.0, 1.0, 0.25 * emap.resolution)
+        first = [np.asarray(emap.state(T[:3, 3] + t[:, None] * T[:3, 2])) for T in P]
+        return np.mean([s[np.argmax(s != 1)] == 0 for s in first])
+
+    P = aimed_poses(np.random.default_rng(0), emap, sphere=((0.6, 0.0, 0.6), 1.0), n=150)
+    assert len(P) > 20
+    # without the line of sight (every direction passes): far more cameras look at a known surface first
+    monkeypatch.setattr(strategies, "in_line_of_sight", lambda m, a, b: np.ones(len(a), bool))
+    blind = aimed_poses(np.random.default_rng(0), emap, sphere=((0.6, 0.0, 0.6), 1.0), n=150)
+    assert unknown_first(P) > 0.8 and unknown_first(P) > unknown_first(blind) + 0.15, \
+        (unknown_first(P), unknown_first(blind))
