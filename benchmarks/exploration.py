@@ -12,6 +12,10 @@ incrementally kept clusters (void_clusters) against the clustering from scratch 
 Visibility model: per exploration, the void cells each chosen view was expected to see (visibility
 weighted) against the void cells its image turned known.
 Run: .venv/bin/python benchmarks/exploration.py [--repeats 5]
+A/B against an earlier build (same machine, same session, alternated): build that commit's module
+(cmake -S <worktree> -B <worktree>/build -DOCTOREACH_PYTHON=ON ...), copy python/octoreach, the built .so
+files and urdf/ into a folder <dir>/octoreach, and run this script with PYTHONPATH=<dir> (docs/exploration.md,
+round 12, has the commands); `code` in the output says which build ran.
 """
 from __future__ import annotations
 
@@ -22,6 +26,7 @@ import time
 
 import numpy as np
 
+import octoreach
 from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, _core, next_best_view, score_views
 from octoreach import exploration as ex
 from octoreach.exploration.strategies import AIMED_POSES, aimed_poses, choose_view
@@ -119,6 +124,8 @@ def main() -> int:
     view_options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
                         max_valid_poses=ex.LOOP_VALID_POSES, max_candidate_cells=ex.LOOP_CANDIDATE_CELLS,
                         enclosure_power=ex.LOOP_ENCLOSURE_POWER)
+    if hasattr(ex, "LOOP_UNEXPOSED_WEIGHT"):  # round 12 on; absent when run against an older build (--reference)
+        view_options["unexposed_weight"] = ex.LOOP_UNEXPOSED_WEIGHT
     for i in range(a.repeats):
         t0 = time.perf_counter()  # a range of its own per repeat: each pays the enclosure, as after an insert
         choose_view("frontier_void", emap, cam, [None], 0, lambda _: ((0.5, 0.0, 0.5), 1.0),
@@ -191,6 +198,7 @@ def main() -> int:
             "median": med(ratios) if ratios else None,
             "share_below_0.1": sum(x < 0.1 for x in ratios) / len(ratios) if ratios else None}
     out["machine_note"] = "shared 2-core machine: medians of %d runs; timings are noisy" % a.repeats
+    out["code"] = {"module": octoreach.__file__, "has_unexposed_weight": hasattr(ex, "LOOP_UNEXPOSED_WEIGHT")}
     print(json.dumps(out, indent=1))
     return 0
 

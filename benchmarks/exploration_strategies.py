@@ -178,6 +178,39 @@ def _markdown(summary, strategies):
     return "\n".join(lines)
 
 
+# Settings that only frontier_void reads: a baselines file may differ in them (and in its code).
+FRONTIER_VOID_ONLY = {"enclosure_power", "unexposed_weight", "second_look"}
+
+
+def _baselines_part(path, parts):
+    """The baseline runs (every strategy but frontier_void) of an earlier record `path`, for a record whose
+    change did not touch the baselines' code path. Its setup must agree but for the code and frontier_void's
+    own settings, and every baseline run the new parts measured again (same scene, strategy and seed) must
+    have the very same coverage curve (checked, counted in baselines_from["checked_runs"])."""
+    old = json.load(open(path))
+    ignore = {"scenes", "strategies", "seeds", "first_seed", "capability_map_s", "note", "code"} | FRONTIER_VOID_ONLY
+    new = parts[0]["setup"]
+    diff = sorted(k for k in set(old["setup"]) | set(new) if k not in ignore and old["setup"].get(k) != new.get(k))
+    if diff:
+        raise SystemExit(f"--baselines-from: {path} has another setup ({', '.join(diff)})")
+    checked = 0
+    for p in parts:
+        for scene, per in p["runs"].items():
+            for strategy, runs in per.items():
+                if strategy == "frontier_void":
+                    continue
+                earlier = {r["seed"]: r for r in old["runs"].get(scene, {}).get(strategy, [])}
+                for r in runs:
+                    if r["seed"] in earlier:
+                        if r["coverage"] != earlier[r["seed"]]["coverage"]:
+                            raise SystemExit(f"--baselines-from: {strategy} on {scene} seed {r['seed']} differs from "
+                                             f"{path}: the baselines' code path changed, measure them again")
+                        checked += 1
+    runs = {scene: {s: r for s, r in per.items() if s != "frontier_void"} for scene, per in old["runs"].items()}
+    return {"setup": old["setup"], "oracle": old["oracle"], "runs": runs, "total_s": 0.0,
+            "baselines_from": {"file": path, "code": old["setup"].get("code"), "checked_runs": checked}}
+
+
 def _combine(a) -> int:
     """One output from several: their scenes and strategies side by side, and the runs of one (scene,
     strategy) from parts with other seeds (--first-seed) pooled, by seed (a later file's run of a seed
@@ -192,6 +225,9 @@ def _combine(a) -> int:
             raise SystemExit(f"--combine: {f} has another setup than {a.combine[0]} ({', '.join(diff)})")
     out = {"setup": dict(parts[0]["setup"]), "oracle": {}, "summary": {}, "runs": {}, "combined_from": a.combine}
     by_seed = {}
+    if a.baselines_from:
+        parts = [_baselines_part(a.baselines_from, parts)] + parts
+        out["setup"]["baselines_from"] = parts[0]["baselines_from"]
     for p in parts:
         out["oracle"].update(p["oracle"])
         for scene, per in p["runs"].items():
@@ -259,6 +295,9 @@ def main(argv=None) -> int:
     ap.add_argument("--markdown", default=None, help="write the table (strategies x scenes) as markdown here")
     ap.add_argument("--combine", nargs="+", default=None, metavar="JSON",
                     help="no runs: combine the JSON outputs of earlier runs (e.g. one per --scenes group) into one")
+    ap.add_argument("--baselines-from", default=None, metavar="JSON",
+                    help="with --combine: the baselines' runs from this earlier record (its code may differ where only "
+                         "frontier_void passes; baseline runs measured again in the parts must equal its runs)")
     a = ap.parse_args(argv)
     if a.combine:
         return _combine(a)

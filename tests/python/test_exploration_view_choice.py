@@ -130,3 +130,27 @@ def test_aimed_poses_see_their_target_past_no_known_surface(monkeypatch):
     blind = aimed_poses(np.random.default_rng(0), emap, sphere=((0.6, 0.0, 0.6), 1.0), n=150)
     assert unknown_first(P) > 0.8 and unknown_first(P) > unknown_first(blind) + 0.15, \
         (unknown_first(P), unknown_first(blind))
+
+
+def test_a_view_is_low_only_when_none_on_offer_expects_more():
+    """With the ranking weighted (enclosure, unexposed cells at 0) the view it ranks first may expect fewer
+    void cells than another valid view: when every view is low (widen_below above them all), the choice
+    is the view with the most expected void cells among the search's ranked views and the aimed poses,
+    after the harder look (LOW_AIMED_POSES more aimed poses); its gains are those of its pose."""
+    from octoreach import next_best_view
+    from octoreach.exploration.strategies import choose_view
+    from test_exploration import _box_seen_from_three_sides
+
+    emap, cam, region, sphere_of = _box_seen_from_three_sides()
+    options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
+                   enclosure_power=2.0, unexposed_weight=0.0)
+    r = next_best_view(emap, cam, seed=3, workspace_sphere=sphere_of(None), **options)
+    ranked = [v["expected_void"] for v in r["ranked"]]
+    assert len(ranked) > 5 and max(ranked) > ranked[0]  # the weighted ranking's first is not the largest
+    c = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=1e9)
+    assert c.details.get("harder") and c.utility >= max(ranked)
+    again = score_views(emap, cam, c.pose[None], workspace_sphere=sphere_of(None), min_distance=0.05)
+    assert again["valid"][0] and again["expected_void"][0] == pytest.approx(c.utility)
+    # not low: the ranking gain decides as before (no harder look)
+    high = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=0.0)
+    assert not high.details.get("harder") and high.rank_gain >= r["ranked"][0]["expected_enclosed_void"]
