@@ -279,10 +279,12 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     default to the loop's LOOP_VALID_POSES and LOOP_CANDIDATE_CELLS). `enclosure_power` (frontier_void):
     enclosed voids first (NbvOptions.enclosure_power; None: LOOP_ENCLOSURE_POWER, 0: the paper's plain
     count). `unexposed_weight` (frontier_void): void cells with no observed free neighbour count with this
-    factor (NbvOptions.unexposed_weight; None: LOOP_UNEXPOSED_WEIGHT, 1: the paper's count). `second_look` (frontier_void): on every view, AIMED_POSES poses aimed at void cells are scored
-    too and the better view is taken (strategies.aimed_poses; by the ranking gain, or by expected void
-    cells when the search's best expects at most `min_utility`), so the loop stops only when neither
-    finds a view worth taking.
+    factor (NbvOptions.unexposed_weight; None: LOOP_UNEXPOSED_WEIGHT, 1: the paper's count).
+    `second_look` (frontier_void): on every view, AIMED_POSES poses aimed along lines of sight at void
+    cells are scored too and the better view is taken (strategies.aimed_poses; by the ranking gain). A view
+    counts as low only when no view on offer expects more than `min_utility` void cells: then the one
+    expecting the most is taken, after LOW_AIMED_POSES more aimed poses (any void cell), so the loop stops
+    only when none of them finds a view worth taking.
     `ground_is_obstacle` (all strategies, with a chain): the ground below the search space is an obstacle
     for the links the arm moves (NbvOptions.ground_is_obstacle; off until the benchmark's record is run
     with it).
