@@ -154,3 +154,35 @@ def test_a_view_is_low_only_when_none_on_offer_expects_more():
     # not low: the ranking gain decides as before (no harder look)
     high = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=0.0)
     assert not high.details.get("harder") and high.rank_gain >= r["ranked"][0]["expected_enclosed_void"]
+
+
+def test_the_search_tests_the_links_the_arm_moves_against_the_map():
+    """example-robot-data's xArm 7 at the origin, its base standing on the floor. Once the map has seen the
+    floor under the base, the base touches the floor's occupied cells in every configuration: the search
+    tested every link against the map and found no valid view at all (the newcomer try of round 12). It
+    now tests the links the arm moves, as the loop's physical check and the oracle do, so a pose above an
+    open crate is a view, while the arm is still refused where its moved links meet a seen surface."""
+    from octoreach import Obstacles, robots
+
+    robot = robots.load("xarm7")
+    chain = robot.chain("link_base", "link_eef")
+    scene = Scene()
+    scene.add_box((-2, -2, -0.05), (2, 2, 0))
+    scene.add_crate((0.35, -0.15, 0.0), (0.6, 0.15, 0.2), 0.02)
+    emap, cam = _surveyed(scene, [(0.5, 0.6, 0.9), (0.5, -0.6, 0.9), (0.9, 0.0, 0.9)], (0.0, 0.0, 0.0))
+    assert emap.state(np.array([[0.0, 0.0, -0.02]]))[0] == 2  # the floor under the base is seen
+    floor_cells = Obstacles()
+    floor_cells.add_points(emap.cells("occupied"), emap.resolution)
+    home = robot.home()
+    assert robot.in_collision(home, floor_cells)  # every link: the base touches the seen floor
+    assert not robot.in_collision(home, floor_cells, links=chain.moved_links)
+    common = dict(chain=chain, chain_base=np.eye(4), unknown_is_obstacle=False, min_distance=0.05, seed=3)
+    above = ex.look_at((0.47, 0.0, 0.55), (0.47, 0.0, 0.0))[None]
+    r = score_views(emap, cam, above, **common)
+    assert r["status"] == ["valid"], r["status"]
+    q = chain.to_robot_configuration(np.asarray(r["q"][0]))
+    assert robot.in_collision(q, floor_cells) and not robot.in_collision(q, floor_cells, links=chain.moved_links)
+    # poses all around: the moved links still meet the seen floor and crate in some of them
+    P = sample_poses(np.random.default_rng(0), ex.scene_region(scene), sphere=((0.0, 0.0, 0.27), 0.7), n=200)
+    status = list(score_views(emap, cam, P, score_invalid=False, **common)["status"])
+    assert status.count("valid") > 10 and status.count("arm_collision") > 10, status

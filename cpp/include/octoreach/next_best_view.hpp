@@ -99,10 +99,12 @@ struct NbvOptions {
   /// IK of each sampled pose (mode and approach axis are set by the search; restart seeds are
   /// ik.seed + the pose's index).
   IkOptions ik = default_ik();
-  /// With a chain: reject IK solutions where a link of the chain's robot (its collision shapes, the
-  /// rest of the robot at home, the robot placed so the chain base sits at chain_base) touches an
-  /// occupied cell of the map (and, with unknown_is_obstacle, an unknown cell of the search space), or
-  /// another link of the robot (self-collision, the robot's allowed pairs excepted).
+  /// With a chain: reject IK solutions where a link the chain moves (its collision shapes; the rest of
+  /// the robot at home, the robot placed so the chain base sits at chain_base) touches an occupied cell
+  /// of the map (and, with unknown_is_obstacle, an unknown cell of the search space), or any link touches
+  /// another link of the robot (self-collision, the robot's allowed pairs excepted). The links the chain
+  /// does not move are not tested against the map: they do not move with the view, and a base standing on
+  /// the floor touches the floor's cells in every configuration.
   bool arm_collisions = true;
   /// Capability map of the arm carrying the camera (positions in its base link frame): candidate
   /// cells whose voxel has reachability index D <= min_reachability are pruned before any IK.

@@ -79,6 +79,11 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   obstacles_.emplace();  // with no cell known yet, the arm is still checked against itself
   reference_ = robot.home();
   robot_root_ = opt.chain_base * robot.link_poses(reference_)[robot.link_index(opt.chain->base_link())].inverse();
+  // Only the links the chain moves are tested against the map (as the loop's physical check and the oracle
+  // do): the others do not move with the view, and a base standing on the floor touches the floor's
+  // occupied cells in every configuration (example-robot-data's xArm 7: no valid view once a view had seen
+  // the floor under it).
+  moved_links_ = opt.chain->moved_collision_links();
   const ExplorationOptions& mo = map.options();
   if (opt.ground_is_obstacle && mo.search_lo.z() > -1e8) {  // (-1e9: no search space, no floor)
     // a slab 1 m deep whose top is the search space's floor, 100 m across around the chain's base
@@ -88,7 +93,6 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
                                          mo.search_lo.z() - kDepth / 2);
     ground_.emplace();
     ground_->add_box(Eigen::Vector3d(kSide, kSide, kDepth), slab);
-    moved_links_ = opt.chain->moved_collision_links();
   }
   if (S.tree.size() == 0) return;
   // The map's occupied cells (the tree is not copied: the map outlives the search).
@@ -156,10 +160,11 @@ ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t se
   o.seed = ik_.seed + seed_offset;
   auto q = opt_.chain->ik(base_inv_ * pose, o);
   if (!q) return ViewStatus::NoIk;
-  // The arm against the map's occupied (and, safe views, unknown) cells and against the robot itself.
+  // The links the arm moves against the map's occupied (and, safe views, unknown) cells; the robot against itself.
   if (obstacles_ || ground_) {
     const Eigen::VectorXd q_robot = opt_.chain->to_robot_configuration(*q, reference_);
-    if (obstacles_ && opt_.chain->robot().in_collision(q_robot, *obstacles_, robot_root_, /*check_self=*/true))
+    if (obstacles_ &&
+        opt_.chain->robot().in_collision(q_robot, *obstacles_, robot_root_, /*check_self=*/true, &moved_links_))
       return ViewStatus::ArmCollision;
     if (ground_ && opt_.chain->robot().in_collision(q_robot, *ground_, robot_root_, false, &moved_links_))
       return ViewStatus::ArmCollision;

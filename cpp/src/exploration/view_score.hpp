@@ -94,7 +94,7 @@ class ViewChecker {
   bool cap_orient_ = false;
   std::optional<Obstacles> obstacles_;
   std::optional<Obstacles> ground_;  // ground_is_obstacle: a slab under the search space
-  std::vector<int> moved_links_;     // collision links the chain moves (tested against ground_)
+  std::vector<int> moved_links_;     // collision links the chain moves (tested against the map and ground_)
   std::shared_ptr<octomap::OcTree> unknown_tree_;
   std::size_t unknown_cells_ = 0;
   Eigen::VectorXd reference_;
