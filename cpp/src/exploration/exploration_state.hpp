@@ -233,6 +233,7 @@ struct ExplorationState {
   // How enclosed each void cell is (void_enclosure.cpp), for enclosure_range; dropped by every insert.
   mutable std::shared_ptr<const KeyTable<std::uint8_t>> enclosure;
   mutable double enclosure_range = -1;
+  mutable bool enclosure_exposure = false;  // the table carries the exposed bit (void_enclosure.hpp)
 
   CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }
   Eigen::Vector3d center(CellKey k) const {

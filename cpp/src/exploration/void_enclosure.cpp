@@ -16,7 +16,7 @@ namespace octoreach::detail {
 
 namespace {
 
-std::uint8_t closed_halves(const GridReader& g, CellKey k, int steps) {
+std::uint8_t closed_halves(const GridReader& g, CellKey k, int steps, bool exposure) {
   const int x = int(key_x(k)), y = int(key_y(k)), z = int(key_z(k));
   static constexpr int kDirs[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   int halves = 0;
@@ -37,6 +37,7 @@ std::uint8_t closed_halves(const GridReader& g, CellKey k, int steps) {
     }
     halves += h;
   }
+  if (!exposure) return std::uint8_t(halves);
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
@@ -60,27 +61,28 @@ VoidWeights::VoidWeights(std::shared_ptr<const EnclosureTable> table, double pow
 }
 
 std::shared_ptr<const EnclosureTable> cached_void_enclosure(const ExplorationState& s, double resolution,
-                                                            double range) {
+                                                            double range, bool exposure) {
   std::lock_guard<std::mutex> lock(s.cache_mutex);
-  if (s.enclosure && s.enclosure_range == range) return s.enclosure;
+  if (s.enclosure && s.enclosure_range == range && (s.enclosure_exposure || !exposure)) return s.enclosure;
   const int steps = std::max(1, int(std::ceil(range / resolution - 1e-9)));
   const std::vector<CellKey> keys(s.void_set.begin(), s.void_set.end());
   std::vector<std::uint8_t> halves(keys.size());
   parallel_for(keys.size(), 0, [&](std::size_t i, int) {
     const GridReader g(s.grid);
-    halves[i] = closed_halves(g, keys[i], steps);
+    halves[i] = closed_halves(g, keys[i], steps, exposure);
   }, 256);
   auto table = std::make_shared<EnclosureTable>(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) table->at(keys[i]) = halves[i];
   s.enclosure = table;
   s.enclosure_range = range;
+  s.enclosure_exposure = exposure;
   return table;
 }
 
 VoidWeights void_weights(const ExplorationState& s, double resolution, double power, double range,
                          double unexposed_weight) {
   if (power <= 0 && unexposed_weight == 1) return {};
-  return VoidWeights(cached_void_enclosure(s, resolution, range), power, unexposed_weight);
+  return VoidWeights(cached_void_enclosure(s, resolution, range, unexposed_weight != 1), power, unexposed_weight);
 }
 
 }  // namespace octoreach::detail

@@ -38,10 +38,11 @@ class VoidWeights {
   double weight_[32] = {};
 };
 
-// The enclosure of the map's void cells for `range` (m): cached until the next insert (the caller holds
-// the map's lock, shared or exclusive).
+// The enclosure of the map's void cells for `range` (m), with the exposed bit when `exposure` (else the
+// bit may or may not be set): cached until the next insert (the caller holds the map's lock, shared or
+// exclusive).
 std::shared_ptr<const EnclosureTable> cached_void_enclosure(const ExplorationState& s, double resolution,
-                                                            double range);
+                                                            double range, bool exposure = false);
 
 // The weights of a search with `power`, `range` and `unexposed_weight` (power 0 and unexposed_weight 1: none,
 // every void cell weighs 1).
