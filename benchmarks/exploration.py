@@ -124,7 +124,7 @@ def main() -> int:
     view_options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
                         max_valid_poses=ex.LOOP_VALID_POSES, max_candidate_cells=ex.LOOP_CANDIDATE_CELLS,
                         enclosure_power=ex.LOOP_ENCLOSURE_POWER)
-    if hasattr(ex, "LOOP_UNEXPOSED_WEIGHT"):  # round 12 on; absent when run against an older build (--reference)
+    if hasattr(ex, "LOOP_UNEXPOSED_WEIGHT"):  # round 12 on; absent when run against an older build (A/B, above)
         view_options["unexposed_weight"] = ex.LOOP_UNEXPOSED_WEIGHT
     for i in range(a.repeats):
         t0 = time.perf_counter()  # a range of its own per repeat: each pays the enclosure, as after an insert

@@ -1,5 +1,6 @@
 // Next-best-view bindings: NbvOptions (defaults from the C++ struct), view_utility,
 // accumulate_utility and next_best_view.
+#include <algorithm>
 #include <cmath>
 
 #include "exploration_convert.hpp"
@@ -305,6 +306,19 @@ void wrap_next_best_view(py::module_& m) {
         "expected to see (score_width x score_height rays, unknown_pass_probability as in next_best_view)\n"
         "are recorded with their ray weights w, and the next insert multiplies the seeability of each one it\n"
         "leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability.");
+  m.def("exposed_cells", [](const ExplorationMap& map, const py::array_t<std::uint64_t>& keys) {
+          const std::vector<CellKey> k(keys.data(), keys.data() + keys.size());
+          std::vector<bool> e;
+          {
+            py::gil_scoped_release release;
+            e = exposed_cells(map, k);
+          }
+          py::array_t<bool> out(static_cast<py::ssize_t>(e.size()));
+          std::copy(e.begin(), e.end(), out.mutable_data());
+          return out;
+        }, py::arg("map"), py::arg("keys"),
+        "(N,) bools: each cell (keys (N,) uint64) has an observed free cell among its 26 neighbours (the\n"
+        "exposure NbvOptions.unexposed_weight weighs).");
   m.def("void_enclosure", [](const ExplorationMap& map, double range) {
           std::vector<std::pair<CellKey, double>> e;
           {

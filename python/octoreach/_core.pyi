@@ -1688,6 +1688,11 @@ def expect_view(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any
     are recorded with their ray weights w, and the next insert multiplies the seeability of each one it
     leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability.
     """
+def exposed_cells(map: ExplorationMap, keys: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.bool_]:
+    """
+    (N,) bools: each cell (keys (N,) uint64) has an observed free cell among its 26 neighbours (the
+    exposure NbvOptions.unexposed_weight weighs).
+    """
 def find_arms(robot: Robot) -> list[Arm]:
     """
     The robot's arms: serial SRDF groups (tips moved to their tool frames), else branches of the kinematic

@@ -7,7 +7,7 @@ import pytest
 from octoreach import DepthCamera, ExplorationMap, Scene, score_views
 from octoreach import exploration as ex
 from octoreach.exploration import strategies
-from octoreach.exploration.strategies import aimed_poses, exposed, in_line_of_sight, sample_poses
+from octoreach.exploration.strategies import aimed_poses, in_line_of_sight, sample_poses
 
 FOV = np.deg2rad(58.0)
 
@@ -62,13 +62,17 @@ def test_frontier_void_rays_end_at_the_void_box_with_the_same_void_figures():
     assert np.any(score_views(free, cam, P[:5], gain="unknown", unknown_is_obstacle=False)["unknown_cells"] > 0)
 
 
-def test_exposed_by_hand():
-    """exposed(): a cell with an observed free cell among its 26 neighbours (checked one neighbour at a
+def test_exposed_cells_by_hand():
+    """_core.exposed_cells: a cell with an observed free cell among its 26 neighbours (checked one neighbour at a
     time); the inside of a solid block seen from outside has none, the crate's void (seen from the sides
     only) has some next to the air the views saw through its open top."""
+    from octoreach import _core
+
     scene, emap, _ = _crate_and_block()
-    C = np.asarray(emap.centers(emap.void_keys()))
-    e = exposed(emap, C)
+    keys = np.asarray(emap.void_keys())
+    C = np.asarray(emap.centers(keys))
+    e = np.asarray(_core.exposed_cells(emap, keys))
+    assert e.dtype == bool and len(e) == len(keys)
     # by hand: the 26 neighbour centres, one at a time
     some = np.random.default_rng(1).choice(len(C), 200, replace=False)
     for i in some:

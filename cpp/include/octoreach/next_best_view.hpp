@@ -231,6 +231,10 @@ std::size_t missed_cells(const ExplorationMap& map);
 /// unknown space to the range counts 1/2. \throws std::invalid_argument for a range that is not > 0.
 std::vector<std::pair<CellKey, double>> void_enclosure(const ExplorationMap& map, double range = 0.5);
 
+/// \brief For each cell key, whether one of its 26 neighbours is observed free: the exposure that
+/// NbvOptions::unexposed_weight weighs (a void cell on the face of the void that observed space shows).
+std::vector<bool> exposed_cells(const ExplorationMap& map, const std::vector<CellKey>& keys);
+
 /// \brief The visibility curve a map learned from its announced views (see the file comment), per
 /// class (index 0: unknown cells outside the voids, 1: void cells) and unknown depth d (the last
 /// entry holds the deeper cells too): the cells views expected (weighted by their seeability), the

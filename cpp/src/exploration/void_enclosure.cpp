@@ -37,7 +37,13 @@ std::uint8_t closed_halves(const GridReader& g, CellKey k, int steps, bool expos
     }
     halves += h;
   }
-  if (!exposure) return std::uint8_t(halves);
+  return std::uint8_t(exposure && has_free_neighbour(g, k) ? halves | kExposed : halves);
+}
+
+}  // namespace
+
+bool has_free_neighbour(const GridReader& g, CellKey k) {
+  const int x = int(key_x(k)), y = int(key_y(k)), z = int(key_z(k));
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
@@ -45,12 +51,10 @@ std::uint8_t closed_halves(const GridReader& g, CellKey k, int steps, bool expos
         if ((dx | dy | dz) == 0 || a < 0 || b < 0 || c < 0 || a > 0xffff || b > 0xffff || c > 0xffff) continue;
         if ((g.get(pack_key(std::uint32_t(a), std::uint32_t(b), std::uint32_t(c))) & kStateMask) ==
             std::uint8_t(CellState::Free))
-          return std::uint8_t(halves | kExposed);
+          return true;
       }
-  return std::uint8_t(halves);
+  return false;
 }
-
-}  // namespace
 
 VoidWeights::VoidWeights(std::shared_ptr<const EnclosureTable> table, double power, double unexposed_weight)
     : table_(std::move(table)) {
@@ -88,6 +92,14 @@ VoidWeights void_weights(const ExplorationState& s, double resolution, double po
 }  // namespace octoreach::detail
 
 namespace octoreach {
+
+std::vector<bool> exposed_cells(const ExplorationMap& map, const std::vector<CellKey>& keys) {
+  auto guard = detail::read_guard(map);
+  const detail::GridReader g(detail::state(map).grid);
+  std::vector<bool> out(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) out[i] = detail::has_free_neighbour(g, keys[i]);
+  return out;
+}
 
 std::vector<std::pair<CellKey, double>> void_enclosure(const ExplorationMap& map, double range) {
   if (!(range > 0) || !std::isfinite(range))

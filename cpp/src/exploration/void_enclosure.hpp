@@ -9,6 +9,7 @@
 namespace octoreach::detail {
 
 struct ExplorationState;
+class GridReader;
 
 // Per void cell, how many of the six axis directions are closed, in halves (0..12): from the cell, a
 // direction walks up to `range` through unknown cells; it is closed (2) when it meets an occupied cell,
@@ -18,6 +19,10 @@ struct ExplorationState;
 using EnclosureTable = KeyTable<std::uint8_t>;
 constexpr std::uint8_t kExposed = 16;
 constexpr std::uint8_t kHalvesMask = 15;
+
+// True when one of k's 26 neighbours is observed free: k lies on the face of a void that observed space
+// shows (the exposure of NbvOptions::unexposed_weight; public as exposed_cells).
+bool has_free_neighbour(const GridReader& g, CellKey k);
 
 // The void weights of one search: enclosure^power per void cell, times unexposed_weight for a cell with no
 // observed free neighbour (cells not in the table: 1).

@@ -145,19 +145,11 @@ def _view_choice(v, base, utility, emap, candidates, valid, details) -> Choice:
                   base=base, candidates=candidates, valid=valid, details=details)
 
 
-# The aimed poses' targets: void cells with an observed free cell among their 26 neighbours (the face of
-# a void that observed space shows, which a view can see at once: 83 % of the void cells left in paper
-# scene 1's open crates after the first view, 16 % of the unknown inside of its solid computer tower),
-# and this share of the others.
+# The aimed poses' targets: void cells with an observed free cell among their 26 neighbours
+# (_core.exposed_cells: the face of a void that observed space shows, which a view can see at once: 83 % of
+# the void cells left in paper scene 1's open crates after the first view, 16 % of the unknown inside of its
+# solid computer tower), and this share of the others.
 UNEXPOSED_SHARE = 0.25
-_N26 = np.array([(x, y, z) for x in (-1, 0, 1) for y in (-1, 0, 1) for z in (-1, 0, 1) if (x, y, z) != (0, 0, 0)], float)
-
-
-def exposed(emap, centers) -> np.ndarray:
-    """(N,) bools: the cell at each centre (N, 3) has an observed free cell among its 26 neighbours."""
-    centers = np.asarray(centers, float).reshape(-1, 3)
-    nb = centers[:, None, :] + emap.resolution * _N26[None, :, :]
-    return (np.asarray(emap.state(nb.reshape(-1, 3))).reshape(len(centers), 26) == 1).any(axis=1)
 
 
 def in_line_of_sight(emap, targets, eyes) -> np.ndarray:
@@ -183,13 +175,14 @@ def aimed_poses(rng, emap, sphere=None, box=None, n: int = AIMED_POSES, floor: f
     and/or box ((2, 3)), above `floor`, and in line of sight of the cell (no occupied cell of the map
     between them: in_line_of_sight). Round 12: without that test most poses aimed at the last slivers of
     an open crate looked at them through the crate's own wall. The cells are drawn among the exposed
-    ones (exposed()) and `unexposed_share` (default UNEXPOSED_SHARE) of the others."""
+    ones (_core.exposed_cells) and `unexposed_share` (default UNEXPOSED_SHARE) of the others."""
     keys = np.asarray(emap.void_keys())
     if len(keys) == 0 or n <= 0:
         return np.zeros((0, 4, 4))
-    targets = np.asarray(emap.centers(keys[rng.integers(len(keys), size=8 * n)]), float).reshape(-1, 3)
+    drawn = keys[rng.integers(len(keys), size=8 * n)]
+    targets = np.asarray(emap.centers(drawn), float).reshape(-1, 3)
     share = UNEXPOSED_SHARE if unexposed_share is None else unexposed_share
-    keep = exposed(emap, targets) | (rng.random(len(targets)) < share)
+    keep = np.asarray(_core.exposed_cells(emap, drawn), bool) | (rng.random(len(targets)) < share)
     targets = targets[keep][:4 * n]
     d = rng.normal(size=targets.shape)
     d[:, 2] = np.abs(d[:, 2])
@@ -238,15 +231,13 @@ def _nbv_choice(emap, camera, bases, current, sphere_of, options, seed, widen_be
         if widen_below is not None and r["ranked"] and top["expected_void"] <= widen_below:
             # the best by the ranking gain is a low view: a view is low only when none on offer expects more
             top = max(r["ranked"], key=lambda v: v["expected_void"])
-        c = Choice(pose=r["best_pose"], void_cells=int(top.get("void_cells", 0)),
+        c = Choice(pose=None if top.get("pose") is None else np.asarray(top["pose"]), void_cells=int(top.get("void_cells", 0)),
                    expected_void=float(top.get("expected_void", 0.0)),
                    expected_unknown=float(top.get("expected_unknown", 0.0)),
                    expected_frontier=float(top.get("expected_frontier", 0.0)),
                    utility=float(top.get("expected_void", 0.0)), utility_dm3=float(r["utility_dm3"]),
                    q=top.get("q"), base=i, candidates=int(r["poses_scored"]), valid=len(r["ranked"]), details=r)
         c.rank_gain = float(top.get("expected_enclosed_void", 0.0))
-        if top.get("pose") is not None:
-            c.pose = np.asarray(top["pose"])
         if best is None or c.utility > best.utility:
             best = c
     if widen_below is None:
