@@ -182,18 +182,34 @@ def _markdown(summary, strategies):
 FRONTIER_VOID_ONLY = {"enclosure_power", "unexposed_weight", "second_look"}
 
 
+def _same_run(new_cov, old_run, lower_threshold: bool) -> bool:
+    """A baseline run measured again is the earlier one: the same coverage curve, or, under a lower stopping
+    threshold, the earlier curve followed by more views when the earlier run stopped by the rule."""
+    old_cov = old_run["coverage"]
+    if not lower_threshold or old_run["stop_reason"] == "view budget":
+        return new_cov == old_cov
+    return new_cov[:len(old_cov)] == old_cov
+
+
 def _baselines_part(path, parts):
-    """The baseline runs (every strategy but frontier_void) of an earlier record `path`, for a record whose
-    change did not touch the baselines' code path. Its setup must agree but for the code and frontier_void's
-    own settings, and every baseline run the new parts measured again (same scene, strategy and seed) must
-    have the very same coverage curve (checked, counted in baselines_from["checked_runs"])."""
+    """The baseline runs (every strategy but frontier_void) of an earlier record `path` that the new parts do
+    not measure, for a record whose change did not touch the baselines' code path. Its setup must agree but
+    for the code and frontier_void's own settings; a lower stopping threshold (min_utility) is allowed when
+    every borrowed run ended at the view budget (the rule never stopped it, so a lower threshold would not
+    either). Every baseline run the new parts measured again (same scene, strategy and seed) must have the
+    very same coverage curve, or under a lower threshold the earlier curve and then more views (checked,
+    counted in baselines_from["checked_runs"])."""
     old = json.load(open(path))
     ignore = {"scenes", "strategies", "seeds", "first_seed", "capability_map_s", "note", "code"} | FRONTIER_VOID_ONLY
     new = parts[0]["setup"]
+    lower = new.get("min_utility", 0) < old["setup"].get("min_utility", 0)
+    if lower:
+        ignore.add("min_utility")
     diff = sorted(k for k in set(old["setup"]) | set(new) if k not in ignore and old["setup"].get(k) != new.get(k))
     if diff:
         raise SystemExit(f"--baselines-from: {path} has another setup ({', '.join(diff)})")
     checked = 0
+    measured = set()
     for p in parts:
         for scene, per in p["runs"].items():
             for strategy, runs in per.items():
@@ -201,14 +217,26 @@ def _baselines_part(path, parts):
                     continue
                 earlier = {r["seed"]: r for r in old["runs"].get(scene, {}).get(strategy, [])}
                 for r in runs:
+                    measured.add((scene, strategy, r["seed"]))
                     if r["seed"] in earlier:
-                        if r["coverage"] != earlier[r["seed"]]["coverage"]:
+                        if not _same_run(r["coverage"], earlier[r["seed"]], lower):
                             raise SystemExit(f"--baselines-from: {strategy} on {scene} seed {r['seed']} differs from "
                                              f"{path}: the baselines' code path changed, measure them again")
                         checked += 1
-    runs = {scene: {s: r for s, r in per.items() if s != "frontier_void"} for scene, per in old["runs"].items()}
+    runs = {}
+    for scene, per in old["runs"].items():
+        for strategy, rs in per.items():
+            if strategy == "frontier_void":
+                continue
+            borrowed = [r for r in rs if (scene, strategy, r["seed"]) not in measured]
+            if lower and any(r["stop_reason"] != "view budget" for r in borrowed):
+                raise SystemExit(f"--baselines-from: {strategy} on {scene} has runs that the earlier threshold "
+                                 f"stopped; with a lower min_utility they must be measured again")
+            if borrowed:
+                runs.setdefault(scene, {})[strategy] = borrowed
     return {"setup": old["setup"], "oracle": old["oracle"], "runs": runs, "total_s": 0.0,
-            "baselines_from": {"file": path, "code": old["setup"].get("code"), "checked_runs": checked}}
+            "baselines_from": {"file": path, "code": old["setup"].get("code"), "checked_runs": checked,
+                               "min_utility": old["setup"].get("min_utility")}}
 
 
 def _combine(a) -> int:

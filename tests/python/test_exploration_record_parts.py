@@ -55,3 +55,66 @@ def test_parts_of_other_code_or_settings_are_refused(tmp_path):
     b.write_text(json.dumps(_part(mod, 2, 2, code="def")))
     with pytest.raises(SystemExit, match="code"):
         mod.main(["--combine", str(a), str(b)])
+
+
+def _with(part, strategy, **run_changes):
+    for r in part["runs"]["paper_1"][strategy]:
+        r.update(run_changes)
+    return part
+
+
+def _setup(part, **changes):
+    part["setup"].update(changes)
+    return part
+
+
+def test_baselines_from_an_earlier_record_fill_what_the_parts_do_not_measure(tmp_path, capsys):
+    """--baselines-from: the earlier record's baseline runs join the new frontier_void runs; a baseline run
+    measured again must be the earlier run, else the baselines' code path changed and the record is refused."""
+    mod = _bench()
+    old = _setup(_part(mod, 2, 0, strategies=("frontier_void", "random", "frontiers"), code="old"), min_utility=20.0)
+    new_fv = _setup(_part(mod, 2, 0, strategies=("frontier_void",), code="new"), min_utility=20.0)
+    check = _setup(_part(mod, 1, 0, strategies=("random",), code="new"), min_utility=20.0)
+    paths = {}
+    for name, part in (("old", old), ("fv", new_fv), ("check", check)):
+        paths[name] = tmp_path / f"{name}.json"
+        paths[name].write_text(json.dumps(part))
+    assert mod.main(["--combine", str(paths["fv"]), str(paths["check"]), "--baselines-from", str(paths["old"])]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert sorted(out["runs"]["paper_1"]) == ["frontier_void", "frontiers", "random"]
+    assert out["setup"]["baselines_from"]["checked_runs"] == 1
+    assert [r["seed"] for r in out["runs"]["paper_1"]["frontiers"]] == [0, 1]
+    check["runs"]["paper_1"]["random"][0]["coverage"][-1] = 0.5  # the baseline's view changed
+    paths["check"].write_text(json.dumps(check))
+    with pytest.raises(SystemExit, match="code path changed"):
+        mod.main(["--combine", str(paths["fv"]), str(paths["check"]), "--baselines-from", str(paths["old"])])
+
+
+def test_a_lower_stopping_threshold_borrows_only_runs_the_rule_never_stopped(tmp_path, capsys):
+    """With a lower min_utility than the earlier record's, a borrowed run must have ended at the view budget
+    (the rule never stopped it, a lower threshold would not either); a run measured again may go on where the
+    earlier threshold stopped it, but its first views must be the earlier run's."""
+    mod = _bench()
+    old = _setup(_part(mod, 2, 0, strategies=("frontier_void", "random", "frontiers"), code="old"), min_utility=20.0)
+    _with(old, "frontiers", stop_reason="view budget")
+    new_fv = _setup(_part(mod, 2, 0, strategies=("frontier_void",), code="new"), min_utility=10.0)
+    longer = _setup(_part(mod, 2, 0, strategies=("random",), code="new"), min_utility=10.0)
+    for r in longer["runs"]["paper_1"]["random"]:
+        r["coverage"] = r["coverage"] + [1.0, 1.0]  # the earlier views, then two more
+    paths = {}
+    for name, part in (("old", old), ("fv", new_fv), ("random", longer)):
+        paths[name] = tmp_path / f"{name}.json"
+        paths[name].write_text(json.dumps(part))
+    args = ["--combine", str(paths["fv"]), str(paths["random"]), "--baselines-from", str(paths["old"])]
+    assert mod.main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["setup"]["baselines_from"]["checked_runs"] == 2 and out["setup"]["min_utility"] == 10.0
+    assert [len(r["coverage"]) for r in out["runs"]["paper_1"]["random"]] == [8, 9]  # the new, longer runs
+    # random's earlier runs stopped by the rule: without new runs of it, they cannot be borrowed
+    with pytest.raises(SystemExit, match="measured again"):
+        mod.main(["--combine", str(paths["fv"]), "--baselines-from", str(paths["old"])])
+    # a run measured again whose first views differ is refused
+    longer["runs"]["paper_1"]["random"][1]["coverage"][0] = 0.0
+    paths["random"].write_text(json.dumps(longer))
+    with pytest.raises(SystemExit, match="code path changed"):
+        mod.main(args)
