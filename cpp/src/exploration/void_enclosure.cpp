@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cell_sets.hpp"
 #include "common/thread_pool.hpp"
 #include "exploration_state.hpp"
 #include "octoreach/next_best_view.hpp"
@@ -43,16 +44,10 @@ std::uint8_t closed_halves(const GridReader& g, CellKey k, int steps, bool expos
 }  // namespace
 
 bool has_free_neighbour(const GridReader& g, CellKey k) {
-  const int x = int(key_x(k)), y = int(key_y(k)), z = int(key_z(k));
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int a = x + dx, b = y + dy, c = z + dz;
-        if ((dx | dy | dz) == 0 || a < 0 || b < 0 || c < 0 || a > 0xffff || b > 0xffff || c > 0xffff) continue;
-        if ((g.get(pack_key(std::uint32_t(a), std::uint32_t(b), std::uint32_t(c))) & kStateMask) ==
-            std::uint8_t(CellState::Free))
-          return true;
-      }
+  for (const auto& d : kN26.d) {
+    CellKey nb;
+    if (neighbour(k, d[0], d[1], d[2], nb) && (g.get(nb) & kStateMask) == std::uint8_t(CellState::Free)) return true;
+  }
   return false;
 }
 
