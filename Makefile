@@ -9,7 +9,7 @@ PIP    := $(PY) -m pip
 BUILD  := build/py
 JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 
-SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf -type f 2>/dev/null) \
+SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf benchmarks/reference -type f 2>/dev/null) \
            CMakeLists.txt pyproject.toml
 
 .PHONY: all demo demo-exploration stubs test test-cpp test-python install sysdeps venv benchmarks clean \

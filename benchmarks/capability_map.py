@@ -37,8 +37,7 @@ measures fairly; the wall-clock target needs a quiet one. The children's maps ar
 byte (``same_bytes``: sha256 of the saved file). ``--compare-only`` runs only this comparison (at
 ``--resolution``; e.g. ``--resolution 0.025 --compare-only --reference ... --repeats 1``).
 
-Prints one JSON document, with today's figures from before issue 15 (``before_issue_15``) beside the
-new ones. ``--quick`` runs at 0.1 m with fewer poses; ``--also-fine`` adds the 0.025 m build (its
+Prints one JSON document. ``--quick`` runs at 0.1 m with fewer poses; ``--also-fine`` adds the 0.025 m build (its
 agreement is measured on the same poses).
 """
 from __future__ import annotations
@@ -74,28 +73,13 @@ ANCHORS = {
     "false_positive_percent": 4.8,
     "lookup_us_per_pose": 0.7,
 }
-TARGETS = {  # issue 15 item 1 (build times on this 2-core machine)
+TARGETS = {  # build times on a 2-core machine
     "build_seconds_0.05": 12,
     "build_seconds_0.025": 90,
     "agreement_percent_min": 98.0,
     "false_positive_percent_max": 1.0,
     "lookup_us_per_pose_max": 0.1,
     "file_bytes_0.05_max": 400 * 1000,
-}
-# Today's figures before issue 15 (main at 11f5197, this script, this machine), printed beside the new
-# ones. Build times: the issue's runs (60-78 s, median 67.5 s; 395 s at 0.025 m) and the quiet re-run of
-# issue 10 (37.2 s); CPU seconds of the 0.05 m build (user + system, 2 threads) measured by the issue 15
-# helper on a loaded machine, where wall-clock figures meant little.
-BEFORE = {
-    "commit": "11f5197",
-    "build_seconds_0.05": {"issue_runs": [60, 78], "issue_median": 67.5, "quiet_rerun": 37.27},
-    "build_cpu_seconds_0.05": 77.1,
-    "build_seconds_0.025": 395,
-    "ik_calls_0.05": 2533305,
-    "reachable_cells_0.05": 1388369,
-    "agreement_percent": {"issue": 97.6, "quiet_rerun": 97.96},
-    "false_positive_percent": {"issue": 1.0, "quiet_rerun": 0.99},
-    "false_negative_percent": {"quiet_rerun": 1.05},
 }
 
 
@@ -365,7 +349,6 @@ def main(argv=None) -> int:
     agree = out["agreement"]["all_poses"]
     out["anchors"] = ANCHORS
     out["targets"] = TARGETS
-    out["before_issue_15"] = BEFORE
     met = {
         "agreement": agree["agreement_percent"] >= TARGETS["agreement_percent_min"],
         "false_positives": agree["false_positive_percent"] <= TARGETS["false_positive_percent_max"],

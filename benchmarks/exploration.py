@@ -14,8 +14,7 @@ weighted) against the void cells its image turned known.
 Run: .venv/bin/python benchmarks/exploration.py [--repeats 5]
 A/B against an earlier build (same machine, same session, alternated): build that commit's module
 (cmake -S <worktree> -B <worktree>/build -DOCTOREACH_PYTHON=ON ...), copy python/octoreach, the built .so
-files and urdf/ into a folder <dir>/octoreach, and run this script with PYTHONPATH=<dir> (docs/exploration.md,
-round 12, has the commands); `code` in the output says which build ran.
+files and urdf/ into a folder <dir>/octoreach, and run this script with PYTHONPATH=<dir>; `code` in the output says which build ran.
 """
 from __future__ import annotations
 
@@ -124,7 +123,7 @@ def main() -> int:
     view_options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
                         max_valid_poses=ex.LOOP_VALID_POSES, max_candidate_cells=ex.LOOP_CANDIDATE_CELLS,
                         enclosure_power=ex.LOOP_ENCLOSURE_POWER)
-    if hasattr(ex, "LOOP_UNEXPOSED_WEIGHT"):  # round 12 on; absent when run against an older build (A/B, above)
+    if hasattr(ex, "LOOP_UNEXPOSED_WEIGHT"):  # absent in older builds (A/B, above)
         view_options["unexposed_weight"] = ex.LOOP_UNEXPOSED_WEIGHT
     for i in range(a.repeats):
         t0 = time.perf_counter()  # a range of its own per repeat: each pays the enclosure, as after an insert

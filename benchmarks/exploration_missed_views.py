@@ -5,8 +5,7 @@ poses are ranked by how many of the observable interior points the run left unkn
 the best --top of them are scored on the run's final map with the loop's very checks (score_views: camera
 in observed-free space, capability map, IK, the arm against occupied and unknown cells and itself). Valid
 ones that expect many void cells are views the search missed; the others say which check stands between
-the planner and what is left. This is how round 10 found that paper scene 2's stalled runs had valid views
-expecting 70-104 void cells that the candidate cells of Algorithm 1 never reached (docs/exploration.md).
+the planner and what is left.
 
 Run: .venv/bin/python benchmarks/exploration_missed_views.py --scene paper_2 --seed 4 [--no-second-look]
 """
@@ -21,6 +20,7 @@ import numpy as np
 
 from octoreach import DepthCamera, _core
 from octoreach import exploration as ex
+from octoreach import testing
 
 START = ((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))  # the benchmark's first view
 
@@ -37,11 +37,11 @@ def main() -> int:
     if a.scene.startswith("paper_"):
         scene = ex.paper_scene(int(a.scene.split("_")[1]))
     else:
-        scene = ex.usar_scene(int(a.scene.split("_")[1])).scene
+        scene = testing.usar_scene(int(a.scene.split("_")[1])).scene
     t0 = time.perf_counter()
     robot, chain = ex.explorer_robot()
     cmap = ex.explorer_capability_map(chain)
-    oracle = ex.observable_cells(scene, resolution=0.025)
+    oracle = testing.observable_cells(scene, resolution=0.025)
     cam = DepthCamera(320, 240, np.deg2rad(58.0), 4.0, noise=0.002, seed=a.seed)
     r = ex.explore(scene, cam, ex.look_at(*START), robot=True, max_views=a.views, resolution=0.025, seed=a.seed,
                    capability_map=cmap, min_utility=ex.STOP_UTILITY, patience=ex.STOP_PATIENCE,

@@ -20,7 +20,7 @@ the issue's goals on these figures.
 
 Every strategy stops by the same stated rule: its chosen view's utility at or below --min-utility
 (exploration.STOP_UTILITY) for --patience (STOP_PATIENCE) views in a row, or utility 0, or no valid
-view; the budget (--views, 70: paper scene 2 takes 49-58 views since round 10) is large so that the rule, not the
+view; the budget (--views, 70: paper scene 2 takes 49-58 views) is large so that the rule, not the
 budget, ends the runs.
 
 Run: .venv/bin/python benchmarks/exploration_strategies.py [--seeds 10] [--generated 4] [--views 70]
@@ -42,6 +42,7 @@ import numpy as np
 import octoreach
 from octoreach import DepthCamera
 from octoreach import exploration as ex
+from octoreach import testing
 
 START = ((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))  # eye, target of the first view (robot at the origin)
 
@@ -49,7 +50,7 @@ START = ((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))  # eye, target of the first view (ro
 def _scenes(generated: int):
     out = [("paper_1", ex.paper_scene(1), None), ("paper_2", ex.paper_scene(2), None)]
     for k in range(generated):
-        u = ex.usar_scene(k)
+        u = testing.usar_scene(k)
         out.append((f"usar_{k}", u.scene, u.target))
     return out
 
@@ -347,7 +348,7 @@ def main(argv=None) -> int:
         if a.scenes and name not in a.scenes:
             continue
         t0 = time.perf_counter()
-        oracle = ex.observable_cells(scene, resolution=a.resolution, joint_samples=a.oracle_samples,
+        oracle = testing.observable_cells(scene, resolution=a.resolution, joint_samples=a.oracle_samples,
                                      aimed_samples=a.oracle_samples)
         out["oracle"][name] = {"seconds": time.perf_counter() - t0, "poses_valid": oracle.poses_valid,
                                "interior_points": len(oracle.points), "observable_points": oracle.count,

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """A new robot in minutes: from a robot's name to a saved capability map and a table surface map, and how
-well its capability map agrees with direct IK (issue 11, items 7 and "Performance").
+well its capability map agrees with direct IK.
 
 For each robot (PR2, TIAGo, Panda, UR5 of example-robot-data), the path of the README's "Your own robot in
 five minutes", with no file of ours and an empty allowed-collision cache (a temporary OCTOREACH_CACHE_DIR):

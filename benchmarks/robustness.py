@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What the robustness work (issue 12) costs and saves, measured against references in the same run.
+"""What the input checks cost and save, measured against references in the same run.
 
 1. OrientationSet.sphere(n): the construction finds neighbours through a direction grid. Reference:
    the quadratic neighbour search it replaced (all pairs, numpy, chunked) for the same directions;

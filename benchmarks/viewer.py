@@ -1,5 +1,5 @@
 """Viewer benchmark: how fast a PR2 capability map and surface map open in the browser, and how fast the
-theta slider updates (issue 14: under 3 s to open at 0.05 m, under 200 ms per slider move).
+theta slider updates (targets: under 3 s to open at 0.05 m, under 200 ms per slider move).
 
 Prints JSON. Each scene is timed in parts:
   load_s       reading the map file (compiled loader)

@@ -133,6 +133,36 @@ inline IndexTriples index_triples_from(const py::handle& obj, std::size_t vertic
 }
 
 /// `obj` converted to T, or TypeError "<what> must be <expected>, got <type>" (never pybind11's cast message).
+/// Rows of an (N, 3) array; ValueError naming `what` and the shape it got otherwise.
+inline std::vector<Eigen::Vector3d> points_from(const py::handle& obj, const char* what) {
+  Array a = array_arg(obj, what, "an (N, 3) array");
+  if (a.ndim() != 2 || a.shape(1) != 3) {
+    std::string shape = "(";
+    for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
+    shape += a.ndim() == 1 ? ",)" : ")";
+    throw std::invalid_argument(std::string(what) + " must have shape (N, 3), got " + shape);
+  }
+  auto r = a.unchecked<2>();
+  std::vector<Eigen::Vector3d> out(a.shape(0));
+  for (py::ssize_t i = 0; i < a.shape(0); ++i) out[i] = {r(i, 0), r(i, 1), r(i, 2)};
+  return out;
+}
+
+inline Eigen::Vector3d vec3_from(const py::handle& obj, const char* what) {
+  Array a = array_arg(obj, what, "3 numbers");
+  if (a.size() != 3) throw std::invalid_argument(std::string(what) + " must have 3 entries");
+  const double* d = a.data();
+  return {d[0], d[1], d[2]};
+}
+
+inline py::array_t<double> to_points(const std::vector<Eigen::Vector3d>& pts) {
+  py::array_t<double> out({static_cast<py::ssize_t>(pts.size()), py::ssize_t(3)});
+  auto w = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    for (int j = 0; j < 3; ++j) w(i, j) = pts[i][j];
+  return out;
+}
+
 template <class T>
 T cast_arg(const py::handle& obj, const char* what, const char* expected) {
   try {
@@ -228,6 +258,7 @@ void wrap_chain(py::module_& m);
 void wrap_robot(py::module_& m);
 void wrap_orientation_set(py::module_& m);
 void wrap_arm(py::module_& m);
+void wrap_arm_placement(py::module_& m);
 void wrap_capability_map(py::module_& m);
 void wrap_capability_blocks(py::module_& m);
 void wrap_point_map(py::module_& m);

@@ -1,14 +1,18 @@
 """octoreach: where a robot should stand and where it should look.
 
-The compiled core lives in ``octoreach._core``; this package re-exports it with a
-thin Python layer (robots, progress bars, plots, command line).
+The compiled core lives in ``octoreach._core``; this package re-exports it with a thin Python layer (robots,
+arms, rooms, the map cache, progress bars). The exploration loop, the viewer, the planner, the Ray cluster,
+the plots and the test utilities are subpackages that load on first use (``octoreach.exploration``,
+``octoreach.viewer``, ``octoreach.planning``, ``octoreach.cluster``, ``octoreach.plots``, ``octoreach.testing``),
+so ``import octoreach`` imports neither matplotlib nor an optional extra.
 
-Poses are 4x4 numpy arrays (homogeneous transforms) unless a docstring says
-(x, y, z, theta) rows. Units: metres and radians; frames are right-handed, z up.
+Poses are 4x4 numpy arrays (homogeneous transforms) unless a docstring says (x, y, z, theta) rows. Units:
+metres and radians; frames are right-handed, z up.
 """
 from ._core import (  # noqa: F401
     AllowedCollisionOptions,
     Arm,
+    CameraIntrinsics,
     Cancelled,
     CapabilityBlocks,
     CapabilityLookup,
@@ -16,15 +20,20 @@ from ._core import (  # noqa: F401
     CapabilityMapOptions,
     Chain,
     CostMap,
+    DepthCamera,
+    ExplorationMap,
     InversePointMap,
+    NbvOptions,
     Obstacles,
     OrientationSet,
     PointMapOptions,
     PoseSampler,
     Robot,
+    Scene,
     Surface,
     SurfaceMap,
     SurfaceMapOptions,
+    VoidCluster,
     __version__,
     arm_names,
     base_pose,
@@ -33,32 +42,31 @@ from ._core import (  # noqa: F401
     grasp_orientations,
     infer_approach_axis,
     link_roles,
-)
-from . import progress as _progress
-from ._core import set_progress_factory as _set_progress_factory
-
-_set_progress_factory(_progress.make_progress)  # how progress=True is drawn by the compiled builds
-
-from . import robots  # noqa: F401
-from . import arms, map_files, surface_maps  # noqa: F401
-from . import rooms  # noqa: F401
-from . import cache  # noqa: F401  (octoreach.cluster and octoreach.jobs load on use: Ray is optional)
-from .rooms import Room  # noqa: F401
-from ._core import (  # noqa: F401
-    CameraIntrinsics,
-    DepthCamera,
-    ExplorationMap,
-    NbvOptions,
-    Scene,
-    VoidCluster,
     next_best_view,
     score_views,
+    set_progress_factory,
     view_gains,
     view_utility,
 )
-from . import exploration  # noqa: F401
-from .exploration import explore  # noqa: F401
+from . import arms, cache, map_files, progress, robots, rooms, surface_maps  # noqa: F401
+from .rooms import Room  # noqa: F401
 
+# How progress=True is drawn by the compiled builds: the core calls back into the package's progress bar.
+set_progress_factory(progress.make_progress)
+
+# Subpackages and names that load on first use: they import matplotlib or an optional extra.
+_LAZY_MODULES = ("cluster", "experiments", "exploration", "jobs", "planning", "plots", "testing", "viewer")
+_LAZY_NAMES = {"explore": "exploration"}
+
+
+def __getattr__(name):
+    import importlib
+
+    if name in _LAZY_MODULES:
+        return importlib.import_module(f".{name}", __name__)
+    if name in _LAZY_NAMES:
+        return getattr(importlib.import_module(f".{_LAZY_NAMES[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def view(*items, **kwargs):
@@ -69,10 +77,12 @@ def view(*items, **kwargs):
     return _view(*items, **kwargs)
 
 
-__all__ = ["Arm", "Cancelled", "CapabilityBlocks", "CapabilityLookup", "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "InversePointMap",
-           "PointMapOptions", "PoseSampler", "Surface", "SurfaceMap", "SurfaceMapOptions", "arms", "OrientationSet",
-           "Obstacles", "Robot", "robots", "__version__", "arm_names", "base_pose", "default_reference",
-           "grasp_orientations", "link_roles", "AllowedCollisionOptions", "find_arms", "infer_approach_axis",
-           "rooms", "Room", "map_files", "cache"]
-__all__ += ["CameraIntrinsics", "DepthCamera", "ExplorationMap", "NbvOptions", "Scene", "VoidCluster", "next_best_view", "view_utility",
-            "score_views", "view_gains", "exploration", "explore", "view"]
+__all__ = [
+    "AllowedCollisionOptions", "Arm", "CameraIntrinsics", "Cancelled", "CapabilityBlocks", "CapabilityLookup",
+    "CapabilityMap", "CapabilityMapOptions", "Chain", "CostMap", "DepthCamera", "ExplorationMap", "InversePointMap",
+    "NbvOptions", "Obstacles", "OrientationSet", "PointMapOptions", "PoseSampler", "Robot", "Room", "Scene",
+    "Surface", "SurfaceMap", "SurfaceMapOptions", "VoidCluster", "__version__", "arm_names", "arms", "base_pose",
+    "cache", "default_reference", "explore", "exploration", "find_arms", "grasp_orientations",
+    "infer_approach_axis", "link_roles", "map_files", "next_best_view", "robots", "rooms", "score_views",
+    "view", "view_gains", "view_utility",
+]

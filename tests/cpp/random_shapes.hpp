@@ -6,7 +6,7 @@
 
 #include <Eigen/Geometry>
 
-#include "collision_detail.hpp"
+#include "collision/detail.hpp"
 #include "octoreach/types.hpp"
 
 namespace octoreach::test {

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <random>
 
-#include "collision_detail.hpp"
-#include "hinge_pairs.hpp"
+#include "collision/detail.hpp"
+#include "kinematics/hinge_pairs.hpp"
 #include "octoreach/chain.hpp"
 #include "octoreach/robot.hpp"
 

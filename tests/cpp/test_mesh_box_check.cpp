@@ -5,8 +5,8 @@
 
 #include <random>
 
-#include "collision_detail.hpp"
-#include "mesh_box_check.hpp"
+#include "collision/detail.hpp"
+#include "collision/mesh_box_check.hpp"
 #include "octoreach/collision.hpp"
 #include "random_shapes.hpp"
 

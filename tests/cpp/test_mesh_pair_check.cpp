@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "collision_detail.hpp"
-#include "mesh_pair_check.hpp"
+#include "collision/detail.hpp"
+#include "collision/mesh_pair_check.hpp"
 #include "octoreach/collision.hpp"
 #include "random_shapes.hpp"
 

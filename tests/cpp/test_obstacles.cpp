@@ -5,8 +5,8 @@
 #include <fcl/fcl.h>
 #include <gtest/gtest.h>
 
-#include "collision_detail.hpp"
-#include "maps/obb.hpp"
+#include "collision/detail.hpp"
+#include "collision/obb.hpp"
 #include "octoreach/collision.hpp"
 
 using namespace octoreach;

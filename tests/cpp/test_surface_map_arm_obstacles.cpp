@@ -8,7 +8,7 @@
 #include <random>
 
 #include "maps/arm_obstacles.hpp"
-#include "mesh_pair_check.hpp"
+#include "collision/mesh_pair_check.hpp"
 #include "octoreach/capability_map.hpp"
 
 using namespace octoreach;

@@ -331,7 +331,7 @@ def python_entry_points(sweep):
         robot, arm, progress=False, approach_axis=approach_axis, resolution=0.3, directions=8), \
         [("robot", robot), ("arm", valid["arm"]), ("approach_axis", None)]
     yield "surface_maps.link_roles", o.surface_maps.link_roles, [("robot", robot), ("chain", chain)]
-    yield "surface_maps.direct_reachability", o.surface_maps.direct_reachability, \
+    yield "testing.direct_reachability", o.testing.direct_reachability, \
         [("robot", robot), ("capability_map", cap), ("surface", surface), ("poses", valid["poses"]),
          ("grasps", "upper_hemisphere"), ("resolution", 0.3), ("grasp_height", 0.05), ("attempts", 2), ("seed", 0),
          ("obstacles", None)]

@@ -218,7 +218,7 @@ def test_reachable_poses_use_nearest_orientation(cmap, brute):
     assert got.dtype == bool
     np.testing.assert_array_equal(got, expected)
     assert 0 < got.sum() < n
-    # non-finite poses are rejected, not answered (issue 12: no silent answer for NaN)
+    # non-finite poses are rejected, not answered (no silent answer for NaN)
     bad = poses[:3].copy()
     bad[0, 0, 3] = np.nan
     with pytest.raises(ValueError, match="pose 0"):

@@ -7,6 +7,7 @@ import pytest
 
 from octoreach import DepthCamera, ExplorationMap, Scene
 from octoreach import exploration as ex
+from octoreach import testing
 
 FOV = np.deg2rad(58.0)
 RES = 0.05
@@ -41,7 +42,7 @@ def test_oracle_sealed_box_unobservable_open_crate_observable_from_above():
     # walls thicker than a cell: no cell holding an inside point can hold the outer surface
     _sealed_box(s, (0.6, -0.35, 0.0), (0.95, -0.05, 0.35), 0.07)
     s.add_crate((0.6, 0.1, 0.0), (0.95, 0.45, 0.25), 0.02)
-    obs = ex.observable_cells(s, resolution=RES, joint_samples=300, aimed_samples=300, width=48, height=36)
+    obs = testing.observable_cells(s, resolution=RES, joint_samples=300, aimed_samples=300, width=48, height=36)
     assert obs.poses_valid > 100
     sealed, crate = (_inside(obs.points, box) for box in s.interiors)
     assert sealed.sum() > 10 and crate.sum() > 50
@@ -66,7 +67,7 @@ def test_oracle_honours_the_arm_reach():
     _floor(s)
     s.add_closed_box((1.0, -0.45, 0.0), (1.35, -0.1, 0.35), 0.07, "-x", 0.16, 0.16)
     s.add_closed_box((1.0, 0.1, 0.0), (1.35, 0.45, 0.35), 0.07, "+x", 0.16, 0.16)
-    obs = ex.observable_cells(s, resolution=RES, joint_samples=300, aimed_samples=600, width=48, height=36)
+    obs = testing.observable_cells(s, resolution=RES, joint_samples=300, aimed_samples=600, width=48, height=36)
     towards, away = (_inside(obs.points, box) for box in s.interiors)
     assert towards.sum() > 10 and away.sum() > 10
     assert obs.observable[towards].mean() > 0.3
@@ -97,7 +98,7 @@ def test_a_robot_standing_on_the_floor_is_not_in_collision_with_it():
     assert robot.in_collision(robot.home(), floor)  # all links: the base touches the floor
     assert not robot.in_collision(robot.home(), floor, links=moved)
     base = robot.link_poses(robot.home())[chain.base_link]
-    obs = ex.observable_cells(s, chain=chain, robot=robot, base_pose=base, resolution=RES, joint_samples=300,
+    obs = testing.observable_cells(s, chain=chain, robot=robot, base_pose=base, resolution=RES, joint_samples=300,
                               aimed_samples=300, width=48, height=36)
     assert obs.poses_valid > 50 and obs.fraction > 0.8
     # the arm itself still may not touch the floor: the hand's flange 2 cm above it, looking down
@@ -107,11 +108,11 @@ def test_a_robot_standing_on_the_floor_is_not_in_collision_with_it():
 
 
 def test_usar_scenes_are_seeded_and_hide_the_target_in_a_container():
-    a, b, c = ex.usar_scene(3), ex.usar_scene(3), ex.usar_scene(4)
+    a, b, c = testing.usar_scene(3), testing.usar_scene(3), testing.usar_scene(4)
     assert [tuple(map(tuple, x)) for x in a.scene.boxes] == [tuple(map(tuple, x)) for x in b.scene.boxes]
     assert [tuple(map(tuple, x)) for x in a.scene.boxes] != [tuple(map(tuple, x)) for x in c.scene.boxes]
     for seed in range(6):
-        u = ex.usar_scene(seed)
+        u = testing.usar_scene(seed)
         assert len(u.containers) >= 1 and len(u.scene.interiors) == len(u.containers)
         lo, hi = u.target
         inner = u.scene.interiors[u.target_container]
@@ -120,17 +121,17 @@ def test_usar_scenes_are_seeded_and_hide_the_target_in_a_container():
         if any(c["kind"] == "closed_box" for c in u.containers):
             assert u.containers[u.target_container]["kind"] == "closed_box"
         faces = {c["face"] for c in u.containers}
-        assert faces <= set(ex.usar_scenes.FACES)
-    faces = {c["face"] for s in range(12) for c in ex.usar_scene(s).containers if c["kind"] == "closed_box"}
+        assert faces <= set(testing.usar_scenes.FACES)
+    faces = {c["face"] for s in range(12) for c in testing.usar_scene(s).containers if c["kind"] == "closed_box"}
     assert len(faces) >= 3  # openings on different faces
     # a point on the target counts, the floor next to it does not
-    u = ex.usar_scene(0)
+    u = testing.usar_scene(0)
     lo, hi = u.target
     on_top = np.array([[(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2]]])
     beside = np.array([[lo[0] - 0.01, lo[1], lo[2]]])
     assert u.target_points(on_top) == 1 and u.target_points(beside) == 0
     with pytest.raises(ValueError, match="containers"):
-        ex.usar_scene(0, containers=0)
+        testing.usar_scene(0, containers=0)
     with pytest.raises(ValueError, match="target"):
         ex.points_on(np.zeros(3), on_top)
 
@@ -164,7 +165,7 @@ def test_every_strategy_terminates_and_its_views_stay_in_observed_space(strategy
     scene = ex.paper_scene(1)
     robot, chain = ex.explorer_robot()
     base = ex.arm_base_pose(robot, chain)
-    root = ex.oracle.robot_root(robot, chain, base)
+    root = ex.physics.robot_root(robot, chain, base)
     region = ex.scene_region(scene)
     checked = []
 
@@ -335,7 +336,7 @@ def test_bad_input():
     with pytest.raises(ValueError, match="target"):
         ex.explore(scene, cam, T, target=(1, 2, 3))
     with pytest.raises(ValueError, match="resolution"):
-        ex.observable_cells(scene, resolution=0.0)
+        testing.observable_cells(scene, resolution=0.0)
 
 
 def test_the_visibility_curve_learns_from_announced_views_what_rays_see():

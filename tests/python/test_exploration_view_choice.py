@@ -1,4 +1,4 @@
-"""How frontier-void chooses a view (round 12): its rays end at the box of the void cells with the very
+"""How frontier-void chooses a view: its rays end at the box of the void cells with the very
 same void figures, void cells with no observed free neighbour weigh less (unexposed_weight), and the
 second look aims along lines of sight at the exposed faces of voids. Coarse maps, small images."""
 import numpy as np
@@ -163,7 +163,7 @@ def test_a_view_is_low_only_when_none_on_offer_expects_more():
 def test_the_search_tests_the_links_the_arm_moves_against_the_map():
     """example-robot-data's xArm 7 at the origin, its base standing on the floor. Once the map has seen the
     floor under the base, the base touches the floor's occupied cells in every configuration: the search
-    tested every link against the map and found no valid view at all (the newcomer try of round 12). It
+    tested every link against the map and found no valid view at all. It
     now tests the links the arm moves, as the loop's physical check and the oracle do, so a pose above an
     open crate is a view, while the arm is still refused where its moved links meet a seen surface."""
     from octoreach import Obstacles, robots
@@ -193,7 +193,7 @@ def test_the_search_tests_the_links_the_arm_moves_against_the_map():
 
 
 def test_rays_out_of_void_cells_find_eyes_through_a_boxs_opening_and_not_through_unseen_walls():
-    """aimed_poses with `directions` (round 13: the last chance before the loop stops). A closed box with a
+    """aimed_poses with `directions` (the last chance before the loop stops). A closed box with a
     14 cm opening in its lid, surveyed from above and from two sides (its far walls unseen, unknown): each
     eye lies in free space with free cells 5 cm around it, and the segment from its void cell to it meets
     no occupied cell and, once in free space, no unknown cell again (an unseen wall is no way out). Poses

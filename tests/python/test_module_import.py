@@ -38,3 +38,21 @@ def test_core_imports_and_builds_without_the_python_package():
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd="/", timeout=300)
     assert out.returncode == 0, out.stderr
     assert out.stdout.startswith("ok")
+
+
+def test_import_octoreach_loads_neither_matplotlib_nor_the_optional_subpackages():
+    script = textwrap.dedent("""
+        import sys
+        import octoreach
+        heavy = [m for m in sys.modules if m.split(".")[0] in ("matplotlib", "viser", "ray", "unified_planning")
+                 or m.startswith(("octoreach.exploration", "octoreach.viewer", "octoreach.planning",
+                                  "octoreach.cluster", "octoreach.plots", "octoreach.testing", "octoreach.jobs"))]
+        assert not heavy, heavy
+        # they load on first use
+        assert callable(octoreach.explore) and "octoreach.exploration" in sys.modules
+        assert callable(octoreach.testing.observable_cells)
+        print("ok")
+    """)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, cwd="/", timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith("ok")

@@ -1,5 +1,4 @@
-"""Regression tests of issue 12 ("nothing crashes, hangs or lies"): one test per finding of the fuzz
-campaign. Anything that could crash or hang on a broken build runs in a child process with a memory
+"""Regression tests of "nothing crashes, hangs or lies": one test per finding of a fuzz campaign. Anything that could crash or hang on a broken build runs in a child process with a memory
 cap and a timeout (robust_util.run_python), so the failure is a failed test, not a dead run."""
 from __future__ import annotations
 
@@ -68,7 +67,7 @@ ISSUE_REPRODUCER = ("import threading,numpy as np,octoreach as o;m=o.Exploration
 
 
 def test_issue_reproducer_of_the_exploration_map_crash():
-    # The reproducer of issue 12, verbatim, three times (each with a new map): SIGABRT (malloc(): invalid size)
+    # A reproducer found by fuzzing, verbatim, three times (each with a new map): SIGABRT (malloc(): invalid size)
     # or SIGSEGV before the map had a lock (about one run in two crashed).
     child = run_python(f"for _ in range({REPEATS}):\n    " + ISSUE_REPRODUCER + "\nprint('OK')", timeout=600)
     assert not child.crashed, f"crashed with signal {-child.returncode}: {child.stderr[-1500:]}"

@@ -10,6 +10,7 @@ import pytest
 
 import octoreach
 from octoreach import robots, rooms, surface_maps
+from octoreach import testing
 
 WALL_Y = 0.45  # a wall along x at y = 0.45, between the table (y in [-0.2, 0.2]) and poses with y > 0.5
 
@@ -63,7 +64,7 @@ def test_the_arm_check_matches_brute_force_with_a_wall(arm_room):
     poses = np.column_stack([centres[idx, :2], np.zeros(len(idx)), rng.integers(0, 16, len(idx)) * np.pi / 8])
     # Poses right behind the wall too: the map and brute force must both say 0 there.
     poses = np.vstack([poses, [[0.0, 0.8, 0.0, -np.pi / 2], [0.3, 0.6, 0.0, -np.pi / 2]]])
-    brute = surface_maps.direct_reachability(robot, cap, table, poses, attempts=10, obstacles=wall)
+    brute = testing.direct_reachability(robot, cap, table, poses, attempts=10, obstacles=wall)
     mapped = walled.reachability(poses)
     assert np.all(brute[-2:] == 0) and np.all(mapped[-2:] == 0)
     diff = mapped - brute
@@ -116,7 +117,7 @@ def test_tiago_at_a_table_beside_a_wall_matches_brute_force():
     idx = rng.choice(len(centres), size=min(6, len(centres)), replace=False)
     poses = np.column_stack([centres[idx, :2], np.zeros(len(idx)), rng.integers(0, 8, len(idx)) * np.pi / 4])
     poses = np.vstack([poses, [[1.3, 0.0, 0.0, np.pi]]])  # behind the wall, facing the table
-    brute = surface_maps.direct_reachability(robot, cap, room.surfaces["table"], poses, resolution=0.15,
+    brute = testing.direct_reachability(robot, cap, room.surfaces["table"], poses, resolution=0.15,
                                              attempts=8, obstacles=room.obstacles(without="table"))
     mapped = sm.reachability(poses)
     assert brute[-1] == 0 and mapped[-1] == 0

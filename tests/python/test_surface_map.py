@@ -6,6 +6,7 @@ import pytest
 
 import octoreach
 from octoreach import robots, surface_maps
+from octoreach import testing
 
 THETA = 2 * np.pi / 16
 
@@ -50,7 +51,7 @@ def _compare(map_values, brute):
 def test_test_arm_matches_brute_force(arm_setup):
     robot, cap, table, sm = arm_setup
     poses = _sample_poses(sm, 20, seed=1)
-    brute = surface_maps.direct_reachability(robot, cap, table, poses, attempts=20)
+    brute = testing.direct_reachability(robot, cap, table, poses, attempts=20)
     _compare(sm.reachability(poses), brute)
     assert brute.max() > 0.2  # the comparison is not between two zero vectors
 
@@ -58,7 +59,7 @@ def test_test_arm_matches_brute_force(arm_setup):
 def test_pr2_matches_brute_force(pr2_setup):
     pr2, cap, table, sm, ref = pr2_setup
     poses = _sample_poses(sm, 8, seed=2)
-    brute = surface_maps.direct_reachability(pr2, cap, table, poses, reference=ref, resolution=0.2, attempts=10)
+    brute = testing.direct_reachability(pr2, cap, table, poses, reference=ref, resolution=0.2, attempts=10)
     _compare(sm.reachability(poses), brute)
     assert brute.max() > 0.1
 
@@ -70,12 +71,12 @@ def test_under_the_table_and_far_away_give_zero(arm_setup, pr2_setup):
     robot, cap, table, sm = arm_setup
     under_and_far = np.array([[0.55, 0.0, 0.0, 0.0], [0.55, 0.0, 0.0, np.pi / 2], [5.0, 5.0, 0.0, 0.0]])
     assert np.all(sm.reachability(under_and_far) == 0)
-    assert surface_maps.direct_reachability(robot, cap, table, under_and_far[2:])[0] == 0
+    assert testing.direct_reachability(robot, cap, table, under_and_far[2:])[0] == 0
     # The PR2 under the table: its body hits the board, for the map and for brute force alike.
     pr2, pr2_cap, pr2_table, pr2_map, ref = pr2_setup
     under = np.array([[0.0, 0.0, 0.0, 0.0], [0.3, 0.1, 0.0, np.pi / 2]])
     assert np.all(pr2_map.reachability(under) == 0)
-    assert np.all(surface_maps.direct_reachability(pr2, pr2_cap, pr2_table, under, reference=ref, resolution=0.2) == 0)
+    assert np.all(testing.direct_reachability(pr2, pr2_cap, pr2_table, under, reference=ref, resolution=0.2) == 0)
     assert pr2_map.reachability(np.array([[6.0, 0.0, 0.0, 0.0]]))[0] == 0
 
 
@@ -304,7 +305,7 @@ def test_options_objects_equal_keywords(arm_setup):
 
 
 def test_surface_maps_record_the_approach_axis(tmp_path):
-    # Issue 11: every map file's header names the approach axis it was built with.
+    # Every map file's header names the approach axis it was built with.
     robot = robots.test_arm()
     table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, 0.55)
     smap = octoreach.SurfaceMap.build(robot, ("base_link", "tool0", (0, 0, 1)), table, resolution=0.2, directions=24,

@@ -1,5 +1,5 @@
 // Convex hull of 3D points with libqhull_r.
-#include "convex_hull.hpp"
+#include "common/convex_hull.hpp"
 
 #include <algorithm>
 #include <cstdio>

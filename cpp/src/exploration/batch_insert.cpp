@@ -1,5 +1,5 @@
 // Batched point-cloud insertion: ray ends, the ray walk into a bitmap, Morton sort, one tree descent.
-#include "batch_insert.hpp"
+#include "exploration/batch_insert.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,7 +8,7 @@
 #include <string>
 
 #include "common/thread_pool.hpp"
-#include "grid_ray.hpp"
+#include "exploration/grid_ray.hpp"
 
 namespace octoreach::detail {
 

@@ -9,7 +9,7 @@
 
 #include <octomap/OcTree.h>
 
-#include "exploration_state.hpp"
+#include "exploration/exploration_state.hpp"
 
 namespace octoreach::detail {
 

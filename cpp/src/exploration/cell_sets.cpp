@@ -1,5 +1,5 @@
 // 26-connected components of a set of cells.
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 
 namespace octoreach::detail {
 

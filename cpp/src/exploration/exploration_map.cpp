@@ -9,17 +9,17 @@
 #include <fstream>
 #include <unordered_map>
 
-#include "batch_insert.hpp"
-#include "cell_sets.hpp"
+#include "exploration/batch_insert.hpp"
+#include "exploration/cell_sets.hpp"
 #include "common/atomic_file.hpp"
 #include "common/cancel.hpp"
 #include "common/format.hpp"
 #include "common/octree_file.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
-#include "exploration_state.hpp"
-#include "upkeep.hpp"
-#include "view_score.hpp"
+#include "exploration/exploration_state.hpp"
+#include "exploration/upkeep.hpp"
+#include "exploration/view_score.hpp"
 
 namespace octoreach {
 

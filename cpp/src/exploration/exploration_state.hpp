@@ -14,9 +14,9 @@
 
 #include <octomap/OcTree.h>
 
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 #include "common/shared_mutex.hpp"
-#include "hull.hpp"
+#include "exploration/hull.hpp"
 #include "octoreach/exploration.hpp"
 #include "octoreach/simulation.hpp"
 

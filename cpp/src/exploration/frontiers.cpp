@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <unordered_set>
 
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 #include "common/thread_pool.hpp"
-#include "upkeep.hpp"
+#include "exploration/upkeep.hpp"
 
 namespace octoreach::detail {
 

@@ -1,5 +1,5 @@
 // The columns of cells inside the convex hull of the occupied cells.
-#include "hull.hpp"
+#include "exploration/hull.hpp"
 
 #include <algorithm>
 #include <cmath>

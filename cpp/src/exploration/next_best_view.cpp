@@ -8,14 +8,14 @@
 #include <random>
 #include <tuple>
 
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 #include "common/thread_pool.hpp"
-#include "exploration_state.hpp"
-#include "grid_ray.hpp"
+#include "exploration/exploration_state.hpp"
+#include "exploration/grid_ray.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
-#include "view_score.hpp"
+#include "exploration/view_score.hpp"
 
 namespace octoreach {
 

@@ -3,7 +3,7 @@
 // of ExplorationMap::insert).
 #include <vector>
 
-#include "exploration_state.hpp"
+#include "exploration/exploration_state.hpp"
 
 namespace octoreach::detail {
 

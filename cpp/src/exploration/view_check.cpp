@@ -8,12 +8,12 @@
 
 #include <octomap/OcTree.h>
 
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 #include "common/thread_pool.hpp"
-#include "exploration_state.hpp"
+#include "exploration/exploration_state.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/robot.hpp"
-#include "view_score.hpp"
+#include "exploration/view_score.hpp"
 
 namespace octoreach {
 

@@ -1,15 +1,15 @@
 // The visibility model of a view: what a camera pose is expected to see through unknown space
 // (next_best_view.hpp, "Visibility model"), and the names of the gains.
-#include "view_score.hpp"
+#include "exploration/view_score.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "cell_sets.hpp"
-#include "exploration_state.hpp"
-#include "grid_ray.hpp"
+#include "exploration/cell_sets.hpp"
+#include "exploration/exploration_state.hpp"
+#include "exploration/grid_ray.hpp"
 
 namespace octoreach {
 

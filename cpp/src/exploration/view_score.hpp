@@ -6,7 +6,7 @@
 
 #include "octoreach/collision.hpp"
 #include "octoreach/next_best_view.hpp"
-#include "void_enclosure.hpp"
+#include "exploration/void_enclosure.hpp"
 
 namespace octomap {
 class OcTree;

@@ -23,9 +23,9 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 #include "common/random_mix.hpp"
-#include "exploration_state.hpp"
+#include "exploration/exploration_state.hpp"
 #include "octoreach/types.hpp"
 
 namespace octoreach {

@@ -1,6 +1,6 @@
 // How enclosed each void cell is: the share of the six axis directions that meet a surface before
 // free space (see void_enclosure.hpp).
-#include "void_enclosure.hpp"
+#include "exploration/void_enclosure.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 #include "common/thread_pool.hpp"
-#include "exploration_state.hpp"
+#include "exploration/exploration_state.hpp"
 #include "octoreach/next_best_view.hpp"
 
 namespace octoreach::detail {

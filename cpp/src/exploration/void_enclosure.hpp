@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <memory>
 
-#include "cell_sets.hpp"
+#include "exploration/cell_sets.hpp"
 #include "octoreach/exploration.hpp"
 
 namespace octoreach::detail {

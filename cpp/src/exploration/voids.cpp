@@ -4,7 +4,7 @@
 
 #include "common/format.hpp"
 #include "common/thread_pool.hpp"
-#include "upkeep.hpp"
+#include "exploration/upkeep.hpp"
 
 namespace octoreach::detail {
 

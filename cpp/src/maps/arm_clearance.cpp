@@ -1,4 +1,4 @@
-#include "arm_clearance.hpp"
+#include "maps/arm_clearance.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
-#include "../common/thread_pool.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach::detail {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
-#include "cell_slots.hpp"
+#include "maps/cell_slots.hpp"
 
 namespace octoreach::detail {
 

@@ -1,4 +1,4 @@
-#include "arm_obstacles.hpp"
+#include "maps/arm_obstacles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 
 #include <fcl/fcl.h>
 
-#include "../collision_detail.hpp"
-#include "../common/thread_pool.hpp"
-#include "../common/vector_clones.hpp"
+#include "collision/detail.hpp"
+#include "common/thread_pool.hpp"
+#include "common/vector_clones.hpp"
 
 namespace octoreach::detail {
 namespace {

@@ -14,9 +14,9 @@
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
-#include "../mesh_box_check.hpp"
-#include "cell_slots.hpp"
-#include "obb.hpp"
+#include "collision/mesh_box_check.hpp"
+#include "maps/cell_slots.hpp"
+#include "collision/obb.hpp"
 
 namespace octoreach::detail {
 

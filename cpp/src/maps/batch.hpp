@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "../common/thread_pool.hpp"
+#include "common/thread_pool.hpp"
 
 namespace octoreach::detail {
 

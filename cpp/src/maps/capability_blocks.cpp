@@ -11,9 +11,9 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "../common/cancel.hpp"
-#include "../map_io.hpp"
-#include "capability_build.hpp"
+#include "common/cancel.hpp"
+#include "maps/map_io.hpp"
+#include "maps/capability_build.hpp"
 
 namespace octoreach {
 namespace {

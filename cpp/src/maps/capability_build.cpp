@@ -1,4 +1,4 @@
-#include "capability_build.hpp"
+#include "maps/capability_build.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,9 +7,9 @@
 #include <random>
 #include <unordered_set>
 
-#include "../common/random_mix.hpp"
-#include "../common/thread_pool.hpp"
-#include "../map_io.hpp"
+#include "common/random_mix.hpp"
+#include "common/thread_pool.hpp"
+#include "maps/map_io.hpp"
 
 namespace octoreach::detail {
 

@@ -1,4 +1,4 @@
-#include "cell_slots.hpp"
+#include "maps/cell_slots.hpp"
 
 #include <algorithm>
 

@@ -1,15 +1,15 @@
-"""Frontier-void exploration (Dornhege & Kleiner, SSRR 2011): scenes, the explore loop, plots, demo.
+"""Frontier-void exploration (Dornhege & Kleiner, SSRR 2011): the explore loop, paper scenes, plots, demo.
 
 The compiled core does the work (``ExplorationMap``, ``DepthCamera``, ``next_best_view``); this
 package strings it together as the paper's loop: sense, integrate, frontiers, voids, next best view,
 move, until the best view's utility is 0 or the view budget runs out.
 
-One concept per module: ``camera`` (look_at), ``scenes`` (paper scenes, the search space),
-``usar_scenes`` (seeded USAR-like scenes with a hidden target), ``robot`` (the explorer robot, its
-arm and capability map, base poses), ``metrics`` (observed shares, run figures), ``oracle`` (the
-observable interior by brute force: a test and benchmark utility), ``strategies`` (frontier-void
-and the baselines), ``loop`` (explore, its table and stop reason), ``plots`` (map pictures,
-coverage curves), ``demo`` (run_demo, the command line).
+One concept per module: ``camera`` (look_at), ``scenes`` (paper scenes, the search space), ``robot``
+(the explorer robot, its arm and capability map, base poses), ``metrics`` (observed shares, run
+figures), ``physics`` (the simulator's check that an arm pose is clear of the scene), ``strategies``
+(frontier-void and the baselines), ``loop`` (explore, its table and stop reason), ``plots`` (map
+pictures, coverage curves; matplotlib, loaded on first use), ``demo`` (run_demo, the command line).
+The oracle and the generated scenes of the tests and benchmarks are in ``octoreach.testing``.
 
 Poses are 4x4 numpy arrays (camera -> world). The camera looks along its +z axis (+x right,
 +y down in the image). Units: metres, radians.
@@ -19,54 +19,31 @@ Demo: ``python -m octoreach.exploration --scene 2 --out exploration_out`` writes
 """
 from __future__ import annotations
 
-from .._core import DepthCamera, ExplorationMap, Scene, next_best_view  # noqa: F401  (as before the split)
 from .camera import look_at
-from .demo import main, run_demo
-from .loop import (FAILED_VIEW_RADIUS, LOOP_CANDIDATE_CELLS, LOOP_ENCLOSURE_POWER, LOOP_UNEXPOSED_WEIGHT, LOOP_VALID_POSES, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY,
-                   ExplorationResult, ViewRow, explore)
-from .metrics import coverage_after, observed_share, region_points, seen_expected_ratios, views_to_reach
-from .oracle import Observable, observable_cells
-from .plots import plot_coverage, plot_map
+from .loop import (FAILED_VIEW_RADIUS, LOOP_CANDIDATE_CELLS, LOOP_ENCLOSURE_POWER, LOOP_UNEXPOSED_WEIGHT,
+                   LOOP_VALID_POSES, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY, ExplorationResult, ViewRow, explore)
+from .metrics import coverage_after, observed_share, points_on, region_points, seen_expected_ratios, views_to_reach
 from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot
 from .scenes import closed_box_scene, cluttered_scene, paper_scene, scene_region
 from .strategies import STRATEGIES
-from .usar_scenes import UsarScene, points_on, usar_scene
+
+_LAZY = {"plot_coverage": "plots", "plot_map": "plots", "run_demo": "demo", "main": "demo"}
+
+
+def __getattr__(name):
+    """Plots and the demo load on first use (they import matplotlib)."""
+    if name in _LAZY:
+        import importlib
+
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
-    "FAILED_VIEW_RADIUS",
-    "LOOP_CANDIDATE_CELLS",
-    "LOOP_ENCLOSURE_POWER",
-    "LOOP_UNEXPOSED_WEIGHT",
-    "LOOP_VALID_POSES",
-    "STOP_PATIENCE",
-    "STOP_REASONS",
-    "STOP_UTILITY",
-    "STRATEGIES",
-    "ExplorationResult",
-    "Observable",
-    "UsarScene",
-    "ViewRow",
-    "arm_base_pose",
-    "arm_reach",
-    "base_ring",
-    "closed_box_scene",
-    "cluttered_scene",
-    "coverage_after",
-    "explore",
-    "explorer_capability_map",
-    "explorer_robot",
-    "look_at",
-    "main",
-    "observable_cells",
-    "observed_share",
-    "paper_scene",
-    "plot_coverage",
-    "plot_map",
-    "points_on",
-    "region_points",
-    "run_demo",
-    "scene_region",
-    "seen_expected_ratios",
-    "usar_scene",
+    "FAILED_VIEW_RADIUS", "LOOP_CANDIDATE_CELLS", "LOOP_ENCLOSURE_POWER", "LOOP_UNEXPOSED_WEIGHT", "LOOP_VALID_POSES",
+    "STOP_PATIENCE", "STOP_REASONS", "STOP_UTILITY", "STRATEGIES", "ExplorationResult", "ViewRow",
+    "arm_base_pose", "arm_reach", "base_ring", "closed_box_scene", "cluttered_scene", "coverage_after", "explore",
+    "explorer_capability_map", "explorer_robot", "look_at", "main", "observed_share", "paper_scene",
+    "plot_coverage", "plot_map", "points_on", "region_points", "run_demo", "scene_region", "seen_expected_ratios",
     "views_to_reach",
 ]

@@ -10,11 +10,11 @@ import numpy as np
 from .. import _core
 from .._core import DepthCamera, ExplorationMap, Scene
 from ._options import given
-from .metrics import observed_share
+from .metrics import observed_share, points_on
+from .physics import PhysicalCheck
 from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot
 from .scenes import scene_region
 from .strategies import CANDIDATES, SEARCH_ONLY_OPTIONS, Choice, check_strategy, choose_view
-from .usar_scenes import points_on
 
 VIEW_BUDGET = 10  # views of one exploration unless told otherwise (explore, run_demo, the demo's --views)
 
@@ -183,26 +183,6 @@ def _check_loop_args(strategy, max_views, min_utility, candidates, start_pose):
     return pose
 
 
-class _Physics:
-    """Whether an arm configuration is clear of the scene's true geometry (the links the chain moves:
-    Chain.moved_links) and of the robot itself (robot known), else always True."""
-
-    def __init__(self, robot, chain, scene, enabled):
-        self.on = bool(enabled and robot is not None and chain is not None)
-        if self.on:
-            from .oracle import robot_root, scene_obstacles
-
-            self.robot, self.chain, self.obstacles, self.root_of = robot, chain, scene_obstacles(scene), robot_root
-            self.links = chain.moved_links
-
-    def valid(self, q, chain_base) -> bool:
-        if not self.on or q is None:
-            return True
-        root = self.root_of(self.robot, self.chain, chain_base)
-        q_robot = self.chain.to_robot_configuration(np.asarray(q, float))
-        return not self.robot.in_collision(q_robot, self.obstacles, root, self_collision=True, links=self.links)
-
-
 def _row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, pose, base, valid, target,
          pts) -> ViewRow:
     interiors = scene.interiors
@@ -295,7 +275,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     `physical_check` (with a robot): a chosen view whose arm touches the scene's true geometry is not
     taken (counted as a view, `physically_valid` False, nothing integrated), and no later view within
     FAILED_VIEW_RADIUS of its camera is chosen. `target` ((2, 3) lo, hi):
-    each row counts the points of its cloud on it (usar_scenes.points_on).
+    each row counts the points of its cloud on it (metrics.points_on).
     `learn_misses`: before each insert the loop announces the view to the map (next_best_view.expect_view),
     so the void (and unknown) cells that view was expected to see and did not lose seeability; views
     aimed at voids nobody can see stop scoring, and the loop can end (all strategies alike).
@@ -331,7 +311,7 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, *, chain=None, base_p
     else:  # score_views has no search of its own; the baselines rank by their own gains
         for k in SEARCH_ONLY_OPTIONS:
             options.pop(k, None)
-    physics = _Physics(rob, chain, scene, physical_check)
+    physics = PhysicalCheck(rob, chain, scene, physical_check)
 
     def sphere_of(bp):
         return (bp[:3, 3].copy(), reach) if auto_sphere else workspace_sphere

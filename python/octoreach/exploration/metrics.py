@@ -59,3 +59,15 @@ def seen_expected_ratios(rows, min_expected: float = 1.0) -> list:
     explore(); the last row's view was never taken, nor was a physically invalid one: no seen figure).
     A random view that expects 0.01 cells and sees 300 would say nothing about the model."""
     return [r.void_seen / r.expected_void for r in rows if r.expected_void >= min_expected and r.void_seen is not None]
+
+
+def points_on(box, points, margin: float = 0.015) -> int:
+    """How many of `points` (N, 3) lie on the object `box` ((2, 3) lo, hi): within `margin` of it and more
+    than `margin` above its bottom (so the floor it stands on does not count)."""
+    box = np.asarray(box, float)
+    if box.shape != (2, 3):
+        raise ValueError(f"target must be a (2, 3) box (lo, hi rows), got shape {box.shape}")
+    p = np.asarray(points, float).reshape(-1, 3)
+    lo, hi = box[0] - margin, box[1] + margin
+    lo[2] = box[0][2] + margin
+    return int(np.count_nonzero(np.all((p >= lo) & (p <= hi), axis=1)))

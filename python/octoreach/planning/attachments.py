@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import arms as _arms
-from .._core import CapabilityMap, PoseSampler, Robot, SurfaceMap
+from .._core import PoseSampler, Robot, SurfaceMap
 from ..surface_maps import GraspCheck
 
 __all__ = ["Attachments", "OBJECT_HEIGHT"]

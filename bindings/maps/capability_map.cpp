@@ -1,0 +1,165 @@
+// CapabilityMap and its build options.
+#include "maps/convert.hpp"
+#include "octoreach/capability_map.hpp"
+
+namespace octoreach::py_bindings {
+namespace {
+
+py::dict stats_dict(const BuildStats& s) {
+  py::dict d;
+  d["seconds"] = s.seconds;
+  d["fk_samples"] = s.fk_samples;
+  d["ik_calls"] = s.ik_calls;
+  d["cells"] = s.cells;
+  d["reachable_cells"] = s.reachable_cells;
+  d["voxels"] = s.voxels;
+  return d;
+}
+
+void wrap_options(py::module_& m) {
+  using O = CapabilityMapOptions;
+  py::class_<O> cls(m, "CapabilityMapOptions", "Build parameters of a capability map (defaults defined once, in C++).");
+  cls.def(py::init<>())
+      .def_readwrite("resolution", &O::resolution, "Voxel edge (m).")
+      .def_readwrite("directions", &O::directions, "Approach directions on the sphere.")
+      .def_readwrite("rolls", &O::rolls, "Rolls per direction (1: any roll).")
+      .def_readwrite("symmetry", &O::symmetry, "z symmetry of the direction set.")
+      .def_readwrite("approach_axis", &O::approach_axis, "Tool axis that approaches the object (tool frame).")
+      .def_readwrite("self_collision", &O::self_collision, "Solutions must be free of self-collision.")
+      .def_readwrite("seed", &O::seed)
+      .def_readwrite("fk_samples", &O::fk_samples, "Forward-kinematics samples (0: 40 per voxel of the bounding box).")
+      .def_readwrite("exhaustive", &O::exhaustive, "Also run random-restart IK on every cell sampling did not reach.")
+      .def_readwrite("exhaustive_attempts", &O::exhaustive_attempts)
+      .def_readwrite("position_tolerance", &O::position_tolerance, "IK tolerance at the voxel centre (m).")
+      .def_readwrite("orientation_tolerance", &O::orientation_tolerance, "IK tolerance (rad).")
+      .def_readwrite("keep_solutions", &O::keep_solutions, "Keep one joint solution per reachable cell.")
+      .def_readwrite("block_size", &O::block_size,
+                     "0: one flood over the whole box; n: blocks of n voxels per edge, each flooded on its own\n"
+                     "(CapabilityBlocks: built anywhere, merged into the same bytes).")
+      .def_readwrite("threads", &O::threads, "0: every core.");
+  def_reference<O>(cls, "Robot configuration off the chain; None: default_reference(robot, chain).");
+}
+
+// The lookup argument of the reachable() queries: a CapabilityLookup, its name, or None (the C++ default).
+CapabilityLookup lookup_arg(const py::object& lookup) {
+  if (lookup.is_none()) return kDefaultCapabilityLookup;
+  if (py::isinstance<CapabilityLookup>(lookup)) return lookup.cast<CapabilityLookup>();
+  if (py::isinstance<py::str>(lookup)) {
+    const std::string name = lookup.cast<std::string>();
+    if (name == "vote") return CapabilityLookup::vote;
+    if (name == "nearest_cell") return CapabilityLookup::nearest_cell;
+    throw std::invalid_argument("lookup must be 'vote' or 'nearest_cell', got '" + name + "'");
+  }
+  throw py::type_error("lookup must be a CapabilityLookup, 'vote', 'nearest_cell' or None, got " +
+                       std::string(py::str(py::type::of(lookup).attr("__name__"))));
+}
+
+void wrap_lookup(py::module_& m) {
+  py::enum_<CapabilityLookup>(m, "CapabilityLookup",
+      "How CapabilityMap.reachable answers a pose from the cells. nearest_cell: the voxel holding the position.\n"
+      "vote: the 8 voxel centres around the position weighted trilinearly; reachable when the reachable ones\n"
+      "weigh at least one half (equal to nearest_cell at voxel centres).")
+      .value("nearest_cell", CapabilityLookup::nearest_cell)
+      .value("vote", CapabilityLookup::vote);
+}
+
+void wrap_queries(py::class_<CapabilityMap>& cls) {
+  cls.def("reachability", [](const CapabilityMap& cm, const py::object& points) {
+        Array a = rows_arg(points, 3, "points must have shape (N, 3)");
+        py::array_t<double> out(a.shape(0));
+        const double* p = a.data();
+        double* o = out.mutable_data();
+        py::gil_scoped_release release;
+        cm.reachability(p, a.shape(0), o);
+        return out;
+      }, py::arg("points"), "Reachability index D (N,) of points (N, 3) in the base link frame; 0 outside.")
+      .def("reachable", [](const CapabilityMap& cm, const py::object& poses, const py::object& lookup) {
+        const CapabilityLookup how = lookup_arg(lookup);
+        Array a = array_arg(poses, "poses", "an (N, 4, 4) array");
+        if (a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+          throw std::invalid_argument("poses must have shape (N, 4, 4)");
+        py::array_t<bool> out(a.shape(0));
+        const double* p = a.data();
+        bool* o = out.mutable_data();
+        py::gil_scoped_release release;
+        cm.reachable(p, a.shape(0), o, how);
+        return out;
+      }, py::arg("poses"), py::arg("lookup") = py::none(),
+      "True (N,) where tool pose (N, 4, 4) (base link frame) is reachable: the orientation nearest the pose's,\n"
+      "the position by `lookup` (CapabilityLookup or its name; None: CapabilityMap.DEFAULT_LOOKUP, the vote).")
+      .def("reachable_cell", py::overload_cast<const Eigen::Vector3d&, int>(&CapabilityMap::reachable, py::const_),
+           py::arg("point"), py::arg("orientation"),
+           "The stored cell: orientation index `orientation` reachable in the voxel holding `point` (the\n"
+           "nearest_cell rule; reachable(poses) gives the map's answer for poses).")
+      .def("solution", &CapabilityMap::solution, py::arg("point"), py::arg("orientation"),
+           "Stored joint solution of a reachable cell, or None.")
+      .def("voxels", [](const CapabilityMap& cm) {
+        std::vector<Eigen::Vector3d> c;
+        std::vector<double> v;
+        cm.voxels(c, v);
+        Points C(c.size(), 3);
+        for (std::size_t i = 0; i < c.size(); ++i) C.row(i) = c[i].transpose();
+        return py::make_tuple(C, Eigen::Map<Eigen::VectorXd>(v.data(), v.size()).eval());
+      }, "(centres (M, 3), D (M,)) of the voxels with D > 0, base link frame.")
+      .def_property_readonly("bounds", [](const CapabilityMap& cm) { return bounds_tuple(cm.bounds()); },
+                             "(min corner, max corner) of the reachable voxels.");
+}
+
+}  // namespace
+
+void wrap_capability_map(py::module_& m) {
+  wrap_options(m);
+  wrap_lookup(m);
+  py::class_<CapabilityMap> cls(m, "CapabilityMap",
+      "Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.");
+  cls.def_static("build", [](const Chain& chain, const py::object& options, const py::object& progress, const py::kwargs& kw) {
+        CapabilityMapOptions o = options_from<CapabilityMapOptions>(options, kw, "CapabilityMap.build");
+        ProgressCallback cb = progress_arg(progress, "capability map");
+        py::gil_scoped_release release;
+        return CapabilityMap::build(chain, o, cb);
+      }, py::arg("chain"), py::arg("options") = py::none(), py::arg("progress") = true,
+      "Builds the map of `chain` (positions in its base link frame); keyword arguments set CapabilityMapOptions\n"
+      "fields. A cell (voxel, orientation) is reachable when IK finds a solution inside the limits, free of\n"
+      "self-collision (joints off the chain at `reference`, default default_reference(robot, chain)), for the voxel\n"
+      "centre. Forward-kinematics sampling proposes cells and IK seeds; a flood fill over neighbouring cells\n"
+      "settles the rest; exhaustive=True also tries every other cell.\n"
+      "progress: True draws a bar, False is silent, or a callable (done, total).")
+      .def_static("build_for_arm", [](const Robot& robot, const py::object& arm, const py::object& options,
+                                      const py::object& progress, const py::kwargs& kw) {
+        py::object axis = kw.contains("approach_axis") ? kw.attr("pop")("approach_axis") : py::none();
+        CapabilityMapOptions o = options_from<CapabilityMapOptions>(options, kw, "CapabilityMap.build_for_arm");
+        Arm a = arm_from(robot, arm, axis);
+        ProgressCallback cb = progress_arg(progress, "capability map");
+        py::gil_scoped_release release;
+        return CapabilityMap::build(robot, a, o, cb);
+      }, py::arg("robot"), py::arg("arm"), py::arg("options") = py::none(), py::arg("progress") = true,
+      "Builds the map of an arm (a name, an Arm or a (base_link, tip_link[, approach_axis]) tuple) with the arm's\n"
+      "approach axis (inferred from the gripper unless given; approach_axis=(x, y, z) overrides it); other\n"
+      "keyword arguments set CapabilityMapOptions fields.")
+      .def_static("load", &CapabilityMap::load, py::arg("path"))
+      .def("save", &CapabilityMap::save, py::arg("path"), py::arg("with_solutions") = false,
+           "Writes the map atomically; with_solutions also stores one joint solution per reachable cell.")
+      .def("export_octovis", &CapabilityMap::export_octovis, py::arg("path"),
+           "Writes a ColorOcTree (.ot) for octovis, red (low D) to blue (high D).");
+  wrap_queries(cls);
+  cls.attr("DEFAULT_LOOKUP") = kDefaultCapabilityLookup;
+  cls.def_property_readonly("resolution", &CapabilityMap::resolution)
+      .def_property_readonly("orientations", &CapabilityMap::orientations)
+      .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)
+      .def_property_readonly("robot_name", &CapabilityMap::robot_name)
+      .def_property_readonly("urdf_hash", &CapabilityMap::urdf_hash)
+      .def_property_readonly("model_hash", &CapabilityMap::model_hash,
+                             "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.")
+      .def_property_readonly("base_link", &CapabilityMap::base_link)
+      .def_property_readonly("tip_link", &CapabilityMap::tip_link)
+      .def_property_readonly("has_solutions", &CapabilityMap::has_solutions)
+      .def_property_readonly("voxel_count", &CapabilityMap::voxel_count)
+      .def_property_readonly("stats", [](const CapabilityMap& cm) { return stats_dict(cm.stats()); })
+      .def_property_readonly("parameters", [](const CapabilityMap& cm) { return to_dict(cm.parameters()); })
+      .def("__repr__", [](const CapabilityMap& cm) {
+        return "<octoreach.CapabilityMap " + cm.robot_name() + " '" + cm.base_link() + "' -> '" + cm.tip_link() +
+               "', " + std::to_string(cm.voxel_count()) + " voxels at " + std::to_string(cm.resolution()) + " m>";
+      });
+}
+
+}  // namespace octoreach::py_bindings

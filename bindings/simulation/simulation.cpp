@@ -1,0 +1,132 @@
+// Simulation bindings: Scene, CameraIntrinsics, DepthCamera, look_at.
+#include "common.hpp"
+#include "octoreach/simulation.hpp"
+
+namespace octoreach::py_bindings {
+
+namespace {
+
+void wrap_scene(py::module_& m) {
+  py::class_<Scene>(m, "Scene",
+                    "Simulated world: axis-aligned boxes, crates, closed boxes with an opening, boards, triangle\n"
+                    "meshes, or an OctoMap .bt file. Metres, world frame.")
+      .def(py::init<>())
+      .def("add_box", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_box(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
+           py::arg("lo"), py::arg("hi"), "Solid box (a board is a thin box).")
+      .def("add_board", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_box(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
+           py::arg("lo"), py::arg("hi"))
+      .def("add_crate", [](Scene& s, const py::object& lo, const py::object& hi, double th) {
+             s.add_crate(vec3_from(lo, "lo"), vec3_from(hi, "hi"), th);
+           }, py::arg("lo"), py::arg("hi"), py::arg("thickness") = 0.02, "Open-topped crate; its inside is an interior.")
+      .def("add_closed_box", [](Scene& s, const py::object& lo, const py::object& hi, double th, const std::string& face,
+                                double w, double h) {
+             s.add_closed_box(vec3_from(lo, "lo"), vec3_from(hi, "hi"), th, face, w, h);
+           }, py::arg("lo"), py::arg("hi"), py::arg("thickness") = 0.02, py::arg("face") = "-x",
+           py::arg("opening_width") = 0.1, py::arg("opening_height") = 0.1,
+           "Closed box with one opening centred in face '+x', '-x', '+y', '-y' or '+z'; its inside is an interior.")
+      .def("add_mesh", [](Scene& s, const py::object& vertices, const py::object& triangles) {
+             auto v = points_from(vertices, "vertices");
+             IndexTriples tri = index_triples_from(triangles, v.size(), "triangles");
+             std::vector<Eigen::Vector3i> t(std::size_t(tri.rows()));
+             for (Eigen::Index i = 0; i < tri.rows(); ++i) t[std::size_t(i)] = tri.row(i).transpose();
+             s.add_mesh(v, t);
+           }, py::arg("vertices"), py::arg("triangles"))
+      .def("load_octomap", &Scene::load_octomap, py::arg("path"),
+           "Adds the occupied cells of an OctoMap .bt file to the world (OSError if it cannot be read).")
+      .def("add_interior", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_interior(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
+           py::arg("lo"), py::arg("hi"), "Records a region of interest for coverage figures.")
+      .def_property_readonly("boxes", [](const Scene& s) {
+        py::list out;
+        for (const auto& b : s.boxes()) out.append(py::make_tuple(b.lo, b.hi));
+        return out;
+      }, "Solid boxes as (lo, hi) pairs.")
+      .def_property_readonly("interiors", [](const Scene& s) {
+        py::list out;
+        for (const auto& b : s.interiors()) out.append(py::make_tuple(b.lo, b.hi));
+        return out;
+      }, "Regions of interest (insides of crates and closed boxes) as (lo, hi) pairs.")
+      .def_property_readonly("triangle_count", &Scene::triangle_count)
+      .def("bounds", [](const Scene& s) {
+        Aabb b = s.bounds();
+        return py::make_tuple(b.lo, b.hi);
+      })
+      .def("solid", [](const Scene& s, const py::object& points) {
+             auto pts = points_from(points, "points");
+             py::array_t<bool> out(static_cast<py::ssize_t>(pts.size()));
+             for (std::size_t i = 0; i < pts.size(); ++i) out.mutable_data()[i] = s.solid(pts[i]);
+             return out;
+           }, py::arg("points"), "True for points inside a solid box.")
+      .def("raycast", [](const Scene& s, const py::object& o, const py::object& d, double max_range,
+                         bool normal) -> py::object {
+             Eigen::Vector3d dir = vec3_from(d, "direction");
+             if (!(dir.norm() > 0)) throw std::invalid_argument("direction must be non-zero");
+             double t;
+             Eigen::Vector3d n;
+             if (!s.raycast(vec3_from(o, "origin"), dir.normalized(), max_range, t, normal ? &n : nullptr))
+               return py::none();
+             if (normal) return py::make_tuple(t, n);
+             return py::float_(t);
+           }, py::arg("origin"), py::arg("direction"), py::arg("max_range") = 4.0, py::arg("normal") = false,
+           "Distance to the first surface along the ray, or None; with normal=True (distance, unit surface\n"
+           "normal facing the ray).");
+
+}
+
+void wrap_camera(py::module_& m) {
+  m.def("look_at", [](const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll) {
+        return pose_to_array(look_at(eye, target, roll));
+      }, py::arg("eye"), py::arg("target"), py::arg("roll") = 0.0,
+      "Camera pose (4x4 camera -> world) at `eye` looking at `target` (world frame), rolled by `roll` radians\n"
+      "about the optical axis (+z); at roll 0 the image +y points down.");
+  py::class_<CameraIntrinsics>(m, "CameraIntrinsics", "Pinhole depth sensor: image size, horizontal fov (rad), range (m).")
+      .def(py::init([](int w, int h, double fov, double r) {
+             CameraIntrinsics c;
+             c.width = w;
+             c.height = h;
+             c.fov = fov;
+             c.max_range = r;
+             c.validate();
+             return c;
+           }), py::arg("width") = 640, py::arg("height") = 480, py::arg("fov") = 1.0123, py::arg("max_range") = 4.0)
+      .def_readonly("width", &CameraIntrinsics::width)
+      .def_readonly("height", &CameraIntrinsics::height)
+      .def_readonly("fov", &CameraIntrinsics::fov)
+      .def_readonly("max_range", &CameraIntrinsics::max_range);
+
+  py::class_<DepthCamera>(m, "DepthCamera",
+                          "Simulated depth camera. It looks along its +z axis (+x right, +y down in the image, as\n"
+                          "ROS optical frames); poses are 4x4 camera -> world transforms. noise: depth standard\n"
+                          "deviation at 1 m, growing with depth^2. max_incidence (radians, (0, pi/2]): pixels whose\n"
+                          "ray meets the surface at a larger angle to its normal give no return (pi/2: never);\n"
+                          "noisy depths beyond max_range give none either.")
+      .def(py::init<int, int, double, double, double, std::uint64_t, double>(), py::arg("width") = 640,
+           py::arg("height") = 480, py::arg("fov") = 1.0123, py::arg("max_range") = 4.0, py::arg("noise") = 0.0,
+           py::arg("seed") = 0, py::arg("max_incidence") = kPi / 2)
+      .def_property_readonly("intrinsics", &DepthCamera::intrinsics)
+      .def_property_readonly("width", [](const DepthCamera& c) { return c.intrinsics().width; })
+      .def_property_readonly("height", [](const DepthCamera& c) { return c.intrinsics().height; })
+      .def_property_readonly("fov", [](const DepthCamera& c) { return c.intrinsics().fov; })
+      .def_property_readonly("max_range", [](const DepthCamera& c) { return c.intrinsics().max_range; })
+      .def_property_readonly("noise", &DepthCamera::noise)
+      .def_property_readonly("max_incidence", &DepthCamera::max_incidence)
+      .def("capture", [](DepthCamera& c, const Scene& s, const py::object& pose, int threads) {
+             Pose T = pose_from(pose, "camera_pose");
+             std::vector<Eigen::Vector3d> pts;
+             {
+               py::gil_scoped_release release;
+               pts = c.capture(s, T, threads);
+             }
+             return to_points(pts);
+           }, py::arg("scene"), py::arg("camera_pose"), py::arg("threads") = 0,
+           "Points (N, 3), world frame, seen from camera_pose (4x4 camera -> world).");
+
+}
+
+}  // namespace
+
+void wrap_simulation(py::module_& m) {
+  wrap_scene(m);
+  wrap_camera(m);
+}
+
+}  // namespace octoreach::py_bindings

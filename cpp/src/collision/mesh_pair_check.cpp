@@ -1,0 +1,118 @@
+#include "collision/mesh_pair_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <typeinfo>
+
+#include "common/convex_hull.hpp"
+#include "collision/gjk_separation.hpp"
+
+namespace octoreach::detail {
+namespace {
+
+using Mesh = HullMesh;
+
+using Placed = PlacedHull;
+
+// apart_along without the support point: the two vertex passes alone.
+bool apart_by(const Placed& A, const Placed& B, const Eigen::Vector3d& d) {
+  return -A.reach(-d) - B.reach(d) > kHullMargin * d.norm();
+}
+
+// GJK on the hulls, started along the direction between the meshes' local box centres ca, cb.
+bool gjk_apart(const Placed& A, const Placed& B, const Eigen::Vector3d& ca, const Eigen::Vector3d& cb,
+               Eigen::Vector3d& axis) {
+  Eigen::Vector3d d = (A.R * ca + A.t) - (B.R * cb + B.t);
+  if (!(d.squaredNorm() > 0)) d = Eigen::Vector3d::UnitX();
+  return gjk::apart(A, B, d, kHullMargin, axis);
+}
+
+}  // namespace
+
+void HullMesh::measure() const {
+  if (!vertices || num_vertices <= 0) return;
+  std::vector<Eigen::Vector3d> all(vertices, vertices + num_vertices);
+  for (const auto& v : all)
+    if (!v.allFinite()) return;  // no support points: is_mesh is false
+  double scale = 1.0;
+  for (const auto& v : all) scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  const double inside = 1e-9 * scale;  // far beyond qhull's rounding
+  Hull hull;
+  const bool ok = convex_hull(all, hull);  // false when degenerate (flat ...): every vertex is kept
+  for (const auto& v : all) {
+    bool interior = ok;
+    for (std::size_t f = 0; interior && f < hull.planes.size(); ++f)
+      interior = hull.planes[f].head<3>().dot(v) + hull.planes[f][3] < -inside;
+    if (interior) continue;
+    points_.x.push_back(v.x());
+    points_.y.push_back(v.y());
+    points_.z.push_back(v.z());
+  }
+}
+
+const HullMesh* hull_mesh(const fcl::CollisionGeometryd& g) {
+  if (g.getObjectType() != fcl::OT_BVH || g.getNodeType() != fcl::BV_OBBRSS || typeid(g) != typeid(HullMesh))
+    return nullptr;
+  const auto* m = static_cast<const HullMesh*>(&g);
+  const bool triangles = m->getModelType() == fcl::BVH_MODEL_TRIANGLES && m->tri_indices && m->num_tris > 0;
+  // No support points: a vertex is not finite, and planes prove nothing; FCL decides.
+  return triangles && m->vertices && m->num_vertices > 0 && !m->hull_points().x.empty() ? m : nullptr;
+}
+
+bool is_mesh(const fcl::CollisionGeometryd& g) { return hull_mesh(g) != nullptr; }
+
+bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                    const Pose& tb, MeshPairWitness& witness) {
+  const Mesh& ma = *hull_mesh(a);
+  const Mesh& mb = *hull_mesh(b);
+  const Placed A{ma.hull_points(), ta.linear(), ta.translation()};
+  const Placed B{mb.hull_points(), tb.linear(), tb.translation()};
+  // Cheapest first: the old separating direction (two passes over the vertices), then the old
+  // triangle pair, then GJK, then FCL.
+  if (witness.axis.squaredNorm() > 0 && apart_by(A, B, witness.axis)) return false;
+  const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
+  // A witness only ever saves work: one kept under a key the caller reused for other meshes is still
+  // a valid test of these meshes once its triangle indices are in range. The pairs are kept newest
+  // (or last confirmed) first.
+  if (witness.triangles[0][0] >= 0) {
+    // FCL's leaf test (mesh_collision_traversal_node-inl.h): b's triangle moved into a's frame by the
+    // relative transform FCL's traversal node computes.
+    fcl::Matrix3d R;
+    fcl::Vector3d T;
+    fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
+    auto& tris = witness.triangles;
+    for (std::size_t k = 0; k < tris.size(); ++k) {
+      const int ia = tris[k][0], ib = tris[k][1];
+      if (ia < 0 || ia >= ma.num_tris || ib < 0 || ib >= mb.num_tris) continue;  // another mesh's witness
+      const fcl::Triangle& p = ma.tri_indices[ia];
+      const fcl::Triangle& q = mb.tri_indices[ib];
+      if (fcl::detail::Intersect<double>::intersect_Triangle(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]],
+                                                             mb.vertices[q[0]], mb.vertices[q[1]], mb.vertices[q[2]],
+                                                             R, T)) {
+        std::rotate(tris.begin(), tris.begin() + k, tris.begin() + k + 1);  // the last hit first
+        return true;
+      }
+    }
+  }
+  if (gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), witness.axis)) return false;
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  if (fcl::collide(&a, fa, &b, fb, request, result) == 0) return false;
+  std::rotate(witness.triangles.begin(), witness.triangles.end() - 1, witness.triangles.end());
+  witness.triangles[0] = {{static_cast<int>(result.getContact(0).b1), static_cast<int>(result.getContact(0).b2)}};
+  return true;
+}
+
+bool hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                 const Pose& tb, Eigen::Vector3d& axis) {
+  const Mesh* ma = hull_mesh(a);
+  const Mesh* mb = hull_mesh(b);
+  if (!ma || !mb) return false;
+  const Placed A{ma->hull_points(), ta.linear(), ta.translation()};
+  const Placed B{mb->hull_points(), tb.linear(), tb.translation()};
+  if (axis.squaredNorm() > 0 && apart_by(A, B, axis)) return true;
+  return gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), axis);
+}
+
+}  // namespace octoreach::detail

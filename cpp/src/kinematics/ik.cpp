@@ -1,0 +1,377 @@
+// Chain IK: damped least squares (Levenberg-Marquardt) with random restarts, solutions checked
+// against limits, self-collision and obstacles; ik_batch runs it on the thread pool.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+
+#include "octoreach/chain.hpp"
+#include "octoreach/collision.hpp"
+#include "octoreach/robot.hpp"
+#include "kinematics/chain_checks.hpp"
+#include "collision/detail.hpp"
+#include "kinematics/hinge_pairs.hpp"
+#include "common/cancel.hpp"
+#include "common/random_mix.hpp"
+#include "common/thread_pool.hpp"
+
+namespace octoreach {
+namespace {
+
+// Rotation vector (axis * angle) of R, robust near 0 and pi.
+Eigen::Vector3d log_so3(const Eigen::Matrix3d& R) {
+  Eigen::AngleAxisd aa(R);
+  return aa.axis() * aa.angle();
+}
+
+void check_ik_request(const Chain& c, const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) {
+  if (!target.matrix().allFinite()) throw std::invalid_argument("IK target pose must be finite");
+  if (!(o.position_tolerance > 0) || !(o.orientation_tolerance > 0))
+    throw std::invalid_argument("IK tolerances must be positive");
+  if (o.attempts < 1 || o.max_iterations < 1)
+    throw std::invalid_argument("IK needs at least one attempt and one iteration");
+  if (seed) {
+    detail::check_joint_vector(c, *seed);
+    if (!seed->allFinite()) throw std::invalid_argument("IK seed must be finite");
+  }
+  if (o.reference.size() != 0 && o.reference.size() != c.robot().dof())
+    throw std::invalid_argument("IK reference configuration has " + std::to_string(o.reference.size()) +
+                                " entries, the robot has " + std::to_string(c.robot().dof()));
+}
+
+// A chain without moving joints reaches only its own pose.
+std::optional<Eigen::VectorXd> rigid_chain_ik(const Chain& c, const Pose& target, const IkOptions& o) {
+  Pose T = c.fk(Eigen::VectorXd());
+  bool pos_ok = (T.translation() - target.translation()).norm() < o.position_tolerance;
+  double rot = o.mode == IkMode::Position ? 0.0
+               : o.mode == IkMode::Full   ? Eigen::AngleAxisd(target.linear() * T.linear().transpose()).angle()
+                                          : std::acos(std::min(1.0, (T.linear() * o.approach_axis.normalized())
+                                                                        .dot(target.linear() * o.approach_axis.normalized())));
+  if (pos_ok && rot < o.orientation_tolerance) return Eigen::VectorXd();
+  return std::nullopt;
+}
+
+// What IK needs to check its solutions of one chain at one reference posture for collisions: the
+// robot's checked pairs split into those the chain moves and those it never moves, and the link
+// poses at the reference, the hinge pairs (hinge_pairs.hpp) and the pair order. Per thread, the set-ups
+// of the last four robot, chain and reference combinations are kept and reused by the next call for
+// the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so a
+// robot built at the address of a freed one never matches). Checking a solution then recomputes
+// only the links the chain moves (the joints in `moved`, parents first).
+struct CollisionSetup {
+  std::weak_ptr<const Robot> robot;
+  std::string base, tip;
+  Eigen::VectorXd reference;
+  std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
+  std::vector<int> moved;  // joints whose child link the chain moves, in the robot's (parents-first) order
+  std::vector<Pose> poses;
+  detail::HingePairs hinges;  // moving pairs one joint sets: skipped where certainly free
+  Eigen::VectorXd full;       // scratch: the robot configuration of the solution checked
+  detail::ShapeBoxes boxes;   // shape boxes: the links the chain never moves stay at the reference
+  std::vector<int> moved_links;  // collision links the chain moves (their boxes follow each solution)
+
+  bool matches(const Chain& c, const std::shared_ptr<const Robot>& r, const Eigen::VectorXd& ref) const {
+    return !robot.expired() && !robot.owner_before(r) && !r.owner_before(robot) && base == c.base_link() &&
+           tip == c.tip_link() && reference.size() == ref.size() && reference == ref;
+  }
+
+  static CollisionSetup& of(const Chain& c, const Eigen::VectorXd& reference) {
+    // The last few set-ups of this thread, so that a caller alternating between arms keeps what their
+    // hinge pairs measured; the least recently used one makes room.
+    thread_local std::array<CollisionSetup, 4> cache;
+    thread_local std::array<std::uint64_t, 4> used{};
+    thread_local std::uint64_t clock = 0;
+    const std::shared_ptr<const Robot> r = c.robot_ptr();
+    std::size_t pick = 0;
+    for (std::size_t i = 0; i < cache.size(); ++i) {
+      if (cache[i].matches(c, r, reference)) {
+        used[i] = ++clock;
+        return cache[i];
+      }
+      if (used[i] < used[pick]) pick = i;
+    }
+    used[pick] = ++clock;
+    CollisionSetup& s = cache[pick];
+    s.robot = r;
+    s.base = c.base_link();
+    s.tip = c.tip_link();
+    s.reference = reference;
+    c.split_collision_pairs(s.moving_pairs, s.fixed_pairs);
+    s.moved.clear();
+    for (std::size_t j = 0; j < r->joints().size(); ++j)
+      if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
+    r->link_poses(reference, s.poses);
+    s.hinges = detail::HingePairs(c, s.moving_pairs, reference);
+    s.boxes = detail::ShapeBoxes();
+    s.moved_links.clear();
+    for (int li : r->collision_links()) {
+      s.boxes.update(*r, s.poses, li);
+      if (c.link_mask(li) != 0) s.moved_links.push_back(li);
+    }
+    return s;
+  }
+
+  // Link poses at the robot configuration `full`, which differs from the reference only in the chain.
+  void place(const Robot& robot, const Eigen::VectorXd& full) {
+    for (int ji : moved) {
+      const Joint& j = robot.joints()[ji];
+      double v = 0.0;
+      if (j.index >= 0) v = full[j.index];
+      else if (j.mimic >= 0) v = full[robot.joints()[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
+      Pose m = Pose::Identity();
+      if (j.type == JointType::Prismatic) m.translation() = j.axis * v;
+      else if (j.type == JointType::Revolute || j.type == JointType::Continuous)
+        m.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+      poses[j.child_link] = poses[j.parent_link] * j.origin * m;
+    }
+  }
+};
+
+// One IK call: Levenberg-Marquardt descents from the seed and from random restarts. N is the
+// chain's dof when it is known at compile time (6, 7: fixed-size matrices, no heap traffic and
+// unrolled products), else Eigen::Dynamic with at most MaxDof columns (MaxDof Dynamic: any chain).
+// A solver is the per-call workspace: built, solved once, dropped.
+template <int N, int MaxDof = N>
+class LmIk {
+ public:
+  using Vec = Eigen::Matrix<double, N, 1, 0, MaxDof, 1>;
+  using Jac = Eigen::Matrix<double, 6, N, 0, 6, MaxDof>;
+  using Sq = Eigen::Matrix<double, N, N, 0, MaxDof, MaxDof>;
+  using Res = Eigen::Matrix<double, 6, 1>;
+
+  LmIk(const Chain& chain, const Pose& target, const IkOptions& o)
+      : c_(chain), target_(target), o_(o), n_(chain.dof()), J_(6, n_), J_new_(6, n_), Jr_(6, n_),
+        q_(n_), q_new_(n_), dq_(n_), g_(n_), A_(n_, n_) {
+    approach_tip_ = o.approach_axis.normalized();
+    approach_goal_ = target.linear() * approach_tip_;
+    need_full_ = o.check_self_collision || o.obstacles;
+    if (need_full_) setup_ = &CollisionSetup::of(c_, o.reference.size() ? o.reference : c_.robot().home());
+    fixed_state_ = o.check_fixed_pairs ? -1 : 0;
+  }
+
+  std::optional<Eigen::VectorXd> solve(const Eigen::VectorXd* seed) {
+    for (int attempt = 0; attempt < o_.attempts; ++attempt) {
+      detail::poll_cancel("IK cancelled");
+      if (attempt == 0 && seed) {
+        q_ = *seed;
+        clamp(q_);
+      } else {
+        q_ = c_.random_configuration(rng());
+      }
+      if (descend()) {
+        Eigen::VectorXd sol = c_.wrap(q_);
+        if (accept(sol)) return sol;
+      }
+    }
+    return std::nullopt;
+  }
+
+ private:
+  // Orientation error is weighted so that one radian counts like this many metres.
+  static constexpr double kRotWeight = 0.25;
+  static constexpr int kMaxWindow = 16;
+
+  // Error vector (6 rows; the rotation rows are zero in Position mode) and, when asked, the
+  // matching rows of the Jacobian J_ in Jr_ (weighted_jacobian); plus the convergence test.
+  void residual(const Pose& T, bool with_jacobian, Res& err, bool& converged) {
+    Eigen::Vector3d ep = target_.translation() - T.translation();
+    err.template head<3>() = ep;
+    if (o_.mode == IkMode::Position) {
+      err.template tail<3>().setZero();
+      if (with_jacobian) weighted_jacobian();
+      converged = ep.norm() < o_.position_tolerance;
+      return;
+    }
+    Eigen::Vector3d er;
+    double rot_err;
+    Eigen::Matrix3d& P = P_;  // kept: weighted_jacobian() of this pose needs it
+    P.setIdentity();
+    if (o_.mode == IkMode::Full) {
+      er = log_so3(target_.linear() * T.linear().transpose());
+      rot_err = er.norm();
+    } else {
+      Eigen::Vector3d a = T.linear() * approach_tip_;
+      Eigen::Vector3d c = a.cross(approach_goal_);
+      double s = c.norm(), cs = a.dot(approach_goal_);
+      rot_err = std::atan2(s, cs);
+      if (s > 1e-12) er = c / s * rot_err;
+      else if (cs < 0) er = a.unitOrthogonal() * kPi;  // opposite: any perpendicular axis
+      else er.setZero();
+      P -= a * a.transpose();  // roll about the approach axis does not matter
+    }
+    err.template tail<3>() = kRotWeight * er;
+    if (with_jacobian) weighted_jacobian();
+    converged = ep.norm() < o_.position_tolerance && rot_err < o_.orientation_tolerance;
+  }
+
+  // Jr_ from J_, weighted as the residual of the pose residual() saw last.
+  void weighted_jacobian() {
+    Jr_.template topRows<3>() = J_.template topRows<3>();
+    if (o_.mode == IkMode::Position) Jr_.template bottomRows<3>().setZero();
+    else Jr_.template bottomRows<3>().noalias() = kRotWeight * (P_ * J_.template bottomRows<3>());
+  }
+
+  // Revolute joints shifted by whole turns toward their limits, then every bounded joint clamped.
+  void clamp(Vec& v) const {
+    const auto& lower = c_.lower();
+    const auto& upper = c_.upper();
+    for (int i = 0; i < n_; ++i) {
+      if (c_.continuous()[i]) continue;
+      if (c_.segments()[i].type == JointType::Revolute) v[i] = detail::shift_by_turns(v[i], lower[i], upper[i], 0.0);
+      v[i] = std::min(std::max(v[i], lower[i]), upper[i]);
+    }
+  }
+
+  // A joint sitting on a limit that the step dq_ would push past it is held there: its row and
+  // column leave the system (A_, g_), so the next solve gives the other joints the whole step.
+  // (Clamping alone leaves them a share of a step planned with the held joint moving: the descent
+  // then crawls, with linear convergence.) True when a joint was held.
+  bool hold_limits() {
+    bool held = false;
+    for (int i = 0; i < n_; ++i) {
+      if (c_.continuous()[i]) continue;
+      if ((q_[i] <= c_.lower()[i] && dq_[i] < 0) || (q_[i] >= c_.upper()[i] && dq_[i] > 0)) {
+        A_.row(i).setZero();
+        A_.col(i).setZero();
+        A_(i, i) = 1.0;
+        g_[i] = 0.0;
+        held = true;
+      }
+    }
+    return held;
+  }
+
+  // One descent from q_; true when it converged (q_ then holds the solution).
+  bool descend() {
+    // Errors this small are left to finish; above it, slow progress means a local minimum.
+    const double tol2 = o_.position_tolerance * o_.position_tolerance;
+    bool converged = false;
+    Pose T = c_.fk_jacobian(q_.data(), J_.data());
+    residual(T, true, e_, converged);
+    double err = e_.squaredNorm();
+    double lambda = 1e-3;
+    int slow = 0;
+    // err at the last stall_window iterations (ring); a stalled descent is stopped.
+    double history[kMaxWindow];
+    const int window = std::min(o_.stall_window, kMaxWindow);
+    for (int it = 0; it < o_.max_iterations && !converged; ++it) {
+      if (window > 0) {
+        if (it >= window && err > 4 * tol2 && err > 0.9 * history[it % window]) break;  // stalled
+        history[it % window] = err;
+      }
+      // Levenberg-Marquardt step: (J^T J + lambda (I + diag J^T J)) dq = J^T e
+      A_.noalias() = Jr_.transpose().lazyProduct(Jr_);
+      g_.noalias() = Jr_.transpose() * e_;
+      A_.diagonal().array() += lambda * (1.0 + A_.diagonal().array());
+      dq_ = A_.llt().solve(g_);  // A is symmetric positive definite
+      if (hold_limits()) dq_ = A_.llt().solve(g_);
+      q_new_ = q_ + dq_;
+      clamp(q_new_);
+      bool conv_new = false;
+      Pose T_new = c_.fk_jacobian(q_new_.data(), J_new_.data());
+      residual(T_new, false, e_new_, conv_new);
+      double err_new = e_new_.squaredNorm();
+      if (err_new < err) {
+        slow = (err - err_new < 0.01 * err && err_new > 100 * tol2) ? slow + 1 : 0;
+        q_ = q_new_;
+        J_.swap(J_new_);
+        err = err_new;
+        // The residual at T_new is e_new_ (the same computation): only the Jacobian rows are new.
+        e_ = e_new_;
+        converged = conv_new;
+        weighted_jacobian();
+        lambda = std::max(lambda * 0.3, 1e-9);
+        if (slow >= 4) break;  // crawling far from the target: a local minimum or a limit
+      } else {
+        lambda *= 10.0;
+        if (lambda > 1e6) break;  // stuck: restart
+        // Jr and e still describe q, so the next step needs no new kinematics.
+      }
+    }
+    return converged;
+  }
+
+  // Limits, obstacles and self-collision of a converged (wrapped) solution. The pairs the chain
+  // never moves are checked once per call, at the first solution that gets this far.
+  bool accept(const Eigen::VectorXd& sol) {
+    if (!c_.within_limits(sol, 1e-9)) return false;
+    if (!need_full_) return true;
+    const Robot& robot = c_.robot();
+    CollisionSetup& s = *setup_;
+    s.full = c_.to_robot_configuration(sol, s.reference);
+    s.place(robot, s.full);
+    if (o_.obstacles && robot.links_in_collision(s.poses, *o_.obstacles, o_.base_pose,
+                                                 o_.obstacle_links.empty() ? nullptr : &o_.obstacle_links))
+      return false;
+    if (o_.check_self_collision) {
+      if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
+      if (fixed_state_ == 1) return false;
+      for (int li : s.moved_links) s.boxes.update(robot, s.poses, li);
+      const int k = detail::first_colliding_pair(robot, s.boxes, s.hinges.uncertain(robot, s.full));
+      if (k >= 0) {
+        s.hinges.hit(k);
+        return false;
+      }
+    }
+    return true;
+  }
+
+  const Chain& c_;
+  const Pose& target_;
+  const IkOptions& o_;
+  const int n_;
+  Eigen::Vector3d approach_tip_, approach_goal_;
+  // The restarts' generator, seeded at the first restart: a seeded single-attempt call (the capability
+  // map's flood) never draws from it, and seeding a Mersenne twister costs more than a descent step.
+  std::optional<std::mt19937_64> rng_;
+  std::mt19937_64& rng() {
+    if (!rng_) rng_.emplace(o_.seed);
+    return *rng_;
+  }
+  Jac J_, J_new_, Jr_;  // Jacobian at q_ and at q_new_; rows weighted as the residual
+  Vec q_, q_new_, dq_, g_;
+  Sq A_;
+  Res e_, e_new_;
+  Eigen::Matrix3d P_ = Eigen::Matrix3d::Identity();  // residual(): projection of the rotation rows (Approach mode)
+  CollisionSetup* setup_ = nullptr;  // this thread's, while the call lasts
+  bool need_full_ = false;
+  int fixed_state_ = -1;  // fixed pairs: -1 unknown, 0 free, 1 colliding
+};
+
+}  // namespace
+
+std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) const {
+  check_ik_request(*this, target, o, seed);
+  detail::CancellableScope cancellable;
+  if (dof() == 0) return rigid_chain_ik(*this, target, o);
+  if (dof() == 7) return LmIk<7>(*this, target, o).solve(seed);
+  if (dof() == 6) return LmIk<6>(*this, target, o).solve(seed);
+  if (dof() <= 12) return LmIk<Eigen::Dynamic, 12>(*this, target, o).solve(seed);
+  return LmIk<Eigen::Dynamic, Eigen::Dynamic>(*this, target, o).solve(seed);
+}
+
+void Chain::ik_batch(const std::vector<Pose>& targets, const IkOptions& options, Eigen::MatrixXd& solutions,
+                     std::vector<bool>& ok, const Eigen::MatrixXd* seeds, int threads) const {
+  if (seeds && (seeds->rows() != static_cast<Eigen::Index>(targets.size()) || seeds->cols() != dof()))
+    throw std::invalid_argument("seeds must have shape (" + std::to_string(targets.size()) + ", " +
+                                std::to_string(dof()) + ")");
+  detail::CancellableScope cancellable;
+  solutions = Eigen::MatrixXd::Constant(targets.size(), dof(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<char> flags(targets.size(), 0);
+  detail::parallel_for(targets.size(), threads, [&](std::size_t i, int) {
+    IkOptions o = options;
+    o.seed = detail::mix64(options.seed, i);  // per-item streams: the result does not depend on the thread count
+    Eigen::VectorXd s;
+    if (seeds) s = seeds->row(i).transpose();
+    auto q = ik(targets[i], o, seeds ? &s : nullptr);
+    if (q) {
+      solutions.row(i) = q->transpose();
+      flags[i] = 1;
+    }
+  }, 4);
+  ok.assign(flags.begin(), flags.end());
+}
+
+}  // namespace octoreach

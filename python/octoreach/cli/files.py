@@ -1,0 +1,83 @@
+"""`octoreach info`, `export`, `query` and `sample`: commands on saved maps."""
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+
+from .args import angle
+
+
+def _cmd_info(args) -> int:
+    from .. import map_files
+
+    m = map_files.load(args.map)
+    print(repr(m))
+    for k, v in sorted(m.parameters.items()):
+        print(f"  {k}: {v}")
+    centres, values = m.voxels()
+    values = np.asarray(values)
+    if values.size:
+        print(f"  values: min {values[values > 0].min():.4f}, max {values.max():.4f}, voxels {len(centres)}")
+    lo, hi = m.bounds
+    print(f"  bounds: {np.round(lo, 3).tolist()} .. {np.round(hi, 3).tolist()}")
+    return 0
+
+
+def _cmd_export(args) -> int:
+    from .. import map_files
+
+    m = map_files.load(args.map)
+    m.export_octovis(args.out)
+    print(f"wrote {args.out} (open with octovis)")
+    return 0
+
+
+def _cmd_query(args) -> int:
+    from .._core import SurfaceMap
+
+    smap = SurfaceMap.load(args.map)
+    try:
+        poses = np.array([[float(x), float(y), float(z), angle(t)] for x, y, z, t in args.pose], dtype=float)
+    except argparse.ArgumentTypeError as e:
+        raise ValueError(f"--pose: {e}") from None
+    for pose, r in zip(poses, smap.reachability(poses)):
+        print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}")
+    return 0
+
+
+def _cmd_sample(args) -> int:
+    from .._core import PoseSampler, SurfaceMap
+
+    smap = SurfaceMap.load(args.map)
+    sampler = PoseSampler(smap, candidates=args.candidates, seed=args.seed)
+    poses = sampler.sample(args.count)
+    for pose, r in zip(poses, smap.reachability(poses)):
+        print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}")
+    return 0
+
+
+def add_commands(sub):
+    """info, export, query, sample: commands on saved maps."""
+    sp = sub.add_parser("info", help="print a map file's parameters, robot, size and value range")
+    sp.add_argument("map", help="a capability (.orcm), point (.orpm) or surface (.orsm) map file")
+    sp.set_defaults(func=_cmd_info)
+
+    sp = sub.add_parser("export", help="write a map as a colour octree (.ot) for octovis")
+    sp.add_argument("map", help="a map file")
+    sp.add_argument("--out", required=True, help="output .ot file")
+    sp.set_defaults(func=_cmd_export)
+
+    sp = sub.add_parser("query", help="R_S of base poses in a surface map (the condition attachment)")
+    sp.add_argument("map", help="a surface map file")
+    sp.add_argument("--pose", nargs=4, action="append", required=True, metavar=("X", "Y", "Z", "THETA"),
+                    help="a base pose: x y z in m, theta in rad (or degrees as e.g. 90deg); repeatable")
+    sp.set_defaults(func=_cmd_query)
+
+    sp = sub.add_parser("sample", help="sample well spread base poses from a surface map (the grounding attachment); "
+                                       "prints x y z in m and theta in rad")
+    sp.add_argument("map", help="a surface map file")
+    sp.add_argument("--count", type=int, default=5, help="poses to sample (default 5)")
+    sp.add_argument("--candidates", type=int, default=40, help="valid candidates per pose (default 40)")
+    sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    sp.set_defaults(func=_cmd_sample)

@@ -1,0 +1,34 @@
+"""`octoreach view`: maps, samples and explorations in 3D in the browser (the viewer extra)."""
+from __future__ import annotations
+
+
+def _cmd_view(args) -> int:
+    from ..viewer import view
+
+    joints = {}
+    for item in args.joint or []:
+        name, _, value = item.partition("=")
+        try:
+            joints[name] = float(value)
+        except ValueError:
+            raise ValueError(f"--joint {item!r}: expected NAME=VALUE (radians or metres)") from None
+    view(*args.files, robot=args.robot, joints=joints, samples=args.samples, seed=args.seed, port=args.port,
+         host=args.host, html=args.html, png=args.png, block=not args.no_serve)
+    return 0
+
+
+def add_commands(sub):
+    """view: maps, samples and explorations in 3D in the browser."""
+    sp = sub.add_parser("view", help="show maps, samples and explorations in 3D in the browser (needs the viewer extra)")
+    sp.add_argument("files", nargs="+", help="surface (.orsm) or capability (.orcm) map files, OctoMap .bt files")
+    sp.add_argument("--robot", help="robot by name (default: the one a surface map was built for)")
+    sp.add_argument("--joint", action="append", metavar="NAME=VALUE",
+                    help="set a joint of the shown configuration (repeatable; default: the map's reference posture)")
+    sp.add_argument("--samples", type=int, default=5, help="base poses to sample and show (default 5)")
+    sp.add_argument("--seed", type=int, default=1, help="sampler seed (default 1)")
+    sp.add_argument("--port", type=int, default=8080, help="port (default 8080; the next free one if taken)")
+    sp.add_argument("--host", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
+    sp.add_argument("--html", help="also write the scene as a static HTML page")
+    sp.add_argument("--png", help="also write a screenshot (headless Chromium)")
+    sp.add_argument("--no-serve", action="store_true", help="write --html/--png and exit instead of serving")
+    sp.set_defaults(func=_cmd_view)

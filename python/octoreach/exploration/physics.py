@@ -1,0 +1,41 @@
+"""The simulator's physical check: whether an arm configuration is clear of the scene's true geometry and of
+the robot itself (a chosen view whose arm would touch the scene is not taken)."""
+from __future__ import annotations
+
+import numpy as np
+
+from .._core import Obstacles, Scene
+
+
+def scene_obstacles(scene: Scene) -> Obstacles:
+    """The scene's solid boxes (floor, walls, crates, closed boxes, debris) as collision obstacles."""
+    obs = Obstacles()
+    for lo, hi in scene.boxes:
+        lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+        T = np.eye(4)
+        T[:3, 3] = (lo + hi) / 2
+        obs.add_box(hi - lo, T)
+    return obs
+
+
+def robot_root(robot, chain, chain_base) -> np.ndarray:
+    """Pose (4x4, world) of the robot's root when its `chain` base link sits at `chain_base`."""
+    return np.asarray(chain_base, float) @ np.linalg.inv(robot.link_poses(robot.home())[chain.base_link])
+
+
+class PhysicalCheck:
+    """Whether an arm configuration is clear of the scene's true geometry (the links the chain moves:
+    Chain.moved_links) and of the robot itself (robot known), else always True."""
+
+    def __init__(self, robot, chain, scene, enabled):
+        self.on = bool(enabled and robot is not None and chain is not None)
+        if self.on:
+            self.robot, self.chain, self.obstacles = robot, chain, scene_obstacles(scene)
+            self.links = chain.moved_links
+
+    def valid(self, q, chain_base) -> bool:
+        if not self.on or q is None:
+            return True
+        root = robot_root(self.robot, self.chain, chain_base)
+        q_robot = self.chain.to_robot_configuration(np.asarray(q, float))
+        return not self.robot.in_collision(q_robot, self.obstacles, root, self_collision=True, links=self.links)
