@@ -259,6 +259,7 @@ void wrap_robot(py::module_& m);
 void wrap_orientation_set(py::module_& m);
 void wrap_arm(py::module_& m);
 void wrap_arm_placement(py::module_& m);
+void wrap_map_files(py::module_& m);
 void wrap_capability_map(py::module_& m);
 void wrap_capability_blocks(py::module_& m);
 void wrap_point_map(py::module_& m);

@@ -44,6 +44,7 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_orientation_set(m);
   octoreach::py_bindings::wrap_arm(m);
   octoreach::py_bindings::wrap_arm_placement(m);
+  octoreach::py_bindings::wrap_map_files(m);
   octoreach::py_bindings::wrap_capability_map(m);
   octoreach::py_bindings::wrap_capability_blocks(m);
   octoreach::py_bindings::wrap_point_map(m);

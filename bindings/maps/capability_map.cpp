@@ -142,14 +142,11 @@ void wrap_capability_map(py::module_& m) {
       .def("export_octovis", &CapabilityMap::export_octovis, py::arg("path"),
            "Writes a ColorOcTree (.ot) for octovis, red (low D) to blue (high D).");
   wrap_queries(cls);
+  def_map_identity<CapabilityMap>(cls);
   cls.attr("DEFAULT_LOOKUP") = kDefaultCapabilityLookup;
   cls.def_property_readonly("resolution", &CapabilityMap::resolution)
       .def_property_readonly("orientations", &CapabilityMap::orientations)
       .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)
-      .def_property_readonly("robot_name", &CapabilityMap::robot_name)
-      .def_property_readonly("urdf_hash", &CapabilityMap::urdf_hash)
-      .def_property_readonly("model_hash", &CapabilityMap::model_hash,
-                             "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.")
       .def_property_readonly("base_link", &CapabilityMap::base_link)
       .def_property_readonly("tip_link", &CapabilityMap::tip_link)
       .def_property_readonly("has_solutions", &CapabilityMap::has_solutions)

@@ -7,6 +7,7 @@
 
 #include "common.hpp"
 #include "robot/robot_args.hpp"
+#include "octoreach/map_provenance.hpp"
 #include "octoreach/pose_map.hpp"
 
 namespace octoreach::py_bindings {
@@ -100,5 +101,17 @@ void def_map_resolution(Class& cls) {
                    "Voxel edge (m); 0 or None: the capability map's resolution.");
 }
 
+/// Binds what every map kind has: the class attributes `kind` (the tag of its files) and `extension`, and
+/// the robot it was built for (`provenance`, and its fields as `robot_name`, `urdf_hash`, `model_hash`).
+template <class Map, class Class>
+void def_map_identity(Class& cls) {
+  cls.attr("kind") = Map::kKind;
+  cls.attr("extension") = Map::kExtension;
+  cls.def_property_readonly("provenance", &Map::provenance, "The robot the map was built for.")
+      .def_property_readonly("robot_name", &Map::robot_name)
+      .def_property_readonly("urdf_hash", &Map::urdf_hash)
+      .def_property_readonly("model_hash", &Map::model_hash,
+                             "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.");
+}
 
 }  // namespace octoreach::py_bindings

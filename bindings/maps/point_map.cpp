@@ -24,9 +24,10 @@ void wrap_options(py::module_& m) {
 
 void wrap_point_map(py::module_& m) {
   wrap_options(m);
-  py::class_<InversePointMap>(m, "InversePointMap",
-      "Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.")
-      .def_static("build", [](const Robot& robot, const CapabilityMap& cap, const py::object& options,
+  py::class_<InversePointMap> cls(m, "InversePointMap",
+      "Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.");
+  def_map_identity<InversePointMap>(cls);
+  cls.def_static("build", [](const Robot& robot, const CapabilityMap& cap, const py::object& options,
                               const py::object& progress, const py::kwargs& kw) {
              PointMapOptions o = options_from<PointMapOptions>(options, kw, "InversePointMap.build");
              ProgressCallback cb = progress_arg(progress, "point map");
@@ -64,10 +65,6 @@ void wrap_point_map(py::module_& m) {
       .def_property_readonly("voxel_count", [](const InversePointMap& pm) { return pm.map().voxel_count(); })
       .def_property_readonly("pose_count", [](const InversePointMap& pm) { return pm.map().pose_count(); },
                              "Number of (voxel, theta) poses with R_P > 0.")
-      .def_property_readonly("robot_name", &InversePointMap::robot_name)
-      .def_property_readonly("urdf_hash", &InversePointMap::urdf_hash)
-      .def_property_readonly("model_hash", &InversePointMap::model_hash,
-                             "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.")
       .def_property_readonly("reference_frame", &InversePointMap::reference_frame)
       .def_property_readonly("arm_base_link", &InversePointMap::arm_base_link)
       .def_property_readonly("arm_tip_link", &InversePointMap::arm_tip_link)

@@ -79,9 +79,10 @@ py::dict stats_dict(const SurfaceMapStats& s) {
 
 void wrap_surface_map(py::module_& m) {
   wrap_options(m);
-  py::class_<SurfaceMap, std::shared_ptr<SurfaceMap>>(m, "SurfaceMap",
-      "Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.")
-      .def_static("build", &build, py::arg("robot"), py::arg("arm"), py::arg("surface"), py::arg("options") = py::none(),
+  py::class_<SurfaceMap, std::shared_ptr<SurfaceMap>> cls(m, "SurfaceMap",
+      "Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.");
+  def_map_identity<SurfaceMap>(cls);
+  cls.def_static("build", &build, py::arg("robot"), py::arg("arm"), py::arg("surface"), py::arg("options") = py::none(),
                   py::arg("progress") = true,
                   "Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])\n"
                   "tuple whose capability map is built first (keywords directions and seed; at `resolution`, default\n"
@@ -117,10 +118,6 @@ void wrap_surface_map(py::module_& m) {
       .def_property_readonly("theta_bins", [](const SurfaceMap& sm) { return sm.map().theta_bins(); })
       .def_property_readonly("voxel_count", [](const SurfaceMap& sm) { return sm.map().voxel_count(); })
       .def_property_readonly("max_reachability", [](const SurfaceMap& sm) { return sm.map().max_value(); })
-      .def_property_readonly("robot_name", &SurfaceMap::robot_name)
-      .def_property_readonly("urdf_hash", &SurfaceMap::urdf_hash)
-      .def_property_readonly("model_hash", &SurfaceMap::model_hash,
-                             "Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.")
       .def_property_readonly("reference_frame", &SurfaceMap::reference_frame)
       .def_property_readonly("arms", &SurfaceMap::arms)
       .def_property_readonly("approach_axes", &SurfaceMap::approach_axes,

@@ -27,11 +27,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ._core import Arm, CapabilityMap, CapabilityMapOptions, Robot, SurfaceMap, __version__, map_format_version
+from . import map_files
+from ._core import Arm, CapabilityMap, CapabilityMapOptions, Robot, __version__, map_format_version
 
 ENV_DIR = "OCTOREACH_CACHE_DIR"
-_EXT = {"capability": ".orcm", "surface": ".orsm"}
-_LOADERS = {"capability": CapabilityMap.load, "surface": SurfaceMap.load}
+_EXT = map_files.kinds()  # {kind: file extension} of every map kind (the C++ registry)
 _warned: set[str] = set()  # directories already warned about
 
 
@@ -174,7 +174,7 @@ class MapCache:
         if not path.exists():
             return None
         try:
-            return _LOADERS[kind](str(path))
+            return map_files.load(path, kind)  # OSError unless the entry holds a whole map of that kind
         except OSError as e:
             warnings.warn(f"map cache entry {path.name} is damaged ({e}): rebuilding it", RuntimeWarning, stacklevel=4)
             self.rebuilt_damaged += 1

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import cache as _cache
+from . import map_files
 from .arms import default_arm
 from ._core import Arm, CapabilityBlocks, CapabilityMap, Robot, SurfaceMap, SurfaceMapOptions
 
@@ -89,11 +90,12 @@ def map_bytes(m, with_solutions: bool = False) -> bytes:
 
 
 def map_from_bytes(kind: str, data: bytes):
-    """A map loaded from file bytes (the loader checks the checksum)."""
+    """A map of `kind` ("capability", "surface") loaded from file bytes (the loader checks the kind and the
+    checksum)."""
     with tempfile.TemporaryDirectory(prefix="octoreach-") as d:
         path = os.path.join(d, "map")
         Path(path).write_bytes(data)
-        return (CapabilityMap if kind == "capability" else SurfaceMap).load(path)
+        return map_files.load(path, kind)
 
 
 def _task_info(t0: float) -> dict:

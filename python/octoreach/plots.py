@@ -100,6 +100,50 @@ def _voxel_data(data, resolution, extent, heights):
     return centres, values, float(resolution)
 
 
+def _slice_grid(centres, r, extent, poly):
+    """(x0, y0, nx, ny, r): the xy grid of cells of edge r that every slice shares (so panels share their
+    axes), over `extent`, else the voxels, widened to hold the polygon."""
+    if extent is not None:
+        (x0, x1), (y0, y1) = extent
+    elif len(centres):
+        x0, y0 = centres[:, :2].min(axis=0) - r / 2
+        x1, y1 = centres[:, :2].max(axis=0) + r / 2
+    else:
+        x0 = y0 = -r
+        x1 = y1 = r
+    if poly is not None:
+        x0, y0 = min(x0, poly[:, 0].min() - r), min(y0, poly[:, 1].min() - r)
+        x1, y1 = max(x1, poly[:, 0].max() + r), max(y1, poly[:, 1].max() + r)
+    nx = max(1, int(round((x1 - x0) / r)))
+    ny = max(1, int(round((y1 - y0) / r)))
+    return x0, y0, nx, ny, r
+
+
+def _draw_slice(ax, centres, values, z, grid, poly, colours):
+    """Draws the voxel layer holding height z on `ax` over the shared grid; returns the image."""
+    x0, y0, nx, ny, r = grid
+    cells = np.full((ny, nx), np.nan)
+    # the voxel layer holding z; a height on a boundary belongs to the layer above, as in the octree lookup
+    sel = (z >= centres[:, 2] - r / 2 - 1e-9) & (z < centres[:, 2] + r / 2 - 1e-9)
+    layer = centres[sel]
+    if len(layer):
+        ix = np.floor((layer[:, 0] - x0) / r).astype(int)
+        iy = np.floor((layer[:, 1] - y0) / r).astype(int)
+        inside = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
+        cells[iy[inside], ix[inside]] = values[sel][inside]
+    image = ax.imshow(np.ma.masked_invalid(cells), origin="lower", extent=(x0, x0 + nx * r, y0, y0 + ny * r),
+                      interpolation="nearest", **colours)
+    if poly is not None:
+        ax.plot(poly[:, 0], poly[:, 1], color="black", linewidth=1.5)
+    ax.set_title(f"z = {z:.3f} m", fontsize=9)
+    ax.set_aspect("equal")
+    ax.grid(True, color="0.85", linewidth=0.5)
+    ax.set_axisbelow(True)
+    if not len(layer):
+        ax.text(0.5, 0.5, "no voxels", transform=ax.transAxes, ha="center", va="center", color="0.5")
+    return image
+
+
 def slices(
     data: VoxelData,
     heights: Sequence[float],
@@ -130,21 +174,7 @@ def slices(
     if not (math.isfinite(vmin) and math.isfinite(vmax) and vmax > vmin):
         raise ValueError(f"need finite vmin < vmax, got {vmin}, {vmax}")
     centres, values, r = _voxel_data(data, resolution, extent, h)
-
-    # One xy grid for all slices, so that panels share their axes.
-    if extent is not None:
-        (x0, x1), (y0, y1) = extent
-    elif len(centres):
-        x0, y0 = centres[:, :2].min(axis=0) - r / 2
-        x1, y1 = centres[:, :2].max(axis=0) + r / 2
-    else:
-        x0 = y0 = -r
-        x1 = y1 = r
-    if poly is not None:
-        x0, y0 = min(x0, poly[:, 0].min() - r), min(y0, poly[:, 1].min() - r)
-        x1, y1 = max(x1, poly[:, 0].max() + r), max(y1, poly[:, 1].max() + r)
-    nx = max(1, int(round((x1 - x0) / r)))
-    ny = max(1, int(round((y1 - y0) / r)))
+    grid = _slice_grid(centres, r, extent, poly)
 
     n = len(h)
     cols = columns or min(n, 4)
@@ -155,26 +185,8 @@ def slices(
     axes = fig.subplots(rows, cols, squeeze=False, sharex=True, sharey=True)
     image = None
     for k, z in enumerate(h):
-        ax = axes[k // cols][k % cols]
-        grid = np.full((ny, nx), np.nan)
-        # the voxel layer holding z; a height on a boundary belongs to the layer above, as in the octree lookup
-        sel = (z >= centres[:, 2] - r / 2 - 1e-9) & (z < centres[:, 2] + r / 2 - 1e-9)
-        layer = centres[sel]
-        if len(layer):
-            ix = np.floor((layer[:, 0] - x0) / r).astype(int)
-            iy = np.floor((layer[:, 1] - y0) / r).astype(int)
-            inside = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
-            grid[iy[inside], ix[inside]] = values[sel][inside]
-        image = ax.imshow(np.ma.masked_invalid(grid), origin="lower", extent=(x0, x0 + nx * r, y0, y0 + ny * r),
-                          cmap=colormap, vmin=vmin, vmax=vmax, interpolation="nearest")
-        if poly is not None:
-            ax.plot(poly[:, 0], poly[:, 1], color="black", linewidth=1.5)
-        ax.set_title(f"z = {z:.3f} m", fontsize=9)
-        ax.set_aspect("equal")
-        ax.grid(True, color="0.85", linewidth=0.5)
-        ax.set_axisbelow(True)
-        if not len(layer):
-            ax.text(0.5, 0.5, "no voxels", transform=ax.transAxes, ha="center", va="center", color="0.5")
+        image = _draw_slice(axes[k // cols][k % cols], centres, values, z, grid, poly,
+                            dict(cmap=colormap, vmin=vmin, vmax=vmax))
     for k in range(n, rows * cols):
         axes[k // cols][k % cols].set_visible(False)
     for row in axes:

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "octoreach/arm.hpp"
+#include "octoreach/map_provenance.hpp"
 #include "octoreach/orientation_set.hpp"
 #include "octoreach/robot.hpp"
 #include "octoreach/types.hpp"
@@ -72,6 +73,10 @@ class CapabilityBlocks;
 
 class CapabilityMap {
  public:
+  /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
+  static constexpr char kKind[] = "capability";
+  static constexpr char kExtension[] = ".orcm";
+
   /// \brief Builds the map: forward-kinematics sampling finds candidate cells and IK seeds, IK at
   /// the voxel centres settles them, and a flood fill over neighbouring cells finds the rest.
   static CapabilityMap build(const Chain& chain, const CapabilityMapOptions& options = {},
@@ -125,11 +130,13 @@ class CapabilityMap {
   double resolution() const { return resolution_; }
   const OrientationSet& orientations() const { return orientations_; }
   const Eigen::Vector3d& approach_axis() const { return approach_axis_; }
-  const std::string& robot_name() const { return robot_name_; }
-  std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief The robot built for.
+  const MapProvenance& provenance() const { return provenance_; }
+  const std::string& robot_name() const { return provenance_.robot_name; }
+  std::uint64_t urdf_hash() const { return provenance_.urdf_hash; }
   /// \brief Robot::model_hash() of the robot built for (URDF and allowed-collision matrix); 0 when
   /// unknown (a file written before maps recorded it).
-  std::uint64_t model_hash() const { return model_hash_; }
+  std::uint64_t model_hash() const { return provenance_.model_hash; }
   const std::string& base_link() const { return base_link_; }
   const std::string& tip_link() const { return tip_link_; }
   int dof() const { return dof_; }
@@ -174,8 +181,8 @@ class CapabilityMap {
   std::vector<float> solutions_;         // rows of dof_ floats, in record/bit order
   std::vector<float> d_;                 // per record: reachability index D
   DenseIndex index_;
-  std::string robot_name_, base_link_, tip_link_;
-  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
+  MapProvenance provenance_;
+  std::string base_link_, tip_link_;
   int dof_ = 0;
   bool self_collision_ = true;
   std::uint64_t seed_ = 0;

@@ -7,6 +7,7 @@
 
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
+#include "octoreach/map_provenance.hpp"
 #include "octoreach/pose_map.hpp"
 #include "octoreach/robot.hpp"
 
@@ -33,6 +34,10 @@ struct PointMapOptions {
 /// target along d (world frame).
 class InversePointMap {
  public:
+  /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
+  static constexpr char kKind[] = "point";
+  static constexpr char kExtension[] = ".orpm";
+
   static InversePointMap build(const Robot& robot, const CapabilityMap& capability, const PointMapOptions& options = {},
                                const ProgressCallback& progress = nullptr);
   static InversePointMap load(const std::string& path);
@@ -47,10 +52,12 @@ class InversePointMap {
                                     const std::vector<int>& orientations, double x, double y, double z, double theta);
 
   const PoseMap& map() const { return map_; }
-  const std::string& robot_name() const { return robot_name_; }
-  std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief The robot built for.
+  const MapProvenance& provenance() const { return provenance_; }
+  const std::string& robot_name() const { return provenance_.robot_name; }
+  std::uint64_t urdf_hash() const { return provenance_.urdf_hash; }
   /// \brief Robot::model_hash() of the robot built for; 0 when unknown (older files).
-  std::uint64_t model_hash() const { return model_hash_; }
+  std::uint64_t model_hash() const { return provenance_.model_hash; }
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arm_base_link() const { return arm_base_; }
   const std::string& arm_tip_link() const { return arm_tip_; }
@@ -67,9 +74,9 @@ class InversePointMap {
 
  private:
   PoseMap map_;
-  std::string robot_name_, reference_frame_, arm_base_, arm_tip_, grasp_name_;
+  MapProvenance provenance_;
+  std::string reference_frame_, arm_base_, arm_tip_, grasp_name_;
   Eigen::Vector3d approach_axis_ = Eigen::Vector3d::UnitZ();
-  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
   Pose reference_to_arm_ = Pose::Identity();
   std::vector<int> grasp_orientations_;
   bool used_symmetry_ = false;

@@ -11,6 +11,7 @@
 
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
+#include "octoreach/map_provenance.hpp"
 #include "octoreach/pose_map.hpp"
 #include "octoreach/robot.hpp"
 #include "octoreach/surface.hpp"
@@ -55,6 +56,10 @@ struct SurfaceMapStats {
 /// \brief Surface map: R_S(x, y, z, theta) = (1/n) sum over the n surface points of the validated R_P.
 class SurfaceMap {
  public:
+  /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
+  static constexpr char kKind[] = "surface";
+  static constexpr char kExtension[] = ".orsm";
+
   static SurfaceMap build(const Robot& robot, const CapabilityMap& capability, const Surface& surface,
                           const SurfaceMapOptions& options = {}, const ProgressCallback& progress = nullptr);
   /// \brief Per-pose maximum ("any arm") or minimum ("both arms") of maps of the same robot, frame,
@@ -73,10 +78,12 @@ class SurfaceMap {
   void reachability(const double* rows, std::size_t n, double* out) const;
   const PoseMap& map() const { return map_; }
   const SurfaceMapStats& stats() const { return stats_; }
-  const std::string& robot_name() const { return robot_name_; }
-  std::uint64_t urdf_hash() const { return urdf_hash_; }
+  /// \brief The robot built for.
+  const MapProvenance& provenance() const { return provenance_; }
+  const std::string& robot_name() const { return provenance_.robot_name; }
+  std::uint64_t urdf_hash() const { return provenance_.urdf_hash; }
   /// \brief Robot::model_hash() of the robot built for; 0 when unknown (older files).
-  std::uint64_t model_hash() const { return model_hash_; }
+  std::uint64_t model_hash() const { return provenance_.model_hash; }
   const std::string& reference_frame() const { return reference_frame_; }
   const std::string& arms() const { return arms_; }
   /// \brief The approach axis (tip frame) of each arm's capability map, in the order of arms(), e.g.
@@ -94,8 +101,8 @@ class SurfaceMap {
  private:
   PoseMap map_;
   SurfaceMapStats stats_;
-  std::string robot_name_, reference_frame_, arms_, approach_axes_, empty_reason_, grasp_name_;
-  std::uint64_t urdf_hash_ = 0, model_hash_ = 0;
+  MapProvenance provenance_;
+  std::string reference_frame_, arms_, approach_axes_, empty_reason_, grasp_name_;
   std::vector<Eigen::Vector3d> polygon_;
   double z_min_ = -1e9, z_max_ = 1e9;
   double grasp_height_ = 0.05;

@@ -56,9 +56,7 @@ CapabilityMap CapabilityMap::shell_(const Chain& chain, const CapabilityMapOptio
   CapabilityMap m;
   m.set_parameters_(o);
   m.orientations_ = OrientationSet::sphere(o.directions, o.rolls, o.symmetry);
-  m.robot_name_ = robot.name();
-  m.urdf_hash_ = robot.urdf_hash();
-  m.model_hash_ = robot.model_hash();
+  m.provenance_ = MapProvenance::of(robot);
   m.base_link_ = chain.base_link();
   m.tip_link_ = chain.tip_link();
   m.dof_ = chain.dof();
@@ -274,9 +272,8 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> CapabilityMap::bounds() const {
 
 std::vector<std::pair<std::string, std::string>> CapabilityMap::parameters() const {
   using detail::format_number;
-  return {{"robot", robot_name_},
-          {"urdf_hash", std::to_string(urdf_hash_)},
-          {"model_hash", std::to_string(model_hash_)},
+  std::vector<std::pair<std::string, std::string>> p = detail::provenance_entries(provenance_);
+  p.insert(p.end(), {
           {"base_link", base_link_},
           {"tip_link", tip_link_},
           {"dof", std::to_string(dof_)},
@@ -293,7 +290,8 @@ std::vector<std::pair<std::string, std::string>> CapabilityMap::parameters() con
           {"orientation_tolerance", format_number(orientation_tolerance_)},
           {"block_size", std::to_string(block_size_)},
           {"voxels", std::to_string(voxel_count())},
-          {"octoreach_version", version()}};
+          {"octoreach_version", version()}});
+  return p;
 }
 
 
@@ -317,20 +315,18 @@ void CapabilityMap::save(const std::string& path, bool with_solutions) const {
   } else {
     w.put(std::uint8_t{0});
   }
-  detail::write_map_file(path, "capability", h, w.bytes);
+  detail::write_map_file(path, kKind, h, w.bytes);
 }
 
 CapabilityMap CapabilityMap::load(const std::string& path) {
   detail::Header h;
   std::vector<char> payload;
-  detail::read_map_file(path, "capability", h, payload);
+  detail::read_map_file(path, kKind, h, payload);
   CapabilityMap m;
   using detail::header_double;
   using detail::header_int;
   using detail::header_string;
-  m.robot_name_ = header_string(h, "robot", path);
-  m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
-  m.model_hash_ = detail::header_model_hash(h, path);
+  m.provenance_ = detail::header_provenance(h, path);
   m.base_link_ = header_string(h, "base_link", path);
   m.tip_link_ = header_string(h, "tip_link", path);
   m.resolution_ = header_double(h, "resolution", path);

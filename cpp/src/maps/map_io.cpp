@@ -65,19 +65,22 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
   }, "map file");
 }
 
-void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload) {
+namespace {
+std::ifstream open_map_file(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) {
     if (errno == ENOENT) throw FileNotFound("cannot open map file '" + path + "' (no such file)");
     throw FileError("cannot open map file '" + path + "'");
   }
-  f.seekg(0, std::ios::end);
-  const std::uint64_t file_size = std::uint64_t(std::max<std::streamoff>(0, f.tellg()));
-  f.seekg(0, std::ios::beg);
+  return f;
+}
+
+// Reads the magic, the format version and the kind field; returns the kind as written.
+std::string read_kind_field(std::istream& f, const std::string& path) {
   char magic[kMagicLen];
   if (!f.read(magic, kMagicLen) || std::memcmp(magic, kMagic, kMagicLen) != 0)
     throw FileError("'" + path + "' is not an octoreach map file (bad magic)");
-  std::uint32_t version = 0, klen = 0, hlen = 0;
+  std::uint32_t version = 0, klen = 0;
   if (!get(f, version)) throw FileError("'" + path + "' is truncated (no format version)");
   if (version != kFormatVersion)
     throw FileError("'" + path + "' has map format version " + std::to_string(version) + ", this octoreach reads " +
@@ -85,11 +88,29 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   if (!get(f, klen) || klen > 64) throw FileError("'" + path + "' is damaged (bad kind field)");
   std::string file_kind(klen, '\0');
   if (!f.read(file_kind.data(), klen)) throw FileError("'" + path + "' is truncated (kind)");
-  if (file_kind != kind) {
-    for (char& c : file_kind)
-      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '?';  // damaged: keep it printable
-    throw FileError("'" + path + "' holds a " + file_kind + " map, expected a " + kind + " map");
-  }
+  return file_kind;
+}
+
+std::string printable(std::string kind) {
+  for (char& c : kind)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '?';  // damaged: keep it printable
+  return kind;
+}
+}  // namespace
+
+std::string read_map_kind(const std::string& path) {
+  std::ifstream f = open_map_file(path);
+  return printable(read_kind_field(f, path));
+}
+
+void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload) {
+  std::ifstream f = open_map_file(path);
+  f.seekg(0, std::ios::end);
+  const std::uint64_t file_size = std::uint64_t(std::max<std::streamoff>(0, f.tellg()));
+  f.seekg(0, std::ios::beg);
+  const std::string file_kind = read_kind_field(f, path);
+  if (file_kind != kind) throw FileError("'" + path + "' holds a " + printable(file_kind) + " map, expected a " + kind + " map");
+  std::uint32_t hlen = 0;
   if (!get(f, hlen) || hlen > (1u << 24)) throw FileError("'" + path + "' is damaged (bad header length)");
   std::string text(hlen, '\0');
   if (!f.read(text.data(), hlen)) throw FileError("'" + path + "' is truncated (header)");

@@ -14,8 +14,10 @@
 #include <cstring>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "octoreach/map_provenance.hpp"
 #include "octoreach/types.hpp"
 #include "common/format.hpp"
 #include "octoreach/voxel_octree.hpp"
@@ -74,6 +76,9 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
                     const std::vector<char>& payload);
 /// Reads a map file of the expected kind; throws FileError naming the problem.
 void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload);
+/// The kind a map file names (its magic, format version and kind field checked, the rest unread), with
+/// any character but letters, digits, '_' and '-' shown as '?'; throws FileError naming the problem.
+std::string read_map_kind(const std::string& path);
 
 /// Header helpers: a missing or malformed key raises FileError naming it.
 double header_double(const Header& h, const std::string& key, const std::string& path);
@@ -82,6 +87,9 @@ std::string header_string(const Header& h, const std::string& key, const std::st
 std::uint64_t header_u64(const Header& h, const std::string& key, const std::string& path);
 /// The robot model hash of a map header; 0 (unknown) in files written before maps recorded it.
 std::uint64_t header_model_hash(const Header& h, const std::string& path);
+/// The header entries of a provenance (robot, urdf_hash, model_hash), and the provenance a header records.
+std::vector<std::pair<std::string, std::string>> provenance_entries(const MapProvenance& provenance);
+MapProvenance header_provenance(const Header& h, const std::string& path);
 
 /// Octree structure of a voxel tree: per inner node a child mask; at the finest depth `leaf(node)`
 /// writes the voxel's record.

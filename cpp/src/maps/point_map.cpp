@@ -164,9 +164,7 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
   if (!(o.z_min < o.z_max)) throw std::invalid_argument("z_min must be below z_max");
   const ArmPlacement place = ArmPlacement::make(robot, cap, o.reference_frame, o.reference, o.grasps, o.grasp_subset);
   InversePointMap m;
-  m.robot_name_ = robot.name();
-  m.urdf_hash_ = robot.urdf_hash();
-  m.model_hash_ = robot.model_hash();
+  m.provenance_ = MapProvenance::of(robot);
   m.reference_frame_ = place.reference_frame;
   m.arm_base_ = cap.base_link();
   m.arm_tip_ = cap.tip_link();
@@ -207,29 +205,27 @@ std::map<std::string, std::string> InversePointMap::parameters() const {
   const Eigen::Matrix<double, 4, 4, Eigen::RowMajor> T = reference_to_arm_.matrix();  // row by row
   std::ostringstream g;
   for (std::size_t i = 0; i < grasp_orientations_.size(); ++i) g << (i ? " " : "") << grasp_orientations_[i];
-  return {{"robot", robot_name_},
-          {"urdf_hash", std::to_string(urdf_hash_)},
-          {"model_hash", std::to_string(model_hash_)},
-          {"reference_frame", reference_frame_},
+  const auto provenance = detail::provenance_entries(provenance_);
+  std::map<std::string, std::string> p(provenance.begin(), provenance.end());
+  p.insert({{"reference_frame", reference_frame_},
           {"arm_base_link", arm_base_},
           {"arm_tip_link", arm_tip_},
           {"approach_axis", detail::format_vector(approach_axis_)},
           {"reference_to_arm", detail::format_vector(T.reshaped<Eigen::RowMajor>())},
           {"grasp_set", grasp_name_},
           {"grasp_orientations", g.str()},
-          {"used_symmetry", used_symmetry_ ? "1" : "0"}};  // no timing: the same build gives the same bytes
+          {"used_symmetry", used_symmetry_ ? "1" : "0"}});  // no timing: the same build gives the same bytes
+  return p;
 }
 
-void InversePointMap::save(const std::string& path) const { map_.save(path, "point", parameters()); }
+void InversePointMap::save(const std::string& path) const { map_.save(path, kKind, parameters()); }
 
 InversePointMap InversePointMap::load(const std::string& path) {
   std::map<std::string, std::string> h;
   InversePointMap m;
-  m.map_ = PoseMap::load(path, "point", h);
+  m.map_ = PoseMap::load(path, kKind, h);
   using detail::header_string;
-  m.robot_name_ = header_string(h, "robot", path);
-  m.urdf_hash_ = detail::header_u64(h, "urdf_hash", path);
-  m.model_hash_ = detail::header_model_hash(h, path);
+  m.provenance_ = detail::header_provenance(h, path);
   m.reference_frame_ = header_string(h, "reference_frame", path);
   m.arm_base_ = header_string(h, "arm_base_link", path);
   m.arm_tip_ = header_string(h, "arm_tip_link", path);

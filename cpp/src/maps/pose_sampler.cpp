@@ -29,8 +29,7 @@ PoseSampler::PoseSampler(std::shared_ptr<const SurfaceMap> map, const PoseSample
 void PoseSampler::set_collision(std::shared_ptr<const Robot> robot, std::shared_ptr<const Obstacles> obstacles,
                                 const Eigen::VectorXd& reference) {
   if (!robot || !obstacles) throw std::invalid_argument("set_collision needs a robot and obstacles");
-  if (robot->name() != map_->robot_name() || robot->urdf_hash() != map_->urdf_hash() ||
-      (map_->model_hash() != 0 && robot->model_hash() != map_->model_hash()))
+  if (!map_->provenance().matches(*robot))
     throw std::invalid_argument("the robot is not the one the surface map was built for");
   Eigen::VectorXd q = reference.size() ? reference : robot->home();
   robot_poses_ = robot->link_poses(q);

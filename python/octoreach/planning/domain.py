@@ -83,18 +83,10 @@ def _ident(prefix: str, names) -> dict:
     return {n: f"{prefix}{i}_{re.sub(r'[^A-Za-z0-9]', '_', str(n))}" for i, n in enumerate(names)}
 
 
-def build_problem(task: Task):
-    """The Unified Planning problem of a Task, and a map from its object names back to the task's names."""
-    up = require_planner()
-    Pose, Surf, Item, Arm = (up.UserType(n) for n in ("pose", "surface", "item", "arm"))
-    f = {name: up.Fluent(name, up.BoolType(), **params) for name, params in {
-        "at": {"p": Pose}, "usable": {"p": Pose, "s": Surf}, "viewed": {"p": Pose, "s": Surf},
-        "searched": {"s": Surf}, "on": {"o": Item, "s": Surf}, "home": {"o": Item, "s": Surf},
-        "reach": {"p": Pose, "o": Item, "a": Arm}, "free": {"a": Arm}, "holding": {"a": Arm, "o": Item},
-        "inspected": {"o": Item}}.items()}
-    move_cost = up.Fluent("move_cost", up.IntType(), a=Pose, b=Pose)
-    pick_cost = up.Fluent("pick_cost", up.IntType(), p=Pose, o=Item, a=Arm)
-
+def _actions(up, types, f, move_cost, pick_cost):
+    """The five actions of the domain over the types (pose, surface, item, arm) and fluents `f`, with their
+    costs: {action: cost (an int, a float of seconds or a cost fluent)}."""
+    Pose, Surf, Item, Arm = types
     move = up.InstantaneousAction("move_robot", a=Pose, b=Pose)
     a, b = move.parameters
     move.add_precondition(f["at"](a))
@@ -130,27 +122,30 @@ def build_problem(task: Task):
     put.add_effect(f["free"](arm), True)
     put.add_effect(f["on"](o, s), True)
 
-    problem = up.Problem("tidy_up")
-    for fl in f.values():
-        problem.add_fluent(fl, default_initial_value=False)
-    problem.add_fluent(move_cost, default_initial_value=0)
-    problem.add_fluent(pick_cost, default_initial_value=int(round(duration("pickup-object"))))
-    for action in (move, look, pick, inspect, put):
-        problem.add_action(action)
+    a, b = move.parameters
+    p, o, _, arm = pick.parameters
+    return {move: move_cost(a, b), look: duration("inspect-surface"), pick: pick_cost(p, o, arm),
+            inspect: duration("inspect-object"), put: duration("putdown-object")}
 
+
+def _add_objects(up, problem, task: Task, types):
+    """Adds the task's poses, surfaces, items and arms as objects; returns ({identifier: task name},
+    {kind: {task name: object}}) with kinds "p", "s", "o", "a"."""
     names = {}
     objs = {}
-    for kind, typ, items in (("p", Pose, task.poses), ("s", Surf, task.surfaces), ("o", Item, task.items),
-                             ("a", Arm, task.arms)):
+    for kind, typ, items in zip("psoa", types, (task.poses, task.surfaces, task.items, task.arms)):
         for name, ident in _ident(kind, items).items():
             objs[(kind, name)] = up.Object(ident, typ)
             names[ident] = name
     problem.add_objects(list(objs.values()))
-    P = {n: objs[("p", n)] for n in task.poses}
-    S = {n: objs[("s", n)] for n in task.surfaces}
-    O = {n: objs[("o", n)] for n in task.items}
-    A = {n: objs[("a", n)] for n in task.arms}
+    by_kind = {kind: {n: objs[(kind, n)] for n in items}
+               for kind, items in zip("psoa", (task.poses, task.surfaces, task.items, task.arms))}
+    return names, by_kind
 
+
+def _set_initial_state(problem, task: Task, f, move_cost, pick_cost, objects) -> None:
+    """The task's facts as the problem's initial values (what is not set is false)."""
+    P, S, O, A = (objects[k] for k in "psoa")
     problem.set_initial_value(f["at"](P[task.at]), True)
     for pa in task.poses:
         for pb in task.poses:
@@ -180,16 +175,36 @@ def build_problem(task: Task):
         if not task.held.get(an):
             problem.set_initial_value(f["free"](A[an]), True)
 
+
+def build_problem(task: Task):
+    """The Unified Planning problem of a Task, and a map from its object names back to the task's names."""
+    up = require_planner()
+    types = Pose, Surf, Item, Arm = tuple(up.UserType(n) for n in ("pose", "surface", "item", "arm"))
+    f = {name: up.Fluent(name, up.BoolType(), **params) for name, params in {
+        "at": {"p": Pose}, "usable": {"p": Pose, "s": Surf}, "viewed": {"p": Pose, "s": Surf},
+        "searched": {"s": Surf}, "on": {"o": Item, "s": Surf}, "home": {"o": Item, "s": Surf},
+        "reach": {"p": Pose, "o": Item, "a": Arm}, "free": {"a": Arm}, "holding": {"a": Arm, "o": Item},
+        "inspected": {"o": Item}}.items()}
+    move_cost = up.Fluent("move_cost", up.IntType(), a=Pose, b=Pose)
+    pick_cost = up.Fluent("pick_cost", up.IntType(), p=Pose, o=Item, a=Arm)
+    costs = _actions(up, types, f, move_cost, pick_cost)
+
+    problem = up.Problem("tidy_up")
+    for fl in f.values():
+        problem.add_fluent(fl, default_initial_value=False)
+    problem.add_fluent(move_cost, default_initial_value=0)
+    problem.add_fluent(pick_cost, default_initial_value=int(round(duration("pickup-object"))))
+    for action in costs:
+        problem.add_action(action)
+    names, objects = _add_objects(up, problem, task, types)
+    _set_initial_state(problem, task, f, move_cost, pick_cost, objects)
+
+    S, O = objects["s"], objects["o"]
     for sn in task.surfaces:
         problem.add_goal(f["searched"](S[sn]))
     for on, sn in task.items.items():
         problem.add_goal(f["inspected"](O[on]))
         problem.add_goal(f["on"](O[on], S[sn]))
-
-    a, b = move.parameters
-    p, o, _, arm = pick.parameters
-    costs = {move: move_cost(a, b), look: duration("inspect-surface"), pick: pick_cost(p, o, arm),
-             inspect: duration("inspect-object"), put: duration("putdown-object")}
     problem.add_quality_metric(up.MinimizeActionCosts({k: (v if not isinstance(v, float) else int(round(v)))
                                                         for k, v in costs.items()}))
     return problem, names

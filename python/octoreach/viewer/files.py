@@ -6,30 +6,34 @@ import os
 import numpy as np
 
 
+# The map kinds the viewer draws (by the kind a map class names, octoreach.map_files) and their layers.
+_LAYERS = {"surface": "surface_map", "capability": "capability_map"}
+
+
 def load(item):
     """(kind, object) of a path or object; kind is "surface_map", "capability_map" or "exploration".
     A file that is not a map: OSError/ValueError naming it."""
-    from .._core import CapabilityMap, ExplorationMap, InversePointMap, SurfaceMap
+    from .._core import ExplorationMap
 
-    if isinstance(item, SurfaceMap):
-        return "surface_map", item
-    if isinstance(item, CapabilityMap):
-        return "capability_map", item
-    if isinstance(item, ExplorationMap) or hasattr(item, "map") and isinstance(item.map, ExplorationMap):
+    where = None
+    if isinstance(item, (str, os.PathLike)):
+        where = os.fspath(item)
+        if not os.path.isfile(where):
+            raise OSError(f"{where}: no such file")
+        if where.endswith(".bt"):
+            return "exploration", ExplorationMap.from_file(where)
+        from .. import map_files
+
+        item = map_files.load(where)
+    if isinstance(item, ExplorationMap) or isinstance(getattr(item, "map", None), ExplorationMap):
         return "exploration", item
-    if not isinstance(item, (str, os.PathLike)):
-        raise ValueError(f"cannot view a {type(item).__name__}: give a map file or a map object")
-    path = os.fspath(item)
-    if not os.path.isfile(path):
-        raise OSError(f"{path}: no such file")
-    if path.endswith(".bt"):
-        return "exploration", ExplorationMap.from_file(path)
-    from .. import map_files
-
-    m = map_files.load(path)
-    if isinstance(m, InversePointMap):
-        raise ValueError(f"{path}: an inverse point map; the viewer shows surface and capability maps")
-    return ("surface_map" if isinstance(m, SurfaceMap) else "capability_map"), m
+    kind = getattr(type(item), "kind", None)
+    if kind in _LAYERS:
+        return _LAYERS[kind], item
+    if isinstance(kind, str):
+        raise ValueError(f"{where or type(item).__name__}: a {kind} map; the viewer shows "
+                         f"{' and '.join(_LAYERS)} maps")
+    raise ValueError(f"cannot view a {type(item).__name__}: give a map file or a map object")
 
 
 def exploration_map(source):
