@@ -13,7 +13,7 @@ SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf
            CMakeLists.txt pyproject.toml
 
 .PHONY: all demo demo-exploration stubs test test-cpp test-python install sysdeps venv benchmarks clean \
-        fuzz test-sanitize
+        fuzz test-sanitize check-sizes
 
 all: install
 
@@ -80,7 +80,11 @@ test-sanitize: install
 	cmake --build build/tsan -j $(JOBS) --target octoreach_thread_tests
 	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build/tsan/tests/cpp/octoreach_thread_tests
 
-test: test-cpp test-python
+test: check-sizes test-cpp test-python
+
+# Size limits of the code: prints the largest file and function, names every one over its limit, fails if any.
+check-sizes:
+	$(PYTHON) scripts/check_sizes.py
 
 demo: install
 	$(PY) -m octoreach.demo --out demo_out

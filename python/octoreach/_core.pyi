@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'look_at', 'map_format_version', 'next_best_view', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
 class Obstacles:
@@ -428,6 +428,32 @@ class Arm:
     @property
     def tip_link(self) -> str:
         ...
+class MapProvenance:
+    """
+    The robot a map was built for, as its file records it.
+    """
+    __hash__: typing.ClassVar[None] = None
+    def __eq__(self, arg0: MapProvenance) -> bool:
+        ...
+    def __ne__(self, arg0: MapProvenance) -> bool:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def matches(self, robot: Robot) -> bool:
+        """
+        True when `robot` is the one recorded (name and URDF; the model hash where it is known).
+        """
+    @property
+    def model_hash(self) -> int:
+        """
+        Robot.model_hash of the robot built for (URDF and allowed collisions); 0: unknown.
+        """
+    @property
+    def robot_name(self) -> str:
+        ...
+    @property
+    def urdf_hash(self) -> int:
+        ...
 class CapabilityMapOptions:
     """
     Build parameters of a capability map (defaults defined once, in C++).
@@ -577,6 +603,8 @@ class CapabilityMap:
     """
     Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.
     """
+    extension: typing.ClassVar[str] = '.orcm'
+    kind: typing.ClassVar[str] = 'capability'
     DEFAULT_LOOKUP: typing.ClassVar[CapabilityLookup]
     @staticmethod
     def build(chain: Chain, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> CapabilityMap:
@@ -655,6 +683,11 @@ class CapabilityMap:
     @property
     def parameters(self) -> dict:
         ...
+    @property
+    def provenance(self) -> MapProvenance:
+        """
+        The robot the map was built for.
+        """
     @property
     def resolution(self) -> float:
         ...
@@ -813,6 +846,8 @@ class InversePointMap:
     """
     Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.
     """
+    extension: typing.ClassVar[str] = '.orpm'
+    kind: typing.ClassVar[str] = 'point'
     @staticmethod
     def build(robot: Robot, capability_map: CapabilityMap, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> InversePointMap:
         """
@@ -873,6 +908,11 @@ class InversePointMap:
     @property
     def parameters(self) -> dict:
         ...
+    @property
+    def provenance(self) -> MapProvenance:
+        """
+        The robot the map was built for.
+        """
     @property
     def pose_count(self) -> int:
         """
@@ -1059,6 +1099,8 @@ class SurfaceMap:
     """
     Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.
     """
+    extension: typing.ClassVar[str] = '.orsm'
+    kind: typing.ClassVar[str] = 'surface'
     @staticmethod
     def build(robot: Robot, arm: typing.Any, surface: Surface, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> SurfaceMap:
         """
@@ -1124,6 +1166,11 @@ class SurfaceMap:
     @property
     def parameters(self) -> dict:
         ...
+    @property
+    def provenance(self) -> MapProvenance:
+        """
+        The robot the map was built for.
+        """
     @property
     def polygon(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         ...
@@ -1711,6 +1758,12 @@ def link_roles(robot: Robot, chain: Chain) -> dict:
     """
     Collision links by role: 'body' (not moved by the chain), 'arm' (moved by it), 'tool' (rigid with the tip).
     """
+def load_any(path: str, kind: str = '') -> CapabilityMap | InversePointMap | SurfaceMap:
+    """
+    The map stored at `path` (CapabilityMap, InversePointMap or SurfaceMap), of the kind its header names;
+    with `kind` the file must hold that kind. OSError naming the file and the problem (not a map file, an
+    unknown or unexpected kind, damage); ValueError for a `kind` that is not a map kind.
+    """
 def look_at(eye: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], target: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], roll: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> numpy.typing.NDArray[numpy.float64]:
     """
     Camera pose (4x4 camera -> world) at `eye` looking at `target` (world frame), rolled by `roll` radians
@@ -1719,6 +1772,15 @@ def look_at(eye: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]
 def map_format_version() -> int:
     """
     Version of the map file format this library writes and reads (part of a map cache key).
+    """
+def map_kind(path: str) -> str:
+    """
+    The kind tag a map file's header names ('capability', 'point', 'surface'), without loading the map.
+    OSError naming the file when it is not an octoreach map file.
+    """
+def map_kinds() -> dict[str, str]:
+    """
+    The map kinds a file can hold: {kind tag: usual file extension}.
     """
 def missed_cells(map: ExplorationMap) -> int:
     """

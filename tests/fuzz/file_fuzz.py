@@ -4,7 +4,7 @@ Seeds: a capability map (.orcm, with and without solutions), an inverse point ma
 map (.orsm) and an exploration map written as OctoMap .bt, all of the test arm, built coarse. Each case
 damages one seed (truncation, byte flips, a forged header with a recomputed checksum, a forged .bt
 tree) or is a foreign file, and is loaded (and, when it loads, used) in a child process with a memory
-cap. A child that dies is a crash, one that stops making progress is a hang; the expected outcomes are
+cap; a map file is loaded by its kind's loader and by map_files.load (whichever kind its header names). A child that dies is a crash, one that stops making progress is a hang; the expected outcomes are
 "loaded" or OSError (FileNotFoundError excluded), anything else is a wrong error.
 
 Cases run in batches in one child (a crash or a hang is pinned on its case and the child restarted
@@ -228,6 +228,11 @@ rng = np.random.default_rng(0)
 robot = o.robots.test_arm()
 
 def use(kind, path):
+    if kind in ('orcm', 'orpm', 'orsm'):
+        try:  # whichever kind the file names (the registry of map kinds): a map or OSError, nothing else
+            repr(o.map_files.load(path))
+        except OSError:
+            pass
     if kind == 'orcm':
         m = o.CapabilityMap.load(path)
         m.reachability(rng.uniform(-1, 1, (20, 3))); m.voxels(); repr(m)
