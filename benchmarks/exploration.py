@@ -26,9 +26,8 @@ import time
 import numpy as np
 
 import octoreach
-from octoreach import CapabilityMap, DepthCamera, ExplorationMap, _bench, _core, next_best_view, score_views
+from octoreach import DepthCamera, ExplorationMap, _bench, _core, next_best_view, score_views
 from octoreach import exploration as ex
-from octoreach.exploration.strategies import AIMED_POSES, aimed_poses, choose_view
 
 
 def cluttered_first_view():
@@ -97,44 +96,45 @@ def main() -> int:
     nbv_s, nbv, nbv_parts = [], None, {}
     for _ in range(a.repeats):
         nbv = next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05)
-        nbv_s.append(nbv["seconds"])
+        nbv_s.append(nbv.seconds)
         for k in ("seconds_vectors", "seconds_prune", "seconds_score"):
-            nbv_parts.setdefault(k, []).append(nbv[k])
+            nbv_parts.setdefault(k, []).append(getattr(nbv, k))
     med = statistics.median
-    # the loop's search: void cells also weighted by their enclosure (LOOP_ENCLOSURE_POWER); the enclosure
-    # is computed once per map and search (cached until the next insert: each repeat asks for another range
-    # so that every repeat pays it), and the second look (AIMED_POSES poses aimed at void cells, scored)
+    from octoreach.exploration.candidate_poses import aimed_poses
+    from octoreach.exploration.strategies import choose_view
+
+    # the loop's search (ExploreOptions.benchmark(): the search NbvOptions.exploration_loop(), the stated
+    # stopping rule): void cells also weighted by their enclosure; the enclosure is computed once per map and
+    # search (cached until the next insert: each repeat asks for another range so that every repeat pays
+    # it), and the second look (aimed_poses poses aimed at void cells, scored)
+    loop = ex.ExploreOptions.benchmark()
     loop_s, enclosure_s, aimed_s = [], [], []
     for i in range(a.repeats):
         loop_s.append(next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
-                                     enclosure_power=ex.LOOP_ENCLOSURE_POWER,
-                                     enclosure_range=0.5 + 1e-9 * (2 * i + 1))["seconds"])
+                                     enclosure_power=loop.search.enclosure_power,
+                                     enclosure_range=0.5 + 1e-9 * (2 * i + 1)).seconds)
         t0 = time.perf_counter()
         _core.void_enclosure(emap, 0.5 + 1e-9 * (2 * i + 2))
         enclosure_s.append(time.perf_counter() - t0)
         P = aimed_poses(np.random.default_rng(i), emap, sphere=((0.5, 0.0, 0.5), 1.0))
         t0 = time.perf_counter()
         score_views(emap, cam, P, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05, score_invalid=False,
-                    enclosure_power=ex.LOOP_ENCLOSURE_POWER)
+                    enclosure_power=loop.search.enclosure_power)
         aimed_s.append(time.perf_counter() - t0)
     # the loop's whole search per view as explore() runs it (free camera here): next_best_view with the loop's
-    # breadth (LOOP_VALID_POSES from LOOP_CANDIDATE_CELLS) and enclosure weighting, then the second look
+    # search, then the second look
     view_s = []
-    view_options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
-                        max_valid_poses=ex.LOOP_VALID_POSES, max_candidate_cells=ex.LOOP_CANDIDATE_CELLS,
-                        enclosure_power=ex.LOOP_ENCLOSURE_POWER)
-    if hasattr(ex, "LOOP_UNEXPOSED_WEIGHT"):  # absent in older builds (A/B, above)
-        view_options["unexposed_weight"] = ex.LOOP_UNEXPOSED_WEIGHT
     for i in range(a.repeats):
-        t0 = time.perf_counter()  # a range of its own per repeat: each pays the enclosure, as after an insert
-        choose_view("frontier_void", emap, cam, [None], 0, lambda _: ((0.5, 0.0, 0.5), 1.0),
-                    dict(view_options, enclosure_range=0.5 + 1e-9 * (1000 + i)), i, ex.scene_region(scene),
-                    widen_below=ex.STOP_UTILITY)
+        settings = ex.ExploreOptions.benchmark()  # a range of its own per repeat: each pays the enclosure
+        settings.search.enclosure_range = 0.5 + 1e-9 * (1000 + i)
+        t0 = time.perf_counter()
+        choose_view("frontier_void", emap, cam, [None], 0, lambda _: ((0.5, 0.0, 0.5), 1.0), settings, i,
+                    ex.scene_region(scene))
         view_s.append(time.perf_counter() - t0)
     inc = _void_cluster_runs(scene, cam, res, rng)
     # the search with the safe-view rule off (the cost of the unknown-cell obstacles and clearance)
     loose_s = [next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05,
-                              unknown_is_obstacle=False)["seconds"] for _ in range(a.repeats)]
+                              unknown_is_obstacle=False).seconds for _ in range(a.repeats)]
     out = {
         "cloud": {"points": int(len(pts)), "image": [640, 480], "resolution_m": res, "max_range_m": rng},
         "integration": {
@@ -151,15 +151,15 @@ def main() -> int:
         },
         "next_best_view": {
             "median_s": med(nbv_s), "parts_median_s": {k: med(v) for k, v in nbv_parts.items()},
-            "utility_vectors": nbv["utility_vectors"],
-            "candidate_cells": nbv["candidate_cells"], "poses_scored": nbv["poses_scored"],
-            "best_void_cells": nbv["void_cells"], "best_utility_dm3": nbv["utility_dm3"],
-            "best_expected_void": nbv["expected_void"], "pass_probability": nbv["pass_probability"],
-            "void_pass_probability": nbv["void_pass_probability"],
+            "utility_vectors": nbv.utility_vectors,
+            "candidate_cells": nbv.candidate_cells, "poses_scored": nbv.poses_scored,
+            "best_void_cells": nbv.void_cells, "best_utility_dm3": nbv.utility_dm3,
+            "best_expected_void": nbv.expected_void, "pass_probability": nbv.pass_probability,
+            "void_pass_probability": nbv.void_pass_probability,
             "median_s_without_unknown_obstacles": med(loose_s),
-            "median_s_loop_enclosure_power": med(loop_s), "loop_enclosure_power": ex.LOOP_ENCLOSURE_POWER,
+            "median_s_loop_enclosure_power": med(loop_s), "loop_enclosure_power": loop.search.enclosure_power,
             "void_enclosure_s": med(enclosure_s),
-            "second_look_s": med(aimed_s), "second_look_poses": AIMED_POSES,
+            "second_look_s": med(aimed_s), "second_look_poses": loop.aimed_poses,
             "loop_view_search_s": med(view_s),
             "score_grid": [48, 36],
         },
@@ -197,7 +197,7 @@ def main() -> int:
             "median": med(ratios) if ratios else None,
             "share_below_0.1": sum(x < 0.1 for x in ratios) / len(ratios) if ratios else None}
     out["machine_note"] = "shared 2-core machine: medians of %d runs; timings are noisy" % a.repeats
-    out["code"] = {"module": octoreach.__file__, "has_unexposed_weight": hasattr(ex, "LOOP_UNEXPOSED_WEIGHT")}
+    out["code"] = {"module": octoreach.__file__}
     print(json.dumps(out, indent=1))
     return 0
 

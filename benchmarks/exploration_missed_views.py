@@ -32,7 +32,7 @@ def main() -> int:
     ap.add_argument("--views", type=int, default=70)
     ap.add_argument("--top", type=int, default=40, help="oracle poses scored on the final map")
     ap.add_argument("--no-second-look", action="store_true")
-    ap.add_argument("--enclosure-power", type=float, default=ex.LOOP_ENCLOSURE_POWER)
+    ap.add_argument("--enclosure-power", type=float, default=ex.ExploreOptions().search.enclosure_power)
     a = ap.parse_args()
     if a.scene.startswith("paper_"):
         scene = ex.paper_scene(int(a.scene.split("_")[1]))
@@ -56,8 +56,8 @@ def main() -> int:
                                capability_base=base, min_distance=0.05, seed=a.seed,
                                enclosure_power=a.enclosure_power) if len(best) else None
     rows = [] if scored is None else [
-        {"left_points_seen": int(sees[i]), "status": scored["status"][j],
-         "expected_void": round(float(scored["expected_void"][j]), 1), "camera": np.round(oracle.poses[i][:3, 3], 3).tolist()}
+        {"left_points_seen": int(sees[i]), "status": scored.status[j],
+         "expected_void": round(float(scored.expected_void[j]), 1), "camera": np.round(oracle.poses[i][:3, 3], 3).tolist()}
         for j, i in enumerate(best)]
     valid = [x for x in rows if x["status"] == "valid"]
     out = {

@@ -20,6 +20,11 @@ from octoreach import ExplorationMap, _core, next_best_view
 from octoreach import exploration as ex
 
 
+def _field(result, name):
+    """A field of a result: an attribute (bound result classes) or a key (the dicts of earlier builds, A/B)."""
+    return result[name] if isinstance(result, dict) else getattr(result, name)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeats", type=int, default=3)
@@ -39,12 +44,12 @@ def main() -> None:
     for _ in range(a.repeats):
         t = time.process_time()
         n = next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.5), 1.0), min_distance=0.05)
-        nbv.append((time.process_time() - t, n["seconds"], n["seconds_vectors"], n["seconds_score"]))
+        nbv.append((time.process_time() - t, *(_field(n, k) for k in ("seconds", "seconds_vectors", "seconds_score"))))
     med = statistics.median
     print(json.dumps({
         "poses": a.poses, "repeats": a.repeats,
         "score_views_cpu_s": med(score),
-        "expected_void_sum": float(np.sum(s["expected_void"])),
+        "expected_void_sum": float(np.sum(_field(s, "expected_void"))),
         "next_best_view_cpu_s": med(x[0] for x in nbv), "next_best_view_s": med(x[1] for x in nbv),
         "next_best_view_vectors_s": med(x[2] for x in nbv), "next_best_view_score_s": med(x[3] for x in nbv),
         "note": "process CPU seconds; compare builds only alternated in one run",

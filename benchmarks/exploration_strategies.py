@@ -302,9 +302,9 @@ def main(argv=None) -> int:
     ap.add_argument("--min-utility", type=float, default=ex.STOP_UTILITY,
                     help="stop when the chosen view's utility (the strategy's expected gain, cells) is at or below "
                          "this (default: exploration.STOP_UTILITY; 0: the paper's utility 0)")
-    ap.add_argument("--enclosure-power", type=float, default=ex.LOOP_ENCLOSURE_POWER,
+    ap.add_argument("--enclosure-power", type=float, default=ex.ExploreOptions().search.enclosure_power,
                     help="frontier_void: void cells also weighted by enclosure^power (0: the paper's plain count)")
-    ap.add_argument("--unexposed-weight", type=float, default=ex.LOOP_UNEXPOSED_WEIGHT,
+    ap.add_argument("--unexposed-weight", type=float, default=ex.ExploreOptions().search.unexposed_weight,
                     help="frontier_void: void cells with no observed free neighbour count with this factor (1: the paper's count)")
     ap.add_argument("--no-second-look", action="store_true",
                     help="frontier_void: stop on next_best_view's answer alone (no aimed poses when it is low)")

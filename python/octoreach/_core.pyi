@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'ScoredView', 'ScoredViews', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'ranks_before', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
 class Obstacles:
@@ -1498,6 +1498,13 @@ class NbvOptions:
     """
     arm_collisions: bool
     capability_orientations: bool
+    @staticmethod
+    def exploration_loop() -> NbvOptions:
+        """
+        The exploration loop's search: 100 valid poses from the best 800 candidate cells, the camera
+        5 cm clear of surfaces, enclosed voids and the exposed faces of voids first
+        (docs/design/next_best_view.md says why).
+        """
     def __init__(self) -> None:
         ...
     @property
@@ -1711,6 +1718,501 @@ class NbvOptions:
     @workspace_sphere.setter
     def workspace_sphere(self, arg1: typing.Any) -> None:
         ...
+class ExploreOptions:
+    """
+    Settings of the exploration loop (explore(); defaults of the C++ struct, docs/design/next_best_view.md
+    says why each value): its search, budget and stopping rule, and how it chooses a view beyond the search.
+    """
+    @staticmethod
+    def benchmark() -> ExploreOptions:
+        """
+        The exploration benchmark's settings: its stated stopping rule (min_utility 10 expected void
+        cells for patience 3 views in a row).
+        """
+    def __copy__(self) -> ExploreOptions:
+        ...
+    def __deepcopy__(self, memo: dict) -> ExploreOptions:
+        ...
+    def __init__(self) -> None:
+        ...
+    def validate(self) -> None:
+        """
+        ValueError naming the first bad setting (the search's: by the search).
+        """
+    @property
+    def aimed_distance(self) -> tuple[float, float]:
+        """
+        (min, max) metres from an aimed eye to its void cell
+        """
+    @aimed_distance.setter
+    def aimed_distance(self, arg0: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def aimed_poses(self) -> int:
+        """
+        second look: poses aimed at void cells, per base
+        """
+    @aimed_poses.setter
+    def aimed_poses(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def failed_view_radius(self) -> float:
+        """
+        metres: no view is chosen this near the camera of a view not taken
+        """
+    @failed_view_radius.setter
+    def failed_view_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def last_directions(self) -> int:
+        """
+        last chance (the low view would end the loop): rays out of each void cell
+        """
+    @last_directions.setter
+    def last_directions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def last_distance(self) -> tuple[float, float]:
+        """
+        (min, max) metres from a last-chance eye to its void cell
+        """
+    @last_distance.setter
+    def last_distance(self, arg0: tuple[typing.SupportsFloat | typing.SupportsIndex, typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def last_poses(self) -> int:
+        """
+        last chance: poses kept from those rays
+        """
+    @last_poses.setter
+    def last_poses(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def learn_misses(self) -> bool:
+        """
+        announce each view before its insert (expect_view)
+        """
+    @learn_misses.setter
+    def learn_misses(self, arg0: bool) -> None:
+        ...
+    @property
+    def low_aimed_poses(self) -> int:
+        """
+        before a low view is taken: this many more poses, aimed at any void cell
+        """
+    @low_aimed_poses.setter
+    def low_aimed_poses(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_ray_cells(self) -> int:
+        """
+        last chance: void cells the rays leave from, at most
+        """
+    @max_ray_cells.setter
+    def max_ray_cells(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def max_views(self) -> int:
+        """
+        view budget
+        """
+    @max_views.setter
+    def max_views(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_camera_height(self) -> float:
+        """
+        metres: sampled and aimed cameras stay above this
+        """
+    @min_camera_height.setter
+    def min_camera_height(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def min_utility(self) -> float:
+        """
+        stop when the chosen view's utility has been <= this for `patience` views in a row (0: the
+        paper's rule, utility 0)
+        """
+    @min_utility.setter
+    def min_utility(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def patience(self) -> int:
+        """
+        chosen views in a row at or below min_utility before the loop stops
+        """
+    @patience.setter
+    def patience(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def physical_check(self) -> bool:
+        """
+        with a robot: a view whose arm touches the scene's true geometry is not taken
+        """
+    @physical_check.setter
+    def physical_check(self, arg0: bool) -> None:
+        ...
+    @property
+    def sampled_poses(self) -> int:
+        """
+        baselines: camera poses sampled per view and base
+        """
+    @sampled_poses.setter
+    def sampled_poses(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def search(self) -> NbvOptions:
+        """
+        NbvOptions of every view's search (default NbvOptions.exploration_loop()); its seed is the
+        run's: the map's, and view k searches with seed + k
+        """
+    @search.setter
+    def search(self, arg0: NbvOptions) -> None:
+        ...
+    @property
+    def second_look(self) -> bool:
+        """
+        frontier_void: poses aimed at void cells are scored on every view too, the better view taken
+        """
+    @second_look.setter
+    def second_look(self, arg0: bool) -> None:
+        ...
+    @property
+    def unexposed_share(self) -> float:
+        """
+        share of the void cells with no observed free neighbour among the aimed poses' targets
+        """
+    @unexposed_share.setter
+    def unexposed_share(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class ViewGains:
+    """
+    What a camera pose is expected to see (the visibility model of next_best_view).
+    """
+    def to_dict(self) -> dict:
+        """
+        Every field as a dict (views inside as dicts too).
+        """
+    @property
+    def expected_enclosed_void(self) -> float:
+        """
+        expected_void with each void cell weighted by enclosure_power and unexposed_weight
+        """
+    @property
+    def expected_frontier(self) -> float:
+        """
+        frontier cells weighted likewise
+        """
+    @property
+    def expected_unknown(self) -> float:
+        """
+        unknown cells weighted likewise
+        """
+    @property
+    def expected_void(self) -> float:
+        """
+        void cells weighted by their expected visibility
+        """
+    @property
+    def frontier_cells(self) -> int:
+        """
+        distinct frontier cells met (raw)
+        """
+    @property
+    def unknown_cells(self) -> int:
+        """
+        distinct unknown cells met (void cells included; raw)
+        """
+    @property
+    def void_cells(self) -> int:
+        """
+        distinct void cells met before the first occupied cell (raw)
+        """
+class ViewGainsResult(ViewGains):
+    """
+    view_gains' answer: the gains and the p it used.
+    """
+    @property
+    def pass_probability(self) -> float:
+        """
+        p for unknown cells outside the voids
+        """
+    @property
+    def void_pass_probability(self) -> float:
+        """
+        p for void cells
+        """
+class ViewCandidate(ViewGains):
+    """
+    A scored camera pose (a view of next_best_view).
+    """
+    @property
+    def cell_utility(self) -> float:
+        """
+        accumulated utility at the pose's candidate cell (m^3; 0 for given poses)
+        """
+    @property
+    def expected_gain(self) -> float:
+        """
+        the expected gain of `gain` (the ranking key)
+        """
+    @property
+    def pose(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        4x4 camera -> map
+        """
+    @property
+    def q(self) -> typing.Any:
+        """
+        arm joints (with a chain and an IK solution), else None
+        """
+    @property
+    def utility_dm3(self) -> float:
+        """
+        expected_void as a volume, dm^3
+        """
+class ScoredView(ViewCandidate):
+    """
+    One pose scored by score_views, with its status.
+    """
+    @property
+    def status(self) -> str:
+        """
+        'valid', 'outside_workspace', 'not_reachable', 'camera_not_clear', 'no_ik' or 'arm_collision'
+        """
+    @property
+    def valid(self) -> bool:
+        """
+        status == 'valid'
+        """
+class ScoredViews:
+    """
+    score_views' answer: per-pose arrays (the fields of ScoredView), and the poses one by one
+    (len, [i], iteration); `best_by` picks the first valid view in the ranking order.
+    """
+    def __getitem__(self, index: typing.SupportsInt | typing.SupportsIndex) -> ScoredView:
+        ...
+    def __iter__(self) -> collections.abc.Iterator[ScoredView]:
+        ...
+    def __len__(self) -> int:
+        ...
+    def best_by(self, by: str = 'expected_gain') -> typing.Any:
+        """
+        The first valid view in the ranking order by `by` ('expected_gain' or 'expected_void'), then expected
+        unknown cells; None when no view is valid.
+        """
+    def to_dict(self) -> dict:
+        """
+        Every field as a dict (views inside as dicts too).
+        """
+    @property
+    def expected_enclosed_void(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def expected_frontier(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def expected_gain(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N,) the expected gain of `gain` (NaN for invalid poses with score_invalid=False)
+        """
+    @property
+    def expected_unknown(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def expected_void(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def frontier_cells(self) -> numpy.typing.NDArray[numpy.int64]:
+        ...
+    @property
+    def gain(self) -> str:
+        """
+        the gain expected_gain is of
+        """
+    @property
+    def pass_probability(self) -> float:
+        """
+        p the model used for unknown cells outside the voids
+        """
+    @property
+    def pose(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, 4, 4): the pose the arm reaches when IK succeeds, else the given one
+        """
+    @property
+    def q(self) -> typing.Any:
+        """
+        (N, dof) joints, NaN rows without a solution; None without a chain
+        """
+    @property
+    def status(self) -> list:
+        """
+        list of 'valid', 'outside_workspace', 'not_reachable', 'camera_not_clear', 'no_ik', 'arm_collision'
+        """
+    @property
+    def unknown_cells(self) -> numpy.typing.NDArray[numpy.int64]:
+        ...
+    @property
+    def utility_dm3(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def valid(self) -> numpy.typing.NDArray[numpy.bool]:
+        ...
+    @property
+    def void_cells(self) -> numpy.typing.NDArray[numpy.int64]:
+        ...
+    @property
+    def void_pass_probability(self) -> float:
+        """
+        p it used for void cells
+        """
+class NbvResult:
+    """
+    next_best_view's answer: the valid poses ranked (best first), the best one's figures and the
+    search's statistics.
+    """
+    def best_by(self, by: str = 'expected_gain') -> typing.Any:
+        """
+        The first ranked view by `by` ('expected_gain': `best`; 'expected_void': the most expected void
+        cells), then expected unknown cells; None when there is none.
+        """
+    def to_dict(self) -> dict:
+        """
+        Every field as a dict (views inside as dicts too).
+        """
+    @property
+    def arm_collisions(self) -> int:
+        """
+        IK solutions whose arm touches an occupied (or unknown) cell
+        """
+    @property
+    def best(self) -> typing.Any:
+        """
+        the best view, or None
+        """
+    @property
+    def best_pose(self) -> typing.Any:
+        """
+        4x4 camera -> map of the best view, or None
+        """
+    @property
+    def camera_not_clear(self) -> int:
+        """
+        cells whose camera is not in observed-free space
+        """
+    @property
+    def candidate_cells(self) -> int:
+        """
+        after workspace and capability-map pruning
+        """
+    @property
+    def capability_pruned(self) -> int:
+        """
+        cells the capability map removed
+        """
+    @property
+    def capability_rejected(self) -> int:
+        """
+        sampled poses the capability map ruled out
+        """
+    @property
+    def expected_enclosed_void(self) -> float:
+        """
+        of the best view
+        """
+    @property
+    def expected_frontier(self) -> float:
+        """
+        of the best view
+        """
+    @property
+    def expected_gain(self) -> float:
+        """
+        of the best view: its expected gain of `gain`
+        """
+    @property
+    def expected_unknown(self) -> float:
+        """
+        of the best view
+        """
+    @property
+    def expected_void(self) -> float:
+        """
+        of the best view
+        """
+    @property
+    def frontier_cells(self) -> int:
+        """
+        of the best view
+        """
+    @property
+    def gain(self) -> str:
+        """
+        the gain the views are ranked by
+        """
+    @property
+    def ik_failures(self) -> int:
+        ...
+    @property
+    def pass_probability(self) -> float:
+        """
+        p the model used for unknown cells outside the voids
+        """
+    @property
+    def poses_scored(self) -> int:
+        ...
+    @property
+    def ranked(self) -> list[ViewCandidate]:
+        """
+        valid views (ViewCandidate), best first
+        """
+    @property
+    def seconds(self) -> float:
+        ...
+    @property
+    def seconds_prune(self) -> float:
+        """
+        step 3
+        """
+    @property
+    def seconds_score(self) -> float:
+        """
+        step 4
+        """
+    @property
+    def seconds_vectors(self) -> float:
+        """
+        steps 1-2
+        """
+    @property
+    def unknown_cells(self) -> int:
+        """
+        of the best view
+        """
+    @property
+    def utility_cells(self) -> int:
+        """
+        cells with utility > 0 in the workspace's box and sphere
+        """
+    @property
+    def utility_dm3(self) -> float:
+        """
+        of the best view: expected_void as dm^3
+        """
+    @property
+    def utility_vectors(self) -> int:
+        ...
+    @property
+    def void_cells(self) -> int:
+        """
+        of the best view
+        """
+    @property
+    def void_pass_probability(self) -> float:
+        """
+        p it used for void cells
+        """
 def accumulate_utility(map: ExplorationMap, sensor_range: typing.SupportsFloat | typing.SupportsIndex) -> tuple[numpy.typing.NDArray[numpy.float64], numpy.typing.NDArray[numpy.float64]]:
     """
     Algorithm 1: (cell centres (N, 3), accumulated utility (N,), m^3) before workspace pruning.
@@ -1786,14 +2288,12 @@ def missed_cells(map: ExplorationMap) -> int:
     """
     Unknown cells whose seeability a missed view (expect_view) has lowered.
     """
-def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any = None, **kwargs) -> dict:
+def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any = None, **kwargs) -> NbvResult:
     """
     Next best view (Algorithm 1 + frustum scoring). Options: an NbvOptions and/or its attributes as
-    keyword arguments. Returns a dict: best_pose (4x4 camera -> map, or None); of the best view:
-    void_cells, unknown_cells, frontier_cells (raw distinct cells met), expected_void,
-    expected_unknown, expected_frontier (visibility-weighted), expected_gain (of `gain`), utility_dm3
-    (expected_void as dm^3); pass_probability, void_pass_probability (the p used); ranked (valid poses, best first, each with
-    pose, the same gains, gain, utility_dm3, cell_utility, q), and search statistics. The workspace is
+    keyword arguments. Returns an NbvResult: ranked (the valid views, best first, as ViewCandidate),
+    best and best_pose (4x4 camera -> map, or None), the best view's gains, expected_gain (of `gain`) and
+    utility_dm3, the pass probabilities used and the search's statistics. The workspace is
     workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable
     taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,
     +z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.
@@ -1802,18 +2302,20 @@ def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any 
     capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.
     arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.
     """
-def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, options: typing.Any = None, *, score_invalid: bool = True, **kwargs) -> dict:
+def ranks_before(a: ViewCandidate, b: ViewCandidate, by: str = 'expected_gain') -> bool:
+    """
+    True when view a ranks before view b in the one order of views: more of `by` ('expected_gain' or
+    'expected_void'), then more expected unknown cells (next_best_view's ranking, best_by's choice).
+    """
+def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, options: typing.Any = None, *, score_invalid: bool = True, **kwargs) -> ScoredViews:
     """
     Gains and validity of given camera poses (N, 4, 4) (camera -> map) with the checks and ray casting
     of next_best_view (same options: workspace_*, capability_map, chain, chain_base, arm_collisions,
     min_distance, unknown_is_obstacle, unknown_margin, gain, unknown_pass_probability, score_*).
-    Returns a dict of per-pose arrays: valid (N,) bool, status (list of 'valid', 'outside_workspace',
-    'not_reachable', 'camera_not_clear', 'no_ik', 'arm_collision'), pose (N, 4, 4: the pose the arm
-    reaches when IK succeeds, else the given one), q ((N, dof), NaN rows without a solution; None
-    without a chain), void_cells, unknown_cells, frontier_cells (N,) int, expected_void,
-    expected_unknown, expected_frontier, expected_gain (N,) float; gain (its name), pass_probability and
-    void_pass_probability. score_invalid=False: poses that fail a check are not ray cast (cell counts 0,
-    expected gains NaN), far less work when most fail.
+    Returns ScoredViews: per-pose arrays valid, status, pose (the pose the arm reaches when IK succeeds,
+    else the given one), q, the gains and expected_gain (of `gain`), and the poses one by one as
+    ScoredView. score_invalid=False: poses that fail a check are not ray cast (cell counts 0, expected
+    gains NaN), far less work when most fail.
     """
 def set_progress_factory(factory: typing.Any) -> None:
     """
@@ -1836,12 +2338,14 @@ def void_enclosure(map: ExplorationMap, range: typing.SupportsFloat | typing.Sup
     """
 __version__: str = '0.1.0'
 
-def view_gains(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, pass_probability: typing.Any = None) -> dict:
+def view_gains(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, pass_probability: typing.Any = None) -> ViewGainsResult:
     """
     What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight
     starts at 1 and is multiplied by pass_probability after each unknown cell; None: the map's learned
-    values, void_pass_probability for void cells and pass_probability for the others): raw distinct void_cells, unknown_cells, frontier_cells and their visibility-weighted
-    expected_void, expected_unknown, expected_frontier.
+    values, void_pass_probability for void cells and pass_probability for the others, and its visibility
+    curve learned from the views announced with expect_view): a ViewGainsResult (the raw distinct
+    void_cells, unknown_cells, frontier_cells, their visibility-weighted expected_void, expected_unknown,
+    expected_frontier, expected_enclosed_void, and the pass probabilities used).
     """
 def view_utility(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36) -> tuple[int, int]:
     """

@@ -54,7 +54,9 @@ def sweep(world, tmp_path_factory):
         "CameraIntrinsics": cam.intrinsics, "CostMap": None, "VoidCluster": clusters[0] if clusters else None,
         "CapabilityMapOptions": o.CapabilityMapOptions(), "PointMapOptions": o.PointMapOptions(),
         "SurfaceMapOptions": o.SurfaceMapOptions(), "NbvOptions": o.NbvOptions(),
-        "AllowedCollisionOptions": o.AllowedCollisionOptions(),
+        "AllowedCollisionOptions": o.AllowedCollisionOptions(), "ExploreOptions": o.ExploreOptions(),
+        "NbvResult": o.next_best_view(m, cam, max_valid_poses=2),
+        "ScoredViews": o.score_views(m, cam, np.repeat(np.eye(4)[None], 2, axis=0)),
     }
     by_name = {
         "robot": robot, "chain": chain, "capability_map": cap, "surface": surface, "surface_map": sm,

@@ -70,10 +70,10 @@ def test_closed_box_one_void_behind_one_frontier_and_the_view_looks_in():
     assert len(fv) == 1 and len(fv[0]["frontier_clusters"]) == 1  # behind one frontier cluster
     assert fv[0]["utility"] == pytest.approx(v.size * 0.04 ** 3)
     r = next_best_view(emap, cam, workspace_sphere=((0.8, 0.0, 0.3), 1.0), min_distance=0.05)
-    assert r["void_cells"] > 100 and r["ranked"][0]["void_cells"] == r["void_cells"]
-    assert 0 < r["expected_void"] <= r["void_cells"] and r["expected_gain"] == r["expected_void"]
-    assert r["utility_dm3"] == pytest.approx(r["expected_void"] * 0.04 ** 3 * 1000)
-    P = r["best_pose"]
+    assert r.void_cells > 100 and r.ranked[0].void_cells == r.void_cells
+    assert 0 < r.expected_void <= r.void_cells and r.expected_gain == r.expected_void
+    assert r.utility_dm3 == pytest.approx(r.expected_void * 0.04 ** 3 * 1000)
+    P = r.best_pose
     eye, axis = P[:3, 3], P[:3, 2]
     assert not (np.all(eye > lo) and np.all(eye < hi))  # the camera is outside the box
     d = scene.raycast(eye, axis, 3.0)
@@ -82,11 +82,11 @@ def test_closed_box_one_void_behind_one_frontier_and_the_view_looks_in():
     assert np.all(hit > lo - 0.03) and np.all(hit < hi + 0.03)
     assert axis[1] < -0.7  # looking into the +y opening
     # the ranked list is ordered by the expected gain and its scores are what view_gains / view_utility give
-    gains = [c["gain"] for c in r["ranked"]]
+    gains = [c.expected_gain for c in r.ranked]
     assert gains == sorted(gains, reverse=True)
-    assert view_utility(emap, cam, P)[0] == r["void_cells"]
+    assert view_utility(emap, cam, P)[0] == r.void_cells
     g = view_gains(emap, cam, P)
-    assert g["void_cells"] == r["void_cells"] and g["expected_void"] == pytest.approx(r["expected_void"])
+    assert g.void_cells == r.void_cells and g.expected_void == pytest.approx(r.expected_void)
 
 
 def test_exploration_observes_the_crate_interiors():
@@ -179,28 +179,28 @@ def test_capability_map_prunes_view_cells_and_ik_stays_the_final_check():
               chain_base=base)
     plain = next_best_view(emap, cam, **kw)
     pruned = next_best_view(emap, cam, capability_map=cmap, capability_base=base, capability_orientations=False, **kw)
-    assert plain["capability_pruned"] == 0
-    assert pruned["capability_rejected"] == 0
+    assert plain.capability_pruned == 0
+    assert pruned.capability_rejected == 0
     # the 3 m sphere lets far cells through; the capability map removes them, and only them
-    assert pruned["capability_pruned"] > 0
-    assert pruned["candidate_cells"] + pruned["capability_pruned"] == plain["candidate_cells"]
-    assert pruned["best_pose"] is not None
+    assert pruned.capability_pruned > 0
+    assert pruned.candidate_cells + pruned.capability_pruned == plain.candidate_cells
+    assert pruned.best_pose is not None
     inv = np.linalg.inv(base)
-    for v in pruned["ranked"]:
-        p_arm = (inv @ v["pose"])[:3, 3]
+    for v in pruned.ranked:
+        p_arm = (inv @ v.pose)[:3, 3]
         assert cmap.reachability(p_arm[None, :])[0] > 0
-        assert v["q"] is not None and len(v["q"]) == chain.dof  # IK still settled the pose
+        assert v.q is not None and len(v.q) == chain.dof  # IK still settled the pose
     # with the orientation check, poses whose (voxel, optical axis) cell is unreachable skip IK;
     # every pose kept still has its IK solution and lies in a reachable (voxel, direction) cell
     fast = next_best_view(emap, cam, capability_map=cmap, capability_base=base, **kw)
-    assert fast["capability_rejected"] > 0 and fast["best_pose"] is not None
-    for v in fast["ranked"]:
-        assert v["q"] is not None and cmap.reachable((inv @ v["pose"])[None])[0]
+    assert fast.capability_rejected > 0 and fast.best_pose is not None
+    for v in fast.ranked:
+        assert v.q is not None and cmap.reachable((inv @ v.pose)[None])[0]
     # an arm standing 10 m away reaches none of the cells
     far = base.copy()
     far[:3, 3] += (10.0, 0.0, 0.0)
     none = next_best_view(emap, cam, capability_map=cmap, capability_base=far, **kw)
-    assert none["candidate_cells"] == 0 and none["best_pose"] is None
+    assert none.candidate_cells == 0 and none.best_pose is None
     with pytest.raises(ValueError):
         next_best_view(emap, cam, capability_map=cmap, min_reachability=1.5)
 
@@ -221,9 +221,9 @@ def test_views_whose_arm_touches_occupied_cells_are_rejected():
 
     def colliding(result):
         n = 0
-        for v in result["ranked"]:
+        for v in result.ranked:
             q = robot.home().copy()
-            q[: chain.dof] = v["q"]  # the explorer's configuration is its arm's
+            q[: chain.dof] = v.q  # the explorer's configuration is its arm's
             n += robot.in_collision(q, obstacles, root)
         return n
 
@@ -231,9 +231,9 @@ def test_views_whose_arm_touches_occupied_cells_are_rejected():
               workspace_sphere=((0.2, 0.0, 0.3), 1.1))
     free = next_best_view(emap, cam, **kw)
     loose = next_best_view(emap, cam, arm_collisions=False, **kw)
-    assert loose["arm_collisions"] == 0 and colliding(loose) > 0  # the check is needed here
-    assert free["arm_collisions"] > 0 and colliding(free) == 0
-    assert free["best_pose"] is not None
+    assert loose.arm_collisions == 0 and colliding(loose) > 0  # the check is needed here
+    assert free.arm_collisions > 0 and colliding(free) == 0
+    assert free.best_pose is not None
 
 
 def _explorer_at_scene_2(resolution, image, eyes):
@@ -263,8 +263,8 @@ def test_views_whose_arm_touches_itself_are_rejected():
     assert len(Q) > 20
     sv = score_views(emap, cam, np.array([base @ chain.fk(q) for q in Q]), chain=chain, chain_base=base,
                      unknown_is_obstacle=False)
-    valid = [q for st, q in zip(sv["status"], sv["q"]) if st == "valid"]
-    assert sv["status"].count("arm_collision") > len(Q) / 2
+    valid = [q for st, q in zip(sv.status, sv.q) if st == "valid"]
+    assert sv.status.count("arm_collision") > len(Q) / 2
     assert not any(self_colliding(q) for q in valid)
 
 
@@ -277,15 +277,15 @@ def test_score_views_can_skip_the_ray_casting_of_invalid_poses():
     kw = dict(chain=chain, chain_base=base, seed=2)
     full = score_views(emap, cam, poses, **kw)
     some = score_views(emap, cam, poses, score_invalid=False, **kw)
-    assert some["status"] == full["status"]
-    v = np.asarray(full["valid"])
+    assert some.status == full.status
+    v = np.asarray(full.valid)
     assert 0 < v.sum() < len(v)
     for key in ("expected_void", "expected_unknown", "expected_frontier", "void_cells", "unknown_cells"):
-        np.testing.assert_array_equal(np.asarray(some[key])[v], np.asarray(full[key])[v])
-    assert np.isnan(np.asarray(some["expected_unknown"])[~v]).all()
-    assert (np.asarray(some["unknown_cells"])[~v] == 0).all()
-    assert np.isfinite(np.asarray(full["expected_unknown"])).all() and (np.asarray(full["unknown_cells"])[~v] > 0).any()
-    np.testing.assert_array_equal(np.asarray(some["q"])[v], np.asarray(full["q"])[v])
+        np.testing.assert_array_equal(np.asarray(getattr(some, key))[v], np.asarray(getattr(full, key))[v])
+    assert np.isnan(np.asarray(some.expected_unknown)[~v]).all()
+    assert (np.asarray(some.unknown_cells)[~v] == 0).all()
+    assert np.isfinite(np.asarray(full.expected_unknown)).all() and (np.asarray(full.unknown_cells)[~v] > 0).any()
+    np.testing.assert_array_equal(np.asarray(some.q)[v], np.asarray(full.q)[v])
     with pytest.raises(TypeError):  # a bool, not anything truthy
         score_views(emap, cam, poses, score_invalid=None, **kw)
 
@@ -306,7 +306,7 @@ def test_nbv_options_object_and_keywords_are_one_thing():
     o.max_valid_poses = 5
     a = next_best_view(emap, cam, options=o, seed=3)
     b = next_best_view(emap, cam, workspace_sphere=((0.9, 0.0, 0.3), 1.2), max_valid_poses=5, seed=3)
-    assert a["void_cells"] == b["void_cells"] and a["poses_scored"] == b["poses_scored"]
+    assert a.void_cells == b.void_cells and a.poses_scored == b.poses_scored
     assert o.seed == 0  # keywords change a copy, not the caller's options
     with pytest.raises(TypeError, match="bogus"):
         next_best_view(emap, cam, bogus=1)
@@ -344,9 +344,9 @@ def test_safe_views_keep_the_arm_and_the_camera_in_observed_space():
 
     def touching_unknown(result):
         n = 0
-        for v in result["ranked"]:
+        for v in result.ranked:
             q = robot.home().copy()
-            q[: chain.dof] = v["q"]
+            q[: chain.dof] = v.q
             n += robot.in_collision(q, blocked)
         return n
 
@@ -355,10 +355,10 @@ def test_safe_views_keep_the_arm_and_the_camera_in_observed_space():
     safe = next_best_view(emap, cam, **kw)
     loose = next_best_view(emap, cam, unknown_is_obstacle=False, **kw)
     assert touching_unknown(loose) > 0  # without the rule some views reach through unknown space
-    assert safe["best_pose"] is not None and touching_unknown(safe) == 0
+    assert safe.best_pose is not None and touching_unknown(safe) == 0
     margin = 0.05
-    for v in safe["ranked"]:
-        eye = v["pose"][:3, 3]
+    for v in safe.ranked:
+        eye = v.pose[:3, 3]
         # the camera sits in a free cell, or in an unknown cell outside the search space and above its
         # floor (the rule counts only the search space's unknown cells as obstacles; utility vectors pass
         # the others, so candidate cells may lie there)
@@ -370,16 +370,16 @@ def test_safe_views_keep_the_arm_and_the_camera_in_observed_space():
         assert not np.any(np.all(np.abs(cells - np.floor(eye / emap.resolution)) <= 2, axis=1))
     # score_views agrees on the camera checks (its IK restarts differ, so a solution may differ) and on
     # the gains of the poses its arm reaches
-    poses = np.array([v["pose"] for v in safe["ranked"][:5]])
+    poses = np.array([v.pose for v in safe.ranked[:5]])
     sv = score_views(emap, cam, poses, **kw)
-    assert set(sv["status"]) <= {"valid", "no_ik", "arm_collision"} and "valid" in sv["status"]
-    for i in np.flatnonzero(sv["valid"]):
-        assert sv["expected_void"][i] == pytest.approx(view_gains(emap, cam, sv["pose"][i])["expected_void"])
+    assert set(sv.status) <= {"valid", "no_ik", "arm_collision"} and "valid" in sv.status
+    for i in np.flatnonzero(sv.valid):
+        assert sv.expected_void[i] == pytest.approx(view_gains(emap, cam, sv.pose[i]).expected_void)
     # a camera inside the closed box at -x (never seen inside) is not a view
     inside = ex.look_at((0.9, -0.47, 0.2), (1.0, -0.47, 0.1))
     sv = score_views(emap, cam, inside[None], **kw)
-    assert sv["status"] == ["camera_not_clear"] and not sv["valid"][0]
-    assert np.isnan(sv["q"]).all() and sv["q"].shape == (1, chain.dof)
+    assert sv.status == ["camera_not_clear"] and not sv.valid[0]
+    assert np.isnan(sv.q).all() and sv.q.shape == (1, chain.dof)
 
 
 def test_score_views_statuses_gains_and_bad_input():
@@ -389,20 +389,20 @@ def test_score_views_statuses_gains_and_bad_input():
     list(survey(emap, scene, cam, [(0.0, -0.3, 0.9), (0.0, 0.4, 0.7)], (0.8, 0.0, 0.2)))
     poses = np.array([ex.look_at((0.2, 0.0, 0.3), (0.8, 0.0, 0.2)), ex.look_at((3.0, 0.0, 0.3), (0.8, 0.0, 0.2))])
     sv = score_views(emap, cam, poses, workspace_box=((-1, -1, 0), (1, 1, 1.5)), unknown_is_obstacle=False)
-    assert sv["status"] == ["valid", "outside_workspace"] and sv["q"] is None
-    assert sv["gain"] == "frontier_void" and np.array_equal(sv["expected_gain"], sv["expected_void"])
+    assert sv.status == ["valid", "outside_workspace"] and sv.q is None
+    assert sv.gain == "frontier_void" and np.array_equal(sv.expected_gain, sv.expected_void)
     # gains are computed for every pose; p = 1 gives the raw counts (within 1.5 m a coarse ray's beam
     # covers at most one cell of 4 cm)
     near = DepthCamera(160, 120, FOV, 1.5)
     raw = score_views(emap, near, poses[:1], unknown_pass_probability=1.0, unknown_is_obstacle=False)
-    assert raw["expected_void"][0] == pytest.approx(raw["void_cells"][0], rel=1e-3)
-    assert raw["expected_unknown"][0] == pytest.approx(raw["unknown_cells"][0], rel=1e-3)
+    assert raw.expected_void[0] == pytest.approx(raw.void_cells[0], rel=1e-3)
+    assert raw.expected_unknown[0] == pytest.approx(raw.unknown_cells[0], rel=1e-3)
     opaque = score_views(emap, near, poses[:1], unknown_pass_probability=0.0, unknown_is_obstacle=False)
-    assert 0 < opaque["expected_unknown"][0] < raw["expected_unknown"][0]
-    assert opaque["unknown_cells"][0] == raw["unknown_cells"][0]  # the raw counts do not depend on p
+    assert 0 < opaque.expected_unknown[0] < raw.expected_unknown[0]
+    assert opaque.unknown_cells[0] == raw.unknown_cells[0]  # the raw counts do not depend on p
     unk = score_views(emap, cam, poses[:1], gain="unknown", unknown_is_obstacle=False)
-    assert unk["gain"] == "unknown" and unk["expected_gain"][0] == unk["expected_unknown"][0]
-    assert score_views(emap, cam, np.zeros((0, 4, 4)))["valid"].shape == (0,)
+    assert unk.gain == "unknown" and unk.expected_gain[0] == unk.expected_unknown[0]
+    assert score_views(emap, cam, np.zeros((0, 4, 4))).valid.shape == (0,)
     bad = poses.copy()
     bad[1, 0, 3] = np.nan
     with pytest.raises(ValueError, match="finite"):
@@ -430,13 +430,13 @@ def test_ray_statistics_learn_a_pass_probability():
     assert 0.5 < st["pass_probability"] < 1 and st["pass_probability"] == emap.pass_probability
     assert 0 < st["void_pass_probability"] < 1
     r = next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.6), 0.8), min_distance=0.05)
-    assert r["pass_probability"] == emap.pass_probability
-    assert r["void_pass_probability"] == emap.void_pass_probability
+    assert r.pass_probability == emap.pass_probability
+    assert r.void_pass_probability == emap.void_pass_probability
     for gain in ("frontiers", "unknown"):
         g = next_best_view(emap, cam, workspace_sphere=((0.5, 0.0, 0.6), 0.8), min_distance=0.05, gain=gain)
         key = {"frontiers": "expected_frontier", "unknown": "expected_unknown"}[gain]
-        assert g["best_pose"] is not None and g["expected_gain"] == g[key] > 0
-        assert [v["gain"] for v in g["ranked"]] == sorted([v["gain"] for v in g["ranked"]], reverse=True)
+        assert g.best_pose is not None and g.expected_gain == getattr(g, key) > 0
+        assert [v.expected_gain for v in g.ranked] == sorted([v.expected_gain for v in g.ranked], reverse=True)
 
 
 def test_utility_rays_clipped_to_the_workspace_give_the_same_search():
@@ -458,12 +458,12 @@ def test_utility_rays_clipped_to_the_workspace_give_the_same_search():
             kw = dict(min_distance=0.05, gain=gain, max_valid_poses=10, seed=5)
             a = next_best_view(emap, cam, **clipped_kw, **kw)
             b = next_best_view(emap, cam, workspace=fn, **kw)
-            assert a["candidate_cells"] == b["candidate_cells"] > 0
-            assert a["utility_cells"] < b["utility_cells"]  # the clipped walk summed fewer cells
-            assert len(a["ranked"]) == len(b["ranked"]) > 0
-            for x, y in zip(a["ranked"], b["ranked"]):
-                np.testing.assert_array_equal(x["pose"], y["pose"])
-                assert x["gain"] == y["gain"]
+            assert a.candidate_cells == b.candidate_cells > 0
+            assert a.utility_cells < b.utility_cells  # the clipped walk summed fewer cells
+            assert len(a.ranked) == len(b.ranked) > 0
+            for x, y in zip(a.ranked, b.ranked):
+                np.testing.assert_array_equal(x.pose, y.pose)
+                assert x.expected_gain == y.expected_gain
 
 
 def test_incremental_void_clusters_equal_clusters_from_scratch_after_every_insert():
@@ -502,10 +502,10 @@ def test_visibility_model_expects_what_the_view_sees_when_nothing_hides_in_the_u
     top = ex.look_at((0.8, 0.0, 0.9), (0.8, 0.0, 0.0))
     clear = view_gains(emap, cam, top, pass_probability=1.0)
     learned = view_gains(emap, cam, top)
-    assert clear["void_cells"] == emap.void_cell_count > 200
-    assert learned["void_pass_probability"] < 1 and learned["expected_void"] < clear["expected_void"]
+    assert clear.void_cells == emap.void_cell_count > 200
+    assert learned.void_pass_probability < 1 and learned.expected_void < clear.expected_void
     seen = emap.insert(cam.capture(scene, top), top[:3, 3], cam.max_range)["void_removed"]
-    assert clear["expected_void"] == pytest.approx(seen, rel=1e-3) and emap.void_cell_count == 0
+    assert clear.expected_void == pytest.approx(seen, rel=1e-3) and emap.void_cell_count == 0
 
 
 def test_a_view_in_front_of_an_opening_outside_the_search_space_is_found():
@@ -531,8 +531,8 @@ def test_a_view_in_front_of_an_opening_outside_the_search_space_is_found():
     assert np.all(pos[:, 2] >= region[0, 2])  # none below the search space's floor
     cam = DepthCamera(80, 60, FOV, 4.0)
     r = next_best_view(emap, cam, workspace_box=np.array([[0.2, -0.3, 0.02], [0.4, 0.3, 0.4]]))
-    assert r["best_pose"] is not None, r["candidate_cells"]
-    assert r["best_pose"][0, 3] <= 0.4 and r["ranked"][0]["expected_void"] > 10
+    assert r.best_pose is not None, r.candidate_cells
+    assert r.best_pose[0, 3] <= 0.4 and r.ranked[0].expected_void > 10
 
 
 def test_void_enclosure_by_hand_and_the_ranking_it_weighs():
@@ -570,23 +570,23 @@ def test_void_enclosure_by_hand_and_the_ranking_it_weighs():
     top = ex.look_at((0.8, 0.0, 0.9), (0.8, 0.0, 0.0))
     plain = score_views(emap, cam, top[None])
     weighted = score_views(emap, cam, top[None], enclosure_power=2.0)
-    assert plain["expected_gain"][0] == pytest.approx(plain["expected_void"][0])
-    assert weighted["expected_void"][0] == pytest.approx(plain["expected_void"][0])
+    assert plain.expected_gain[0] == pytest.approx(plain.expected_void[0])
+    assert weighted.expected_void[0] == pytest.approx(plain.expected_void[0])
     # into the crate (its cells weigh (9/12)^2 = 0.56, the shadows around it less) against down into the
     # shadow behind the block: the crate keeps more than twice the share of its expected void cells
     shadow = ex.look_at((0.95, 0.58, 0.8), (0.85, 0.58, 0.0))
     behind = score_views(emap, cam, shadow[None], enclosure_power=2.0)
-    share_crate = weighted["expected_gain"][0] / weighted["expected_void"][0]
-    share_shadow = behind["expected_gain"][0] / behind["expected_void"][0]
-    assert behind["expected_void"][0] > 20 and share_crate < 9 / 16 and share_crate > 2 * share_shadow
+    share_crate = weighted.expected_gain[0] / weighted.expected_void[0]
+    share_shadow = behind.expected_gain[0] / behind.expected_void[0]
+    assert behind.expected_void[0] > 20 and share_crate < 9 / 16 and share_crate > 2 * share_shadow
     # the unknown and frontier gains do not change (their rays are whole; frontier_void's end at the void box)
-    assert score_views(emap, cam, top[None], gain="unknown", enclosure_power=2.0)["expected_gain"][0] == \
-        pytest.approx(score_views(emap, cam, top[None], gain="unknown")["expected_unknown"][0])
+    assert score_views(emap, cam, top[None], gain="unknown", enclosure_power=2.0).expected_gain[0] == \
+        pytest.approx(score_views(emap, cam, top[None], gain="unknown").expected_unknown[0])
     r = next_best_view(emap, cam, workspace_sphere=((0.8, 0.0, 0.3), 1.0), min_distance=0.05, enclosure_power=2.0)
-    gains = [c["gain"] for c in r["ranked"]]
+    gains = [c.expected_gain for c in r.ranked]
     assert gains == sorted(gains, reverse=True)
-    assert r["ranked"] and all(c["gain"] == pytest.approx(c["expected_enclosed_void"]) for c in r["ranked"])
-    assert all(c["expected_enclosed_void"] < c["expected_void"] for c in r["ranked"])
+    assert r.ranked and all(c.expected_gain == pytest.approx(c.expected_enclosed_void) for c in r.ranked)
+    assert all(c.expected_enclosed_void < c.expected_void for c in r.ranked)
     for bad in (dict(enclosure_power=-1.0), dict(enclosure_power=float("nan")), dict(enclosure_range=0.0)):
         with pytest.raises(ValueError, match="enclosure_"):
             score_views(emap, cam, top[None], **bad)
@@ -597,7 +597,7 @@ def test_void_enclosure_by_hand_and_the_ranking_it_weighs():
 def test_aimed_poses_look_at_void_cells_from_inside_the_reach():
     """The second look's poses: each looks at a void cell from 0.3-1.0 m, not from below, inside the
     given sphere and above the floor; a map without voids gives none."""
-    from octoreach.exploration.strategies import aimed_poses
+    from octoreach.exploration.candidate_poses import aimed_poses
 
     scene = ex.closed_box_scene("+y", 0.16)
     emap = ExplorationMap(resolution=0.04, search_space=ex.scene_region(scene))
@@ -626,40 +626,53 @@ def _box_seen_from_three_sides():
     return emap, cam, region, lambda _: ((0.8, 0.0, 0.3), 1.0)
 
 
+def view_settings(widen_below=None, **search):
+    """ExploreOptions for choose_view: its search NbvOptions() (the C++ defaults, not the loop's) with the
+    `search` fields set; a second look with min_utility `widen_below` (None: no second look)."""
+    from octoreach import ExploreOptions, NbvOptions
+
+    s = ExploreOptions()
+    s.search = NbvOptions()
+    for k, v in search.items():
+        setattr(s.search, k, v)
+    s.second_look = widen_below is not None
+    s.min_utility = 0.0 if widen_below is None else widen_below
+    return s
+
+
 def test_the_second_look_finds_the_view_a_narrow_search_missed():
     """next_best_view limited to one candidate cell and one orientation finds a poor view of the closed
-    box's inside or none; with widen_below above its utility, poses aimed at the void cells are scored
+    box's inside or none; with a second look below a min_utility above its utility, poses aimed at the void cells are scored
     too and a view expecting more is taken (details["aimed"]); without it the narrow answer stays."""
     from octoreach.exploration.strategies import choose_view
 
     emap, cam, region, sphere_of = _box_seen_from_three_sides()
-    options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
-                   max_valid_poses=1, max_candidate_cells=1, orientations_per_cell=1)
-    narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region)
-    wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region,
-                       widen_below=narrow.utility + 1.0)
+    options = dict(min_distance=0.05, max_valid_poses=1, max_candidate_cells=1, orientations_per_cell=1)
+    narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, view_settings(**options), 3, region)
+    wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of,
+                       view_settings(narrow.utility + 1.0, **options), 3, region)
     assert "aimed" not in narrow.details
     assert wide.details.get("aimed") and wide.pose is not None
     assert wide.utility > max(2 * narrow.utility, 20.0), (narrow.utility, wide.utility)
     # the aimed view is a real view: its gains are what score_views gives for its pose
     again = score_views(emap, cam, wide.pose[None], workspace_sphere=sphere_of(None), min_distance=0.05)
-    assert again["valid"][0] and again["expected_void"][0] == pytest.approx(wide.expected_void)
+    assert again.valid[0] and again.expected_void[0] == pytest.approx(wide.expected_void)
 
 
 def test_the_second_look_on_every_view_takes_the_better_view_by_the_ranking_gain():
-    """Not only at low views: with widen_below below the narrow search's utility (its best is not low),
+    """Not only at low views: with min_utility below the narrow search's utility (its best is not low),
     the aimed poses are still scored and the view with the larger ranking gain (expected_gain, with the
     enclosure weighting) is taken; its rank_gain is what score_views gives for its pose."""
     from octoreach.exploration.strategies import choose_view
 
     emap, cam, region, sphere_of = _box_seen_from_three_sides()
-    options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
-                   max_valid_poses=1, max_candidate_cells=8, orientations_per_cell=1, enclosure_power=2.0)
-    narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region)
+    options = dict(min_distance=0.05, max_valid_poses=1, max_candidate_cells=8, orientations_per_cell=1,
+                   enclosure_power=2.0)
+    narrow = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, view_settings(**options), 3, region)
     assert narrow.pose is not None and narrow.utility > 0 and narrow.rank_gain > 0
-    wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=0.0)
+    wide = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, view_settings(0.0, **options), 3, region)
     assert wide.details.get("aimed") and wide.rank_gain > narrow.rank_gain, (narrow.rank_gain, wide.rank_gain)
     again = score_views(emap, cam, wide.pose[None], workspace_sphere=sphere_of(None), min_distance=0.05,
                         gain="frontier_void", enclosure_power=2.0)
-    assert again["valid"][0] and again["expected_gain"][0] == pytest.approx(wide.rank_gain)
-    assert again["expected_void"][0] == pytest.approx(wide.expected_void)
+    assert again.valid[0] and again.expected_gain[0] == pytest.approx(wide.rank_gain)
+    assert again.expected_void[0] == pytest.approx(wide.expected_void)

@@ -260,9 +260,9 @@ def test_a_missed_view_lowers_the_seeability_of_what_it_expected_unless_a_seen_s
     plain, announced, lost = (_core.view_gains(m, cam, above, 24, 18, 1.0) for m in maps)
     assert _core.missed_cells(maps[0]) == 0 and _core.missed_cells(maps[2]) > 50
     assert _core.missed_cells(maps[1]) < _core.missed_cells(maps[2])
-    assert plain["void_cells"] == announced["void_cells"] > 0  # the same map, the same raw count
-    assert announced["expected_void"] > 0.95 * plain["expected_void"], (plain, announced)
-    assert lost["expected_void"] < 0.9 * plain["expected_void"], (plain, lost)
+    assert plain.void_cells == announced.void_cells > 0  # the same map, the same raw count
+    assert announced.expected_void > 0.95 * plain.expected_void, (plain, announced)
+    assert lost.expected_void < 0.9 * plain.expected_void, (plain, lost)
     with pytest.raises(ValueError):
         _core.expect_view(maps[1], cam, np.full((4, 4), np.nan))
 
@@ -296,11 +296,11 @@ def test_expected_void_against_the_void_cells_a_view_turns_known():
     before = emap.centers(emap.void_keys())
     emap.insert(cam.capture(s, T), T[:3, 3], 4.0)
     seen = int(np.count_nonzero(emap.state(before) != 0))
-    assert clear["void_cells"][0] > 50 and clear["expected_void"][0] == pytest.approx(clear["void_cells"][0])
-    assert seen == pytest.approx(clear["expected_void"][0], rel=0.05), (seen, clear["expected_void"][0])
-    assert learned["pass_probability"] < 1.0
-    assert 0 < learned["expected_void"][0] < clear["expected_void"][0]
-    assert half["expected_void"][0] < clear["expected_void"][0]
+    assert clear.void_cells[0] > 50 and clear.expected_void[0] == pytest.approx(clear.void_cells[0])
+    assert seen == pytest.approx(clear.expected_void[0], rel=0.05), (seen, clear.expected_void[0])
+    assert learned.pass_probability < 1.0
+    assert 0 < learned.expected_void[0] < clear.expected_void[0]
+    assert half.expected_void[0] < clear.expected_void[0]
 
 
 def test_pictures(tmp_path):
@@ -368,8 +368,8 @@ def test_the_visibility_curve_learns_from_announced_views_what_rays_see():
     assert np.all(np.diff(share) <= 1e-12) and 0 < share[0] <= 1  # non-increasing in the depth
     top_b = ex.look_at((0.8, 0.4, 0.9), (0.8, 0.4, 0.0))
     p, pv = emap.pass_probability, emap.void_pass_probability
-    geometric = _core.view_gains(emap, cam, top_b, 48, 36, pv)["expected_void"]
-    learned = _core.view_gains(emap, cam, top_b, 48, 36)["expected_void"]
+    geometric = _core.view_gains(emap, cam, top_b, 48, 36, pv).expected_void
+    learned = _core.view_gains(emap, cam, top_b, 48, 36).expected_void
     seen = emap.insert(cam.capture(s, top_b), top_b[:3, 3], 4.0)["void_removed"]
     assert seen > 50 and pv < 1 and p < 1
     assert abs(learned / seen - 1) < abs(geometric / seen - 1), (geometric, learned, seen)
@@ -410,13 +410,13 @@ def test_ground_below_the_search_space_is_an_obstacle_for_the_arm_on_request():
         emap.insert(cam.capture(s, T), T[:3, 3], 3.0)
     common = dict(chain=chain, chain_base=np.eye(4), unknown_is_obstacle=False, seed=3)
     low = ex.look_at((0.5, 0.0, 0.07), (0.5, 0.0, -1.0))[None]
-    assert _core.score_views(emap, cam, low, **common)["status"] == ["valid"]
-    assert _core.score_views(emap, cam, low, ground_is_obstacle=True, **common)["status"] == ["arm_collision"]
+    assert _core.score_views(emap, cam, low, **common).status == ["valid"]
+    assert _core.score_views(emap, cam, low, ground_is_obstacle=True, **common).status == ["arm_collision"]
     high = ex.look_at((0.5, 0.0, 0.12), (0.5, 0.0, -1.0))[None]
-    assert _core.score_views(emap, cam, high, ground_is_obstacle=True, **common)["status"] == ["valid"]
+    assert _core.score_views(emap, cam, high, ground_is_obstacle=True, **common).status == ["valid"]
     # without a search space there is no floor to stand for the ground: no effect
     free = ExplorationMap(resolution=RES)
     for z in (0.07, 0.2):
         T = ex.look_at((0.0, 0.0, z), (1.0, 0.0, z))
         free.insert(cam.capture(s, T), T[:3, 3], 3.0)
-    assert _core.score_views(free, cam, low, ground_is_obstacle=True, **common)["status"] == ["valid"]
+    assert _core.score_views(free, cam, low, ground_is_obstacle=True, **common).status == ["valid"]

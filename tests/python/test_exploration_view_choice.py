@@ -6,8 +6,8 @@ import pytest
 
 from octoreach import DepthCamera, ExplorationMap, Scene, score_views
 from octoreach import exploration as ex
-from octoreach.exploration import strategies
-from octoreach.exploration.strategies import aimed_poses, in_line_of_sight, sample_poses
+from octoreach.exploration import candidate_poses
+from octoreach.exploration.candidate_poses import aimed_poses, in_line_of_sight, sample_poses
 
 FOV = np.deg2rad(58.0)
 
@@ -43,13 +43,13 @@ def test_frontier_void_rays_end_at_the_void_box_with_the_same_void_figures():
     P = sample_poses(np.random.default_rng(0), region, box=np.array([region[0] - 0.6, region[1] + 0.6]), n=120)
     clipped = score_views(emap, cam, P, gain="frontier_void", unknown_is_obstacle=False)
     whole = score_views(emap, cam, P, gain="unknown", unknown_is_obstacle=False)
-    assert np.count_nonzero(whole["void_cells"]) > 30
-    np.testing.assert_array_equal(clipped["void_cells"], whole["void_cells"])
-    np.testing.assert_array_equal(clipped["expected_void"], whole["expected_void"])
-    assert np.all(clipped["unknown_cells"] <= whole["unknown_cells"])
-    assert np.sum(clipped["unknown_cells"]) < 0.8 * np.sum(whole["unknown_cells"])
+    assert np.count_nonzero(whole.void_cells) > 30
+    np.testing.assert_array_equal(clipped.void_cells, whole.void_cells)
+    np.testing.assert_array_equal(clipped.expected_void, whole.expected_void)
+    assert np.all(clipped.unknown_cells <= whole.unknown_cells)
+    assert np.sum(clipped.unknown_cells) < 0.8 * np.sum(whole.unknown_cells)
     # the ranking gain at enclosure power 0 is the plain expected void, clipped or not
-    np.testing.assert_array_equal(clipped["expected_gain"], whole["expected_void"])
+    np.testing.assert_array_equal(clipped.expected_gain, whole.expected_void)
     # no void: nothing counts for this gain (the unknown gain still sees the unknown space)
     floor = Scene()
     floor.add_box((-2, -2, -0.05), (2, 2, 0))
@@ -58,8 +58,8 @@ def test_frontier_void_rays_end_at_the_void_box_with_the_same_void_figures():
     free.insert(cam.capture(floor, T), T[:3, 3], cam.max_range)
     assert free.void_cell_count == 0
     none = score_views(free, cam, P[:5], gain="frontier_void", unknown_is_obstacle=False)
-    assert np.all(none["expected_void"] == 0) and np.all(none["unknown_cells"] == 0)
-    assert np.any(score_views(free, cam, P[:5], gain="unknown", unknown_is_obstacle=False)["unknown_cells"] > 0)
+    assert np.all(none.expected_void == 0) and np.all(none.unknown_cells == 0)
+    assert np.any(score_views(free, cam, P[:5], gain="unknown", unknown_is_obstacle=False).unknown_cells > 0)
 
 
 def test_exposed_cells_by_hand():
@@ -96,13 +96,13 @@ def test_unexposed_void_cells_weigh_less_in_the_ranking():
     g = {w: score_views(emap, cam, views, enclosure_power=2.0, unexposed_weight=w, unknown_is_obstacle=False)
          for w in (0.0, 0.5, 1.0)}
     default = score_views(emap, cam, views, enclosure_power=2.0, unknown_is_obstacle=False)
-    np.testing.assert_array_equal(g[1.0]["expected_gain"], default["expected_gain"])
-    np.testing.assert_allclose(g[0.5]["expected_gain"], 0.5 * (g[0.0]["expected_gain"] + g[1.0]["expected_gain"]),
+    np.testing.assert_array_equal(g[1.0].expected_gain, default.expected_gain)
+    np.testing.assert_allclose(g[0.5].expected_gain, 0.5 * (g[0.0].expected_gain + g[1.0].expected_gain),
                                rtol=1e-9)
     for w in (0.0, 0.5):
-        np.testing.assert_array_equal(g[w]["expected_void"], g[1.0]["expected_void"])
-    kept = g[0.0]["expected_gain"] / g[1.0]["expected_gain"]
-    assert np.all(g[1.0]["expected_gain"] > 0) and np.all((kept > 0) & (kept < 1)) and kept[1] < 0.5, kept
+        np.testing.assert_array_equal(g[w].expected_void, g[1.0].expected_void)
+    kept = g[0.0].expected_gain / g[1.0].expected_gain
+    assert np.all(g[1.0].expected_gain > 0) and np.all((kept > 0) & (kept < 1)) and kept[1] < 0.5, kept
     for bad in (-0.1, 1.5, float("nan")):
         with pytest.raises(ValueError, match="unexposed_weight"):
             score_views(emap, cam, views, unexposed_weight=bad)
@@ -130,7 +130,7 @@ def test_aimed_poses_see_their_target_past_no_known_surface(monkeypatch):
     P = aimed_poses(np.random.default_rng(0), emap, sphere=((0.6, 0.0, 0.6), 1.0), n=150)
     assert len(P) > 20
     # without the line of sight (every direction passes): far more cameras look at a known surface first
-    monkeypatch.setattr(strategies, "in_line_of_sight", lambda m, a, b: np.ones(len(a), bool))
+    monkeypatch.setattr(candidate_poses, "in_line_of_sight", lambda m, a, b: np.ones(len(a), bool))
     blind = aimed_poses(np.random.default_rng(0), emap, sphere=((0.6, 0.0, 0.6), 1.0), n=150)
     assert unknown_first(P) > 0.8 and unknown_first(P) > unknown_first(blind) + 0.15, \
         (unknown_first(P), unknown_first(blind))
@@ -140,24 +140,24 @@ def test_a_view_is_low_only_when_none_on_offer_expects_more():
     """With the ranking weighted (enclosure, unexposed cells at 0) the view it ranks first may expect fewer
     void cells than another valid view: when every view is low (widen_below above them all), the choice
     is the view with the most expected void cells among the search's ranked views and the aimed poses,
-    after the harder look (LOW_AIMED_POSES more aimed poses); its gains are those of its pose."""
+    after the harder look (ExploreOptions.low_aimed_poses more aimed poses); its gains are those of its pose."""
     from octoreach import next_best_view
     from octoreach.exploration.strategies import choose_view
-    from test_exploration import _box_seen_from_three_sides
+    from test_exploration import _box_seen_from_three_sides, view_settings
 
     emap, cam, region, sphere_of = _box_seen_from_three_sides()
-    options = dict(workspace_box=None, workspace=None, chain=None, capability_map=None, min_distance=0.05,
-                   enclosure_power=2.0, unexposed_weight=0.0)
-    r = next_best_view(emap, cam, seed=3, workspace_sphere=sphere_of(None), **options)
-    ranked = [v["expected_void"] for v in r["ranked"]]
+    options = dict(min_distance=0.05, enclosure_power=2.0, unexposed_weight=0.0)
+    r = next_best_view(emap, cam, view_settings(**options).search, seed=3, workspace_sphere=sphere_of(None))
+    ranked = [v.expected_void for v in r.ranked]
     assert len(ranked) > 5 and max(ranked) > ranked[0]  # the weighted ranking's first is not the largest
-    c = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=1e9)
+    assert r.best_by("expected_void").expected_void == max(ranked)
+    c = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, view_settings(1e9, **options), 3, region)
     assert c.details.get("harder") and c.utility >= max(ranked)
     again = score_views(emap, cam, c.pose[None], workspace_sphere=sphere_of(None), min_distance=0.05)
-    assert again["valid"][0] and again["expected_void"][0] == pytest.approx(c.utility)
+    assert again.valid[0] and again.expected_void[0] == pytest.approx(c.utility)
     # not low: the ranking gain decides as before (no harder look)
-    high = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, options, 3, region, widen_below=0.0)
-    assert not high.details.get("harder") and high.rank_gain >= r["ranked"][0]["expected_enclosed_void"]
+    high = choose_view("frontier_void", emap, cam, [None], 0, sphere_of, view_settings(0.0, **options), 3, region)
+    assert not high.details.get("harder") and high.rank_gain >= r.ranked[0].expected_enclosed_void
 
 
 def test_the_search_tests_the_links_the_arm_moves_against_the_map():
@@ -183,12 +183,12 @@ def test_the_search_tests_the_links_the_arm_moves_against_the_map():
     common = dict(chain=chain, chain_base=np.eye(4), unknown_is_obstacle=False, min_distance=0.05, seed=3)
     above = ex.look_at((0.47, 0.0, 0.55), (0.47, 0.0, 0.0))[None]
     r = score_views(emap, cam, above, **common)
-    assert r["status"] == ["valid"], r["status"]
-    q = chain.to_robot_configuration(np.asarray(r["q"][0]))
+    assert r.status == ["valid"], r.status
+    q = chain.to_robot_configuration(np.asarray(r.q[0]))
     assert robot.in_collision(q, floor_cells) and not robot.in_collision(q, floor_cells, links=chain.moved_links)
     # poses all around: the moved links still meet the seen floor and crate in some of them
     P = sample_poses(np.random.default_rng(0), ex.scene_region(scene), sphere=((0.0, 0.0, 0.27), 0.7), n=200)
-    status = list(score_views(emap, cam, P, score_invalid=False, **common)["status"])
+    status = list(score_views(emap, cam, P, score_invalid=False, **common).status)
     assert status.count("valid") > 10 and status.count("arm_collision") > 10, status
 
 
@@ -198,7 +198,7 @@ def test_rays_out_of_void_cells_find_eyes_through_a_boxs_opening_and_not_through
     eye lies in free space with free cells 5 cm around it, and the segment from its void cell to it meets
     no occupied cell and, once in free space, no unknown cell again (an unseen wall is no way out). Poses
     at the box's inner void look through the opening from above the lid."""
-    from octoreach.exploration.strategies import _free_states, _observed_around
+    from octoreach.exploration.candidate_poses import _free_states, _observed_around
 
     scene = ex.closed_box_scene("+z", 0.14)
     region = ex.scene_region(scene)

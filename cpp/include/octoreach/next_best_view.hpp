@@ -37,6 +37,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -82,6 +83,18 @@ struct NbvOptions {
     ik.position_tolerance = 1e-3;
     ik.orientation_tolerance = 1e-2;
     return ik;
+  }
+  /// \brief The exploration loop's search (docs/design/next_best_view.md says why each value): 100 valid
+  /// poses from the best 800 candidate cells, the camera 5 cm clear of surfaces, enclosed voids first
+  /// (enclosure_power 2) and the faces of voids that observed space shows first (unexposed_weight 0.2).
+  static NbvOptions exploration_loop() {
+    NbvOptions o;
+    o.max_valid_poses = 100;
+    o.max_candidate_cells = 800;
+    o.min_distance = 0.05;
+    o.enclosure_power = 2.0;
+    o.unexposed_weight = 0.2;
+    return o;
   }
   int max_valid_poses = 50;          ///< N of the paper
   int orientations_per_cell = 8;     ///< sampled orientations per candidate cell
@@ -168,15 +181,30 @@ struct ViewGains {
 /// \brief One scored sensor configuration.
 struct ViewCandidate : ViewGains {
   Pose pose = Pose::Identity();  ///< camera -> map
-  double gain = 0;               ///< the expected gain of NbvOptions::gain (the ranking key)
+  double expected_gain = 0;      ///< the expected gain of NbvOptions::gain (the ranking key)
   double utility_dm3 = 0;        ///< expected_void as a volume, dm^3
   double cell_utility = 0;       ///< accumulated utility (m^3 summed over vectors) at its cell
   Eigen::VectorXd q;             ///< arm joints when a chain was given
 };
 
-/// \brief Result of a search: valid poses ranked by the expected gain, then expected unknown cells.
+/// \brief What views are ranked by: the expected gain of NbvOptions::gain (RankKey::Gain), or the plain
+/// expected void cells (RankKey::ExpectedVoid, the figure the exploration loop stops on).
+enum class RankKey { Gain, ExpectedVoid };
+/// \brief "expected_gain" or "expected_void" (the ViewCandidate field ranked by).
+const char* rank_key_name(RankKey k);
+/// \brief The key of a name; \throws std::invalid_argument naming the two choices.
+RankKey rank_key_from_name(const std::string& name);
+
+/// \brief The one order of views: true when `a` ranks before `b`, by more of `key`, then by more expected
+/// unknown cells (equal views keep their order). next_best_view ranks by it, and every choice among scored
+/// views (NbvResult::best, ScoredViews::best) takes its first.
+bool ranks_before(const ViewCandidate& a, const ViewCandidate& b, RankKey key = RankKey::Gain);
+
+/// \brief Result of a search: valid poses ranked by ranks_before (the expected gain, then expected unknown
+/// cells, then the order they were sampled in).
 struct NbvResult {
   std::vector<ViewCandidate> ranked;
+  NbvGain gain = NbvGain::FrontierVoid;  ///< the gain the views are ranked by (NbvOptions::gain)
   double pass_probability = 1;      ///< p the visibility model used for unknown cells outside the voids
   double void_pass_probability = 1; ///< p it used for void cells
   std::size_t utility_vectors = 0;
@@ -192,9 +220,11 @@ struct NbvResult {
   /// \brief Void cells (raw) of the best pose (0 when there is none).
   std::size_t best_void_cells() const { return ranked.empty() ? 0 : ranked.front().void_cells; }
   /// \brief Expected gain of the best pose (0 when there is none).
-  double best_gain() const { return ranked.empty() ? 0.0 : ranked.front().gain; }
+  double best_gain() const { return ranked.empty() ? 0.0 : ranked.front().expected_gain; }
   /// \brief Volume of the best pose's expected void cells, dm^3 (0 when there is none).
   double best_utility_dm3() const { return ranked.empty() ? 0.0 : ranked.front().utility_dm3; }
+  /// \brief The first of the ranked views by ranks_before with `key` (nullptr when there is none).
+  const ViewCandidate* best(RankKey key = RankKey::Gain) const;
 };
 
 /// \brief Accumulated utility per free cell (steps 1-2), before pruning.
@@ -213,6 +243,17 @@ std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, cons
 /// \throws std::invalid_argument for a bad grid or a probability outside [0, 1].
 ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, int score_width,
                      int score_height, double pass_probability, double void_pass_probability, bool learned = false);
+
+/// \brief view_gains' answer with the pass probabilities the visibility model used.
+struct ViewGainsResult : ViewGains {
+  double pass_probability = 1;       ///< p for unknown cells outside the voids
+  double void_pass_probability = 1;  ///< p for void cells
+};
+/// \brief The gains of a camera at `pose`: with `pass_probability`, that p for every unknown cell; without,
+/// the map's learned model (its p, p_void and visibility curve, as next_best_view by default).
+/// \throws std::invalid_argument for a bad grid or a probability outside [0, 1].
+ViewGainsResult view_gains(const ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose,
+                           int score_width, int score_height, std::optional<double> pass_probability);
 
 /// \brief Announces the view the map's next insert comes from (the visibility model's memory of
 /// misses): the unknown cells a camera at `pose` is expected to see (options' score grid and pass
@@ -262,10 +303,20 @@ const char* status_name(ViewStatus s);
 
 /// \brief One pose scored by score_views: its gains (of the pose the arm reaches when it does, else of
 /// the given pose), the ranking gain, the joints (with a chain and IK) and the status.
-struct ScoredView {
-  ViewCandidate view;
+struct ScoredView : ViewCandidate {
   ViewStatus status = ViewStatus::Valid;
   bool valid() const { return status == ViewStatus::Valid; }
+};
+
+/// \brief What score_views returns: one ScoredView per given pose, in their order.
+struct ScoredViews {
+  std::vector<ScoredView> views;
+  NbvGain gain = NbvGain::FrontierVoid;  ///< the gain expected_gain is of (NbvOptions::gain)
+  double pass_probability = 1;           ///< p the visibility model used for unknown cells outside the voids
+  double void_pass_probability = 1;      ///< p it used for void cells
+  std::size_t dof = 0;                   ///< joints of the chain (0: no chain)
+  /// \brief The first valid view by ranks_before with `key` (nullptr when none is valid).
+  const ScoredView* best(RankKey key = RankKey::Gain) const;
 };
 
 /// \brief The gains and validity of given camera poses (camera -> map), with the very checks and ray
@@ -274,8 +325,44 @@ struct ScoredView {
 /// scored in parallel; pose i uses IK seed ik.seed + i. `score_invalid` false: the poses that fail a
 /// check are not ray cast (their cell counts 0, expected gains NaN), far less work when most fail.
 /// \throws std::invalid_argument for a non-finite pose.
-std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntrinsics& camera,
-                                    const std::vector<Pose>& poses, const NbvOptions& options,
-                                    bool score_invalid = true);
+ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& camera, const std::vector<Pose>& poses,
+                        const NbvOptions& options, bool score_invalid = true);
+
+/// \brief The exploration loop's settings (octoreach.exploration.explore; docs/design/next_best_view.md says
+/// why each value): the search of every view, the budget and stopping rule, and how the loop chooses a view
+/// beyond the search (the second look, the last chance, the baselines' sampled poses).
+struct ExploreOptions {
+  /// The search of every view; its seed is the run's (the map's; view k searches with seed + k).
+  NbvOptions search = NbvOptions::exploration_loop();
+  int max_views = 10;  ///< view budget
+  /// Stop when the chosen view's utility (its strategy's gain) has been <= min_utility for `patience`
+  /// views in a row, or is 0. The defaults are the paper's rule (utility 0); benchmark() states another.
+  double min_utility = 0.0;
+  int patience = 1;
+  bool second_look = true;     ///< frontier_void: aimed poses are scored on every view too, the better view taken
+  bool learn_misses = true;    ///< each view is announced before its insert (expect_view)
+  bool physical_check = true;  ///< with a robot: a view whose arm touches the scene is not taken
+  double failed_view_radius = 0.1;  ///< metres: no view is chosen this near the camera of a view not taken
+  int sampled_poses = 200;          ///< baselines: camera poses sampled per view and base
+  double min_camera_height = 0.05;  ///< metres: sampled and aimed cameras stay above this height
+  int aimed_poses = 400;            ///< second look: poses aimed at void cells, per base
+  std::pair<double, double> aimed_distance{0.3, 1.0};  ///< metres from an aimed pose's eye to its void cell
+  double unexposed_share = 0.25;    ///< share of the void cells with no observed free neighbour among the aims
+  int low_aimed_poses = 1200;       ///< before a low view is taken: this many more, aimed at any void cell
+  int last_directions = 128;        ///< last chance (the low view would end the loop): rays out of each void cell
+  int last_poses = 4000;            ///< last chance: poses kept from those rays
+  std::pair<double, double> last_distance{0.15, 1.0};  ///< metres from a last-chance eye to its void cell
+  int max_ray_cells = 4096;         ///< last chance: void cells the rays leave from (at most; drawn at random)
+  /// \brief The exploration benchmark's settings: its stated stopping rule, 10 expected void cells for 3
+  /// views in a row.
+  static ExploreOptions benchmark() {
+    ExploreOptions o;
+    o.min_utility = 10.0;
+    o.patience = 3;
+    return o;
+  }
+  /// \brief \throws std::invalid_argument naming the first bad setting (the search's are checked by the search).
+  void validate() const;
+};
 
 }  // namespace octoreach

@@ -295,7 +295,7 @@ Slot PoseScorer::score(std::size_t idx) const {
 }
 
 // Step 4: poses in batches of a few per thread, in index order, until max_valid_poses are valid;
-// ranked by void cells, then unknown cells, then index.
+// ranked by ranks_before (the expected gain, then expected unknown cells), then index.
 void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
                       const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker,
                       const detail::ScoreModel& model, int threads, NbvResult& r) {
@@ -316,9 +316,8 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
     }
   }
   std::sort(valid.begin(), valid.end(), [](const auto& a, const auto& b) {
-    if (a.second.gain != b.second.gain) return a.second.gain > b.second.gain;
-    if (a.second.expected_unknown != b.second.expected_unknown)
-      return a.second.expected_unknown > b.second.expected_unknown;
+    if (ranks_before(a.second, b.second)) return true;
+    if (ranks_before(b.second, a.second)) return false;
     return a.first < b.first;
   });
   for (auto& v : valid) r.ranked.push_back(std::move(v.second));
@@ -347,6 +346,7 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   detail::validate_options(cam, opt);
   auto guard = detail::read_guard(map);
   NbvResult r;
+  r.gain = opt.gain;
   const detail::ScoreModel model = detail::score_model(map, opt);
   std::tie(r.pass_probability, r.void_pass_probability) = model.p;
   const int threads = detail::default_threads(opt.threads);

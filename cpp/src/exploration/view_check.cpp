@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include <octomap/OcTree.h>
 
@@ -176,6 +177,30 @@ ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t se
 
 }  // namespace detail
 
+void ExploreOptions::validate() const {
+  const auto bad = [](const std::string& what, const std::string& got) {
+    throw std::invalid_argument(what + ", got " + got);
+  };
+  if (max_views < 1) bad("max_views must be an integer >= 1", std::to_string(max_views));
+  if (!(min_utility >= 0) || !std::isfinite(min_utility))
+    bad("min_utility must be a finite number >= 0", std::to_string(min_utility));
+  if (patience < 1) bad("patience must be an integer >= 1", std::to_string(patience));
+  if (sampled_poses < 1) bad("sampled_poses (explore's candidates) must be an integer >= 1", std::to_string(sampled_poses));
+  if (aimed_poses < 0 || low_aimed_poses < 0 || last_poses < 0 || last_directions < 1 || max_ray_cells < 1)
+    bad("aimed_poses, low_aimed_poses and last_poses must be >= 0, last_directions and max_ray_cells >= 1",
+        std::to_string(aimed_poses) + ", " + std::to_string(low_aimed_poses) + ", " + std::to_string(last_poses) +
+            ", " + std::to_string(last_directions) + ", " + std::to_string(max_ray_cells));
+  if (!(unexposed_share >= 0 && unexposed_share <= 1))
+    bad("unexposed_share must be in [0, 1]", std::to_string(unexposed_share));
+  for (const auto& [name, d] : {std::pair{"aimed_distance", aimed_distance}, std::pair{"last_distance", last_distance}})
+    if (!(d.first >= 0 && d.first <= d.second) || !std::isfinite(d.second))
+      bad(std::string(name) + " must be (min, max) metres with 0 <= min <= max",
+          "(" + std::to_string(d.first) + ", " + std::to_string(d.second) + ")");
+  if (!(failed_view_radius >= 0) || !std::isfinite(failed_view_radius))
+    bad("failed_view_radius must be a finite number of metres >= 0", std::to_string(failed_view_radius));
+  if (!std::isfinite(min_camera_height)) bad("min_camera_height must be finite", std::to_string(min_camera_height));
+}
+
 const char* status_name(ViewStatus s) {
   switch (s) {
     case ViewStatus::Valid: return "valid";
@@ -188,8 +213,8 @@ const char* status_name(ViewStatus s) {
   return "?";
 }
 
-std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntrinsics& cam,
-                                    const std::vector<Pose>& poses, const NbvOptions& opt, bool score_invalid) {
+ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
+                        const NbvOptions& opt, bool score_invalid) {
   detail::validate_options(cam, opt);
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (!poses[i].matrix().allFinite())
@@ -207,10 +232,14 @@ std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntri
   const detail::ScoreModel model = detail::score_model(map, opt);
   const detail::ViewChecker checker(map, opt);
   const Pose to_arm = opt.capability_base.inverse();
-  std::vector<ScoredView> out(poses.size());
+  ScoredViews out;
+  out.gain = opt.gain;
+  std::tie(out.pass_probability, out.void_pass_probability) = model.p;
+  out.dof = opt.chain ? opt.chain->dof() : 0;
+  out.views.resize(poses.size());
   detail::parallel_for(poses.size(), detail::default_threads(opt.threads), [&](std::size_t i, int) {
-    ScoredView& s = out[i];
-    s.view.pose = poses[i];
+    ScoredView& s = out.views[i];
+    s.pose = poses[i];
     if (!keep[i] || !opt.workspace.contains(pos[i]))
       s.status = ViewStatus::OutsideWorkspace;
     else if (opt.capability_map && (!(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability) ||
@@ -219,14 +248,14 @@ std::vector<ScoredView> score_views(const ExplorationMap& map, const CameraIntri
     else if (!checker.camera_clear(pos[i]))
       s.status = ViewStatus::CameraNotClear;
     else if (opt.chain)
-      s.status = checker.reach(s.view.pose, s.view.q, i);
+      s.status = checker.reach(s.pose, s.q, i);
     if (score_invalid || s.valid()) {
-      detail::score_view(map, cam, opt, model, s.view);
+      detail::score_view(map, cam, opt, model, s);
       return;
     }
     constexpr double kNotScored = std::numeric_limits<double>::quiet_NaN();
-    s.view.expected_void = s.view.expected_unknown = s.view.expected_frontier = s.view.gain = s.view.utility_dm3 =
-        s.view.expected_enclosed_void = kNotScored;
+    s.expected_void = s.expected_unknown = s.expected_frontier = s.expected_gain = s.utility_dm3 =
+        s.expected_enclosed_void = kNotScored;
   }, 1);
   return out;
 }

@@ -37,6 +37,35 @@ double ViewGains::gain(NbvGain g) const {
   return 0;
 }
 
+const char* rank_key_name(RankKey k) { return k == RankKey::Gain ? "expected_gain" : "expected_void"; }
+
+RankKey rank_key_from_name(const std::string& name) {
+  for (RankKey k : {RankKey::Gain, RankKey::ExpectedVoid})
+    if (name == rank_key_name(k)) return k;
+  throw std::invalid_argument("views are ranked by 'expected_gain' or 'expected_void', got '" + name + "'");
+}
+
+bool ranks_before(const ViewCandidate& a, const ViewCandidate& b, RankKey key) {
+  const double ka = key == RankKey::Gain ? a.expected_gain : a.expected_void;
+  const double kb = key == RankKey::Gain ? b.expected_gain : b.expected_void;
+  if (ka != kb) return ka > kb;
+  return a.expected_unknown > b.expected_unknown;
+}
+
+const ViewCandidate* NbvResult::best(RankKey key) const {
+  const ViewCandidate* top = nullptr;
+  for (const ViewCandidate& v : ranked)
+    if (!top || ranks_before(v, *top, key)) top = &v;
+  return top;
+}
+
+const ScoredView* ScoredViews::best(RankKey key) const {
+  const ScoredView* top = nullptr;
+  for (const ScoredView& v : views)
+    if (v.valid() && (!top || ranks_before(v, *top, key))) top = &v;
+  return top;
+}
+
 namespace detail {
 
 namespace {
@@ -258,7 +287,7 @@ void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const Nb
       view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, m.p.first, m.p.second,
                           opt.unknown_pass_probability < 0, nullptr, m.void_weights ? &m.void_weights : nullptr,
                           m.clip ? &*m.clip : nullptr);
-  v.gain = v.ViewGains::gain(opt.gain);
+  v.expected_gain = v.gain(opt.gain);
   const double res = map.resolution();
   v.utility_dm3 = v.expected_void * res * res * res * 1000.0;
 }
@@ -379,6 +408,21 @@ ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& cam, con
   if (!pose.matrix().allFinite()) throw std::invalid_argument("camera pose must be finite");
   auto guard = detail::read_guard(map);
   return detail::view_gains_unlocked(map, cam, pose, sw, sh, p, p_void, learned);
+}
+
+ViewGainsResult view_gains(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
+                           std::optional<double> pass_probability) {
+  ViewGainsResult r;
+  const bool learned = !pass_probability;
+  if (learned) {
+    const RayStatistics s = map.ray_statistics();
+    r.pass_probability = s.pass_probability();
+    r.void_pass_probability = s.void_pass_probability();
+  } else {
+    r.pass_probability = r.void_pass_probability = *pass_probability;
+  }
+  static_cast<ViewGains&>(r) = view_gains(map, cam, pose, sw, sh, r.pass_probability, r.void_pass_probability, learned);
+  return r;
 }
 
 std::pair<std::size_t, std::size_t> view_utility(const ExplorationMap& map, const CameraIntrinsics& cam,

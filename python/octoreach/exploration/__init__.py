@@ -6,8 +6,8 @@ move, until the best view's utility is 0 or the view budget runs out.
 
 One concept per module: ``camera`` (look_at), ``scenes`` (paper scenes, the search space), ``robot``
 (the explorer robot, its arm and capability map, base poses), ``metrics`` (observed shares, run
-figures), ``physics`` (the simulator's check that an arm pose is clear of the scene), ``strategies``
-(frontier-void and the baselines), ``loop`` (explore, its table and stop reason), ``plots`` (map
+figures), ``physics`` (the simulator's check that an arm pose is clear of the scene), ``candidate_poses``
+(sampled and aimed camera poses), ``strategies`` (frontier-void and the baselines), ``loop`` (explore, its table and stop reason), ``plots`` (map
 pictures, coverage curves; matplotlib, loaded on first use), ``demo`` (run_demo, the command line).
 The oracle and the generated scenes of the tests and benchmarks are in ``octoreach.testing``.
 
@@ -20,8 +20,8 @@ Demo: ``python -m octoreach.exploration --scene 2 --out exploration_out`` writes
 from __future__ import annotations
 
 from .camera import look_at
-from .loop import (FAILED_VIEW_RADIUS, LOOP_CANDIDATE_CELLS, LOOP_ENCLOSURE_POWER, LOOP_UNEXPOSED_WEIGHT,
-                   LOOP_VALID_POSES, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY, ExplorationResult, ViewRow, explore)
+from .._core import ExploreOptions
+from .loop import FAILED_VIEW_RADIUS, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY, ExplorationResult, ViewRow, explore
 from .metrics import coverage_after, observed_share, points_on, region_points, seen_expected_ratios, views_to_reach
 from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot
 from .scenes import closed_box_scene, cluttered_scene, paper_scene, scene_region
@@ -40,8 +40,8 @@ def __getattr__(name):
 
 
 __all__ = [
-    "FAILED_VIEW_RADIUS", "LOOP_CANDIDATE_CELLS", "LOOP_ENCLOSURE_POWER", "LOOP_UNEXPOSED_WEIGHT", "LOOP_VALID_POSES",
-    "STOP_PATIENCE", "STOP_REASONS", "STOP_UTILITY", "STRATEGIES", "ExplorationResult", "ViewRow",
+    "FAILED_VIEW_RADIUS", "STOP_PATIENCE", "STOP_REASONS", "STOP_UTILITY", "STRATEGIES", "ExplorationResult",
+    "ExploreOptions", "ViewRow",
     "arm_base_pose", "arm_reach", "base_ring", "closed_box_scene", "cluttered_scene", "coverage_after", "explore",
     "explorer_capability_map", "explorer_robot", "look_at", "main", "observed_share", "paper_scene",
     "plot_coverage", "plot_map", "points_on", "region_points", "run_demo", "scene_region", "seen_expected_ratios",
