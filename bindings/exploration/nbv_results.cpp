@@ -45,6 +45,13 @@ const char* kToDict = "Every field as a dict (views inside as dicts too).";
 
 py::object joints(const Eigen::VectorXd& q) { return q.size() ? py::object(py::cast(q)) : py::object(py::none()); }
 
+// best_by of a result (ScoredViews, NbvResult): its best view by the key named `by`, or None.
+template <class Result>
+py::object best_by(const Result& r, const std::string& by) {
+  const auto* v = r.best(rank_key_from_name(by));
+  return v ? py::cast(*v) : py::object(py::none());
+}
+
 void wrap_view(py::module_& m) {
   py::class_<ViewGains>(m, "ViewGains", "What a camera pose is expected to see (the visibility model of next_best_view).")
       .def_readonly("void_cells", &ViewGains::void_cells, "distinct void cells met before the first occupied cell (raw)")
@@ -132,10 +139,7 @@ void wrap_scored_views(py::module_& m) {
       .def_property_readonly("gain", [](const S& s) { return gain_name(s.gain); }, "the gain expected_gain is of")
       .def_readonly("pass_probability", &S::pass_probability, "p the model used for unknown cells outside the voids")
       .def_readonly("void_pass_probability", &S::void_pass_probability, "p it used for void cells")
-      .def("best_by", [](const S& s, const std::string& by) -> py::object {
-             const V* v = s.best(rank_key_from_name(by));
-             return v ? py::cast(*v) : py::none();
-           }, py::arg("by") = "expected_gain",
+      .def("best_by", &best_by<S>, py::arg("by") = "expected_gain",
            "The first valid view in the ranking order by `by` ('expected_gain' or 'expected_void'), then expected\n"
            "unknown cells; None when no view is valid.")
       .def("to_dict", &fields_dict, kToDict);
@@ -183,10 +187,7 @@ void wrap_nbv_result(py::module_& m) {
       .def_readonly("seconds_vectors", &R::seconds_vectors, "steps 1-2")
       .def_readonly("seconds_prune", &R::seconds_prune, "step 3")
       .def_readonly("seconds_score", &R::seconds_score, "step 4")
-      .def("best_by", [](const R& r, const std::string& by) -> py::object {
-             const ViewCandidate* v = r.best(rank_key_from_name(by));
-             return v ? py::cast(*v) : py::none();
-           }, py::arg("by") = "expected_gain",
+      .def("best_by", &best_by<R>, py::arg("by") = "expected_gain",
            "The first ranked view by `by` ('expected_gain': `best`; 'expected_void': the most expected void\n"
            "cells), then expected unknown cells; None when there is none.")
       .def("to_dict", &fields_dict, kToDict);

@@ -19,6 +19,17 @@ CameraIntrinsics intrinsics_from(const py::object& camera) {
   throw py::type_error("camera must be a DepthCamera or CameraIntrinsics, got " + type_name(camera));
 }
 
+// (cell, value) pairs as their keys and an (N,) array of the values.
+std::pair<std::vector<CellKey>, py::array_t<double>> split_keyed(const std::vector<std::pair<CellKey, double>>& kv) {
+  std::vector<CellKey> keys(kv.size());
+  py::array_t<double> values(static_cast<py::ssize_t>(kv.size()));
+  for (std::size_t i = 0; i < kv.size(); ++i) {
+    keys[i] = kv[i].first;
+    values.mutable_data()[i] = kv[i].second;
+  }
+  return {std::move(keys), std::move(values)};
+}
+
 // The search and the scores of views: view_utility, view_gains, score_views, accumulate_utility and
 // next_best_view.
 void wrap_search(py::module_& m) {
@@ -80,13 +91,8 @@ void wrap_search(py::module_& m) {
             py::gil_scoped_release release;
             u = accumulate_utility(map, range);
           }
-          std::vector<CellKey> keys;
-          py::array_t<double> val(static_cast<py::ssize_t>(u.size()));
-          for (std::size_t i = 0; i < u.size(); ++i) {
-            keys.push_back(u[i].first);
-            val.mutable_data()[i] = u[i].second;
-          }
-          return py::make_tuple(centers(map, keys), val);
+          auto [keys, values] = split_keyed(u);
+          return py::make_tuple(centers(map, keys), values);
         }, py::arg("map"), py::arg("sensor_range"),
         "Algorithm 1: (cell centres (N, 3), accumulated utility (N,), m^3) before workspace pruning.");
 
@@ -145,13 +151,8 @@ void wrap_visibility_model(py::module_& m) {
             py::gil_scoped_release release;
             e = void_enclosure(map, range);
           }
-          std::vector<CellKey> keys(e.size());
-          py::array_t<double> enc(static_cast<py::ssize_t>(e.size()));
-          for (std::size_t i = 0; i < e.size(); ++i) {
-            keys[i] = e[i].first;
-            enc.mutable_data()[i] = e[i].second;
-          }
-          return py::make_tuple(key_array(keys), enc);
+          auto [keys, values] = split_keyed(e);
+          return py::make_tuple(key_array(keys), values);
         }, py::arg("map"), py::arg("range") = 0.5,
         "How enclosed each void cell is, as next_best_view's enclosure_power weighs it: (keys (N,) uint64\n"
         "sorted as map.void_keys(), enclosure (N,) in [0, 1]): the share of the six axis directions that, walking\n"

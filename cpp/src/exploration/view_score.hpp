@@ -61,7 +61,8 @@ struct ScoreModel {
 // The model of a search on `map` with `opt` (the caller holds the map's lock).
 ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);
 
-// Fills gains, gain and utility_dm3 of `v` (its pose set).
+// Fills the gains, expected_gain (of opt.gain) and utility_dm3 of `v` (its pose set): the one place a view is
+// scored; ranks_before (next_best_view.hpp) is the one order of scored views.
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
                 ViewCandidate& v);
 

@@ -60,13 +60,13 @@ def _plain(x):
 def run_demo(scene_id: int = DEMO_SCENE, out=DEMO_OUT, max_views: int = VIEW_BUDGET, resolution=None,
              width=None, height=None, seed: int = 0, plots: bool = True, quiet: bool = False,
              export: bool = True, capability_map="auto", move_base: bool = False, strategy: str = "frontier_void",
-             min_utility: float = 0.0):
+             min_utility=None):
     """One exploration of a paper scene with the explorer robot; writes table.txt, table.json,
     view_NN.png and map.bt into `out`. `resolution` (map cell edge) and `width`, `height` (image
     size): None keeps the ExplorationMap and DepthCamera defaults. `capability_map`: a CapabilityMap
     of the arm, "auto" (build a coarse one) or None (IK only). `move_base`: the base may also drive
     to the four poses of base_ring(scene_region(scene)) between views. `strategy`, `min_utility`: as
-    explore(). Returns the ExplorationResult."""
+    explore() (None: ExploreOptions' default). Returns the ExplorationResult."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     scene = paper_scene(scene_id)
@@ -101,7 +101,8 @@ def main(argv=None) -> int:
     ap.add_argument("--no-capability-map", action="store_true", help="prune view cells by IK only")
     ap.add_argument("--move-base", action="store_true", help="let the base drive to 4 poses around the scene")
     ap.add_argument("--strategy", default="frontier_void", choices=STRATEGIES, help="how views are chosen")
-    ap.add_argument("--min-utility", type=float, default=0.0, help="stop when the best view's gain is at or below this")
+    ap.add_argument("--min-utility", type=float, default=None,
+                    help="stop when the best view's gain is at or below this (default: ExploreOptions().min_utility)")
     a = ap.parse_args(argv)
     run_demo(a.scene, a.out, a.views, a.resolution, seed=a.seed, plots=not a.no_plots,
              capability_map=None if a.no_capability_map else "auto", move_base=a.move_base, strategy=a.strategy,
