@@ -270,10 +270,8 @@ def trimesh_reference() -> dict:
     """Seconds a fresh process (octoreach imported, the PR2 loaded) takes to import trimesh and read the PR2's
     visual meshes with it (the viewer's old way), and to read them now (RobotMeshes through mesh_files)."""
     code = "import time, octoreach; r = octoreach.robots.pr2(); t = time.perf_counter(); {}; print(time.perf_counter() - t)"
-    old = ("import trimesh; from octoreach.viewer.robot_meshes import robot_files; import re; "
-           "u, d = robot_files('pr2'); from octoreach.viewer.robot_meshes import resolve_uri; "
-           "[trimesh.load(resolve_uri(f, d, ''), force='mesh') for f in "
-           "set(re.findall('filename=\"([^\"]+)\"', open(u).read()))]")
+    old = ("import trimesh; [trimesh.load(p, force='mesh') for p in "
+           "{v.shape.mesh_path for vs in r.visuals.values() for v in vs if v.shape.mesh_path}]")
     new = "from octoreach.viewer.robot_meshes import RobotMeshes; RobotMeshes(r)"
     times = [float(subprocess.run([sys.executable, "-c", code.format(c)], capture_output=True, text=True,
                                   check=True).stdout.split()[-1]) for c in (old, new)]

@@ -253,6 +253,7 @@ inline void z_range_arg(const py::object& z_range, double& z_min, double& z_max)
 }
 
 void wrap_progress(py::module_& m);
+void wrap_shape(py::module_& m);
 void wrap_obstacles(py::module_& m);
 void wrap_chain(py::module_& m);
 void wrap_robot(py::module_& m);

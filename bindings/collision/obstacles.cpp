@@ -1,4 +1,4 @@
-// Python binding of Obstacles: environment objects in the world frame.
+// Python binding of Obstacles: environment objects (shapes) in the world frame.
 #include <memory>
 
 #include "common.hpp"
@@ -10,6 +10,8 @@ void wrap_obstacles(py::module_& m) {
   py::class_<Obstacles, std::shared_ptr<Obstacles>>(m, "Obstacles",
       "Environment objects in the world frame (boxes, spheres, cylinders, meshes, OctoMaps).")
       .def(py::init<>())
+      .def("add_shape", [](Obstacles& o, const Shape& shape, const std::string& name) { o.add(shape, name); },
+           py::arg("shape"), py::arg("name") = "", "Adds a Shape (world frame).")
       .def("add_box", [](Obstacles& o, const Eigen::Vector3d& size, const py::object& pose, const std::string& name) {
              o.add_box(size, pose.is_none() ? Pose::Identity() : pose_from(pose), name);
            }, py::arg("size"), py::arg("pose") = py::none(), py::arg("name") = "",
@@ -47,6 +49,7 @@ void wrap_obstacles(py::module_& m) {
            }, py::arg("other"), "Adds every obstacle of `other` (the objects are shared; the two sets stay independent).")
       .def("__len__", &Obstacles::size)
       .def_property_readonly("names", &Obstacles::names)
+      .def_property_readonly("shapes", &Obstacles::shapes, "The obstacles' Shapes (world frame), in the order added.")
       .def("collides_box", [](const Obstacles& o, const Eigen::Vector3d& size, const py::object& pose) {
              return o.collides_box(size, pose_from(pose));
            }, py::arg("size"), py::arg("pose"), "True when a box of extents `size` at `pose` touches an obstacle.");

@@ -197,6 +197,40 @@ void wrap_robot_collision(py::class_<Robot, std::shared_ptr<Robot>>& c) {
       .def("write_srdf", &Robot::write_srdf, py::arg("path"), "Writes srdf_text() atomically to path.");
 }
 
+// What a viewer draws: visuals and collision shapes per link, and the files the robot came from.
+void wrap_robot_geometry(py::module_& m, py::class_<Robot, std::shared_ptr<Robot>>& c) {
+  py::class_<Visual>(m, "Visual", "One URDF <visual> of a link: its Shape (link frame) and colour.")
+      .def_property_readonly("shape", [](const Visual& v) { return v.shape; },
+                             "The Shape (a mesh's mesh_path is '' when its file was not found).")
+      .def_property_readonly("mesh_uri", [](const Visual& v) { return v.mesh_uri; }, "The URDF's mesh filename.")
+      .def_property_readonly("material", [](const Visual& v) { return v.material; })
+      .def("__repr__", [](const Visual& v) {
+        return std::string("<octoreach.Visual ") + v.shape.type_name() + (v.mesh_uri.empty() ? "" : " '" + v.mesh_uri + "'") + ">";
+      })
+      .def_property_readonly("rgba", [](const Visual& v) -> py::object {
+             if (!v.rgba) return py::none();
+             return py::make_tuple((*v.rgba)[0], (*v.rgba)[1], (*v.rgba)[2], (*v.rgba)[3]);
+           },
+                             "(red, green, blue, alpha) in [0, 1], or None when the URDF gives no colour.");
+  py::class_<RobotSource>(m, "RobotSource", "The files a Robot was read from (absolute paths).")
+      .def_readonly("urdf", &RobotSource::urdf, "URDF file ('' when the URDF was given as XML text).")
+      .def_readonly("package_dirs", &RobotSource::package_dirs)
+      .def_readonly("srdf", &RobotSource::srdf, "SRDF file ('' when none or given as XML text).");
+  c.def_property_readonly("visuals", [](const Robot& r) {
+         py::dict d;
+         for (const auto& l : r.links())
+           if (!l.visuals.empty()) d[py::str(l.name)] = l.visuals;
+         return d;
+       }, "{link name: [Visual]} of the links with <visual> elements.")
+      .def_property_readonly("collision_shapes", [](const Robot& r) {
+         py::dict d;
+         for (const auto& l : r.links())
+           if (!l.shapes.empty()) d[py::str(l.name)] = l.shapes;
+         return d;
+       }, "{link name: [Shape]} of the links with collision shapes (link frame).")
+      .def_property_readonly("source", &Robot::source, "The URDF, SRDF and package folders the robot was read from.");
+}
+
 }  // namespace
 
 void wrap_robot(py::module_& m) {
@@ -216,6 +250,7 @@ void wrap_robot(py::module_& m) {
       "Robot model from a URDF: links, joints, collision shapes. Never changes once built.");
   wrap_robot_model(c);
   wrap_robot_collision(c);
+  wrap_robot_geometry(m, c);
 }
 
 }  // namespace octoreach::py_bindings

@@ -8,9 +8,15 @@ namespace {
 
 void wrap_scene(py::module_& m) {
   py::class_<Scene>(m, "Scene",
-                    "Simulated world: axis-aligned boxes, crates, closed boxes with an opening, boards, triangle\n"
-                    "meshes, or an OctoMap .bt file. Metres, world frame.")
+                    "Simulated world: Shapes (boxes with any pose, cylinders, spheres, meshes, OctoMaps), crates, closed\n"
+                    "boxes with an opening, boards. Whatever it holds is seen by the DepthCamera and is an obstacle\n"
+                    "(obstacles()). Metres, world frame.")
       .def(py::init<>())
+      .def("add_shape", py::overload_cast<const Shape&>(&Scene::add), py::arg("shape"), "Adds a Shape (world frame).")
+      .def("add_obstacles", py::overload_cast<const Obstacles&>(&Scene::add), py::arg("obstacles"),
+           "Adds every shape of an Obstacles set (a Room's, a Surface's).")
+      .def_property_readonly("shapes", &Scene::shapes, "Every Shape of the scene (world frame), in the order added.")
+      .def("obstacles", &Scene::obstacles, "The scene's shapes as Obstacles (for collision checks).")
       .def("add_box", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_box(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
            py::arg("lo"), py::arg("hi"), "Solid box (a board is a thin box).")
       .def("add_board", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_box(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
@@ -39,13 +45,13 @@ void wrap_scene(py::module_& m) {
         py::list out;
         for (const auto& b : s.boxes()) out.append(py::make_tuple(b.lo, b.hi));
         return out;
-      }, "Solid boxes as (lo, hi) pairs.")
+      }, "Axis-aligned solid boxes as (lo, hi) pairs (rotated boxes are in shapes).")
       .def_property_readonly("interiors", [](const Scene& s) {
         py::list out;
         for (const auto& b : s.interiors()) out.append(py::make_tuple(b.lo, b.hi));
         return out;
       }, "Regions of interest (insides of crates and closed boxes) as (lo, hi) pairs.")
-      .def_property_readonly("triangle_count", &Scene::triangle_count)
+      .def_property_readonly("triangle_count", &Scene::triangle_count, "Triangles of every mesh.")
       .def("bounds", [](const Scene& s) {
         Aabb b = s.bounds();
         return py::make_tuple(b.lo, b.hi);
@@ -55,7 +61,7 @@ void wrap_scene(py::module_& m) {
              py::array_t<bool> out(static_cast<py::ssize_t>(pts.size()));
              for (std::size_t i = 0; i < pts.size(); ++i) out.mutable_data()[i] = s.solid(pts[i]);
              return out;
-           }, py::arg("points"), "True for points inside a solid box.")
+           }, py::arg("points"), "True for points inside a solid box, sphere or cylinder.")
       .def("raycast", [](const Scene& s, const py::object& o, const py::object& d, double max_range,
                          bool normal) -> py::object {
              Eigen::Vector3d dir = vec3_from(d, "direction");

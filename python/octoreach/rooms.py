@@ -9,7 +9,9 @@ installed). Lengths in metres, angles in radians, poses as ``xyz`` (3,) and ``rp
      "shelves":  [{"name": "shelf", "size": [0.8, 0.35], "boards": [0.4, 0.8, 1.2], "x": -0.8, "y": 1.0,
                    "yaw": 0.0}],
      "boxes":    [{"name": "wall", "size": [0.05, 2.0, 2.0], "xyz": [1.5, 0.0, 1.0]}],
-     "meshes":   [{"name": "bin", "path": "bin.stl", "xyz": [0, -1, 0], "scale": [1, 1, 1]}],
+     "cylinders": [{"name": "bin", "radius": 0.15, "length": 0.4, "xyz": [0.5, -1, 0.2]}],
+     "spheres":  [{"name": "ball", "radius": 0.1, "xyz": [1, 1, 0.1]}],
+     "meshes":   [{"name": "lamp", "path": "lamp.stl", "xyz": [0, -1, 0], "scale": [1, 1, 1]}],
      "octomaps": [{"name": "rest", "path": "scan.bt"}]}
 
 A surface is a ``rectangle`` or a polygon given by ``vertices`` (a list of [x, y, z]), with an optional
@@ -17,6 +19,9 @@ A surface is a ``rectangle`` or a polygon given by ``vertices`` (a list of [x, y
 (surfaces named ``<shelf>/<i>``, bottom first) between two side panels and a back panel. Relative
 mesh and OctoMap paths are relative to the file. An unknown key is a ValueError that names it; a value
 of the wrong type is a TypeError that names the field.
+
+Every obstacle is a Shape (the description collision checks and the simulated camera share): ``Room.obstacles()``
+checks them against body and arm, ``Room.scene()`` shows the same room to a simulated depth camera.
 """
 from __future__ import annotations
 
@@ -29,80 +34,16 @@ from pathlib import Path
 
 import numpy as np
 
-from ._core import CapabilityMap, Obstacles, Robot, Surface, SurfaceMap
+from ._core import CapabilityMap, Obstacles, Robot, Scene, Shape, Surface, SurfaceMap
 from ._checks import PATH, check_type
+from ._room_entries import BOX_KEYS as _BOX_KEYS, SHAPE_ENTRIES as _SHAPE_ENTRIES
+from ._room_entries import as_list as _list, check_keys as _check_keys, listed as _listed, name as _name, \
+    number as _number, pose as _pose, shape as _shape, vector as _vector
 
 _SURFACE_KEYS = {"name", "rectangle", "vertices", "thickness", "legs", "boxes", "meshes"}
 _RECTANGLE_KEYS = {"size", "height", "x", "y", "yaw"}
 _SHELF_KEYS = {"name", "size", "boards", "x", "y", "yaw", "thickness", "panels"}
-_BOX_KEYS = {"name", "size", "xyz", "rpy"}
-_MESH_KEYS = {"name", "path", "xyz", "rpy", "scale"}
-_OCTOMAP_KEYS = {"name", "path", "xyz", "rpy"}
-_ROOM_KEYS = {"surfaces", "shelves", "boxes", "meshes", "octomaps"}
-
-
-def _check_keys(entry, known: set, where: str) -> None:
-    if not isinstance(entry, dict):
-        raise TypeError(f"{where} must be a mapping (JSON object), got {type(entry).__name__}")
-    for key in entry:
-        if key not in known:
-            raise ValueError(f"{where}: unknown key {key!r} (known: {', '.join(sorted(known))})")
-
-
-def _number(entry: dict, key: str, where: str, default=None) -> float:
-    value = entry.get(key, default)
-    if value is None:
-        raise ValueError(f"{where}: {key!r} is required")
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise TypeError(f"{where}: {key!r} must be a number, got {type(value).__name__}")
-    if not math.isfinite(value):
-        raise ValueError(f"{where}: {key!r} must be finite, got {value}")
-    return float(value)
-
-
-def _vector(entry: dict, key: str, where: str, n: int, default=None) -> np.ndarray:
-    value = entry.get(key, default)
-    if value is None:
-        raise ValueError(f"{where}: {key!r} is required")
-    if not isinstance(value, (list, tuple, np.ndarray)) or len(value) != n or any(
-            isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) for v in value):
-        raise TypeError(f"{where}: {key!r} must be a list of {n} numbers, got {value!r}")
-    out = np.asarray(value, float)
-    if not np.all(np.isfinite(out)):
-        raise ValueError(f"{where}: {key!r} must be finite, got {value!r}")
-    return out
-
-
-def _name(entry: dict, where: str, default: str) -> str:
-    name = entry.get("name", default)
-    if not isinstance(name, str) or not name:
-        raise TypeError(f"{where}: 'name' must be a non-empty string, got {name!r}")
-    return name
-
-
-def _pose(entry: dict, where: str) -> np.ndarray:
-    """4x4 pose from xyz (m) and rpy (rad, fixed axes x, y, z as in URDF)."""
-    x, y, z = _vector(entry, "xyz", where, 3, [0, 0, 0])
-    r, p, w = _vector(entry, "rpy", where, 3, [0, 0, 0])
-    cr, sr, cp, sp, cw, sw = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(w), math.sin(w)
-    T = np.eye(4)
-    T[:3, :3] = np.array([[cw, -sw, 0], [sw, cw, 0], [0, 0, 1]]) @ np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]]) \
-        @ np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    T[:3, 3] = [x, y, z]
-    return T
-
-
-def _listed(value):
-    """Tuples and arrays as lists, anything else as it is (the description's checks name what is wrong)."""
-    return list(value.tolist() if isinstance(value, np.ndarray) else value) if isinstance(value, (tuple, list, np.ndarray)) else value
-
-
-def _list(value, key: str, where: str) -> list:
-    if value is None:
-        return []
-    if not isinstance(value, list):
-        raise TypeError(f"{where}: {key!r} must be a list, got {type(value).__name__}")
-    return value
+_ROOM_KEYS = {"surfaces", "shelves", *_SHAPE_ENTRIES}
 
 
 def _read_data(path: Path, kind: str):
@@ -138,11 +79,9 @@ class Room:
         self._owner: dict[str, str] = {}  # name -> kind, to refuse duplicates
         description = {} if description is None else description
         _check_keys(description, _ROOM_KEYS, "room")
-        adders = {"surfaces": self._add_surface, "shelves": self._add_shelf, "boxes": self._add_box,
-                  "meshes": self._add_mesh, "octomaps": self._add_octomap}
-        for key, add in adders.items():
+        for key in ("surfaces", "shelves", *_SHAPE_ENTRIES):
             for entry in _list(description.get(key), key, "room"):
-                add(entry)
+                self._add(key, entry)
 
     # ------------------------------------------------------------------ description and files
     @property
@@ -206,17 +145,27 @@ class Room:
 
     def add_box(self, name: str, size, xyz, rpy=(0.0, 0.0, 0.0)) -> None:
         """An obstacle box (a wall, a cupboard): extents `size`, centre at xyz, orientation rpy (rad)."""
-        self._add_box({"name": name, "size": _listed(size), "xyz": _listed(xyz), "rpy": _listed(rpy)})
+        self._add_shape("boxes", {"name": name, "size": _listed(size), "xyz": _listed(xyz), "rpy": _listed(rpy)})
+
+    def add_cylinder(self, name: str, radius: float, length: float, xyz, rpy=(0.0, 0.0, 0.0)) -> None:
+        """An obstacle cylinder (a bin, a post) along its local z axis, centre at xyz, orientation rpy (rad)."""
+        self._add_shape("cylinders", {"name": name, "radius": radius, "length": length, "xyz": _listed(xyz),
+                                      "rpy": _listed(rpy)})
+
+    def add_sphere(self, name: str, radius: float, xyz) -> None:
+        """An obstacle sphere centred at xyz."""
+        self._add_shape("spheres", {"name": name, "radius": radius, "xyz": _listed(xyz)})
 
     def add_mesh(self, name: str, path: str, xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0), scale=(1.0, 1.0, 1.0)) -> None:
         """An obstacle mesh file (STL, DAE, OBJ...)."""
         check_type(path, PATH, "path", "a mesh file path (str or os.PathLike)")
-        self._add_mesh({"name": name, "path": str(path), "xyz": _listed(xyz), "rpy": _listed(rpy), "scale": _listed(scale)})
+        self._add_shape("meshes", {"name": name, "path": str(path), "xyz": _listed(xyz), "rpy": _listed(rpy),
+                                   "scale": _listed(scale)})
 
     def add_octomap(self, name: str, path: str, xyz=(0.0, 0.0, 0.0), rpy=(0.0, 0.0, 0.0)) -> None:
         """The occupied cells of an OctoMap file (.bt or .ot) as obstacles."""
         check_type(path, PATH, "path", "an OctoMap file path (str or os.PathLike)")
-        self._add_octomap({"name": name, "path": str(path), "xyz": _listed(xyz), "rpy": _listed(rpy)})
+        self._add_shape("octomaps", {"name": name, "path": str(path), "xyz": _listed(xyz), "rpy": _listed(rpy)})
 
     # ------------------------------------------------------------------ reading
     @property
@@ -235,6 +184,13 @@ class Room:
                 out.add(surface.obstacles())
         out.add(self._objects)
         return out
+
+    def scene(self) -> Scene:
+        """The room for the simulated depth camera: a Scene holding every obstacle (surfaces with their legs and
+        boxes, shelves, boxes, cylinders, spheres, meshes, OctoMaps), the same shapes obstacles() checks."""
+        scene = Scene()
+        scene.add_obstacles(self.obstacles())
+        return scene
 
     def surface_maps(self, robot: Robot, arm, progress=True, directions: int | None = None, seed: int = 0,
                      **kwargs) -> dict[str, SurfaceMap]:
@@ -312,9 +268,7 @@ class Room:
         meshes = Obstacles()  # a surface's meshes (a sink, a lamp) are room obstacles
         for i, mesh in enumerate(_list(entry.get("meshes"), "meshes", where)):
             mw = f"{where}.meshes[{i}]"
-            _check_keys(mesh, _MESH_KEYS, mw)
-            meshes.add_mesh(self._path(mesh, mw), _pose(mesh, mw), _vector(mesh, "scale", mw, 3, [1, 1, 1]),
-                            _name(mesh, mw, f"{name}/mesh_{i}"))
+            meshes.add_shape(_shape("meshes", mesh, mw, self._path), _name(mesh, mw, f"{name}/mesh_{i}"))
         self._claim(name, where)
         self._surfaces[name] = surface
         self._objects.add(meshes)
@@ -351,7 +305,7 @@ class Room:
                 T = np.eye(4)
                 T[:3, :3] = [[c, -s, 0], [s, c, 0], [0, 0, 1]]
                 T[:3, 3] = [x + c * local[0] - s * local[1], y + s * local[0] + c * local[1], top / 2]
-                self._objects.add_box(np.asarray(size, float), T, f"{name}/panel")
+                self._objects.add_shape(Shape.box(np.asarray(size, float), T), f"{name}/panel")
 
             panel([t, depth, top], [-(width + t) / 2, 0])
             panel([t, depth, top], [(width + t) / 2, 0])
@@ -366,26 +320,21 @@ class Room:
         _check_keys(entry, known, where)
         return where, _name(entry, where, f"{prefix}_{count}")
 
-    def _add_box(self, entry: dict) -> None:
-        where, name = self._entry("boxes", entry, _BOX_KEYS, "box")
-        size, pose = _vector(entry, "size", where, 3), _pose(entry, where)
-        self._claim(name, where)
-        self._objects.add_box(size, pose, name)
-        self._record("boxes", entry)
+    def _add(self, key: str, entry: dict) -> None:
+        if key == "surfaces":
+            self._add_surface(entry)
+        elif key == "shelves":
+            self._add_shelf(entry)
+        else:
+            self._add_shape(key, entry)
 
-    def _add_mesh(self, entry: dict) -> None:
-        where, name = self._entry("meshes", entry, _MESH_KEYS, "mesh")
-        path, pose, scale = self._path(entry, where), _pose(entry, where), _vector(entry, "scale", where, 3, [1, 1, 1])
+    def _add_shape(self, key: str, entry: dict) -> None:
+        """An obstacle entry of room list `key` (boxes, cylinders, spheres, meshes, octomaps)."""
+        where, name = self._entry(key, entry, _SHAPE_ENTRIES[key][0], _SHAPE_ENTRIES[key][1])
+        shape = _shape(key, entry, where, self._path)
         self._claim(name, where)
-        self._objects.add_mesh(path, pose, scale, name)
-        self._record("meshes", entry)
-
-    def _add_octomap(self, entry: dict) -> None:
-        where, name = self._entry("octomaps", entry, _OCTOMAP_KEYS, "octomap")
-        path, pose = self._path(entry, where), _pose(entry, where)
-        self._claim(name, where)
-        self._objects.add_octree_file(path, pose, name)
-        self._record("octomaps", entry)
+        self._objects.add_shape(shape, name)
+        self._record(key, entry)
 
 
 def surface_from_file(path: str | os.PathLike) -> tuple[Surface, Obstacles]:

@@ -196,6 +196,50 @@ def test_scene_file_round_trip(tmp_path):
     assert rooms.Room.load(tmp_path / "a.yaml").description == room.description
 
 
+def _cube_stl(path: Path, half: float) -> None:
+    """An ASCII STL cube of side 2 * half centred at the origin."""
+    v = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float) * half
+    f = [[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+         [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]]
+    facets = "".join("facet normal 0 0 0\nouter loop\n" + "".join(f"vertex {a} {b} {c}\n" for a, b, c in v[t]) +
+                     "endloop\nendfacet\n" for t in f)
+    path.write_text(f"solid cube\n{facets}endsolid cube\n")
+
+
+def test_every_shape_kind_of_a_room_is_an_obstacle_and_seen(tmp_path):
+    _cube_stl(tmp_path / "cube.stl", 0.1)
+    cells = octoreach.ExplorationMap(resolution=0.05)
+    cells.insert(np.array([[x, y, 0.5] for x in (-2.05, -2.0, -1.95) for y in (-2.05, -2.0, -1.95)]), [-2.0, -2.0, 2.0])
+    cells.write_bt(str(tmp_path / "cells.bt"))
+    room = rooms.Room({
+        "surfaces": [{"name": "table", "rectangle": {"size": [0.6, 0.4], "height": 0.7}, "legs": 0.05,
+                      "boxes": [{"size": [0.1, 0.1, 0.1], "xyz": [0.2, 0.0, 0.75]}],
+                      "meshes": [{"path": "cube.stl", "xyz": [-0.2, 0.0, 0.8]}]}],
+        "shelves": [{"name": "shelf", "size": [0.6, 0.3], "boards": [0.4, 0.8], "x": 2.0}],
+        "boxes": [{"name": "crate", "size": [0.3, 0.2, 0.4], "xyz": [0.0, 2.0, 0.3], "rpy": [0.3, 0.2, 0.7]}],
+        "cylinders": [{"name": "bin", "radius": 0.1, "length": 0.6, "xyz": [2.0, 2.0, 0.3]}],
+        "spheres": [{"name": "ball", "radius": 0.2, "xyz": [-2.0, 0.0, 0.2]}],
+        "meshes": [{"name": "cube", "path": "cube.stl", "xyz": [0.0, -2.0, 0.5], "rpy": [0.0, 0.0, 0.5]}],
+        "octomaps": [{"name": "scan", "path": "cells.bt"}]}, base_dir=tmp_path)
+    obstacles, scene = room.obstacles(), room.scene()
+    kinds = [s.kind for s in obstacles.shapes]
+    assert [s.kind for s in scene.shapes] == kinds
+    assert set(kinds) == {"box", "cylinder", "sphere", "mesh", "octree"}
+    # (x, y, top z, bottom z) of something that stands there: a ray down from above meets its top, and a small box
+    # crossing its top collides
+    probes = {"table top": (0.0, 0.15, 0.7, 0.67), "box on the table": (0.2, 0.0, 0.8, 0.7),
+              "mesh on the table": (-0.2, 0.0, 0.9, 0.7), "shelf board": (2.0, 0.0, 0.8, 0.78),
+              "tilted box": (0.0, 2.0, 0.6, 0.0), "cylinder": (2.0, 2.0, 0.6, 0.0), "sphere": (-2.0, 0.0, 0.4, 0.0),
+              "mesh": (0.0, -2.0, 0.6, 0.4), "octomap": (-2.0, -2.0, 0.55, 0.45)}
+    for what, (x, y, top, bottom) in probes.items():
+        t = scene.raycast([x, y, 3.0], [0, 0, -1], max_range=5.0)
+        assert t is not None and bottom - 1e-6 <= 3.0 - t <= top + 1e-6, (what, t)  # STL: single precision
+        pose = np.eye(4)
+        pose[:3, 3] = [x, y, 3.0 - t]
+        assert obstacles.collides_box([0.02, 0.02, 0.02], pose), what
+    assert scene.raycast([1.0, 1.0, 3.0], [0, 0, -1], max_range=5.0) is None  # nothing between them
+
+
 @pytest.mark.parametrize("scene, message", [
     ({"surfaces": [], "walls": []}, "unknown key 'walls'"),
     ({"boxes": [{"name": "w", "size": [1, 1, 1], "xyz": [0, 0, 0], "colour": "red"}]}, "unknown key 'colour'"),

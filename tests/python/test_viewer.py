@@ -363,3 +363,84 @@ def test_map_of_an_unknown_robot_is_drawn_without_it_and_says_so(arm_map, viewer
     layer = viewer.add_surface_map(sm, samples=2)
     assert viewer.robot_layer is None and len(layer.centres)
     assert any("somebody_elses_arm" in n and "--robot" in n for n in viewer.notes)
+
+
+_OWN_URDF = """<robot name="{name}">
+  <material name="red"><color rgba="1 0 0 1"/></material>
+  <link name="base">
+    <visual><geometry><box size="0.4 0.3 0.1"/></geometry><material name="red"/></visual>
+    <collision><geometry><box size="0.4 0.3 0.1"/></geometry></collision>
+  </link>
+  <link name="arm">
+    <visual><origin xyz="0 0 0.2"/><geometry><cylinder radius="0.05" length="0.4"/></geometry></visual>
+  </link>
+  <link name="tool">
+    <visual><origin xyz="0 0 0.05" rpy="0 0 0.3"/><geometry><mesh filename="meshes/tool.stl" scale="2 2 2"/></geometry>
+    </visual>
+  </link>
+  <link name="sensor">
+    <collision><geometry><sphere radius="0.03"/></geometry></collision>
+  </link>
+  <joint name="turn" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 0.05"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="mount" type="fixed"><parent link="arm"/><child link="tool"/><origin xyz="0 0 0.4"/></joint>
+  <joint name="eye" type="fixed"><parent link="tool"/><child link="sensor"/><origin xyz="0.1 0 0"/></joint>
+</robot>
+"""
+
+
+def _tool_stl(path) -> np.ndarray:
+    """A binary STL tetrahedron; returns its vertices."""
+    v = np.array([[0, 0, 0], [0.05, 0, 0], [0, 0.05, 0], [0, 0, 0.05]], np.float32)
+    tris = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+    rec = np.zeros(len(tris), dtype=[("normal", "<f4", 3), ("corners", "<f4", (3, 3)), ("attr", "<u2")])
+    rec["corners"] = [v[list(t)] for t in tris]
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(b"\0" * 80 + np.uint32(len(tris)).tobytes() + rec.tobytes())
+    return v.astype(float)
+
+
+def test_a_robot_from_its_own_urdf_file_is_drawn(arm_map, tmp_path):
+    # A robot example-robot-data does not know, loaded from a URDF file path: the viewer draws its visuals (box,
+    # cylinder, a mesh file beside the URDF) from Robot.visuals, and a link without visuals with its collision shape.
+    tool = _tool_stl(tmp_path / "meshes" / "tool.stl")
+    (tmp_path / "own.urdf").write_text(_OWN_URDF.format(name="my_own_robot"))
+    robot = octoreach.Robot.from_urdf(str(tmp_path / "own.urdf"))
+    assert robot.source.urdf == str(tmp_path / "own.urdf") and robot.source.srdf == ""
+    visuals = robot.visuals
+    assert [v.shape.kind for v in visuals["base"]] == ["box"] and visuals["base"][0].rgba == (1, 0, 0, 1)
+    assert visuals["tool"][0].shape.mesh_path == str(tmp_path / "meshes" / "tool.stl")
+    assert np.allclose(visuals["tool"][0].shape.scale, 2) and "sensor" not in visuals
+    with pytest.raises(ValueError, match="my_own_robot"):
+        octoreach.robots.loadable_name(robot.name, robot.urdf_hash)
+    _, _, sm = arm_map
+    v = octoreach.view(sm, robot=robot, samples=0, block=False, port=_free_port(), verbose=False)
+    try:
+        layer = v.robot_layer
+        assert layer is not None and set(layer.links) == {"base", "arm", "tool", "sensor"}
+        assert all(v.has_node(f"/robot/{link}") for link in layer.links)
+        meshes = layer.meshes.meshes
+        assert np.allclose(np.ptp(meshes["base"].vertices, axis=0), [0.4, 0.3, 0.1])
+        assert layer.meshes.colours["base"] == (255, 0, 0)
+        arm = meshes["arm"].vertices
+        assert np.allclose(np.ptp(arm, axis=0), [0.1, 0.1, 0.4], atol=1e-3) and arm[:, 2].min() == pytest.approx(0.0)
+        R = np.array([[np.cos(0.3), -np.sin(0.3), 0], [np.sin(0.3), np.cos(0.3), 0], [0, 0, 1]])
+        expected = (2 * tool) @ R.T + [0, 0, 0.05]  # the file's vertices, scaled and placed at the visual origin
+        assert sorted(map(tuple, np.round(meshes["tool"].vertices, 6))) == sorted(map(tuple, np.round(expected, 6)))
+        assert np.allclose(np.linalg.norm(meshes["sensor"].vertices, axis=1), 0.03)  # collision sphere
+        T = robot.link_poses(layer.q)["tool"]
+        assert np.allclose(layer.links["tool"].position, T[:3, 3], atol=1e-6)
+    finally:
+        v.close()
+
+
+def test_a_visual_mesh_that_is_missing_falls_back_to_collision_and_says_so(viewer, tmp_path):
+    urdf = _OWN_URDF.format(name="lost_meshes").replace(
+        "</link>\n  <link name=\"sensor\">",
+        "<collision><geometry><box size=\"0.02 0.02 0.02\"/></geometry></collision></link>\n  <link name=\"sensor\">")
+    (tmp_path / "lost.urdf").write_text(urdf)
+    robot = octoreach.Robot.from_urdf(str(tmp_path / "lost.urdf"))  # the visual mesh's file is missing: still loads
+    assert robot.visuals["tool"][0].shape.mesh_path == "" and robot.visuals["tool"][0].mesh_uri == "meshes/tool.stl"
+    viewer.add_robot(robot)
+    assert np.allclose(np.ptp(viewer.robot_layer.meshes.meshes["tool"].vertices, axis=0), 0.02)
+    assert any("meshes/tool.stl" in n for n in viewer.notes)

@@ -1,6 +1,6 @@
 #pragma once
 /// \file collision.hpp
-/// \brief Collision geometry (link shapes, meshes) and environment obstacles.
+/// \brief Environment obstacles: shapes (shape.hpp) in the world frame, checked for contact.
 ///
 /// FCL and OctoMap types appear only as forward declarations, so this header (and robot.hpp,
 /// chain.hpp) compiles with Eigen alone; code that builds or inspects FCL geometry includes
@@ -12,14 +12,12 @@
 
 #include <Eigen/Core>
 
+#include "octoreach/shape.hpp"
 #include "octoreach/types.hpp"
 
 namespace fcl {
 template <typename S>
-class CollisionGeometry;
-template <typename S>
 class CollisionObject;
-using CollisionGeometryd = CollisionGeometry<double>;
 using CollisionObjectd = CollisionObject<double>;
 }  // namespace fcl
 
@@ -33,36 +31,16 @@ namespace detail {
 struct Obb;
 }  // namespace detail
 
-/// \brief One collision shape of a link, with its pose in the link frame.
-struct Shape {
-  /// \brief Kind of shape (URDF box, cylinder, sphere or mesh).
-  enum class Type { Box, Cylinder, Sphere, Mesh };
-  Type type = Type::Box;
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< box extents (x, y, z)
-  double radius = 0.0;                             ///< cylinder or sphere radius
-  double length = 0.0;                             ///< cylinder length
-  std::string mesh_path;                           ///< resolved mesh file
-  Eigen::Vector3d scale = Eigen::Vector3d::Ones(); ///< mesh scale
-  Pose origin = Pose::Identity();                  ///< pose in the link frame
-  std::shared_ptr<fcl::CollisionGeometryd> geometry;  ///< FCL geometry, local AABB computed; shared, never changed
-};
-
-/// \brief Loads a triangle mesh (STL, DAE, OBJ ... through assimp) as an FCL BVH model.
-/// \param path mesh file \param scale per-axis scale
-/// \throws std::runtime_error when the file cannot be read or holds no triangles
-std::shared_ptr<fcl::CollisionGeometryd> load_mesh(const std::string& path,
-                                                    const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
-
-/// \brief Builds an FCL BVH model from vertices (N x 3) and triangles (M x 3 indices).
-std::shared_ptr<fcl::CollisionGeometryd> make_mesh(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& vertices,
-                                                    const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>& triangles);
-
-/// \brief A set of environment objects in the world frame: boxes, meshes and OctoMap octrees.
+/// \brief A set of environment objects in the world frame: shapes (boxes, cylinders, spheres, meshes and
+/// OctoMap octrees), each kept as its description (shapes()) and as an FCL object.
 ///
-/// Built by the add_* calls, then only read: the const checks may run from many threads at once
+/// Built by the add calls, then only read: the const checks may run from many threads at once
 /// (they move no shared object); adding while another thread checks is not safe.
 class Obstacles {
  public:
+  /// \brief Adds a shape (world frame); a shape without geometry gets it built from its description.
+  /// \throws std::invalid_argument for a non-finite pose, FileError for a mesh file that cannot be read
+  void add(const Shape& shape, const std::string& name = "");
   /// \brief Adds an axis-aligned (in its own frame) box of extents `size` at `pose`.
   void add_box(const Eigen::Vector3d& size, const Pose& pose, const std::string& name = "");
   /// \brief Adds a sphere.
@@ -72,7 +50,7 @@ class Obstacles {
   /// \brief Adds a mesh file (STL, DAE ...).
   void add_mesh_file(const std::string& path, const Pose& pose, const Eigen::Vector3d& scale = Eigen::Vector3d::Ones(),
                      const std::string& name = "");
-  /// \brief Adds an already built geometry.
+  /// \brief Adds an already built geometry (described by Shape::of).
   void add_geometry(std::shared_ptr<fcl::CollisionGeometryd> geometry, const Pose& pose, const std::string& name = "");
   /// \brief Adds an OctoMap: its occupied cells are obstacles.
   void add_octree(std::shared_ptr<const octomap::OcTree> tree, const Pose& pose = Pose::Identity(),
@@ -91,6 +69,8 @@ class Obstacles {
   std::size_t size() const { return objects_.size(); }
   /// \brief True when there is no obstacle.
   bool empty() const { return objects_.empty(); }
+  /// \brief The obstacles' shapes (world frame), in the order they were added.
+  const std::vector<Shape>& shapes() const { return shapes_; }
   /// \brief Obstacle names, in the order they were added ("obstacle_<i>" when none was given).
   const std::vector<std::string>& names() const { return names_; }
   /// \brief The FCL objects (world frame, AABBs computed).
@@ -110,6 +90,7 @@ class Obstacles {
  private:
   std::vector<std::shared_ptr<fcl::CollisionObjectd>> objects_;
   std::vector<std::string> names_;
+  std::vector<Shape> shapes_;
   // Per object: its local AABB placed at its pose, for an exact pre-test before FCL (shared, never changed).
   std::vector<std::shared_ptr<const detail::Obb>> obbs_;
 };

@@ -2,6 +2,7 @@
 /// \file robot.hpp
 /// \brief Robot model built from a URDF (urdfdom): links, joints, SRDF groups and collision checking.
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -37,12 +38,30 @@ struct Joint {
   double mimic_offset = 0.0;
 };
 
-/// \brief One URDF link and its collision shapes.
+/// \brief One URDF <visual> element: what a viewer draws of a link.
+struct Visual {
+  /// The shape in the link frame, without collision geometry (drawn, never checked); a mesh's file is resolved
+  /// as a collision mesh's is, and mesh_path is "" when it could not be found (mesh_uri says which it was).
+  Shape shape;
+  std::string mesh_uri;                          ///< the URDF's mesh filename ("" for other shapes)
+  std::string material;                          ///< material name ("" when none)
+  std::optional<std::array<double, 4>> rgba;     ///< colour (red, green, blue, alpha in [0, 1]) when given
+};
+
+/// \brief One URDF link: its collision shapes and its visuals.
 struct Link {
   std::string name;
   int parent_joint = -1;          ///< index into Robot::joints(), -1 for the root
   std::vector<int> child_joints;  ///< indices into Robot::joints()
   std::vector<Shape> shapes;      ///< collision shapes (empty if the link has none)
+  std::vector<Visual> visuals;    ///< visual elements (empty if the link has none)
+};
+
+/// \brief Where a robot came from: what Robot::from_urdf read.
+struct RobotSource {
+  std::string urdf;                       ///< URDF file (absolute path); "" when given as XML text
+  std::vector<std::string> package_dirs;  ///< folders package:// mesh URIs were resolved against
+  std::string srdf;                       ///< SRDF file (absolute path); "" when none or given as XML text
 };
 
 /// \brief A chain group declared in an SRDF (for example the PR2's "right_arm").
@@ -105,6 +124,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
 
   /// \brief The URDF's robot name.
   const std::string& name() const { return name_; }
+  /// \brief The URDF and SRDF files and package folders the robot was read from.
+  const RobotSource& source() const { return source_; }
   /// \brief 64-bit FNV-1a hash of the URDF text (the same for robots that differ only in their
   /// allowed-collision matrix; see model_hash()).
   std::uint64_t urdf_hash() const { return urdf_hash_; }
@@ -240,6 +261,7 @@ class Robot : public std::enable_shared_from_this<Robot> {
   /// Sets the allowed pairs (sorted, unique, i < j) and derives the checked pairs from them.
   void set_allowed_pairs_(std::vector<std::pair<int, int>> allowed);
   std::string name_;
+  RobotSource source_;
   std::uint64_t urdf_hash_ = 0;
   std::vector<Link> links_;
   std::vector<Joint> joints_;

@@ -1,7 +1,8 @@
 #pragma once
 /// \file simulation.hpp
-/// \brief Simulated scenes (boxes, crates, closed boxes with openings, boards, triangle meshes or an
-/// OctoMap .bt world) and a simulated depth camera that ray-casts them into point clouds.
+/// \brief Simulated scenes (shapes of shape.hpp: boxes with a pose, cylinders, spheres, triangle meshes and
+/// OctoMaps; crates, closed boxes with openings and boards made of boxes) and a simulated depth camera that
+/// ray-casts them into point clouds. What a scene holds is also its collision obstacles (Scene::obstacles).
 ///
 /// Camera frame convention (as ROS optical frames): the camera looks along its +z axis,
 /// +x points right in the image and +y down. Poses are camera -> world transforms.
@@ -14,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "octoreach/collision.hpp"
+#include "octoreach/shape.hpp"
 #include "octoreach/types.hpp"
 
 namespace octomap {
@@ -22,7 +25,8 @@ class OcTree;
 
 namespace octoreach {
 
-/// \brief A static world the depth camera can see.
+/// \brief A static world the depth camera can see: shapes in the world frame, each both seen by ray casting
+/// and an obstacle (obstacles()).
 ///
 /// Threads: const methods may run from many threads at once. The add_* and load_octomap methods take the
 /// scene's lock exclusively and DepthCamera::capture takes it shared for a whole capture, so adding while
@@ -35,7 +39,13 @@ class Scene {
   Scene(const Scene&);
   Scene& operator=(const Scene&);
 
-  /// \brief A solid axis-aligned box (also a board: a thin box). \throws std::invalid_argument if lo > hi.
+  /// \brief Adds a shape (world frame): a box with any pose, a cylinder, a sphere, a mesh or an OctoMap.
+  /// \throws std::invalid_argument for a shape without its geometry or map (see Shape::with_geometry)
+  void add(const Shape& shape);
+  /// \brief Adds every shape of `obstacles`.
+  void add(const Obstacles& obstacles);
+  /// \brief A solid axis-aligned box (also a board: a thin box); a flat one (lo = hi on an axis) is seen but,
+  /// without volume, is no shape and no obstacle. \throws std::invalid_argument if lo > hi.
   void add_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   /// \brief An open-topped crate: floor and four walls of the given thickness inside [lo, hi];
   /// its inside is recorded as an interior.
@@ -46,32 +56,41 @@ class Scene {
                       double opening_width, double opening_height);
   /// \brief Triangles (vertex rows, index triples) in the world frame.
   void add_mesh(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles);
-  /// \brief Uses the occupied cells of an OctoMap .bt file as (part of) the world.
+  /// \brief Adds the occupied cells of an OctoMap .bt file to the world.
   /// \throws FileError if the file does not exist or is not an OctoMap binary file.
   void load_octomap(const std::string& path);
   /// \brief Records a region of interest (e.g. the inside of a box) for coverage figures.
   void add_interior(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
 
+  /// \brief Every shape of the scene (world frame), in the order added (a crate or closed box as its boxes).
+  const std::vector<Shape>& shapes() const { return shapes_; }
+  /// \brief The scene's shapes as collision obstacles (their FCL geometry shared).
+  Obstacles obstacles() const;
+  /// \brief The axis-aligned boxes, as given.
   const std::vector<Aabb>& boxes() const { return boxes_; }
   const std::vector<Aabb>& interiors() const { return interiors_; }
-  std::size_t triangle_count() const { return tris_.size(); }
-  bool has_octomap() const { return octree_ != nullptr; }
+  /// \brief Number of triangles (of every mesh).
+  std::size_t triangle_count() const { return tris_.size() / 3; }
+  bool has_octomap() const;
   /// \brief Bounding box of everything in the scene.
   Aabb bounds() const;
-  /// \brief True when p is inside a solid box (meshes and octomaps are surfaces: false).
+  /// \brief True when p is inside a solid box, sphere or cylinder (meshes and octomaps are surfaces: false).
   bool solid(const Eigen::Vector3d& p) const;
 
   /// \brief Distance along the unit direction d from o to the first surface within max_range.
   bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const;
-  /// \brief The same, and the unit normal of the surface at the hit facing the ray (a box's face, a
-  /// triangle's plane, the entered face of an OctoMap cell; -d when the ray starts inside a box).
+  /// \brief The same, and the unit normal of the surface at the hit facing the ray (a box's face, a sphere's
+  /// or cylinder's surface, a triangle's plane, the entered face of an OctoMap cell; -d when the ray starts
+  /// inside a solid).
   bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t,
                Eigen::Vector3d* normal) const;
 
  private:
   friend class DepthCamera;
-  struct Bvh;
+  struct Bvh;     // triangle_bvh.hpp
+  struct Solids;  // oriented boxes, spheres, cylinders, OctoMaps (scene_solids.hpp)
   void rebuild_bvh_();
+  void add_(const Shape& shape);
   void add_box_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   void add_interior_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
   struct Lock;                  // a writer-first reader-writer mutex (scene.cpp); copies share it
@@ -80,8 +99,9 @@ class Scene {
   void unlock_shared_() const;
   std::vector<Aabb> boxes_, interiors_;
   std::vector<Eigen::Vector3d> tris_;  // 3 rows per triangle
+  std::vector<Shape> shapes_;
   std::shared_ptr<const Bvh> bvh_;
-  std::shared_ptr<const octomap::OcTree> octree_;
+  std::shared_ptr<const Solids> solids_;  // replaced, never changed, by an add: copies of the scene share it
 };
 
 /// \brief Pinhole intrinsics of a depth sensor: image size, horizontal field of view, range.

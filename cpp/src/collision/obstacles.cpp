@@ -1,18 +1,11 @@
 #include "octoreach/collision.hpp"
 
-#include <cerrno>
-#include <fstream>
 #include <optional>
 
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 #include <fcl/fcl.h>
 #include <octomap/OcTree.h>
 
 #include "collision/detail.hpp"
-#include "collision/mesh_pair_check.hpp"
-#include "common/octree_file.hpp"
 #include "collision/obb.hpp"
 
 namespace octoreach {
@@ -21,135 +14,48 @@ namespace {
 using detail::geometry_collide;
 using detail::world_aabb;
 
-using BVH = fcl::BVHModel<fcl::OBBRSSd>;
-
-void collect_triangles(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
-                       std::vector<fcl::Vector3d>& points, std::vector<fcl::Triangle>& triangles,
-                       const Eigen::Vector3d& scale) {
-  aiMatrix4x4 transform = parent * node->mTransformation;
-  for (unsigned mi = 0; mi < node->mNumMeshes; ++mi) {
-    const aiMesh* mesh = scene->mMeshes[node->mMeshes[mi]];
-    std::size_t offset = points.size();
-    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      aiVector3D p = transform * mesh->mVertices[v];
-      points.emplace_back(p.x * scale.x(), p.y * scale.y(), p.z * scale.z());
-    }
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      triangles.emplace_back(offset + face.mIndices[0], offset + face.mIndices[1], offset + face.mIndices[2]);
-    }
-  }
-  for (unsigned c = 0; c < node->mNumChildren; ++c)
-    collect_triangles(scene, node->mChildren[c], transform, points, triangles, scale);
-}
-
-std::shared_ptr<fcl::CollisionGeometryd> bvh_from(const std::vector<fcl::Vector3d>& points,
-                                                  const std::vector<fcl::Triangle>& triangles) {
-  auto model = std::make_shared<detail::HullMesh>();  // a BVH that also keeps its hull (mesh_pair_check.hpp)
-  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
-  model->addSubModel(points, triangles);
-  model->endModel();
-  model->computeLocalAABB();
-  return model;
-}
-
-// An OctoMap file: .ot holds any AbstractOcTree (it must be an OcTree), anything else is read as .bt.
-std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    if (errno == ENOENT) throw FileNotFound("no octree file '" + path + "'");
-    throw FileError("cannot read octree file '" + path + "'");
-  }
-  if (path.size() >= 3 && path.substr(path.size() - 3) == ".ot") {
-    std::unique_ptr<octomap::AbstractOcTree> t(octomap::AbstractOcTree::read(f));
-    auto* tree = dynamic_cast<octomap::OcTree*>(t.get());
-    if (!tree) throw FileError("'" + path + "' is not an OcTree .ot file");
-    t.release();
-    return std::shared_ptr<octomap::OcTree>(tree);
-  }
-  auto tree = std::make_shared<octomap::OcTree>(0.1);
-  detail::read_bt(*tree, path, "octree file", 0);
-  return tree;
-}
-
 }  // namespace
 
-std::shared_ptr<fcl::CollisionGeometryd> load_mesh(const std::string& path, const Eigen::Vector3d& scale) {
-  Assimp::Importer importer;
-  // Keep the file's own units; URDF meshes carry their scale in the <mesh scale> attribute.
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                     aiProcess_SortByPType);
-  if (!scene || !scene->mRootNode)
-    throw FileError("cannot read mesh '" + path + "': " + importer.GetErrorString());
-  std::vector<fcl::Vector3d> points;
-  std::vector<fcl::Triangle> triangles;
-  collect_triangles(scene, scene->mRootNode, aiMatrix4x4(), points, triangles, scale);
-  if (triangles.empty()) throw FileError("mesh '" + path + "' holds no triangles");
-  return bvh_from(points, triangles);
-}
-
-std::shared_ptr<fcl::CollisionGeometryd> make_mesh(
-    const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& vertices,
-    const Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>& triangles) {
-  if (vertices.rows() == 0 || triangles.rows() == 0)
-    throw std::invalid_argument("a mesh needs at least one vertex and one triangle");
-  if (!vertices.allFinite()) throw std::invalid_argument("mesh vertices must be finite");
-  std::vector<fcl::Vector3d> points;
-  std::vector<fcl::Triangle> tris;
-  for (Eigen::Index i = 0; i < vertices.rows(); ++i) points.emplace_back(vertices.row(i).transpose());
-  for (Eigen::Index i = 0; i < triangles.rows(); ++i) {
-    for (int k = 0; k < 3; ++k)
-      if (triangles(i, k) < 0 || triangles(i, k) >= vertices.rows())
-        throw std::invalid_argument("triangle " + std::to_string(i) + " refers to vertex " +
-                                    std::to_string(triangles(i, k)) + ", outside [0, " +
-                                    std::to_string(vertices.rows()) + ")");
-    tris.emplace_back(triangles(i, 0), triangles(i, 1), triangles(i, 2));
-  }
-  return bvh_from(points, tris);
+void Obstacles::add(const Shape& shape, const std::string& name) {
+  Shape s = shape.with_geometry();
+  if (!s.origin.matrix().allFinite()) throw std::invalid_argument("obstacle pose must be finite");
+  s.geometry->computeLocalAABB();
+  auto obj = std::make_shared<fcl::CollisionObjectd>(s.geometry, fcl::Transform3d(s.origin.matrix()));
+  obj->computeAABB();
+  objects_.push_back(obj);
+  obbs_.push_back(std::make_shared<const detail::Obb>(detail::Obb::of(*s.geometry, s.origin)));
+  names_.push_back(name.empty() ? "obstacle_" + std::to_string(objects_.size() - 1) : name);
+  shapes_.push_back(std::move(s));
 }
 
 void Obstacles::add_geometry(std::shared_ptr<fcl::CollisionGeometryd> geometry, const Pose& pose,
                              const std::string& name) {
-  if (!geometry) throw std::invalid_argument("obstacle geometry is null");
-  if (!pose.matrix().allFinite()) throw std::invalid_argument("obstacle pose must be finite");
-  geometry->computeLocalAABB();
-  auto obj = std::make_shared<fcl::CollisionObjectd>(geometry, fcl::Transform3d(pose.matrix()));
-  obj->computeAABB();
-  objects_.push_back(obj);
-  obbs_.push_back(std::make_shared<const detail::Obb>(detail::Obb::of(*geometry, pose)));
-  names_.push_back(name.empty() ? "obstacle_" + std::to_string(objects_.size() - 1) : name);
+  add(Shape::of(std::move(geometry), pose), name);
 }
 
 void Obstacles::add_box(const Eigen::Vector3d& size, const Pose& pose, const std::string& name) {
-  if (!(size.array() > 0).all() || !size.allFinite())
-    throw std::invalid_argument("box size must be three positive numbers");
-  add_geometry(std::make_shared<fcl::Boxd>(size), pose, name);
+  add(Shape::box(size, pose), name);
 }
 
 void Obstacles::add_sphere(double radius, const Pose& pose, const std::string& name) {
-  if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("sphere radius must be positive");
-  add_geometry(std::make_shared<fcl::Sphered>(radius), pose, name);
+  add(Shape::sphere(radius, pose), name);
 }
 
 void Obstacles::add_cylinder(double radius, double length, const Pose& pose, const std::string& name) {
-  if (!(radius > 0) || !(length > 0)) throw std::invalid_argument("cylinder radius and length must be positive");
-  add_geometry(std::make_shared<fcl::Cylinderd>(radius, length), pose, name);
+  add(Shape::cylinder(radius, length, pose), name);
 }
 
 void Obstacles::add_mesh_file(const std::string& path, const Pose& pose, const Eigen::Vector3d& scale,
                               const std::string& name) {
-  add_geometry(load_mesh(path, scale), pose, name.empty() ? path : name);
+  add(Shape::mesh_file(path, pose, scale), name.empty() ? path : name);
 }
 
 void Obstacles::add_octree(std::shared_ptr<const octomap::OcTree> tree, const Pose& pose, const std::string& name) {
-  if (!tree) throw std::invalid_argument("octree is null");
-  add_geometry(std::make_shared<fcl::OcTreed>(tree), pose, name);
+  add(Shape::from_octree(std::move(tree), pose), name);
 }
 
 void Obstacles::add_octree_file(const std::string& path, const Pose& pose, const std::string& name) {
-  add_octree(read_octree(path), pose, name.empty() ? path : name);
+  add(Shape::octree_file(path, pose), name.empty() ? path : name);
 }
 
 void Obstacles::add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
@@ -169,6 +75,7 @@ void Obstacles::add(const Obstacles& other) {
   objects_.insert(objects_.end(), other.objects_.begin(), other.objects_.end());
   names_.insert(names_.end(), other.names_.begin(), other.names_.end());
   obbs_.insert(obbs_.end(), other.obbs_.begin(), other.obbs_.end());
+  shapes_.insert(shapes_.end(), other.shapes_.begin(), other.shapes_.end());
 }
 
 bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) const {

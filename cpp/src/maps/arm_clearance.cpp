@@ -46,6 +46,7 @@ void witness_points(const Shape& s, std::vector<Eigen::Vector3d>& out) {
       for (int i = 0; i < bvh->num_vertices; i += stride) local.push_back(bvh->vertices[i]);
       break;
     }
+    case Shape::Type::Octree: break;  // a robot's links have none
   }
   for (const auto& p : local) out.push_back(s.origin * p);
 }

@@ -24,8 +24,8 @@ inline void add_pair(PairSet& pairs, int a, int b) {
 struct RobotBuilder {
   Robot& r;
 
-  // urdf.cpp: the kinematic tree and collision shapes of an urdfdom model.
-  /// Links breadth-first from the root (parents first), with their collision shapes.
+  // urdf.cpp: the kinematic tree, collision shapes and visuals of an urdfdom model.
+  /// Links breadth-first from the root (parents first), with their collision shapes and visuals.
   void add_links(const urdf::ModelInterface& model, const std::vector<std::string>& package_dirs,
                  const std::string& urdf_dir);
   /// Joints in the order of their child links; limits and axes checked.

@@ -1,7 +1,8 @@
-// Robot::from_urdf: URDF text -> urdfdom model -> links, joints and collision shapes; mesh URIs
+// Robot::from_urdf: URDF text -> urdfdom model -> links, joints, collision shapes and visuals; mesh URIs
 // (package://, file://, relative paths) resolved to files. The SRDF part is in srdf.cpp.
 #include <cerrno>
 #include <deque>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -104,8 +105,18 @@ std::string resolve_mesh(const std::string& uri, const std::vector<std::string>&
 // The URDF as XML text (read from a file when it is a path) and the folder relative mesh paths
 // start from.
 struct UrdfText {
-  std::string xml, dir = ".";
+  std::string xml, dir = ".", path;  // path: the file's absolute path ("" for XML text)
 };
+
+std::string absolute_path(const std::string& path) {
+  return std::filesystem::absolute(std::filesystem::path(path)).lexically_normal().string();
+}
+
+std::vector<std::string> absolute_paths(const std::vector<std::string>& paths) {
+  std::vector<std::string> out;
+  for (const auto& p : paths) out.push_back(p.empty() ? p : absolute_path(p));
+  return out;
+}
 
 UrdfText read_urdf_text(const std::string& urdf) {
   UrdfText t;
@@ -115,6 +126,7 @@ UrdfText read_urdf_text(const std::string& urdf) {
     if (urdf.empty()) throw std::invalid_argument("empty URDF: expected a file path or an XML string");
     t.xml = detail::read_text_file(urdf, "URDF");
     t.dir = dirname(urdf);
+    t.path = absolute_path(urdf);
   }
   return t;
 }
@@ -171,39 +183,51 @@ urdf::ModelInterfaceSharedPtr parse_urdf(const std::string& xml) {
 // Meshes already loaded, by resolved path and scale: links that share a mesh share its BVH.
 using MeshCache = std::map<std::string, std::shared_ptr<fcl::CollisionGeometryd>>;
 
-// One URDF collision element as a Shape; the geometry stays null for unknown kinds.
-Shape make_shape(const urdf::Collision& c, const std::vector<std::string>& package_dirs, const std::string& urdf_dir,
-                 const std::string& link, MeshCache& meshes) {
+// What a URDF <geometry> describes, at `origin` (link frame), without collision geometry; `uri` gets a
+// mesh's filename.
+Shape describe(const urdf::Geometry& g, const urdf::Pose& origin, std::string& uri) {
   Shape s;
-  s.origin = to_pose(c.origin);
-  switch (c.geometry->type) {
+  s.origin = to_pose(origin);
+  switch (g.type) {
     case urdf::Geometry::BOX: {
-      auto b = std::static_pointer_cast<urdf::Box>(c.geometry);
+      const auto& b = static_cast<const urdf::Box&>(g);
       s.type = Shape::Type::Box;
-      s.size = Eigen::Vector3d(b->dim.x, b->dim.y, b->dim.z);
-      s.geometry = std::make_shared<fcl::Boxd>(s.size);
+      s.size = Eigen::Vector3d(b.dim.x, b.dim.y, b.dim.z);
       break;
     }
     case urdf::Geometry::CYLINDER: {
-      auto cy = std::static_pointer_cast<urdf::Cylinder>(c.geometry);
+      const auto& c = static_cast<const urdf::Cylinder&>(g);
       s.type = Shape::Type::Cylinder;
-      s.radius = cy->radius;
-      s.length = cy->length;
-      s.geometry = std::make_shared<fcl::Cylinderd>(cy->radius, cy->length);
+      s.radius = c.radius;
+      s.length = c.length;
       break;
     }
-    case urdf::Geometry::SPHERE: {
-      auto sp = std::static_pointer_cast<urdf::Sphere>(c.geometry);
+    case urdf::Geometry::SPHERE:
       s.type = Shape::Type::Sphere;
-      s.radius = sp->radius;
-      s.geometry = std::make_shared<fcl::Sphered>(sp->radius);
+      s.radius = static_cast<const urdf::Sphere&>(g).radius;
+      break;
+    case urdf::Geometry::MESH: {
+      const auto& m = static_cast<const urdf::Mesh&>(g);
+      s.type = Shape::Type::Mesh;
+      s.scale = Eigen::Vector3d(m.scale.x, m.scale.y, m.scale.z);
+      uri = m.filename;
       break;
     }
-    case urdf::Geometry::MESH: {
-      auto m = std::static_pointer_cast<urdf::Mesh>(c.geometry);
-      s.type = Shape::Type::Mesh;
-      s.scale = Eigen::Vector3d(m->scale.x, m->scale.y, m->scale.z);
-      s.mesh_path = resolve_mesh(m->filename, package_dirs, urdf_dir, link);
+  }
+  return s;
+}
+
+// One URDF collision element as a Shape with its FCL geometry (sizes as the URDF gives them).
+Shape make_shape(const urdf::Collision& c, const std::vector<std::string>& package_dirs, const std::string& urdf_dir,
+                 const std::string& link, MeshCache& meshes) {
+  std::string uri;
+  Shape s = describe(*c.geometry, c.origin, uri);
+  switch (s.type) {
+    case Shape::Type::Box: s.geometry = std::make_shared<fcl::Boxd>(s.size); break;
+    case Shape::Type::Cylinder: s.geometry = std::make_shared<fcl::Cylinderd>(s.radius, s.length); break;
+    case Shape::Type::Sphere: s.geometry = std::make_shared<fcl::Sphered>(s.radius); break;
+    case Shape::Type::Mesh: {
+      s.mesh_path = resolve_mesh(uri, package_dirs, urdf_dir, link);
       std::ostringstream key;
       key << s.mesh_path << "|" << s.scale.transpose();
       auto it = meshes.find(key.str());
@@ -211,8 +235,29 @@ Shape make_shape(const urdf::Collision& c, const std::vector<std::string>& packa
       s.geometry = it->second;
       break;
     }
+    case Shape::Type::Octree: break;
   }
   return s;
+}
+
+// One URDF visual element: its shape (meshes resolved, not read: a missing visual mesh leaves mesh_path ""), its
+// material and colour (a named material of the robot when the visual only names it).
+Visual make_visual(const urdf::Visual& v, const urdf::ModelInterface& model, const std::vector<std::string>& package_dirs,
+                   const std::string& urdf_dir, const std::string& link) {
+  Visual out;
+  out.shape = describe(*v.geometry, v.origin, out.mesh_uri);
+  if (out.shape.type == Shape::Type::Mesh) {
+    try {
+      out.shape.mesh_path = resolve_mesh(out.mesh_uri, package_dirs, urdf_dir, link);
+    } catch (const FileError&) {
+      out.shape.mesh_path.clear();
+    }
+  }
+  out.material = v.material_name;
+  urdf::MaterialSharedPtr material = v.material;
+  if (!material && !v.material_name.empty()) material = model.getMaterial(v.material_name);
+  if (material) out.rgba = std::array<double, 4>{material->color.r, material->color.g, material->color.b, material->color.a};
+  return out;
 }
 
 }  // namespace
@@ -238,6 +283,10 @@ void RobotBuilder::add_links(const urdf::ModelInterface& model, const std::vecto
         link.shapes.push_back(std::move(s));
       }
     }
+    std::vector<urdf::VisualSharedPtr> visuals = ul->visual_array;
+    if (visuals.empty() && ul->visual) visuals.push_back(ul->visual);
+    for (const auto& v : visuals)
+      if (v && v->geometry) link.visuals.push_back(make_visual(*v, model, package_dirs, urdf_dir, ul->name));
     r.link_by_name_[link.name] = static_cast<int>(r.links_.size());
     r.links_.push_back(std::move(link));
     for (const auto& child : ul->child_links) queue.push_back(child);
@@ -326,6 +375,8 @@ std::shared_ptr<Robot> Robot::from_urdf(const std::string& urdf, const std::vect
   urdf::ModelInterfaceSharedPtr model = parse_urdf(text.xml);
   std::shared_ptr<Robot> robot(new Robot());
   robot->name_ = model->getName();
+  robot->source_ = {text.path, absolute_paths(package_dirs), ""};
+  if (!srdf.empty() && !detail::looks_like_xml(srdf)) robot->source_.srdf = absolute_path(srdf);
   robot->urdf_hash_ = fnv1a(text.xml);
   detail::RobotBuilder build{*robot};
   build.add_links(*model, package_dirs, text.dir);

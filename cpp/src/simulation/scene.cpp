@@ -1,20 +1,20 @@
-// Simulated scenes: boxes, crates, closed boxes, meshes or an OctoMap world, and ray casting into them.
+// Simulated scenes: shapes (boxes with a pose, cylinders, spheres, meshes, OctoMaps), crates, closed boxes and
+// boards made of boxes, and ray casting into them.
 #include "octoreach/simulation.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <numeric>
 #include <mutex>
-#include <random>
-#include <sstream>
 
 #include <octomap/OcTree.h>
 
 #include "common/format.hpp"
 #include "common/shared_mutex.hpp"
 #include "common/octree_file.hpp"
+#include "simulation/ray_hits.hpp"
+#include "simulation/scene_solids.hpp"
+#include "simulation/triangle_bvh.hpp"
 
 namespace octoreach {
 
@@ -24,128 +24,15 @@ void check_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, const char*
     throw std::invalid_argument(std::string(what) + ": need finite lo <= hi, got lo " + detail::format_point(lo) + ", hi " + detail::format_point(hi));
 }
 
-// Slab test; t in [0, tmax]. `axis`: the slab the ray entered last (-1 when it starts inside).
-inline bool ray_box(const Eigen::Vector3d& o, const Eigen::Vector3d& inv, const Eigen::Vector3d& lo,
-                    const Eigen::Vector3d& hi, double tmax, double& t, int* axis = nullptr) {
-  double t0 = 0, t1 = tmax;
-  int entered = -1;
-  for (int i = 0; i < 3; ++i) {
-    double a = (lo[i] - o[i]) * inv[i], b = (hi[i] - o[i]) * inv[i];
-    if (std::isnan(a)) a = -std::numeric_limits<double>::infinity();  // 0 * inf: origin on the slab
-    if (std::isnan(b)) b = std::numeric_limits<double>::infinity();
-    if (a > b) std::swap(a, b);
-    if (a > t0) {
-      t0 = a;
-      entered = i;
-    }
-    t1 = std::min(t1, b);
-    if (t0 > t1) return false;
-  }
-  t = t0;
-  if (axis) *axis = entered;
-  return true;
+// The shape with its geometry, checked: ray casting needs an OctoMap's map.
+Shape seen(const Shape& shape) {
+  Shape s = shape.with_geometry();
+  if (s.type == Shape::Type::Octree && !s.octree)
+    throw std::invalid_argument("an OctoMap shape without its map cannot be seen (use Shape::from_octree)");
+  return s;
 }
 
-// Unit normal of the face of a box a ray with direction d entered through `axis` (-d from inside).
-inline Eigen::Vector3d box_normal(const Eigen::Vector3d& d, int axis) {
-  if (axis < 0) return -d.normalized();
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  n[axis] = d[axis] > 0 ? -1.0 : 1.0;
-  return n;
-}
-
-// Moller-Trumbore.
-inline bool ray_triangle(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& a,
-                         const Eigen::Vector3d& b, const Eigen::Vector3d& c, double& t) {
-  Eigen::Vector3d e1 = b - a, e2 = c - a, p = d.cross(e2);
-  double det = e1.dot(p);
-  if (std::abs(det) < 1e-14) return false;
-  double inv = 1.0 / det;
-  Eigen::Vector3d s = o - a;
-  double u = s.dot(p) * inv;
-  if (u < 0 || u > 1) return false;
-  Eigen::Vector3d q = s.cross(e1);
-  double v = d.dot(q) * inv;
-  if (v < 0 || u + v > 1) return false;
-  t = e2.dot(q) * inv;
-  return t > 0;
-}
 }  // namespace
-
-struct Scene::Bvh {
-  struct Node {
-    Eigen::Vector3d lo, hi;
-    int left = -1, right = -1, first = 0, count = 0;
-  };
-  std::vector<Node> nodes;
-  std::vector<Eigen::Vector3d> tris;  // reordered
-
-  explicit Bvh(const std::vector<Eigen::Vector3d>& t) {
-    std::size_t n = t.size() / 3;
-    std::vector<int> idx(n);
-    std::iota(idx.begin(), idx.end(), 0);
-    std::vector<Eigen::Vector3d> cent(n);
-    for (std::size_t i = 0; i < n; ++i) cent[i] = (t[3 * i] + t[3 * i + 1] + t[3 * i + 2]) / 3.0;
-    build(t, idx, cent, 0, int(n));
-    tris.reserve(t.size());
-    for (int i : idx)
-      for (int j = 0; j < 3; ++j) tris.push_back(t[3 * i + j]);
-  }
-  int build(const std::vector<Eigen::Vector3d>& t, std::vector<int>& idx, const std::vector<Eigen::Vector3d>& cent,
-            int first, int count) {
-    Node node;
-    node.lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-    node.hi = -node.lo;
-    for (int i = first; i < first + count; ++i)
-      for (int j = 0; j < 3; ++j) {
-        node.lo = node.lo.cwiseMin(t[3 * idx[i] + j]);
-        node.hi = node.hi.cwiseMax(t[3 * idx[i] + j]);
-      }
-    int id = int(nodes.size());
-    nodes.push_back(node);
-    if (count <= 4) {
-      nodes[id].first = first;
-      nodes[id].count = count;
-      return id;
-    }
-    int axis;
-    (node.hi - node.lo).maxCoeff(&axis);
-    int mid = first + count / 2;
-    std::nth_element(idx.begin() + first, idx.begin() + mid, idx.begin() + first + count,
-                     [&](int a, int b) { return cent[a][axis] < cent[b][axis]; });
-    int l = build(t, idx, cent, first, mid - first);
-    int r = build(t, idx, cent, mid, first + count - mid);
-    nodes[id].left = l;
-    nodes[id].right = r;
-    return id;
-  }
-  bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& inv, double& best,
-               int* best_tri = nullptr) const {
-    bool hit = false;
-    int stack[128];
-    int sp = 0;
-    stack[sp++] = 0;
-    while (sp) {
-      const Node& n = nodes[stack[--sp]];
-      double tb;
-      if (!ray_box(o, inv, n.lo, n.hi, best, tb)) continue;
-      if (n.left < 0) {
-        for (int i = n.first; i < n.first + n.count; ++i) {
-          double t;
-          if (ray_triangle(o, d, tris[3 * i], tris[3 * i + 1], tris[3 * i + 2], t) && t < best) {
-            best = t;
-            hit = true;
-            if (best_tri) *best_tri = i;
-          }
-        }
-      } else if (sp < 126) {
-        stack[sp++] = n.left;
-        stack[sp++] = n.right;
-      }
-    }
-    return hit;
-  }
-};
 
 struct Scene::Lock : detail::SharedMutex {};
 
@@ -160,10 +47,61 @@ void Scene::add_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   std::unique_lock<Lock> lock(*lock_);
   add_box_(lo, hi);
 }
+// The box as given stays the ray-casting box (its bounds exactly lo and hi); its shape is centred between them.
+// A flat box (lo = hi on an axis) has no volume and so no shape: it is seen, never touched.
 void Scene::add_box_(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   check_box(lo, hi, "box");
+  if ((hi - lo).minCoeff() > 0) {
+    Pose centre = Pose::Identity();
+    centre.translation() = (lo + hi) / 2;
+    shapes_.push_back(Shape::box(hi - lo, centre));
+  }
   boxes_.push_back({lo, hi});
 }
+
+void Scene::add(const Shape& shape) {
+  const Shape s = seen(shape);
+  std::unique_lock<Lock> lock(*lock_);
+  const std::size_t triangles = tris_.size();
+  add_(s);
+  if (tris_.size() != triangles) rebuild_bvh_();
+}
+
+void Scene::add(const Obstacles& obstacles) {
+  std::vector<Shape> shapes;
+  for (const Shape& s : obstacles.shapes()) shapes.push_back(seen(s));
+  std::unique_lock<Lock> lock(*lock_);
+  const std::size_t triangles = tris_.size();
+  for (const Shape& s : shapes) add_(s);
+  if (tris_.size() != triangles) rebuild_bvh_();
+}
+
+// Axis-aligned boxes join the boxes, meshes the triangles (the caller rebuilds their hierarchy), every other
+// kind the solids.
+void Scene::add_(const Shape& s) {
+  if (s.type == Shape::Type::Box && s.origin.linear() == Eigen::Matrix3d::Identity()) {
+    boxes_.push_back({s.origin.translation() - s.size / 2, s.origin.translation() + s.size / 2});
+  } else if (s.type == Shape::Type::Mesh) {
+    std::vector<Eigen::Vector3d> vertices;
+    std::vector<Eigen::Vector3i> triangles;
+    s.mesh_triangles(vertices, triangles);
+    for (const auto& t : triangles)
+      for (int j = 0; j < 3; ++j) tris_.push_back(s.origin * vertices[std::size_t(t[j])]);
+  } else {
+    auto solids = solids_ ? std::make_shared<Solids>(*solids_) : std::make_shared<Solids>();
+    solids->add(s);
+    solids_ = std::move(solids);
+  }
+  shapes_.push_back(s);
+}
+
+Obstacles Scene::obstacles() const {
+  Obstacles out;
+  for (const Shape& s : shapes_) out.add(s);
+  return out;
+}
+
+bool Scene::has_octomap() const { return solids_ && !solids_->octrees.empty(); }
 
 void Scene::add_interior(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   std::unique_lock<Lock> lock(*lock_);
@@ -248,9 +186,16 @@ void Scene::add_mesh(const std::vector<Eigen::Vector3d>& vertices, const std::ve
       if (t[j] < 0 || t[j] >= int(vertices.size()))
         throw std::invalid_argument("triangle index " + std::to_string(t[j]) + " out of range [0, " +
                                     std::to_string(vertices.size()) + ")");
+  if (triangles.empty()) return;
+  MeshVertices v(Eigen::Index(vertices.size()), 3);
+  MeshTriangles f(Eigen::Index(triangles.size()), 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i) v.row(Eigen::Index(i)) = vertices[i].transpose();
+  for (std::size_t i = 0; i < triangles.size(); ++i) f.row(Eigen::Index(i)) = triangles[i].transpose();
+  Shape shape = Shape::triangle_mesh(v, f);
   std::unique_lock<Lock> lock(*lock_);
-  for (const auto& t : triangles)
+  for (const auto& t : triangles)  // as given: the vertices are already in the world frame
     for (int j = 0; j < 3; ++j) tris_.push_back(vertices[t[j]]);
+  shapes_.push_back(std::move(shape));
   rebuild_bvh_();
 }
 
@@ -259,8 +204,7 @@ void Scene::rebuild_bvh_() { bvh_ = tris_.empty() ? nullptr : std::make_shared<c
 void Scene::load_octomap(const std::string& path) {
   auto tree = std::make_shared<octomap::OcTree>(0.1);
   detail::read_bt(*tree, path, "OctoMap scene file", 0);  // not expanded: the resolution check bounds raycasts
-  std::unique_lock<Lock> lock(*lock_);
-  octree_ = tree;
+  add(Shape::from_octree(tree));
 }
 
 Aabb Scene::bounds() const {
@@ -275,13 +219,7 @@ Aabb Scene::bounds() const {
     b.lo = b.lo.cwiseMin(v);
     b.hi = b.hi.cwiseMax(v);
   }
-  if (octree_) {
-    double x0, y0, z0, x1, y1, z1;
-    octree_->getMetricMin(x0, y0, z0);
-    octree_->getMetricMax(x1, y1, z1);
-    b.lo = b.lo.cwiseMin(Eigen::Vector3d(x0, y0, z0));
-    b.hi = b.hi.cwiseMax(Eigen::Vector3d(x1, y1, z1));
-  }
+  if (solids_) solids_->extend(b);
   if (!b.lo.allFinite()) b.lo = b.hi = Eigen::Vector3d::Zero();
   return b;
 }
@@ -289,7 +227,7 @@ Aabb Scene::bounds() const {
 bool Scene::solid(const Eigen::Vector3d& p) const {
   for (const auto& b : boxes_)
     if (b.contains(p)) return true;
-  return false;
+  return solids_ && solids_->contains(p);
 }
 
 bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const {
@@ -308,12 +246,13 @@ bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double m
   for (const auto& b : boxes_) {
     double tb;
     int axis;
-    if (ray_box(o, inv, b.lo, b.hi, best, tb, &axis) && tb <= best) {
+    if (detail::ray_box(o, inv, b.lo, b.hi, best, tb, &axis) && tb <= best) {
       best = tb;
       hit = true;
-      if (normal) n = box_normal(d, axis);
+      if (normal) n = detail::box_normal(d, axis);
     }
   }
+  if (solids_ && solids_->raycast(o, d, best, normal ? &n : nullptr)) hit = true;
   int tri = -1;
   if (bvh_ && bvh_->raycast(o, d, inv, best, &tri)) {
     hit = true;
@@ -323,27 +262,7 @@ bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double m
       if (n.dot(d) > 0) n = -n;
     }
   }
-  if (octree_) {
-    octomap::point3d end;
-    octomap::point3d oo(float(o.x()), float(o.y()), float(o.z())), dd(float(d.x()), float(d.y()), float(d.z()));
-    if (octree_->castRay(oo, dd, end, true, best)) {
-      double tt = (Eigen::Vector3d(end.x(), end.y(), end.z()) - o).dot(d) - 0.5 * octree_->getResolution();
-      tt = std::max(tt, 0.0);
-      if (tt <= best) {
-        best = tt;
-        hit = true;
-        if (normal) {  // the face of the hit cell the ray entered
-          const octomap::point3d c = octree_->keyToCoord(octree_->coordToKey(end));
-          const Eigen::Vector3d h = Eigen::Vector3d::Constant(0.5 * octree_->getResolution());
-          const Eigen::Vector3d cc(c.x(), c.y(), c.z());
-          double tc;
-          int axis = -1;
-          ray_box(o, inv, cc - h, cc + h, std::numeric_limits<double>::infinity(), tc, &axis);
-          n = box_normal(d, axis);
-        }
-      }
-    }
-  }
+  if (solids_ && solids_->raycast_octrees(o, d, inv, best, normal ? &n : nullptr)) hit = true;
   t = best;
   if (normal) *normal = n;
   return hit;

@@ -4,19 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._core import Obstacles, Scene
-
-
-def scene_obstacles(scene: Scene) -> Obstacles:
-    """The scene's solid boxes (floor, walls, crates, closed boxes, debris) as collision obstacles."""
-    obs = Obstacles()
-    for lo, hi in scene.boxes:
-        lo, hi = np.asarray(lo, float), np.asarray(hi, float)
-        T = np.eye(4)
-        T[:3, 3] = (lo + hi) / 2
-        obs.add_box(hi - lo, T)
-    return obs
-
 
 def robot_root(robot, chain, chain_base) -> np.ndarray:
     """Pose (4x4, world) of the robot's root when its `chain` base link sits at `chain_base`."""
@@ -24,13 +11,14 @@ def robot_root(robot, chain, chain_base) -> np.ndarray:
 
 
 class PhysicalCheck:
-    """Whether an arm configuration is clear of the scene's true geometry (the links the chain moves:
-    Chain.moved_links) and of the robot itself (robot known), else always True."""
+    """Whether an arm configuration is clear of the scene's true geometry (every shape of the scene:
+    Scene.obstacles(); the links the chain moves: Chain.moved_links) and of the robot itself (robot known), else
+    always True."""
 
     def __init__(self, robot, chain, scene, enabled):
         self.on = bool(enabled and robot is not None and chain is not None)
         if self.on:
-            self.robot, self.chain, self.obstacles = robot, chain, scene_obstacles(scene)
+            self.robot, self.chain, self.obstacles = robot, chain, scene.obstacles()
             self.links = chain.moved_links
 
     def valid(self, q, chain_base) -> bool:

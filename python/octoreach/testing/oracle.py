@@ -22,7 +22,7 @@ import numpy as np
 
 from .._core import DepthCamera, ExplorationMap, Scene
 from ..exploration.metrics import region_points
-from ..exploration.physics import robot_root, scene_obstacles
+from ..exploration.physics import robot_root
 from ..exploration.robot import arm_base_pose, arm_reach, explorer_robot
 
 
@@ -153,7 +153,7 @@ def observable_cells(scene: Scene, chain=None, base_pose=None, robot=None, regio
     regions = list(scene.interiors) if regions is None else list(regions)
     points = region_points(scene, regions, resolution)
     rng = np.random.default_rng(seed)
-    obstacles = scene_obstacles(scene)
+    obstacles = scene.obstacles()
     reach = arm_reach(chain, seed)
     links = chain.moved_links
     poses = _joint_poses(robot, chain, chain_base, root, obstacles, links, joint_samples, rng)

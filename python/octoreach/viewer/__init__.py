@@ -2,10 +2,10 @@
 
     octoreach.view("demo_out/table_either_arm.orsm")       # or: octoreach view FILE... on the command line
 
-One concept per file: robot_meshes (the URDF's visual meshes at link poses), surfaces (the work surface),
+One concept per file: robot_meshes (a Robot's visuals at link poses), surfaces (the work surface),
 surface_map (cells per theta), capability_map (voxels and slice plane), samples (footprints and arrows),
 exploration (cells, frontiers, voids, ellipsoids, frusta), cells (batched boxes, outer shells, picking),
-mesh_files (STL with numpy, URDF primitives), colours,
+mesh_files (STL with numpy; boxes, cylinders, spheres), colours,
 files (what can be opened), app (the server and its controls), export (static HTML), browser (headless
 Chromium screenshots and clicks).
 """

@@ -63,9 +63,13 @@ class Viewer:
         self.scene.configure_default_lights(cast_shadow=False)  # shadow maps streak the small cells
 
     # -- layers --------------------------------------------------------------------------------------
-    def add_robot(self, robot, q=None, base_pose=None, urdf=None, package_dirs=None) -> RobotLayer:
-        """The robot's visual meshes at configuration q (default home) with its root link at base_pose (4x4)."""
-        meshes = RobotMeshes(robot, urdf=urdf, package_dirs=package_dirs)
+    def add_robot(self, robot, q=None, base_pose=None) -> RobotLayer:
+        """Any Robot's visual meshes (Robot.visuals, else its collision shapes) at configuration q (default home)
+        with its root link at base_pose (4x4)."""
+        meshes = RobotMeshes(robot)
+        if meshes.missing:
+            self.note(f"{len(meshes.missing)} visual mesh file(s) of {robot.name!r} not found (e.g. "
+                      f"{meshes.missing[0]!r}): those links are drawn with their collision shapes")
         self.robot_layer = RobotLayer(self.scene, meshes, q=q, base_pose=base_pose)
         return self.robot_layer
 

@@ -1,5 +1,5 @@
-"""Triangle meshes for the robot's shapes: STL files read with numpy (binary and ASCII), the URDF's box,
-cylinder and sphere, other formats (DAE, OBJ, ...) through trimesh.
+"""Triangle meshes for the robot's shapes: STL files read with numpy (binary and ASCII), boxes, cylinders and
+spheres, other formats (DAE, OBJ, ...) through trimesh.
 
 Reading STL here keeps trimesh (and the SciPy it imports, seconds on a slow machine) out of the viewer's start
 for robots described in STL, such as the PR2.
@@ -113,15 +113,3 @@ def sphere(radius: float, rings: int = 12, sections: int = 24) -> Mesh:
         faces.append([north, s, (s + 1) % sections])
         faces.append([south, last + (s + 1) % sections, last + s])
     return Mesh(v, faces)
-
-
-def rpy_matrix(xyz, rpy) -> np.ndarray:
-    """4x4 pose of a URDF <origin>: translation xyz, rotation Rz(yaw) Ry(pitch) Rx(roll)."""
-    r, p, y = (float(x) for x in rpy)
-    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    T = np.eye(4)
-    T[:3, :3] = [[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                 [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                 [-sp, cp * sr, cp * cr]]
-    T[:3, 3] = [float(v) for v in xyz]
-    return T

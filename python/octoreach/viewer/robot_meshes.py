@@ -1,134 +1,62 @@
-"""The robot's visual geometry from its URDF, drawn at a configuration and base pose.
+"""The robot's visual geometry, drawn at a configuration and base pose.
 
-Shapes are the URDF's <visual> elements (meshes read by mesh_files: STL with numpy, other formats through
-trimesh; boxes, cylinders, spheres), or its
-<collision> elements for links without visuals (the project's test arm has only those), one merged mesh
-per link in the link's frame. Mesh URIs (package://, file://, relative) are resolved by the rule of
-the C++ robot loader (cpp/src/urdf.cpp: resolve_mesh). Link poses come from the compiled
+Shapes come from the robot loader (``Robot.visuals``: the URDF's <visual> elements, mesh files resolved by the
+loader), or from its collision shapes (``Robot.collision_shapes``) for links without visuals (the project's test
+arm has only those) or whose visual meshes were not found; one merged mesh per link in the link's frame. Mesh
+files are read by mesh_files (STL with numpy, other formats through trimesh). Link poses come from the compiled
 ``Robot.link_poses``; the viewer only places the per-link meshes there.
 """
 from __future__ import annotations
-
-import os
-import xml.etree.ElementTree as ET
 
 import numpy as np
 
 from . import colours, mesh_files
 
 
-def robot_files(name: str, urdf_hash: str = "") -> tuple[str, list[str]]:
-    """(URDF path, package_dirs) of a robot that ``octoreach.robots.load(name)`` loads, of the project's own
-    robots (``urdf/NAME.urdf``, whose robots are named "octoreach_NAME"), or of the robot of example-robot-data
-    whose URDF declares the robot name `name` (a Robot's name; with that model hash when given; see
-    robots.loadable_name)."""
-    from .. import robots
-
-    own = name[len("octoreach_"):] if name.startswith("octoreach_") else name
-    try:
-        return str(robots.project_urdf(own)), []
-    except ValueError:
-        pass
-    urdf, _, dirs = robots.files(robots.loadable_name(name, urdf_hash))
-    return str(urdf), dirs
-
-
-def resolve_uri(uri: str, package_dirs, urdf_dir: str) -> str:
-    """The file of a mesh URI, by the robot loader's rule; OSError naming the tried paths when missing."""
-    candidates = []
-    if uri.startswith("package://"):
-        rest = uri[len("package://"):]
-        package, _, inner = rest.partition("/")
-        for d in package_dirs:
-            candidates.append(os.path.join(d, rest))
-            if os.path.basename(os.path.normpath(d)) == package:
-                candidates.append(os.path.join(d, inner))
-    elif uri.startswith("file://"):
-        candidates.append(uri[len("file://"):])
-    elif uri.startswith("/"):
-        candidates.append(uri)
+def _mesh(shape, cache: dict, from_file: bool):
+    """A shape as a triangle mesh in the link frame (None for a kind with no surface to draw here). Visual meshes
+    are read from their files (`from_file`); collision meshes come from the loader's triangles."""
+    if shape.kind == "mesh":
+        if from_file:
+            if shape.mesh_path not in cache:
+                cache[shape.mesh_path] = mesh_files.read_mesh(shape.mesh_path)
+            mesh = cache[shape.mesh_path].scaled(shape.scale)
+        else:
+            mesh = mesh_files.Mesh(*shape.mesh_triangles())
+    elif shape.kind == "box":
+        mesh = mesh_files.box(shape.size)
+    elif shape.kind == "cylinder":
+        mesh = mesh_files.cylinder(shape.radius, shape.length)
+    elif shape.kind == "sphere":
+        mesh = mesh_files.sphere(shape.radius)
     else:
-        candidates.append(os.path.join(urdf_dir, uri))
-        candidates += [os.path.join(d, uri) for d in package_dirs]
-    for c in candidates:
-        if os.path.isfile(c):
-            return c
-    raise OSError(f"mesh {uri!r} not found; tried: {' '.join(candidates) or '(no package dirs)'}")
-
-
-def _origin(el) -> np.ndarray:
-    o = el.find("origin") if el is not None else None
-    if o is None:
-        return np.eye(4)
-    return mesh_files.rpy_matrix(o.get("xyz", "0 0 0").split(), o.get("rpy", "0 0 0").split())
-
-
-def _rgba(visual, materials: dict):
-    m = visual.find("material")
-    if m is None:
         return None
-    c = m.find("color")
-    if c is not None:
-        return [float(v) for v in c.get("rgba").split()]
-    return materials.get(m.get("name"))
-
-
-def _geometry(geom, package_dirs, urdf_dir, cache: dict):
-    shape = geom[0] if len(geom) else None
-    if shape is None:
-        return None
-    if shape.tag == "mesh":
-        path = resolve_uri(shape.get("filename", ""), package_dirs, urdf_dir)
-        if path not in cache:
-            cache[path] = mesh_files.read_mesh(path)
-        mesh = cache[path]
-        if shape.get("scale"):
-            mesh = mesh.scaled([float(v) for v in shape.get("scale").split()])
-        return mesh
-    if shape.tag == "box":
-        return mesh_files.box([float(v) for v in shape.get("size").split()])
-    if shape.tag == "cylinder":
-        return mesh_files.cylinder(float(shape.get("radius")), float(shape.get("length")))
-    if shape.tag == "sphere":
-        return mesh_files.sphere(float(shape.get("radius")))
-    return None
+    return mesh.transformed(shape.pose) if len(mesh.faces) else None
 
 
 class RobotMeshes:
-    """Visual meshes of a robot, one per link (link frame), and their colours."""
+    """Visual meshes of a robot, one per link (link frame), and their colours. `missing`: the visual mesh files
+    the loader did not find (those links are drawn with their collision shapes)."""
 
-    def __init__(self, robot, urdf: str | None = None, package_dirs=None):
-        if urdf is None:
-            urdf, default_dirs = robot_files(robot.name, robot.urdf_hash)
-            package_dirs = default_dirs if package_dirs is None else package_dirs
+    def __init__(self, robot):
         self.robot = robot
-        try:
-            tree = ET.parse(urdf)
-        except (OSError, ET.ParseError) as e:
-            raise OSError(f"cannot read URDF {urdf!r}: {e}") from None
-        root = tree.getroot()
-        materials = {}
-        for m in root.findall("material"):
-            c = m.find("color")
-            if c is not None:
-                materials[m.get("name")] = [float(v) for v in c.get("rgba").split()]
-        urdf_dir = os.path.dirname(os.path.abspath(urdf))
-        cache: dict = {}
         self.meshes: dict[str, mesh_files.Mesh] = {}
         self.colours: dict[str, tuple] = {}
-        for link in root.findall("link"):
-            parts, rgba = [], None
-            for visual in link.findall("visual") or link.findall("collision"):
-                geom = visual.find("geometry")
-                mesh = _geometry(geom, package_dirs or [], urdf_dir, cache) if geom is not None else None
-                if mesh is None or len(mesh.faces) == 0:
-                    continue
-                parts.append(mesh.transformed(_origin(visual)))
-                rgba = rgba or _rgba(visual, materials)
+        self.missing: list[str] = []
+        visuals, collisions = robot.visuals, robot.collision_shapes
+        cache: dict = {}
+        for link in robot.link_names:
+            lost = [v.mesh_uri for v in visuals.get(link, []) if v.shape.kind == "mesh" and not v.shape.mesh_path]
+            self.missing += lost
+            drawn = visuals.get(link, []) if not lost else []
+            parts = [_mesh(v.shape, cache, True) for v in drawn] or \
+                [_mesh(s, cache, False) for s in collisions.get(link, [])]
+            parts = [p for p in parts if p is not None]
             if parts:
-                self.meshes[link.get("name")] = mesh_files.concatenate(parts)
+                self.meshes[link] = mesh_files.concatenate(parts)
+                rgba = next((v.rgba for v in drawn if v.rgba is not None), None)
                 grey = rgba is None or (max(rgba[:3]) - min(rgba[:3]) < 0.05 and rgba[0] < 0.25)
-                self.colours[link.get("name")] = colours.ROBOT if grey else tuple(int(255 * c) for c in rgba[:3])
+                self.colours[link] = colours.ROBOT if grey else tuple(int(255 * c) for c in rgba[:3])
 
     def footprint(self, q) -> np.ndarray:
         """Closed xy outline (K, 2) of the robot's visual geometry below 0.35 m at q (root frame): the convex

@@ -6,6 +6,7 @@
 #include <octoreach/chain.hpp>
 #include <octoreach/collision.hpp>
 #include <octoreach/robot.hpp>
+#include <octoreach/shape.hpp>
 #include <octoreach/types.hpp>
 
 #include <iostream>
@@ -19,9 +20,11 @@ int use(const std::string& urdf) {
   auto q = arm.ik(arm.fk(Eigen::VectorXd::Zero(arm.dof())), options);
   octoreach::Obstacles obstacles;
   obstacles.add_box(Eigen::Vector3d::Ones(), octoreach::Pose::Identity());
+  obstacles.add(octoreach::Shape::sphere(0.1), "ball");
   auto pairs = robot->compute_allowed_collisions(10, 0);
   auto wider = robot->with_allowed_collisions(pairs);
-  std::cout << robot->links().at(0).shapes.size() << " " << octoreach::kPi << "\n";
+  std::cout << robot->links().at(0).shapes.size() << " " << robot->links().at(0).visuals.size() << " "
+            << robot->source().urdf << " " << octoreach::kPi << "\n";
   return q && !wider->in_collision(*q, obstacles) ? 0 : 1;
 }
 
