@@ -6,9 +6,85 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'Scene', 'ScoredView', 'ScoredViews', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'ranks_before', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'ranks_before', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
+class Shape:
+    """
+    A solid with its pose: a box, cylinder (along its local z), sphere, triangle mesh or OctoMap. The one shape
+    description of the library: a robot link's collision and visual shapes (pose in the link frame), Obstacles,
+    Scene and rooms (pose in the world frame). Build one with the static methods; metres, 4x4 poses.
+    """
+    @staticmethod
+    def box(size: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], pose: typing.Any = None) -> Shape:
+        """
+        A box of extents `size` (x, y, z) centred at `pose`.
+        """
+    @staticmethod
+    def cylinder(radius: typing.SupportsFloat | typing.SupportsIndex, length: typing.SupportsFloat | typing.SupportsIndex, pose: typing.Any = None) -> Shape:
+        """
+        A cylinder along the local z axis of `pose`, centred there.
+        """
+    @staticmethod
+    def mesh_file(path: str, pose: typing.Any = None, scale: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> Shape:
+        """
+        A mesh file (STL, DAE, OBJ ... read by assimp), scaled per axis (OSError if it cannot be read).
+        """
+    @staticmethod
+    def octree_file(path: str, pose: typing.Any = None) -> Shape:
+        """
+        The occupied cells of an OctoMap file (.bt, or .ot holding an OcTree).
+        """
+    @staticmethod
+    def sphere(radius: typing.SupportsFloat | typing.SupportsIndex, pose: typing.Any = None) -> Shape:
+        ...
+    @staticmethod
+    def triangle_mesh(vertices: typing.Any, triangles: typing.Any, pose: typing.Any = None) -> Shape:
+        """
+        A triangle mesh: vertices (N, 3) and triangles (M, 3) of vertex indices, in the frame of `pose`.
+        """
+    def __repr__(self) -> str:
+        ...
+    def mesh_triangles(self) -> tuple:
+        """
+        (vertices (N, 3), triangles (M, 3)) of a mesh shape in its own frame (before `pose`); ValueError for
+        other kinds.
+        """
+    @property
+    def kind(self) -> str:
+        """
+        'box', 'cylinder', 'sphere', 'mesh' or 'octree'.
+        """
+    @property
+    def length(self) -> float:
+        """
+        Cylinder length.
+        """
+    @property
+    def mesh_path(self) -> str:
+        """
+        Mesh file ('' for triangles given in memory, or a robot's visual mesh not found).
+        """
+    @property
+    def pose(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        4x4 pose in the parent frame (a link's frame, or the world).
+        """
+    @property
+    def radius(self) -> float:
+        """
+        Cylinder or sphere radius.
+        """
+    @property
+    def scale(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Mesh scale, per axis.
+        """
+    @property
+    def size(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
+        """
+        Box extents (x, y, z).
+        """
 class Obstacles:
     """
     Environment objects in the world frame (boxes, spheres, cylinders, meshes, OctoMaps).
@@ -41,6 +117,10 @@ class Obstacles:
         """
         Adds occupied cells at the given points (N, 3) as an OctoMap of the given resolution.
         """
+    def add_shape(self, shape: Shape, name: str = '') -> None:
+        """
+        Adds a Shape (world frame).
+        """
     def add_sphere(self, radius: typing.SupportsFloat | typing.SupportsIndex, pose: typing.Any = None, name: str = '') -> None:
         ...
     def add_triangles(self, vertices: typing.Any, triangles: typing.Any, pose: typing.Any = None, name: str = '') -> None:
@@ -54,6 +134,11 @@ class Obstacles:
     @property
     def names(self) -> list[str]:
         ...
+    @property
+    def shapes(self) -> list[Shape]:
+        """
+        The obstacles' Shapes (world frame), in the order added.
+        """
 class Chain:
     """
     Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).
@@ -286,6 +371,11 @@ class Robot:
     def collision_links(self) -> list[str]:
         ...
     @property
+    def collision_shapes(self) -> dict:
+        """
+        {link name: [Shape]} of the links with collision shapes (link frame).
+        """
+    @property
     def dof(self) -> int:
         ...
     @property
@@ -329,6 +419,11 @@ class Robot:
     def root_link(self) -> str:
         ...
     @property
+    def source(self) -> RobotSource:
+        """
+        The URDF, SRDF and package folders the robot was read from.
+        """
+    @property
     def srdf_groups(self) -> dict:
         """
         Every SRDF group: name -> {'chains': [(base, tip)], 'joints': [...], 'links': [...], 'subgroups': [...]}.
@@ -347,6 +442,52 @@ class Robot:
         """
         64-bit FNV-1a hash of the URDF text (the same for robots that differ only in their
         allowed collisions; see model_hash).
+        """
+    @property
+    def visuals(self) -> dict:
+        """
+        {link name: [Visual]} of the links with <visual> elements.
+        """
+class Visual:
+    """
+    One URDF <visual> of a link: its Shape (link frame) and colour.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def material(self) -> str:
+        ...
+    @property
+    def mesh_uri(self) -> str:
+        """
+        The URDF's mesh filename.
+        """
+    @property
+    def rgba(self) -> typing.Any:
+        """
+        (red, green, blue, alpha) in [0, 1], or None when the URDF gives no colour.
+        """
+    @property
+    def shape(self) -> Shape:
+        """
+        The Shape (a mesh's mesh_path is '' when its file was not found).
+        """
+class RobotSource:
+    """
+    The files a Robot was read from (absolute paths).
+    """
+    @property
+    def package_dirs(self) -> list[str]:
+        ...
+    @property
+    def srdf(self) -> str:
+        """
+        SRDF file ('' when none or given as XML text).
+        """
+    @property
+    def urdf(self) -> str:
+        """
+        URDF file ('' when the URDF was given as XML text).
         """
 class OrientationSet:
     """
@@ -1239,8 +1380,9 @@ class PoseSampler:
         ...
 class Scene:
     """
-    Simulated world: axis-aligned boxes, crates, closed boxes with an opening, boards, triangle
-    meshes, or an OctoMap .bt file. Metres, world frame.
+    Simulated world: Shapes (boxes with any pose, cylinders, spheres, meshes, OctoMaps), crates, closed
+    boxes with an opening, boards. Whatever it holds is seen by the DepthCamera and is an obstacle
+    (obstacles()). Metres, world frame.
     """
     def __init__(self) -> None:
         ...
@@ -1264,11 +1406,23 @@ class Scene:
         """
     def add_mesh(self, vertices: typing.Any, triangles: typing.Any) -> None:
         ...
+    def add_obstacles(self, obstacles: Obstacles) -> None:
+        """
+        Adds every shape of an Obstacles set (a Room's, a Surface's).
+        """
+    def add_shape(self, shape: Shape) -> None:
+        """
+        Adds a Shape (world frame).
+        """
     def bounds(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]]:
         ...
     def load_octomap(self, path: str) -> None:
         """
         Adds the occupied cells of an OctoMap .bt file to the world (OSError if it cannot be read).
+        """
+    def obstacles(self) -> Obstacles:
+        """
+        The scene's shapes as Obstacles (for collision checks).
         """
     def raycast(self, origin: typing.Any, direction: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0, normal: bool = False) -> typing.Any:
         """
@@ -1277,12 +1431,12 @@ class Scene:
         """
     def solid(self, points: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
         """
-        True for points inside a solid box.
+        True for points inside a solid box, sphere or cylinder.
         """
     @property
     def boxes(self) -> list:
         """
-        Solid boxes as (lo, hi) pairs.
+        Axis-aligned solid boxes as (lo, hi) pairs (rotated boxes are in shapes).
         """
     @property
     def interiors(self) -> list:
@@ -1290,8 +1444,15 @@ class Scene:
         Regions of interest (insides of crates and closed boxes) as (lo, hi) pairs.
         """
     @property
+    def shapes(self) -> list[Shape]:
+        """
+        Every Shape of the scene (world frame), in the order added.
+        """
+    @property
     def triangle_count(self) -> int:
-        ...
+        """
+        Triangles of every mesh.
+        """
 class CameraIntrinsics:
     """
     Pinhole depth sensor: image size, horizontal fov (rad), range (m).

@@ -19,7 +19,6 @@ using detail::world_aabb;
 void Obstacles::add(const Shape& shape, const std::string& name) {
   Shape s = shape.with_geometry();
   if (!s.origin.matrix().allFinite()) throw std::invalid_argument("obstacle pose must be finite");
-  s.geometry->computeLocalAABB();
   auto obj = std::make_shared<fcl::CollisionObjectd>(s.geometry, fcl::Transform3d(s.origin.matrix()));
   obj->computeAABB();
   objects_.push_back(obj);
