@@ -24,9 +24,7 @@ LIMITS = {"cpp file": 500, "cpp function": 120, "python module": 400, "python fu
 
 # Known offenders in areas other work is still changing, by (kind, file, function or "" for the file itself).
 # This list must end empty: each entry goes when the change that splits it lands.
-ALLOWED = {
-    ("python module", "python/octoreach/rooms.py", ""),  # one shape vocabulary
-}
+ALLOWED: set[tuple[str, str, str]] = set()
 
 _CONTAINER = re.compile(r"\b(namespace|class|struct|union|enum|extern)\b")
 _NAME = re.compile(r"(~?[A-Za-z_]\w*(?:\s*::\s*~?[A-Za-z_]\w*)*|operator\s*\S+?)\s*\($")
