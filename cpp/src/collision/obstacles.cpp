@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <fstream>
 #include <optional>
+#include <sstream>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -12,7 +13,9 @@
 
 #include "collision/detail.hpp"
 #include "collision/mesh_pair_check.hpp"
+#include "common/file_read.hpp"
 #include "common/octree_file.hpp"
+#include "octoreach/limits.hpp"
 #include "collision/obb.hpp"
 
 namespace octoreach {
@@ -56,12 +59,8 @@ std::shared_ptr<fcl::CollisionGeometryd> bvh_from(const std::vector<fcl::Vector3
 
 // An OctoMap file: .ot holds any AbstractOcTree (it must be an OcTree), anything else is read as .bt.
 std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    if (errno == ENOENT) throw FileNotFound("no octree file '" + path + "'");
-    throw FileError("cannot read octree file '" + path + "'");
-  }
   if (path.size() >= 3 && path.substr(path.size() - 3) == ".ot") {
+    std::istringstream f(detail::read_file_bounded(path, "octree file", limits::kOctreeFileBytes));
     std::unique_ptr<octomap::AbstractOcTree> t(octomap::AbstractOcTree::read(f));
     auto* tree = dynamic_cast<octomap::OcTree*>(t.get());
     if (!tree) throw FileError("'" + path + "' is not an OcTree .ot file");
@@ -76,6 +75,10 @@ std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
 }  // namespace
 
 std::shared_ptr<fcl::CollisionGeometryd> load_mesh(const std::string& path, const Eigen::Vector3d& scale) {
+  if (!scale.allFinite() || (scale.array() == 0).any())  // negative: mirrored, as URDFs may give it
+    throw std::invalid_argument("mesh scale must be finite and non-zero, got (" + std::to_string(scale.x()) + ", " +
+                                std::to_string(scale.y()) + ", " + std::to_string(scale.z()) + ")");
+  detail::check_file_bounded(path, "mesh file", limits::kMeshFileBytes);  // assimp opens it itself
   Assimp::Importer importer;
   // Keep the file's own units; URDF meshes carry their scale in the <mesh scale> attribute.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
@@ -134,7 +137,10 @@ void Obstacles::add_sphere(double radius, const Pose& pose, const std::string& n
 }
 
 void Obstacles::add_cylinder(double radius, double length, const Pose& pose, const std::string& name) {
-  if (!(radius > 0) || !(length > 0)) throw std::invalid_argument("cylinder radius and length must be positive");
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw std::invalid_argument("cylinder radius must be a positive finite number, got " + std::to_string(radius));
+  if (!(length > 0) || !std::isfinite(length))
+    throw std::invalid_argument("cylinder length must be a positive finite number, got " + std::to_string(length));
   add_geometry(std::make_shared<fcl::Cylinderd>(radius, length), pose, name);
 }
 
@@ -154,10 +160,11 @@ void Obstacles::add_octree_file(const std::string& path, const Pose& pose, const
 
 void Obstacles::add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
                            double resolution, const std::string& name) {
-  if (!(resolution > 0)) throw std::invalid_argument("resolution must be positive");
+  if (!(resolution > 0) || !std::isfinite(resolution))
+    throw std::invalid_argument("resolution must be a positive finite number of metres, got " + std::to_string(resolution));
   auto tree = std::make_shared<octomap::OcTree>(resolution);
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    if (!points.row(i).allFinite()) throw std::invalid_argument("point " + std::to_string(i) + " is not finite");
+    if (!points.row(i).allFinite()) throw std::invalid_argument("points row " + std::to_string(i) + " is not finite");
     tree->updateNode(octomap::point3d(points(i, 0), points(i, 1), points(i, 2)), true);
   }
   tree->updateInnerOccupancy();
