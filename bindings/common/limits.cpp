@@ -24,6 +24,7 @@ void wrap_limits(py::module_& m) {
   d["rolls"] = L::kRolls;
   d["count_known_cells"] = L::kCountKnownCells;
   d["theta_bins"] = L::kThetaBins;
+  d["map_grid_values"] = L::kMapGridValues;
   d["capability_cells"] = L::kCapabilityCells;
   d["image_pixels"] = L::kImagePixels;
   d["fk_samples"] = L::kFkSamples;

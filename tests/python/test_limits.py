@@ -123,6 +123,16 @@ def test_sampler_and_surface_point_limits(small_surface_map):
         octoreach.Surface.rectangle(10.0, 10.0, 0.7).points(1e-4)
 
 
+def test_map_build_grids_are_bounded_before_allocation(arm, small_cap):
+    # 1 mm positions over a 2 m z range at 360 bins: about 1e13 values, refused before anything is allocated
+    with pytest.raises(ValueError, match="grid .* more than the limit"):
+        octoreach.InversePointMap.build(arm, small_cap, resolution=0.001, theta_bins=360, z_range=(-1.0, 1.0),
+                                        progress=False)
+    with pytest.raises(ValueError, match="grid .* more than the limit"):
+        octoreach.SurfaceMap.build(arm, small_cap, octoreach.Surface.rectangle(1, 1, 0.5), resolution=0.001,
+                                   theta_bins=360, z_range=(-1.0, 1.0), progress=False)
+
+
 # ---- builds and loaders agree ----
 
 def test_capability_resolution_range_is_the_same_in_build_and_load(arm_chain, tmp_path):

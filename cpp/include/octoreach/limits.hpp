@@ -60,6 +60,9 @@ inline constexpr std::uint64_t kSurfacePoints = std::uint64_t(1) << 24;
 /// apart; 360 rolls are 1 degree apart.
 inline constexpr std::int64_t kDirections = 100000;
 inline constexpr int kRolls = 360;
+/// Values (positions x yaw bins) of the dense grid a point or surface map build fills: 8 GiB of floats;
+/// a 0.01 m point map of an arm reaching 1.3 m at 64 bins takes 1.1e9.
+inline constexpr std::uint64_t kMapGridValues = std::uint64_t(1) << 31;
 /// Yaw bins of point and surface maps (1 degree apart).
 inline constexpr int kThetaBins = 360;
 /// Cells (voxels x orientations) of the workspace box of a capability map build: a byte of state and two

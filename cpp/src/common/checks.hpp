@@ -61,6 +61,18 @@ inline void check_map_resolution(double res, const char* name = "resolution") {
                                 format_number(limits::kMaxMapResolution) + "], got " + format_number(res));
 }
 
+/// \brief Throws unless a build's dense grid of nx x ny x nz positions x bins values stays within
+/// limits::kMapGridValues (counts multiplied at 64 bits: each is below 2^17).
+inline void check_grid_values(std::uint64_t nx, std::uint64_t ny, std::uint64_t nz, std::uint64_t bins, const char* what) {
+  const std::uint64_t values = nx * ny * nz * bins;
+  if (values > limits::kMapGridValues)
+    throw std::invalid_argument(std::string(what) + " grid of " + std::to_string(nx) + " x " + std::to_string(ny) + " x " +
+                                std::to_string(nz) + " positions x " + std::to_string(bins) + " theta bins holds " +
+                                std::to_string(values) + " values, more than the limit of " +
+                                std::to_string(limits::kMapGridValues) +
+                                ": use a coarser resolution, fewer theta_bins or a narrower z range");
+}
+
 /// \brief Throws unless 0 < count <= limit: "<name> must be in [1, limit], got count".
 inline void check_count(std::int64_t count, std::uint64_t limit, const char* name) {
   if (count < 1 || std::uint64_t(count) > limit)

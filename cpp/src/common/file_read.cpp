@@ -34,12 +34,13 @@ struct Fd {
 };
 
 // Opens `path` without blocking (a FIFO with no writer would block a plain open) and checks what it is.
-Fd open_checked(const std::string& path, const std::string& what, std::uint64_t max_bytes, struct stat& st) {
+Fd open_checked(const std::string& path, const std::string& what, std::uint64_t max_bytes, struct stat& st,
+                const char* verb) {
   Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY)};
   if (f.fd < 0) {
     const int err = errno;
-    if (err == ENOENT) throw FileNotFound("cannot read " + what + " '" + path + "' (no such file)");
-    throw FileError("cannot read " + what + " '" + path + "' (" + std::strerror(err) + ")");
+    if (err == ENOENT) throw FileNotFound(std::string("cannot ") + verb + " " + what + " '" + path + "' (no such file)");
+    throw FileError(std::string("cannot ") + verb + " " + what + " '" + path + "' (" + std::strerror(err) + ")");
   }
   if (::fstat(f.fd, &st) != 0)
     throw FileError("cannot read " + what + " '" + path + "' (" + std::strerror(errno) + ")");
@@ -55,7 +56,7 @@ Fd open_checked(const std::string& path, const std::string& what, std::uint64_t 
 
 std::string read_file_bounded(const std::string& path, const std::string& what, std::uint64_t max_bytes) {
   struct stat st;
-  Fd f = open_checked(path, what, max_bytes, st);
+  Fd f = open_checked(path, what, max_bytes, st, "read");
   // Read to the end, in case the file grew since fstat, but never past the limit.
   std::string bytes(static_cast<std::size_t>(st.st_size), '\0');
   std::size_t done = 0;
@@ -78,7 +79,7 @@ std::string read_file_bounded(const std::string& path, const std::string& what, 
 
 void check_file_bounded(const std::string& path, const std::string& what, std::uint64_t max_bytes) {
   struct stat st;
-  open_checked(path, what, max_bytes, st);
+  open_checked(path, what, max_bytes, st, "open");
 }
 
 }  // namespace octoreach::detail

@@ -8,6 +8,7 @@
 
 #include "maps/map_io.hpp"
 #include "common/cancel.hpp"
+#include "common/checks.hpp"
 #include "common/thread_pool.hpp"
 #include "maps/reach_extent.hpp"
 
@@ -94,6 +95,7 @@ bool make_grid(const CapabilityMap& cap, const Pose& reference_to_arm, const Poi
   g.kz0 = kmin[2];
   g.T = o.theta_bins;
   if (z_lo > z_hi) return false;
+  detail::check_grid_values(g.nxy, g.nxy, g.nz, g.T, "the point map's");
   g.values.assign(g.columns() * g.nz * g.T, 0.0f);
   return true;
 }

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "common/cancel.hpp"
+#include "common/checks.hpp"
 #include "common/format.hpp"
 #include "common/thread_pool.hpp"
 #include "maps/batch.hpp"
@@ -47,6 +48,7 @@ std::string make_grid(const SurfaceBuild& b, double res, SurfaceGrid& g) {
   g.ny = kmax[1] - g.kmin[1] + 1;
   g.nz = kmax[2] - g.kmin[2] + 1;
   g.T = b.o.theta_bins;
+  detail::check_grid_values(g.nx, g.ny, g.nz, g.T, "the surface map's");
   g.values.assign(g.cells() * g.T, 0.0f);
   return "";
 }
