@@ -75,7 +75,8 @@ test-sanitize: install
 	rm -rf build/asan/py && mkdir -p build/asan/py/octoreach && cp -r python/octoreach/. build/asan/py/octoreach/ \
 	  && cp build/asan/*.so* build/asan/py/octoreach/ && cp -r urdf build/asan/py/octoreach/urdf
 	$(ASAN_RUN) $(PY) -m pytest -q -p no:cacheprovider tests/fuzz
-	$(ASAN_RUN) $(PY) -m pytest -q -p no:cacheprovider tests/python/test_robustness.py -k "not ctrl_c"
+	$(ASAN_RUN) $(PY) -m pytest -q -p no:cacheprovider tests/python/test_robustness.py tests/python/test_file_safety.py \
+	  tests/python/test_limits.py -k "not ctrl_c"
 	$(SAN_CMAKE) -S . -B build/tsan -DOCTOREACH_SANITIZE=thread -DOCTOREACH_PYTHON=OFF
 	cmake --build build/tsan -j $(JOBS) --target octoreach_thread_tests
 	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build/tsan/tests/cpp/octoreach_thread_tests

@@ -152,6 +152,9 @@ inline Eigen::Vector3d vec3_from(const py::handle& obj, const char* what) {
   Array a = array_arg(obj, what, "3 numbers");
   if (a.size() != 3) throw std::invalid_argument(std::string(what) + " must have 3 entries");
   const double* d = a.data();
+  if (!std::isfinite(d[0]) || !std::isfinite(d[1]) || !std::isfinite(d[2]))
+    throw std::invalid_argument(std::string(what) + " must be finite, got (" + std::to_string(d[0]) + ", " +
+                                std::to_string(d[1]) + ", " + std::to_string(d[2]) + ")");
   return {d[0], d[1], d[2]};
 }
 
@@ -254,6 +257,7 @@ inline void z_range_arg(const py::object& z_range, double& z_min, double& z_max)
 
 void wrap_progress(py::module_& m);
 void wrap_shape(py::module_& m);
+void wrap_limits(py::module_& m);
 void wrap_obstacles(py::module_& m);
 void wrap_chain(py::module_& m);
 void wrap_robot(py::module_& m);

@@ -39,6 +39,7 @@ PYBIND11_MODULE(_core, m) {
   });
   octoreach::py_bindings::wrap_progress(m);
   octoreach::py_bindings::wrap_shape(m);
+  octoreach::py_bindings::wrap_limits(m);
   octoreach::py_bindings::wrap_obstacles(m);
   octoreach::py_bindings::wrap_chain(m);
   octoreach::py_bindings::wrap_robot(m);

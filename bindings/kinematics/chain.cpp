@@ -30,7 +30,8 @@ IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, 
   o.attempts = attempts;
   o.max_iterations = max_iterations;
   o.seed = seed;
-  if (approach_axis.norm() < 1e-9) throw std::invalid_argument("approach_axis must be a non-zero vector");
+  if (!approach_axis.allFinite() || approach_axis.norm() < 1e-9)
+    throw std::invalid_argument("approach_axis must be a finite non-zero vector");
   o.approach_axis = approach_axis;
   o.check_self_collision = self_collision;
   o.obstacles = obstacles;
@@ -47,7 +48,9 @@ Eigen::VectorXd q_from(const Chain& c, const py::handle& q, const char* what = "
   Array a = array_arg(q, what, "a vector of " + std::to_string(c.dof()) + " joint values");
   if (a.ndim() != 1 || a.shape(0) != c.dof())
     throw std::invalid_argument(std::string(what) + " must be a vector of " + std::to_string(c.dof()) + " joint values");
-  return Eigen::Map<const Eigen::VectorXd>(a.data(), c.dof());
+  Eigen::VectorXd q_vec = Eigen::Map<const Eigen::VectorXd>(a.data(), c.dof());
+  if (!q_vec.allFinite()) throw std::invalid_argument(std::string(what) + " must be finite (got NaN or inf)");
+  return q_vec;
 }
 
 const char* mode_name(IkMode mode) {
@@ -80,7 +83,7 @@ void wrap_chain(py::module_& m) {
       .def("fk", [](const Chain& c, const py::object& q) { return pose_to_array(c.fk(q_from(c, q))); }, py::arg("q"),
            "Pose (4x4) of the tip link in the base link frame.")
       .def("fk_batch", [](const Chain& c, const py::object& Q) {
-             Eigen::MatrixXd M = matrix_from(Q, c.dof(), "Q");
+             Eigen::MatrixXd M = finite_matrix_from(Q, c.dof(), "Q");
              std::vector<Pose> out;
              {
                py::gil_scoped_release release;
@@ -151,7 +154,7 @@ void wrap_chain(py::module_& m) {
              Eigen::MatrixXd S;
              bool has_seeds = !seeds.is_none();
              if (has_seeds) {
-               S = matrix_from(seeds, c.dof(), "seeds");
+               S = finite_matrix_from(seeds, c.dof(), "seeds");
                if (S.rows() != static_cast<Eigen::Index>(targets.size()))
                  throw std::invalid_argument("seeds must have one row per target");
              }

@@ -10,7 +10,10 @@ void wrap_arm_placement(py::module_& m) {
   m.def("default_reference", &default_reference, py::arg("robot"), py::arg("chain"),
         "Reference posture (robot configuration) for the joints off `chain`: home with every SRDF 'tuck*' state\n"
         "applied that does not move the chain (the other arm tucked). Builds use it when given no reference.");
-  m.def("base_pose", [](const Eigen::Vector4d& pose) { return pose_to_array(base_pose(pose[0], pose[1], pose[2], pose[3])); },
+  m.def("base_pose", [](const Eigen::Vector4d& pose) {
+          if (!pose.allFinite()) throw std::invalid_argument("pose must be finite (x, y, z, theta), got NaN or inf");
+          return pose_to_array(base_pose(pose[0], pose[1], pose[2], pose[3]));
+        },
         py::arg("pose"), "4x4 pose (world frame) of a frame at base pose (x, y, z, theta): yaw about z, then translation.");
   m.def("link_roles", [](const Robot& robot, const Chain& chain) {
           LinkRoles r = link_roles(robot, chain);

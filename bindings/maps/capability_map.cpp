@@ -87,11 +87,14 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
       }, py::arg("poses"), py::arg("lookup") = py::none(),
       "True (N,) where tool pose (N, 4, 4) (base link frame) is reachable: the orientation nearest the pose's,\n"
       "the position by `lookup` (CapabilityLookup or its name; None: CapabilityMap.DEFAULT_LOOKUP, the vote).")
-      .def("reachable_cell", py::overload_cast<const Eigen::Vector3d&, int>(&CapabilityMap::reachable, py::const_),
-           py::arg("point"), py::arg("orientation"),
+      .def("reachable_cell", [](const CapabilityMap& cm, const py::object& point, int orientation) {
+             return cm.reachable(vec3_from(point, "point"), orientation);
+           }, py::arg("point"), py::arg("orientation"),
            "The stored cell: orientation index `orientation` reachable in the voxel holding `point` (the\n"
            "nearest_cell rule; reachable(poses) gives the map's answer for poses).")
-      .def("solution", &CapabilityMap::solution, py::arg("point"), py::arg("orientation"),
+      .def("solution", [](const CapabilityMap& cm, const py::object& point, int orientation) {
+             return cm.solution(vec3_from(point, "point"), orientation);
+           }, py::arg("point"), py::arg("orientation"),
            "Stored joint solution of a reachable cell, or None.")
       .def("voxels", [](const CapabilityMap& cm) {
         std::vector<Eigen::Vector3d> c;

@@ -10,7 +10,11 @@ void wrap_pose_sampler(py::module_& m) {
       "free where the cost is below threshold; outside the grid is not free.")
       .def(py::init([](const Eigen::MatrixXf& grid, const Eigen::Vector2d& origin, double resolution, double threshold) {
              if (grid.size() == 0) throw std::invalid_argument("the cost map grid is empty");
-             if (!(resolution > 0)) throw std::invalid_argument("cost map resolution must be positive");
+             if (!grid.allFinite()) throw std::invalid_argument("the cost map grid must be finite (no NaN or inf)");
+             if (!origin.allFinite()) throw std::invalid_argument("the cost map origin must be finite");
+             if (!(resolution > 0) || !std::isfinite(resolution))
+               throw std::invalid_argument("cost map resolution must be a positive finite number of metres");
+             if (!std::isfinite(threshold)) throw std::invalid_argument("cost map threshold must be finite");
              CostMap c;
              c.cost = grid;
              c.origin = origin;
@@ -18,7 +22,10 @@ void wrap_pose_sampler(py::module_& m) {
              c.threshold = threshold;
              return c;
            }), py::arg("grid"), py::arg("origin"), py::arg("resolution"), py::arg("threshold") = 0.5)
-      .def("is_free", &CostMap::is_free, py::arg("x"), py::arg("y"));
+      .def("is_free", [](const CostMap& c, double x, double y) {
+             if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("x and y must be finite");
+             return c.is_free(x, y);
+           }, py::arg("x"), py::arg("y"));
 
   py::class_<PoseSampler>(m, "PoseSampler",
       "Samples good, well spread base poses (x, y, z, theta) from a surface map: the grounding attachment.")
@@ -82,7 +89,10 @@ void wrap_pose_sampler(py::module_& m) {
                throw py::type_error("k must be an int or None, got " + std::string(py::str(py::type::of(k).attr("__name__"))));
              const long long kk = PyLong_AsLongLong(py::reinterpret_steal<py::object>(PyNumber_Index(k.ptr())).ptr());
              if (kk == -1 && PyErr_Occurred()) throw py::error_already_set();
-             if (kk < 0 || kk > (1ll << 30)) throw std::invalid_argument("k must be in [0, 2**30], got " + std::to_string(kk));
+             if (kk < 0 || std::uint64_t(kk) > limits::kSamplerCandidates)
+               throw std::invalid_argument("k must be in [0, " + std::to_string(limits::kSamplerCandidates) + "] (at most " +
+                                           std::to_string(limits::kSamplerCandidates) + " poses per call), got " +
+                                           std::to_string(kk));
              const int n = int(kk);
              RowMatrixXd out(n, 4);
              for (int i = 0; i < n; ++i) out.row(i) = one().transpose();
@@ -95,7 +105,10 @@ void wrap_pose_sampler(py::module_& m) {
         for (std::size_t i = 0; i < s.history().size(); ++i) out.row(i) = s.history()[i].transpose();
         return out;
       }, "Poses returned so far (K, 4).")
-      .def("discount", [](const PoseSampler& s, const Eigen::Vector4d& c) { return s.discount(c); }, py::arg("pose"),
+      .def("discount", [](const PoseSampler& s, const Eigen::Vector4d& c) {
+             if (!c.allFinite()) throw std::invalid_argument("pose must be finite (x, y, z, theta), got NaN or inf");
+             return s.discount(c);
+           }, py::arg("pose"),
            "w of eq. (3) for a pose against the history.")
       .def_property_readonly("last_counts", [](const PoseSampler& s) {
         auto c = s.last_counts();

@@ -5,8 +5,9 @@ from __future__ import annotations
 import collections.abc
 import numpy
 import numpy.typing
+import types
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'ranks_before', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'limits', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'ranks_before', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
 class Cancelled(KeyboardInterrupt):
     pass
 class Shape:
@@ -2432,6 +2433,8 @@ def look_at(eye: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]
     Camera pose (4x4 camera -> world) at `eye` looking at `target` (world frame), rolled by `roll` radians
     about the optical axis (+z); at roll 0 the image +y points down.
     """
+limits: types.MappingProxyType[str, int | float]
+"""The numeric limits octoreach checks its inputs against (cpp/include/octoreach/limits.hpp), read-only."""
 def map_format_version() -> int:
     """
     Version of the map file format this library writes and reads (part of a map cache key).

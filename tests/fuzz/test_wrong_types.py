@@ -217,8 +217,9 @@ def _target(sweep, owner, attr):
     return getattr(inst, attr), False
 
 
-def sweep_core(sweep):
-    """Yields (label, pname, ann, exception or None, wrong value) for every argument of every callable."""
+def swept_signatures(sweep):
+    """(label, callable, params) for every signature of every public callable of _core there is something to
+    call it on."""
     for label, owner, attr in public_callables():
         target, skip = _target(sweep, owner, attr)
         if skip or target is None:
@@ -227,17 +228,23 @@ def sweep_core(sweep):
         if isinstance(doc_owner, staticmethod):
             doc_owner = doc_owner.__func__
         for params in signatures(doc_owner):
-            for i, (pname, ann, _) in enumerate(params):
-                for w in wrong_values(ann):
-                    args = []
-                    for j, (qn, qa, qd) in enumerate(params[: max(i + 1, _required(params))]):
-                        args.append(w if j == i else valid_value(sweep, label, qn, qa))
-                    try:
-                        _call(target, args, {})
-                        err = None
-                    except BaseException as e:  # noqa: BLE001 - anything but TypeError/ValueError is a finding
-                        err = e
-                    yield label, pname, ann, err, w
+            yield label, target, params
+
+
+def sweep_core(sweep):
+    """Yields (label, pname, ann, exception or None, wrong value) for every argument of every callable."""
+    for label, target, params in swept_signatures(sweep):
+        for i, (pname, ann, _) in enumerate(params):
+            for w in wrong_values(ann):
+                args = []
+                for j, (qn, qa, qd) in enumerate(params[: max(i + 1, _required(params))]):
+                    args.append(w if j == i else valid_value(sweep, label, qn, qa))
+                try:
+                    _call(target, args, {})
+                    err = None
+                except BaseException as e:  # noqa: BLE001 - anything but TypeError/ValueError is a finding
+                    err = e
+                yield label, pname, ann, err, w
 
 
 def _required(params):

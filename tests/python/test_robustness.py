@@ -143,9 +143,15 @@ def test_chain_wrap_and_ik_do_not_hang_on_huge_values(arm_chain):
     child = run_python("""
         import numpy as np, octoreach as o
         c = o.robots.test_arm().chain('base_link', 'tool0')
-        for v in (1e17, -1e17, 1e300, np.inf, -np.inf):
+        for v in (1e17, -1e17, 1e300):
             q = c.wrap(np.full(c.dof, v))
             assert q.shape == (c.dof,)
+        for v in (np.inf, -np.inf):
+            try:
+                c.wrap(np.full(c.dof, v))
+                raise AssertionError('wrap accepted inf')
+            except ValueError:
+                pass
         T0 = c.fk(np.zeros(c.dof))
         for v in (1e17, 1e300):  # a huge seed: wrapped into the limits or refused, never looped over
             try:

@@ -82,7 +82,7 @@ class Obstacles {
   /// \brief True when `object` (world frame, AABB computed) touches any obstacle; AABBs reject first.
   bool collides(const fcl::CollisionObjectd& object) const;
   /// \brief Largest box extent collides_box accepts, metres.
-  static constexpr double kMaxBoxSize = 1e6;
+  static constexpr double kMaxBoxSize = limits::kCoordinate;
   /// \brief True when a box of extents `size` at `pose` (world frame) touches any obstacle.
   /// \throws std::invalid_argument for a non-finite, negative or larger than kMaxBoxSize extent or a non-finite pose.
   bool collides_box(const Eigen::Vector3d& size, const Pose& pose) const;

@@ -209,6 +209,7 @@ class ExplorationMap {
   CellState state(const Eigen::Vector3d& p) const;
   CellState state(CellKey key) const;
   /// \brief Batched state(p): rows (n, 3), out[i] = CellState as a byte; one lock for the batch.
+  /// \throws std::invalid_argument naming the first row holding NaN or inf.
   void state(const double* rows, std::size_t n, std::uint8_t* out) const;
   /// \brief Key of the cell holding p; throws std::invalid_argument outside the map bounds.
   CellKey key_of(const Eigen::Vector3d& p) const;
@@ -250,7 +251,7 @@ class ExplorationMap {
   OccupancyDigest occupancy_digest() const;
 
   /// \brief Most cells count_known visits.
-  static constexpr std::uint64_t kMaxCountCells = std::uint64_t(1) << 30;
+  static constexpr std::uint64_t kMaxCountCells = limits::kCountKnownCells;
   /// \brief Counts of known / unknown cells (at the finest resolution) in an axis-aligned box.
   /// \throws std::invalid_argument for a corner outside the map bounds or a box of more than kMaxCountCells cells.
   std::pair<std::size_t, std::size_t> count_known(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;

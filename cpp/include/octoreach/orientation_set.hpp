@@ -20,8 +20,8 @@ namespace octoreach {
 class OrientationSet {
  public:
   /// \brief Most directions a set may hold, and most rolls (checked before anything is allocated).
-  static constexpr std::int64_t kMaxDirections = 100000;
-  static constexpr int kMaxRolls = 360;
+  static constexpr std::int64_t kMaxDirections = limits::kDirections;
+  static constexpr int kMaxRolls = limits::kRolls;
   /// \brief Evenly spread set of about `count` directions (rounded to a multiple of `symmetry`); built in
   /// O(count log count). \throws std::invalid_argument for count outside [1, kMaxDirections], rolls outside
   /// [1, kMaxRolls] or symmetry outside [1, 64].

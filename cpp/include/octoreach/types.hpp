@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "octoreach/limits.hpp"
+
 namespace octoreach {
 
 /// \brief A rigid transform (metres, right-handed, z up).

@@ -8,6 +8,8 @@
 #include "octoreach/shape.hpp"
 #include "octoreach/types.hpp"
 #include "collision/mesh_pair_check.hpp"
+#include "common/file_read.hpp"
+#include "octoreach/limits.hpp"
 
 namespace octoreach {
 namespace {
@@ -46,6 +48,10 @@ std::shared_ptr<fcl::CollisionGeometryd> bvh_from(const std::vector<fcl::Vector3
 }  // namespace
 
 std::shared_ptr<fcl::CollisionGeometryd> load_mesh(const std::string& path, const Eigen::Vector3d& scale) {
+  if (!scale.allFinite() || (scale.array() == 0).any())  // negative: mirrored, as URDFs may give it
+    throw std::invalid_argument("mesh scale must be finite and non-zero, got (" + std::to_string(scale.x()) + ", " +
+                                std::to_string(scale.y()) + ", " + std::to_string(scale.z()) + ")");
+  detail::check_file_bounded(path, "mesh file", limits::kMeshFileBytes);  // assimp opens it itself
   Assimp::Importer importer;
   // Keep the file's own units; URDF meshes carry their scale in the <mesh scale> attribute.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);

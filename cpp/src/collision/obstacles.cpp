@@ -59,10 +59,11 @@ void Obstacles::add_octree_file(const std::string& path, const Pose& pose, const
 
 void Obstacles::add_points(const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& points,
                            double resolution, const std::string& name) {
-  if (!(resolution > 0)) throw std::invalid_argument("resolution must be positive");
+  if (!(resolution > 0) || !std::isfinite(resolution))
+    throw std::invalid_argument("resolution must be a positive finite number of metres, got " + std::to_string(resolution));
   auto tree = std::make_shared<octomap::OcTree>(resolution);
   for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    if (!points.row(i).allFinite()) throw std::invalid_argument("point " + std::to_string(i) + " is not finite");
+    if (!points.row(i).allFinite()) throw std::invalid_argument("points row " + std::to_string(i) + " is not finite");
     tree->updateNode(octomap::point3d(points(i, 0), points(i, 1), points(i, 2)), true);
   }
   tree->updateInnerOccupancy();

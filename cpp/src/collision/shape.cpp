@@ -2,14 +2,15 @@
 // collision geometry.
 #include "octoreach/shape.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <sstream>
 
 #include <fcl/fcl.h>
 #include <octomap/OcTree.h>
 
+#include "common/file_read.hpp"
 #include "common/octree_file.hpp"
+#include "octoreach/limits.hpp"
 
 namespace octoreach {
 namespace {
@@ -30,12 +31,8 @@ Shape with_geometry_at(Shape s, std::shared_ptr<fcl::CollisionGeometryd> geometr
 
 // An OctoMap file: .ot holds any AbstractOcTree (it must be an OcTree), anything else is read as .bt.
 std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    if (errno == ENOENT) throw FileNotFound("no octree file '" + path + "'");
-    throw FileError("cannot read octree file '" + path + "'");
-  }
   if (path.size() >= 3 && path.substr(path.size() - 3) == ".ot") {
+    std::istringstream f(detail::read_file_bounded(path, "octree file", limits::kOctreeFileBytes));
     std::unique_ptr<octomap::AbstractOcTree> t(octomap::AbstractOcTree::read(f));
     auto* tree = dynamic_cast<octomap::OcTree*>(t.get());
     if (!tree) throw FileError("'" + path + "' is not an OcTree .ot file");
@@ -59,7 +56,10 @@ Shape Shape::box(const Eigen::Vector3d& size, const Pose& pose) {
 }
 
 Shape Shape::cylinder(double radius, double length, const Pose& pose) {
-  if (!(radius > 0) || !(length > 0)) throw std::invalid_argument("cylinder radius and length must be positive");
+  if (!(radius > 0) || !std::isfinite(radius))
+    throw std::invalid_argument("cylinder radius must be a positive finite number, got " + std::to_string(radius));
+  if (!(length > 0) || !std::isfinite(length))
+    throw std::invalid_argument("cylinder length must be a positive finite number, got " + std::to_string(length));
   Shape s;
   s.type = Type::Cylinder;
   s.radius = radius;

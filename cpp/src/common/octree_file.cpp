@@ -9,7 +9,9 @@
 
 #include <octomap/OcTree.h>
 
+#include "common/file_read.hpp"
 #include "common/format.hpp"
+#include "octoreach/limits.hpp"
 #include "octoreach/types.hpp"
 
 namespace octoreach::detail {
@@ -128,12 +130,7 @@ struct NodeWalk {
 }  // namespace
 
 void read_bt(octomap::OcTree& tree, const std::string& path, const std::string& what, std::uint64_t max_cells) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) throw FileNotFound("no " + what + " '" + path + "'");
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw FileError("cannot open " + what + " '" + path + "'");
-  std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  if (f.bad()) throw FileError("cannot read " + what + " '" + path + "'");
+  const std::string bytes = read_file_bounded(path, what, limits::kOctreeFileBytes);
   const BtHeader h = parse_header(bytes, path);
   if (!(h.res >= kMinOctreeResolution && h.res <= kMaxOctreeResolution))
     throw FileError("'" + path + "' states a resolution of " + format_number(h.res) + " m, outside [" +

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include "octoreach/limits.hpp"
+
 namespace octomap {
 class OcTree;
 }
@@ -11,7 +13,7 @@ class OcTree;
 namespace octoreach::detail {
 
 /// \brief Resolutions a .bt file may state, metres (outside: the file is rejected as damaged).
-constexpr double kMinOctreeResolution = 1e-4, kMaxOctreeResolution = 1e4;
+constexpr double kMinOctreeResolution = limits::kMinOctreeResolution, kMaxOctreeResolution = limits::kMaxOctreeResolution;
 
 /// \brief Reads the .bt file at `path` into `tree` (`what` names it in messages).
 /// \throws FileNotFound if it does not exist, FileError if it cannot be parsed, states a resolution outside

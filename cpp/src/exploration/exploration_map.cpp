@@ -100,8 +100,9 @@ ExplorationMap::ExplorationMap(const ExplorationOptions& options) : options_(opt
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw std::invalid_argument("resolution must be a positive number of metres, got " +
                                 std::to_string(options.resolution));
-  if (!(options.void_fit_threshold >= 0))
-    throw std::invalid_argument("void_fit_threshold must be >= 0, got " + std::to_string(options.void_fit_threshold));
+  if (!(options.void_fit_threshold >= 0) || !std::isfinite(options.void_fit_threshold))
+    throw std::invalid_argument("void_fit_threshold must be a finite number >= 0, got " +
+                                std::to_string(options.void_fit_threshold));
   resolution_ = options.resolution;
   state_ = std::make_unique<detail::ExplorationState>(resolution_);
 }
@@ -135,6 +136,7 @@ void ExplorationMap::state(const double* rows, std::size_t n, std::uint8_t* out)
   for (std::size_t i = 0; i < n; ++i) {
     octomap::OcTreeKey k;
     const Eigen::Vector3d p(rows[3 * i], rows[3 * i + 1], rows[3 * i + 2]);
+    if (!p.allFinite()) throw std::invalid_argument("point " + std::to_string(i) + " is not finite (NaN or inf)");
     out[i] = key_checked(state_->tree, p, k) ? std::uint8_t(g.get(detail::to_cell(k)) & kStateMask) : 0;
   }
 }

@@ -333,6 +333,10 @@ bool SensorWorkspace::contains(const Eigen::Vector3d& p) const {
 
 std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap& map, double sensor_range,
                                                            std::size_t* vectors) {
+  detail::CancellableScope cancellable;
+  if (!(sensor_range > 0) || !(sensor_range <= limits::kCoordinate))
+    throw std::invalid_argument("sensor_range must be a positive number of metres up to " +
+                                std::to_string(int(limits::kCoordinate)) + ", got " + std::to_string(sensor_range));
   auto guard = detail::read_guard(map);
   const std::vector<UtilityVector> vecs = utility_vectors(map);
   if (vectors) *vectors = vecs.size();
@@ -342,6 +346,7 @@ std::vector<std::pair<CellKey, double>> accumulate_utility(const ExplorationMap&
 }
 
 NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt) {
+  detail::CancellableScope cancellable;  // every parallel step polls; the map is only read
   auto t0 = Clock::now();
   detail::validate_options(cam, opt);
   auto guard = detail::read_guard(map);

@@ -44,7 +44,17 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
   cam.validate();
   if (opt.max_valid_poses <= 0 || opt.orientations_per_cell <= 0 || opt.max_candidate_cells <= 0)
     throw std::invalid_argument("max_valid_poses, orientations_per_cell and max_candidate_cells must be positive");
-  if (!(opt.orientation_spread >= 0)) throw std::invalid_argument("orientation_spread must be >= 0");
+  const std::uint64_t poses = std::uint64_t(opt.max_candidate_cells) * std::uint64_t(opt.orientations_per_cell);
+  if (poses > limits::kViewCandidates || std::uint64_t(opt.max_valid_poses) > limits::kViewCandidates)
+    throw std::invalid_argument("max_candidate_cells x orientations_per_cell (" + std::to_string(poses) +
+                                ") and max_valid_poses (" + std::to_string(opt.max_valid_poses) +
+                                ") must be at most " + std::to_string(limits::kViewCandidates));
+  if (!(opt.orientation_spread >= 0) || !std::isfinite(opt.orientation_spread))
+    throw std::invalid_argument("orientation_spread must be a finite number >= 0, got " +
+                                std::to_string(opt.orientation_spread));
+  if (!(opt.min_distance >= 0) || !std::isfinite(opt.min_distance))
+    throw std::invalid_argument("min_distance must be a finite number of metres >= 0, got " +
+                                std::to_string(opt.min_distance));
   if (!(opt.min_reachability >= 0 && opt.min_reachability < 1))
     throw std::invalid_argument("min_reachability must be in [0, 1), got " + std::to_string(opt.min_reachability));
   if (opt.unknown_pass_probability > 1 || std::isnan(opt.unknown_pass_probability))
@@ -59,8 +69,16 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
   if (!(opt.enclosure_range > 0) || !std::isfinite(opt.enclosure_range))
     throw std::invalid_argument("enclosure_range must be a positive number of metres, got " +
                                 std::to_string(opt.enclosure_range));
+  if (!(opt.ik.position_tolerance > 0) || !std::isfinite(opt.ik.position_tolerance) ||
+      !(opt.ik.orientation_tolerance > 0) || !std::isfinite(opt.ik.orientation_tolerance))
+    throw std::invalid_argument("ik_position_tolerance and ik_orientation_tolerance must be positive finite numbers, "
+                                "got " + std::to_string(opt.ik.position_tolerance) + " and " +
+                                std::to_string(opt.ik.orientation_tolerance));
   if (opt.score_width <= 0 || opt.score_height <= 0)
     throw std::invalid_argument("score_width and score_height must be positive");
+  if (std::uint64_t(opt.score_width) * std::uint64_t(opt.score_height) > limits::kImagePixels)
+    throw std::invalid_argument("score_width x score_height must be at most " + std::to_string(limits::kImagePixels) +
+                                " rays, got " + std::to_string(opt.score_width) + " x " + std::to_string(opt.score_height));
 }
 
 ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map_(map), opt_(opt) {
@@ -215,6 +233,7 @@ const char* status_name(ViewStatus s) {
 
 ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                         const NbvOptions& opt, bool score_invalid) {
+  detail::CancellableScope cancellable;  // poses are polled between them; the map is only read
   detail::validate_options(cam, opt);
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (!poses[i].matrix().allFinite())

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/cancel.hpp"
 #include "exploration/cell_sets.hpp"
 #include "exploration/exploration_state.hpp"
 #include "exploration/grid_ray.hpp"
@@ -208,6 +209,7 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   // the rays' walk and the count, over either kind of MetCells (depths only for an announcement)
   const auto count = [&](auto& met) {
   for (std::size_t r = 0; r < dirs.size(); ++r) {
+    if ((r & 1023) == 1023) poll_cancel("view scoring cancelled");  // a fine score grid takes long per view
     if (lengths[r] < 0) continue;  // misses the clip box
     double w = 1.0;  // the geometric weight: the product of the pass probabilities so far
     int depth = 0;   // unknown cells crossed so far

@@ -28,8 +28,14 @@ Eigen::Vector3d log_so3(const Eigen::Matrix3d& R) {
 
 void check_ik_request(const Chain& c, const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) {
   if (!target.matrix().allFinite()) throw std::invalid_argument("IK target pose must be finite");
-  if (!(o.position_tolerance > 0) || !(o.orientation_tolerance > 0))
-    throw std::invalid_argument("IK tolerances must be positive");
+  if (!(o.position_tolerance > 0) || !std::isfinite(o.position_tolerance))
+    throw std::invalid_argument("IK position_tolerance must be a positive finite number of metres, got " +
+                                std::to_string(o.position_tolerance));
+  if (!(o.orientation_tolerance > 0) || !std::isfinite(o.orientation_tolerance))
+    throw std::invalid_argument("IK orientation_tolerance must be a positive finite number of radians, got " +
+                                std::to_string(o.orientation_tolerance));
+  if (!o.approach_axis.allFinite() || o.approach_axis.norm() < 1e-9)
+    throw std::invalid_argument("IK approach_axis must be a finite non-zero vector");
   if (o.attempts < 1 || o.max_iterations < 1)
     throw std::invalid_argument("IK needs at least one attempt and one iteration");
   if (seed) {

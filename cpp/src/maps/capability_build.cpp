@@ -35,7 +35,7 @@ CellBox CellBox::around_workspace(const Chain& chain, const VoxelOcTree& tree, i
   b.O = orientations;
   b.voxels = static_cast<std::size_t>(b.nx) * b.ny * b.nz;
   b.cells = b.voxels * orientations;
-  if (b.cells > (1ull << 31))
+  if (b.cells > limits::kCapabilityCells)
     throw std::invalid_argument("resolution " + format_number(res) + " with " + std::to_string(orientations) +
                                 " orientations gives " + std::to_string(b.cells) + " cells: too many");
   return b;
@@ -105,6 +105,10 @@ void CapabilityBuilder::report(double start, double share, double fraction) cons
 std::size_t CapabilityBuilder::sample() {
   const int O = box_.O;
   const std::size_t samples = o_.fk_samples ? o_.fk_samples : 40 * box_.voxels;
+  if (samples > limits::kFkSamples)
+    throw std::invalid_argument("40 forward-kinematics samples per voxel of the workspace box (" +
+                                std::to_string(box_.voxels) + " voxels) are more than the limit of " +
+                                std::to_string(limits::kFkSamples) + ": use a coarser resolution or give fk_samples");
   const std::size_t chunk = 8192, chunks_per_round = 16;
   const std::size_t nchunks = (samples + chunk - 1) / chunk;
   for (std::size_t round = 0; round * chunks_per_round < nchunks; ++round) {

@@ -12,6 +12,7 @@
 
 
 #include "common/cancel.hpp"
+#include "common/checks.hpp"
 #include "maps/map_io.hpp"
 #include "maps/batch.hpp"
 #include "maps/capability_build.hpp"
@@ -35,14 +36,15 @@ void CapabilityMap::set_parameters_(const CapabilityMapOptions& o) {
 namespace {
 
 void check_options(const Chain& chain, const CapabilityMapOptions& o) {
-  if (!(o.resolution > 0) || !std::isfinite(o.resolution))
-    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_number(o.resolution));
-  if (o.resolution < 0.001) throw std::invalid_argument("resolution below 1 mm is not supported");
-  if (!o.approach_axis.allFinite() || o.approach_axis.norm() < 1e-9)
-    throw std::invalid_argument("approach_axis must be a non-zero vector");
+  detail::check_map_resolution(o.resolution);  // the range load() accepts
+  detail::check_finite(o.approach_axis, "approach_axis");
+  if (o.approach_axis.norm() < 1e-9) throw std::invalid_argument("approach_axis must be a non-zero vector");
   if (chain.dof() == 0) throw std::invalid_argument("the chain has no moving joints");
-  if (!(o.position_tolerance > 0) || !(o.orientation_tolerance > 0))
-    throw std::invalid_argument("IK tolerances must be positive");
+  detail::check_positive(o.position_tolerance, "position_tolerance");
+  detail::check_positive(o.orientation_tolerance, "orientation_tolerance");
+  if (o.fk_samples > limits::kFkSamples)
+    throw std::invalid_argument("fk_samples must be at most " + std::to_string(limits::kFkSamples) + ", got " +
+                                std::to_string(o.fk_samples));
   if (o.block_size < 0 || o.block_size > 4096)
     throw std::invalid_argument("block_size must be 0 (one flood over the whole box) or voxels per block edge "
                                 "(1 to 4096), got " + std::to_string(o.block_size));
@@ -321,7 +323,19 @@ void CapabilityMap::save(const std::string& path, bool with_solutions) const {
 CapabilityMap CapabilityMap::load(const std::string& path) {
   detail::Header h;
   std::vector<char> payload;
-  detail::read_map_file(path, kKind, h, payload);
+  // The contents the header declares: per voxel a bit per orientation, and (with solutions) a joint
+  // vector per orientation; the counts are checked before they are multiplied.
+  detail::read_map_file(path, kKind, h, payload, [&](const detail::Header& head) {
+    const long long dirs = detail::header_int(head, "directions", path), rolls = detail::header_int(head, "rolls", path),
+                    dof = detail::header_int(head, "dof", path);
+    if (dirs < 1 || dirs > OrientationSet::kMaxDirections || rolls < 1 || rolls > OrientationSet::kMaxRolls ||
+        dof < 1 || dof > 64)
+      throw FileError("'" + path + "' has implausible map parameters");
+    const std::uint64_t O = std::uint64_t(dirs) * std::uint64_t(rolls);
+    std::uint64_t record = (O + 63) / 64 * sizeof(std::uint64_t);
+    if (detail::header_int(head, "solutions", path) != 0) record += O * std::uint64_t(dof) * sizeof(float);
+    return detail::payload_bound(detail::header_voxels(head, path), record);
+  });
   CapabilityMap m;
   using detail::header_double;
   using detail::header_int;
@@ -333,7 +347,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   // counts checked at full width before they are narrowed
   const auto dof64 = header_int(h, "dof", path), dirs64 = header_int(h, "directions", path),
              rolls64 = header_int(h, "rolls", path), sym64 = header_int(h, "symmetry", path);
-  if (!(m.resolution_ >= 0.001 && m.resolution_ <= 100.0) || dirs64 < 1 ||
+  if (!(m.resolution_ >= limits::kMinMapResolution && m.resolution_ <= limits::kMaxMapResolution) || dirs64 < 1 ||
       dirs64 > OrientationSet::kMaxDirections || rolls64 < 1 || rolls64 > OrientationSet::kMaxRolls || sym64 < 1 ||
       sym64 > 64 || dof64 < 1 || dof64 > 64)
     throw FileError("'" + path + "' has implausible map parameters");

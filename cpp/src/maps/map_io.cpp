@@ -1,6 +1,8 @@
 #include "maps/map_io.hpp"
 
 #include "common/atomic_file.hpp"
+#include "common/file_read.hpp"
+#include "octoreach/limits.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -67,6 +69,7 @@ void write_map_file(const std::string& path, const std::string& kind, const Head
 
 namespace {
 std::ifstream open_map_file(const std::string& path) {
+  check_file_bounded(path, "map file", limits::kMapFileBytes);  // a FIFO would block the open
   std::ifstream f(path, std::ios::binary);
   if (!f) {
     if (errno == ENOENT) throw FileNotFound("cannot open map file '" + path + "' (no such file)");
@@ -103,7 +106,8 @@ std::string read_map_kind(const std::string& path) {
   return printable(read_kind_field(f, path));
 }
 
-void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload) {
+void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload,
+                   const std::function<std::uint64_t(const Header&)>& max_payload) {
   std::ifstream f = open_map_file(path);
   f.seekg(0, std::ios::end);
   const std::uint64_t file_size = std::uint64_t(std::max<std::streamoff>(0, f.tellg()));
@@ -127,6 +131,14 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   // zlib expands at most about 1032 times: a larger raw size is damage, and must not drive an allocation.
   if (size > (1ull << 34) || raw > 1032 * size + 1024) throw FileError("'" + path + "' is damaged (implausible sizes)");
   if (size > file_size) throw FileError("'" + path + "' is truncated (payload has fewer bytes than its header says)");
+  // The decompressed size is bounded by what the header declares, before anything is allocated.
+  if (raw > limits::kMapPayloadBytes)
+    throw FileError("'" + path + "' declares " + std::to_string(raw) + " bytes of map data, more than the limit of " +
+                    std::to_string(limits::kMapPayloadBytes) + " (damaged?)");
+  const std::uint64_t declared = max_payload(header);
+  if (raw > declared)
+    throw FileError("'" + path + "' is damaged: its payload declares " + std::to_string(raw) +
+                    " bytes, more than the " + std::to_string(declared) + " its header's counts can take");
   std::vector<Bytef> compressed(size);
   if (!f.read(reinterpret_cast<char*>(compressed.data()), size))
     throw FileError("'" + path + "' is truncated (payload has fewer bytes than its header says)");
@@ -139,6 +151,23 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   uLongf out = raw;
   if (uncompress(reinterpret_cast<Bytef*>(payload.data()), &out, compressed.data(), size) != Z_OK || out != raw)
     throw FileError("'" + path + "' is damaged (payload does not decompress)");
+}
+
+std::uint64_t payload_bound(std::uint64_t voxels, std::uint64_t record_bytes) {
+  constexpr std::uint64_t kMasksPerVoxel = 16;  // the octree's depth: one child mask per level on a voxel's path
+  std::uint64_t per_voxel = 0, records = 0, total = 0;
+  if (__builtin_add_overflow(record_bytes, kMasksPerVoxel, &per_voxel) ||
+      __builtin_mul_overflow(voxels, per_voxel, &records) || __builtin_add_overflow(records, 9u, &total))
+    return ~std::uint64_t(0);
+  return total;
+}
+
+std::uint64_t header_voxels(const Header& h, const std::string& path) {
+  const std::uint64_t v = header_u64(h, "voxels", path);
+  if (v > limits::kMapVoxels)
+    throw FileError("'" + path + "' declares " + std::to_string(v) + " voxels, more than the limit of " +
+                    std::to_string(limits::kMapVoxels) + " (damaged?)");
+  return v;
 }
 
 double header_double(const Header& h, const std::string& key, const std::string& path) {

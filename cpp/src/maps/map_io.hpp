@@ -12,6 +12,7 @@
 // Saves go through detail::write_file_atomically (temporary file, fsync, rename).
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -74,8 +75,18 @@ using Header = std::map<std::string, std::string>;
 /// Writes kind + header + payload atomically to `path`.
 void write_map_file(const std::string& path, const std::string& kind, const Header& header,
                     const std::vector<char>& payload);
-/// Reads a map file of the expected kind; throws FileError naming the problem.
-void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload);
+/// Reads a map file of the expected kind; throws FileError naming the problem. `max_payload(header)`
+/// says how many bytes the contents the header declares can take (payload_bound of its counts): a file
+/// declaring more decompressed bytes (or more than limits::kMapPayloadBytes) is refused before
+/// anything is allocated or inflated.
+void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload,
+                   const std::function<std::uint64_t(const Header&)>& max_payload);
+
+/// The most bytes a payload of `voxels` records of `record_bytes` each can take: the voxel count, the
+/// root flag, at most one child mask per tree level per voxel, the records (saturating at 2^64 - 1).
+std::uint64_t payload_bound(std::uint64_t voxels, std::uint64_t record_bytes);
+/// The header's voxel count, checked against limits::kMapVoxels.
+std::uint64_t header_voxels(const Header& h, const std::string& path);
 /// The kind a map file names (its magic, format version and kind field checked, the rest unread), with
 /// any character but letters, digits, '_' and '-' shown as '?'; throws FileError naming the problem.
 std::string read_map_kind(const std::string& path);

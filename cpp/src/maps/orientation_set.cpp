@@ -220,6 +220,8 @@ int OrientationSet::nearest_direction(const Eigen::Vector3d& d) const {
 
 Eigen::Matrix3d OrientationSet::rotation(int o, const Eigen::Vector3d& approach_axis) const {
   if (o < 0 || o >= size()) throw std::invalid_argument("orientation index " + std::to_string(o) + " out of range");
+  if (!approach_axis.allFinite() || approach_axis.norm() < 1e-12)
+    throw std::invalid_argument("approach_axis must be a finite non-zero vector");
   int di = o / rolls_, ri = o % rolls_;
   Eigen::Vector3d a = approach_axis.normalized();
   Eigen::Matrix3d R = align(a, dirs_[di]);

@@ -8,6 +8,7 @@
 
 #include "maps/map_io.hpp"
 #include "common/cancel.hpp"
+#include "common/checks.hpp"
 #include "common/thread_pool.hpp"
 #include "maps/reach_extent.hpp"
 
@@ -94,6 +95,7 @@ bool make_grid(const CapabilityMap& cap, const Pose& reference_to_arm, const Poi
   g.kz0 = kmin[2];
   g.T = o.theta_bins;
   if (z_lo > z_hi) return false;
+  detail::check_grid_values(g.nxy, g.nxy, g.nz, g.T, "the point map's");
   g.values.assign(g.columns() * g.nz * g.T, 0.0f);
   return true;
 }
@@ -154,13 +156,17 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
   detail::CancellableScope cancellable;
   const auto t0 = std::chrono::steady_clock::now();
   check_map_robot(robot, cap);
-  if (o.theta_bins < 1 || o.theta_bins > 360)
-    throw std::invalid_argument("theta_bins must be in [1, 360], got " + std::to_string(o.theta_bins));
+  if (o.theta_bins < 1 || o.theta_bins > limits::kThetaBins)
+    throw std::invalid_argument("theta_bins must be in [1, " + std::to_string(limits::kThetaBins) + "], got " +
+                                std::to_string(o.theta_bins));
   double res = o.resolution == 0 ? cap.resolution() : o.resolution;
   if (!(res > 0) || !std::isfinite(res))
     throw std::invalid_argument("resolution must be positive, got " + detail::format_number(res));
   // Strict, unlike the surface map: heights here are a grid range relative to the target, not a
   // range poses are clipped into, so an empty range holds no pose.
+  if (!std::isfinite(o.z_min) || !std::isfinite(o.z_max))
+    throw std::invalid_argument("z_min and z_max (z_range) must be finite, got " + detail::format_number(o.z_min) +
+                                ", " + detail::format_number(o.z_max));
   if (!(o.z_min < o.z_max)) throw std::invalid_argument("z_min must be below z_max");
   const ArmPlacement place = ArmPlacement::make(robot, cap, o.reference_frame, o.reference, o.grasps, o.grasp_subset);
   InversePointMap m;

@@ -7,15 +7,16 @@
 #include <cstdio>
 
 
+#include "common/checks.hpp"
 #include "maps/map_io.hpp"
 
 namespace octoreach {
 
 PoseMap::PoseMap(double resolution, int theta_bins) : resolution_(resolution), theta_bins_(theta_bins) {
-  if (!(resolution > 0) || !std::isfinite(resolution))
-    throw std::invalid_argument("resolution must be a positive number of metres, got " + detail::format_number(resolution));
-  if (theta_bins < 1 || theta_bins > 360)
-    throw std::invalid_argument("theta_bins must be in [1, 360], got " + std::to_string(theta_bins));
+  detail::check_map_resolution(resolution);  // builds and load() alike
+  if (theta_bins < 1 || theta_bins > limits::kThetaBins)
+    throw std::invalid_argument("theta_bins must be in [1, " + std::to_string(limits::kThetaBins) + "], got " +
+                                std::to_string(theta_bins));
   tree_ = std::make_shared<VoxelOcTree>(resolution);
 }
 
@@ -135,10 +136,16 @@ void PoseMap::save(const std::string& path, const std::string& kind, const std::
 PoseMap PoseMap::load(const std::string& path, const std::string& kind, std::map<std::string, std::string>& header) {
   detail::Header h;
   std::vector<char> payload;
-  detail::read_map_file(path, kind, h, payload);
+  detail::read_map_file(path, kind, h, payload, [&](const detail::Header& head) {  // a value per theta bin per voxel
+    const long long bins = detail::header_int(head, "theta_bins", path);
+    if (bins < 1 || bins > limits::kThetaBins) throw FileError("'" + path + "' has implausible map parameters");
+    return detail::payload_bound(detail::header_voxels(head, path), std::uint64_t(bins) * sizeof(float));
+  });
   double res = detail::header_double(h, "resolution", path);
   long long bins = detail::header_int(h, "theta_bins", path);
-  if (!(res >= 0.001) || !(res <= 100) || bins < 1 || bins > 360) throw FileError("'" + path + "' has implausible map parameters");
+  if (!(res >= limits::kMinMapResolution) || !(res <= limits::kMaxMapResolution) || bins < 1 ||
+      bins > limits::kThetaBins)
+    throw FileError("'" + path + "' has implausible map parameters");
   PoseMap m(res, static_cast<int>(bins));
   detail::ByteReader r(payload, "'" + path + "'");
   auto count = r.get<std::uint64_t>();

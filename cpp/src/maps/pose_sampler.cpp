@@ -16,8 +16,11 @@ bool CostMap::is_free(double x, double y) const {
 PoseSampler::PoseSampler(std::shared_ptr<const SurfaceMap> map, const PoseSamplerOptions& options)
     : map_(std::move(map)), options_(options), rng_(options.seed) {
   if (!map_) throw std::invalid_argument("PoseSampler needs a surface map");
-  if (options_.candidates < 1) throw std::invalid_argument("candidates must be at least 1");
-  if (!(options_.discount_sigma.array() > 0).all()) throw std::invalid_argument("discount_sigma entries must be positive");
+  if (options_.candidates < 1 || std::uint64_t(options_.candidates) > limits::kSamplerCandidates)
+    throw std::invalid_argument("candidates must be in [1, " + std::to_string(limits::kSamplerCandidates) + "], got " +
+                                std::to_string(options_.candidates));
+  if (!(options_.discount_sigma.array() > 0).all() || !options_.discount_sigma.allFinite())
+    throw std::invalid_argument("discount_sigma entries must be positive and finite");
   if (map_->map().voxel_count() == 0)
     throw std::invalid_argument("the surface map is empty: " +
                                 (map_->empty_reason().empty() ? std::string("no pose reaches the surface") : map_->empty_reason()));

@@ -7,30 +7,14 @@
 
 #include <fcl/fcl.h>
 
+#include "common/cancel.hpp"
+#include "common/checks.hpp"
+#include "maps/polygon.hpp"
+
 namespace octoreach {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-bool on_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b, double eps) {
-  return std::abs(cross2(b - a, p - a)) <= eps * (b - a).norm() && (p - a).dot(p - b) <= eps * eps;
-}
-
-// True when the closed segments touch or cross (eps: a length tolerance).
-bool segments_intersect(const Eigen::Vector2d& p1, const Eigen::Vector2d& p2, const Eigen::Vector2d& q1,
-                        const Eigen::Vector2d& q2, double eps) {
-  double d1 = cross2(p2 - p1, q1 - p1), d2 = cross2(p2 - p1, q2 - p1);
-  double d3 = cross2(q2 - q1, p1 - q1), d4 = cross2(q2 - q1, p2 - q1);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) return true;
-  return on_segment(q1, p1, p2, eps) || on_segment(q2, p1, p2, eps) || on_segment(p1, q1, q2, eps) ||
-         on_segment(p2, q1, q2, eps);
-}
-
-bool point_in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                       const Eigen::Vector2d& c) {
-  double d1 = cross2(b - a, p - a), d2 = cross2(c - b, p - b), d3 = cross2(a - c, p - c);
-  return d1 >= 0 && d2 >= 0 && d3 >= 0;
-}
+using detail::cross2;
 
 std::string vec(const Eigen::Vector3d& v) {
   return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
@@ -64,65 +48,23 @@ Eigen::Vector3d plane_normal(const std::vector<Eigen::Vector3d>& vertices) {
   return n;
 }
 
-// Throws unless the 2D polygon is simple: no spike of zero width, no edges crossing or touching.
-void check_simple(const std::vector<Eigen::Vector2d>& polygon, double eps) {
-  const std::size_t N = polygon.size();
-  for (std::size_t i = 0; i < N; ++i) {
-    // Adjacent edges folding back onto each other make a spike of zero width.
-    Eigen::Vector2d e0 = polygon[(i + 1) % N] - polygon[i], e1 = polygon[(i + 2) % N] - polygon[(i + 1) % N];
-    if (std::abs(cross2(e0, e1)) <= eps * e0.norm() && e0.dot(e1) < 0)
-      throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
-                                  std::to_string((i + 1) % N) + " fold back onto each other");
-    for (std::size_t j = i + 1; j < N; ++j) {
-      if (j == i + 1 || (i == 0 && j == N - 1)) continue;
-      if (segments_intersect(polygon[i], polygon[(i + 1) % N], polygon[j], polygon[(j + 1) % N], eps))
-        throw std::invalid_argument("surface polygon is self-intersecting: edges " + std::to_string(i) + " and " +
-                                    std::to_string(j) + " cross or touch");
-    }
-  }
-}
-
-// Triangles (vertex indices) of a simple 2D polygon by ear clipping; `clockwise` polygons are
-// walked backwards so that ears are convex corners.
-std::vector<std::array<int, 3>> ear_clip(const std::vector<Eigen::Vector2d>& polygon, bool clockwise) {
-  const std::size_t N = polygon.size();
-  std::vector<std::array<int, 3>> triangles;
-  std::vector<int> idx(N);
-  for (std::size_t i = 0; i < N; ++i) idx[i] = static_cast<int>(i);
-  if (clockwise) std::reverse(idx.begin(), idx.end());
-  while (idx.size() > 3) {
-    bool clipped = false;
-    for (std::size_t k = 0; k < idx.size(); ++k) {
-      int ia = idx[(k + idx.size() - 1) % idx.size()], ib = idx[k], ic = idx[(k + 1) % idx.size()];
-      const auto &a = polygon[ia], &b = polygon[ib], &c = polygon[ic];
-      if (cross2(b - a, c - b) <= 1e-15) continue;  // reflex or flat corner
-      bool ear = true;
-      for (int other : idx)
-        if (other != ia && other != ib && other != ic && point_in_triangle(polygon[other], a, b, c)) {
-          ear = false;
-          break;
-        }
-      if (!ear) continue;
-      triangles.push_back({ia, ib, ic});
-      idx.erase(idx.begin() + k);
-      clipped = true;
-      break;
-    }
-    if (!clipped) throw std::invalid_argument("surface polygon could not be triangulated (degenerate shape)");
-  }
-  triangles.push_back({idx[0], idx[1], idx[2]});
-  return triangles;
-}
-
 }  // namespace
 
 Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness) : thickness_(thickness) {
   if (vertices.size() < 3)
     throw std::invalid_argument("a surface needs at least three vertices, got " + std::to_string(vertices.size()));
-  if (!(thickness > 0) || !std::isfinite(thickness))
-    throw std::invalid_argument("surface thickness must be positive, got " + std::to_string(thickness));
-  for (const auto& v : vertices)
-    if (!v.allFinite()) throw std::invalid_argument("surface vertices must be finite");
+  if (vertices.size() > limits::kPolygonVertices)
+    throw std::invalid_argument("a surface polygon has at most " + std::to_string(limits::kPolygonVertices) +
+                                " vertices, got " + std::to_string(vertices.size()));
+  detail::check_positive(thickness, "thickness");
+  detail::check_coordinate(thickness, "thickness");
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    if (!vertices[i].allFinite() || vertices[i].cwiseAbs().maxCoeff() > limits::kCoordinate)
+      throw std::invalid_argument("surface vertices[" + std::to_string(i) + "] " + detail::format_point(vertices[i]) +
+                                  (vertices[i].allFinite() ? " is out of range (coordinates at most " +
+                                                                 detail::format_number(limits::kCoordinate) + " m in magnitude)"
+                                                           : " is not finite"));
+  detail::CancellableScope cancellable;  // the checks below take a while on polygons of many vertices
   vertices_ = vertices;
   const std::size_t N = vertices.size();
   const Eigen::Vector3d n = plane_normal(vertices);
@@ -152,13 +94,13 @@ Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness)
   for (std::size_t i = 0; i < N; ++i)
     if ((polygon_[i] - polygon_[(i + 1) % N]).norm() < 1e-9)
       throw std::invalid_argument("surface polygon has repeated vertex " + vec(vertices[i]));
-  check_simple(polygon_, 1e-9 * std::max(1.0, scale));
+  detail::check_simple(polygon_, 1e-9 * std::max(1.0, scale));
   // Signed area; orient the 2D polygon counter-clockwise for ear clipping.
   double a2 = 0;
   for (std::size_t i = 0; i < N; ++i) a2 += cross2(polygon_[i], polygon_[(i + 1) % N]);
   area_ = std::abs(a2) / 2;
   if (area_ < 1e-9) throw std::invalid_argument("degenerate surface polygon: zero area");
-  triangles_ = ear_clip(polygon_, a2 < 0);
+  triangles_ = detail::ear_clip(polygon_, a2 < 0);
   // Convex polygons get a half-plane test (the hot loop of surface-map builds).
   std::vector<Eigen::Vector2d> ccw;
   for (std::size_t i = 0; i < N; ++i) ccw.push_back(polygon_[a2 < 0 ? N - 1 - i : i]);
@@ -174,7 +116,14 @@ Surface::Surface(const std::vector<Eigen::Vector3d>& vertices, double thickness)
 }
 
 Surface Surface::rectangle(double sx, double sy, double height, double x, double y, double yaw, double thickness) {
-  if (!(sx > 0) || !(sy > 0)) throw std::invalid_argument("rectangle sides must be positive");
+  detail::check_positive(sx, "size_x");
+  detail::check_positive(sy, "size_y");
+  detail::check_coordinate(sx, "size_x");
+  detail::check_coordinate(sy, "size_y");
+  detail::check_coordinate(height, "height");
+  detail::check_coordinate(x, "x");
+  detail::check_coordinate(y, "y");
+  detail::check_finite(yaw, "yaw");
   Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   std::vector<Eigen::Vector3d> v;
   for (auto [a, b] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}})
@@ -183,13 +132,16 @@ Surface Surface::rectangle(double sx, double sy, double height, double x, double
 }
 
 void Surface::add_box(const Eigen::Vector3d& size, const Pose& pose) {
-  if (!(size.array() > 0).all() || !size.allFinite()) throw std::invalid_argument("box size must be positive");
-  if (!pose.matrix().allFinite()) throw std::invalid_argument("box pose must be finite");
+  detail::check_coordinates(size, "size");
+  if (!(size.array() > 0).all()) throw std::invalid_argument("box size must be positive, got " + detail::format_point(size));
+  detail::check_finite(pose.matrix(), "pose");
+  detail::check_coordinates(pose.translation(), "pose translation");
   boxes_.emplace_back(size, pose);
 }
 
 void Surface::add_legs(double width) {
-  if (!(width > 0)) throw std::invalid_argument("leg width must be positive");
+  detail::check_positive(width, "width");
+  detail::check_coordinate(width, "width");
   for (const auto& v : vertices_) {
     double h = v.z() - thickness_;
     if (h <= 0) continue;
@@ -215,12 +167,17 @@ bool Surface::contains_even_odd(const Eigen::Vector2d& p) const {
 }
 
 std::vector<Eigen::Vector3d> Surface::sample_points(double res) const {
-  if (!(res > 0) || !std::isfinite(res)) throw std::invalid_argument("sampling resolution must be positive");
+  detail::check_positive(res, "resolution");
   Eigen::Vector2d lo = polygon_[0], hi = polygon_[0];
   for (const auto& p : polygon_) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+  const double grid = std::ceil((hi.x() - lo.x()) / res) * std::ceil((hi.y() - lo.y()) / res);
+  if (!(grid <= double(limits::kSurfacePoints)))
+    throw std::invalid_argument("resolution " + detail::format_number(res) + " m gives " + detail::format_number(grid) +
+                                " grid points over the surface, more than the limit of " +
+                                std::to_string(limits::kSurfacePoints) + ": use a coarser resolution");
   std::vector<Eigen::Vector3d> out;
   const double eps = 1e-9;
   for (double u = lo.x() + res / 2; u < hi.x() - eps; u += res)

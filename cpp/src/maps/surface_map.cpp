@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "common/cancel.hpp"
+#include "common/checks.hpp"
 #include "common/format.hpp"
 #include "common/thread_pool.hpp"
 #include "maps/batch.hpp"
@@ -47,6 +48,7 @@ std::string make_grid(const SurfaceBuild& b, double res, SurfaceGrid& g) {
   g.ny = kmax[1] - g.kmin[1] + 1;
   g.nz = kmax[2] - g.kmin[2] + 1;
   g.T = b.o.theta_bins;
+  detail::check_grid_values(g.nx, g.ny, g.nz, g.T, "the surface map's");
   g.values.assign(g.cells() * g.T, 0.0f);
   return "";
 }
@@ -70,11 +72,16 @@ void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
   if (o.check_arm && !cap.has_solutions())
     throw std::invalid_argument("the capability map holds no joint solutions (build it with keep_solutions=True "
                                 "or save it with_solutions) : the surface map checks the arm against the surface");
-  if (o.theta_bins < 1 || o.theta_bins > 360) throw std::invalid_argument("theta_bins must be in [1, 360]");
+  if (o.theta_bins < 1 || o.theta_bins > limits::kThetaBins)
+    throw std::invalid_argument("theta_bins must be in [1, " + std::to_string(limits::kThetaBins) + "], got " +
+                                std::to_string(o.theta_bins));
   const double res = o.resolution == 0 ? cap.resolution() : o.resolution;
   if (!(res > 0) || !std::isfinite(res)) throw std::invalid_argument("resolution must be positive");
   // Not strict, unlike the point map: poses are evaluated at heights clipped into the range, so
   // (0, 0) is one exact height (a robot on the floor).
+  if (!std::isfinite(o.z_min) || !std::isfinite(o.z_max))
+    throw std::invalid_argument("z_min and z_max (z_range) must be finite, got " + detail::format_number(o.z_min) +
+                                ", " + detail::format_number(o.z_max));
   if (!(o.z_min <= o.z_max)) throw std::invalid_argument("z_min must not exceed z_max");
 }
 

@@ -15,8 +15,10 @@
 
 #include "collision/detail.hpp"
 #include "common/atomic_file.hpp"
+#include "common/file_read.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
+#include "octoreach/limits.hpp"
 #include "octoreach/robot.hpp"
 
 namespace octoreach {
@@ -84,8 +86,12 @@ std::string cache_path(const Robot& robot, const AllowedCollisionOptions& o) {
 
 // Reads a cache file ("never|always|default link_a link_b" lines); false when absent or stale.
 bool read_cache(const Robot& robot, const std::string& path, SampledCollisions& out) {
-  std::ifstream in(path);
-  if (!in) return false;
+  std::istringstream in;
+  try {  // a FIFO, device or oversized file in a shared cache folder counts as absent
+    in.str(detail::read_file_bounded(path, "allowed-collision cache", limits::kRobotFileBytes));
+  } catch (const FileError&) {
+    return false;
+  }
   std::string kind, a, b, header;
   if (!std::getline(in, header) || header != "octoreach allowed collisions 1") return false;
   while (in >> kind >> a >> b) {

@@ -1,5 +1,7 @@
 // Robot::from_urdf: URDF text -> urdfdom model -> links, joints, collision shapes and visuals; mesh URIs
 // (package://, file://, relative paths) resolved to files. The SRDF part is in srdf.cpp.
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <deque>
 #include <filesystem>
@@ -14,7 +16,9 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "octoreach/limits.hpp"
 #include "octoreach/robot.hpp"
+#include "common/file_read.hpp"
 #include "common/nearest_names.hpp"
 #include "robot/robot_builder.hpp"
 
@@ -27,14 +31,7 @@ bool looks_like_xml(const std::string& s) {
 }
 
 std::string read_text_file(const std::string& path, const char* what) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
-    if (errno == ENOENT) throw FileNotFound(std::string("cannot read ") + what + " file '" + path + "' (no such file)");
-    throw FileError(std::string("cannot read ") + what + " file '" + path + "'");
-  }
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
+  return read_file_bounded(path, std::string(what) + " file", limits::kRobotFileBytes);
 }
 
 }  // namespace detail
@@ -46,9 +43,9 @@ std::string dirname(const std::string& path) {
   return pos == std::string::npos ? std::string(".") : path.substr(0, pos);
 }
 
-bool file_exists(const std::string& path) {
-  std::ifstream f(path);
-  return f.good();
+bool file_exists(const std::string& path) {  // without opening it (opening a FIFO blocks)
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
 }
 
 std::uint64_t fnv1a(const std::string& s) {

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/cancel.hpp"
+#include "common/format.hpp"
 #include "common/thread_pool.hpp"
 
 namespace octoreach {
@@ -19,9 +21,13 @@ void CameraIntrinsics::validate() const {
   if (width <= 0 || height <= 0)
     throw std::invalid_argument("image size must be positive, got " + std::to_string(width) + " x " +
                                 std::to_string(height));
+  if (std::uint64_t(width) * std::uint64_t(height) > limits::kImagePixels)
+    throw std::invalid_argument("image size " + std::to_string(width) + " x " + std::to_string(height) +
+                                " is more than the limit of " + std::to_string(limits::kImagePixels) + " pixels");
   if (!(fov > 0 && fov < kPi)) throw std::invalid_argument("fov must be in (0, pi) radians, got " + std::to_string(fov));
-  if (!(max_range > 0) || !std::isfinite(max_range))
-    throw std::invalid_argument("max_range must be a positive number of metres, got " + std::to_string(max_range));
+  if (!(max_range > 0) || !(max_range <= limits::kCoordinate))
+    throw std::invalid_argument("max_range must be a positive number of metres up to " +
+                                std::to_string(int(limits::kCoordinate)) + ", got " + std::to_string(max_range));
 }
 
 DepthCamera::DepthCamera(int width, int height, double fov, double max_range, double noise, std::uint64_t seed,
@@ -39,6 +45,7 @@ DepthCamera::DepthCamera(int width, int height, double fov, double max_range, do
 }
 
 std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose& pose, int threads) {
+  detail::CancellableScope cancellable;  // rows are polled; the camera and the scene stay as they were
   const int W = intr_.width, H = intr_.height;
   const std::uint64_t call = calls_++;
   struct SceneReadLock {  // the scene may not change during the capture
@@ -56,6 +63,7 @@ std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose
     std::normal_distribution<double> gauss(0.0, 1.0);
     auto& out = rows[v];
     for (int u = 0; u < W; ++u) {
+      if ((u & 4095) == 4095) detail::poll_cancel("depth capture cancelled");  // rows of a wide image are long
       Eigen::Vector3d dc = intr_.ray(u + 0.5, v + 0.5);
       Eigen::Vector3d d = R * dc;
       double t;
@@ -90,6 +98,9 @@ Pose camera_pose(const Eigen::Vector3d& position, const Eigen::Vector3d& forward
 }
 
 Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double roll) {
+  if (!eye.allFinite()) throw std::invalid_argument("look_at: eye must be finite, got " + detail::format_point(eye));
+  if (!target.allFinite())
+    throw std::invalid_argument("look_at: target must be finite, got " + detail::format_point(target));
   return camera_pose(eye, target - eye, roll);
 }
 

@@ -145,7 +145,7 @@ void Scene::add_closed_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
   int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
   double fu = hi[u] - lo[u] - 2 * th, fv = hi[v] - lo[v] - 2 * th;
   if (!(ow > 0) || !(oh > 0) || ow >= fu || oh >= fv)
-    throw std::invalid_argument("opening " + std::to_string(ow) + " x " + std::to_string(oh) +
+    throw std::invalid_argument("opening_width x opening_height " + std::to_string(ow) + " x " + std::to_string(oh) +
                                 " must be positive and fit inside the face (" + std::to_string(fu) + " x " +
                                 std::to_string(fv) + ")");
   for (int a = 0; a < 3; ++a)
