@@ -16,7 +16,9 @@ A surface is a ``rectangle`` or a polygon given by ``vertices`` (a list of [x, y
 ``thickness``, ``legs`` (leg width) and its own ``boxes`` and ``meshes``. A shelf is several boards
 (surfaces named ``<shelf>/<i>``, bottom first) between two side panels and a back panel. Relative
 mesh and OctoMap paths are relative to the file. An unknown key is a ValueError that names it; a value
-of the wrong type is a TypeError that names the field.
+of the wrong type is a TypeError that names the field. Names become file names: at most 200 characters,
+without '/', '\\' or control characters. Files are read within ``octoreach.limits`` (``data_files``), and
+a room holds at most limits.MAX_SURFACES surfaces, MAX_BOARDS boards per shelf and MAX_OBSTACLES obstacles.
 """
 from __future__ import annotations
 
@@ -24,13 +26,16 @@ import copy
 import json
 import math
 import os
-import tempfile
+import stat
 from pathlib import Path
 
 import numpy as np
 
+from . import limits
 from ._core import CapabilityMap, Obstacles, Robot, Surface, SurfaceMap
-from ._checks import PATH, check_type
+from ._checks import PATH, check_type, shown
+from .atomic_write import write_atomically
+from .data_files import file_kind, read_data as _read_data
 
 _SURFACE_KEYS = {"name", "rectangle", "vertices", "thickness", "legs", "boxes", "meshes"}
 _RECTANGLE_KEYS = {"size", "height", "x", "y", "yaw"}
@@ -46,7 +51,7 @@ def _check_keys(entry, known: set, where: str) -> None:
         raise TypeError(f"{where} must be a mapping (JSON object), got {type(entry).__name__}")
     for key in entry:
         if key not in known:
-            raise ValueError(f"{where}: unknown key {key!r} (known: {', '.join(sorted(known))})")
+            raise ValueError(f"{where}: unknown key {shown(key)} (known: {', '.join(sorted(known))})")
 
 
 def _number(entry: dict, key: str, where: str, default=None) -> float:
@@ -55,9 +60,18 @@ def _number(entry: dict, key: str, where: str, default=None) -> float:
         raise ValueError(f"{where}: {key!r} is required")
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise TypeError(f"{where}: {key!r} must be a number, got {type(value).__name__}")
-    if not math.isfinite(value):
-        raise ValueError(f"{where}: {key!r} must be finite, got {value}")
-    return float(value)
+    return _finite(value, f"{where}: {key!r}")
+
+
+def _finite(value, what: str) -> float:
+    """float(value), ValueError unless finite (an integer too large for a float included)."""
+    try:
+        out = float(value)
+    except OverflowError:
+        out = math.inf
+    if not math.isfinite(out):
+        raise ValueError(f"{what} must be finite, got {shown(value)}")
+    return out
 
 
 def _vector(entry: dict, key: str, where: str, n: int, default=None) -> np.ndarray:
@@ -66,17 +80,31 @@ def _vector(entry: dict, key: str, where: str, n: int, default=None) -> np.ndarr
         raise ValueError(f"{where}: {key!r} is required")
     if not isinstance(value, (list, tuple, np.ndarray)) or len(value) != n or any(
             isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) for v in value):
-        raise TypeError(f"{where}: {key!r} must be a list of {n} numbers, got {value!r}")
-    out = np.asarray(value, float)
+        raise TypeError(f"{where}: {key!r} must be a list of {n} numbers, got {shown(value)}")
+    try:
+        out = np.asarray(value, float)
+    except OverflowError:  # an integer too large for a float
+        out = np.full(n, np.inf)
     if not np.all(np.isfinite(out)):
-        raise ValueError(f"{where}: {key!r} must be finite, got {value!r}")
+        raise ValueError(f"{where}: {key!r} must be finite, got {shown(value)}")
     return out
 
 
 def _name(entry: dict, where: str, default: str) -> str:
-    name = entry.get("name", default)
+    """The entry's name: a non-empty string of at most limits.MAX_NAME_LENGTH characters without '/' (shelf
+    boards are "<shelf>/<i>"), '\\' or control characters (names become file names)."""
+    if "name" not in entry:
+        return default
+    name = entry["name"]
     if not isinstance(name, str) or not name:
-        raise TypeError(f"{where}: 'name' must be a non-empty string, got {name!r}")
+        raise TypeError(f"{where}: 'name' must be a non-empty string, got {shown(name)}")
+    if len(name) > limits.MAX_NAME_LENGTH:
+        raise ValueError(f"{where}: 'name' has {len(name):,} characters, more than the limit of "
+                         f"{limits.MAX_NAME_LENGTH} (octoreach.limits.MAX_NAME_LENGTH)")
+    bad = next((c for c in name if c in "/\\" or ord(c) < 32 or ord(c) == 127), None)
+    if bad is not None:
+        why = "is kept for shelf boards (<shelf>/<i>)" if bad == "/" else "cannot be part of a file name"
+        raise ValueError(f"{where}: 'name' {shown(name)} holds {bad!r}, which {why}")
     return name
 
 
@@ -105,26 +133,6 @@ def _list(value, key: str, where: str) -> list:
     return value
 
 
-def _read_data(path: Path, kind: str):
-    """The data of a JSON file, or of a YAML file where PyYAML is installed."""
-    try:
-        text = path.read_text()
-    except OSError as e:
-        raise OSError(f"cannot read {kind} {str(path)!r}: {e.strerror}") from None
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as json_error:
-        try:
-            import yaml  # optional
-        except ImportError:
-            raise ValueError(f"{kind} {str(path)!r} is not valid JSON ({json_error}); YAML needs PyYAML") from None
-        try:
-            return yaml.safe_load(text)
-        except yaml.YAMLError as e:
-            problem = " ".join(str(e).split())  # one line: YAML's messages draw the place over several
-            raise ValueError(f"{kind} {str(path)!r} is neither JSON nor YAML: {problem}") from None
-
-
 class Room:
     """Working surfaces and obstacles of one room (world frame). ``Room(description, base_dir)`` checks and
     builds a description (see the module docstring); ``Room.load(path)`` reads a JSON or YAML file."""
@@ -136,8 +144,10 @@ class Room:
         self._surfaces: dict[str, Surface] = {}
         self._objects = Obstacles()  # boxes, meshes, OctoMaps and shelf panels: everything but the surfaces
         self._owner: dict[str, str] = {}  # name -> kind, to refuse duplicates
+        self._obstacle_count = 0  # every box, mesh and OctoMap, a surface's legs and boxes, shelf panels
         description = {} if description is None else description
         _check_keys(description, _ROOM_KEYS, "room")
+        _check_counts(description)
         adders = {"surfaces": self._add_surface, "shelves": self._add_shelf, "boxes": self._add_box,
                   "meshes": self._add_mesh, "octomaps": self._add_octomap}
         for key, add in adders.items():
@@ -171,17 +181,7 @@ class Room:
             text = yaml.safe_dump(self._description, sort_keys=False)
         else:
             text = json.dumps(self._description, indent=2)
-        fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", prefix=path.name, suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w") as f:
-                f.write(text + "\n")
-                f.flush()
-                os.fsync(f.fileno())
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
+        write_atomically(path, text + "\n", "room file")
 
     # ------------------------------------------------------------------ building a room in code
     def add_table(self, name: str, size_x: float, size_y: float, height: float, x: float = 0.0, y: float = 0.0,
@@ -265,10 +265,20 @@ class Room:
                 f"{len(self._objects)} other obstacles>")
 
     # ------------------------------------------------------------------ entries
-    def _claim(self, name: str, where: str) -> None:
+    def _claim(self, name: str, where: str, kind: str | None = None) -> None:
         if name in self._owner:
             raise ValueError(f"{where}: the name {name!r} is already used by a {self._owner[name]}")
-        self._owner[name] = where.split("[")[0]
+        self._owner[name] = kind or where.split("[")[0]
+
+    def _grow(self, where: str, surfaces: int = 0, obstacles: int = 0) -> None:
+        """Counts new surfaces and obstacles against limits.MAX_SURFACES and MAX_OBSTACLES (before adding them)."""
+        if len(self._surfaces) + surfaces > limits.MAX_SURFACES:
+            raise ValueError(f"{where}: the room would hold more than {limits.MAX_SURFACES:,} surfaces (shelf boards "
+                             "included; octoreach.limits.MAX_SURFACES)")
+        if self._obstacle_count + obstacles > limits.MAX_OBSTACLES:
+            raise ValueError(f"{where}: the room would hold more than {limits.MAX_OBSTACLES:,} obstacles (boxes, "
+                             "meshes, OctoMaps, legs, panels; octoreach.limits.MAX_OBSTACLES)")
+        self._obstacle_count += obstacles
 
     def _record(self, key: str, entry: dict) -> None:
         self._description.setdefault(key, []).append(copy.deepcopy(entry))
@@ -276,9 +286,18 @@ class Room:
     def _path(self, entry: dict, where: str) -> str:
         path = entry.get("path")
         if not isinstance(path, str) or not path:
-            raise TypeError(f"{where}: 'path' must be a file name, got {path!r}")
+            raise TypeError(f"{where}: 'path' must be a file name, got {shown(path)}")
         p = Path(path)
-        return str(p if p.is_absolute() else self._base / p)
+        p = p if p.is_absolute() else self._base / p
+        try:
+            st = os.stat(p)  # a missing file is the loader's to report
+        except (OSError, ValueError):
+            return str(p)
+        if not stat.S_ISREG(st.st_mode):  # a FIFO would block the reader, /dev/zero never end
+            raise OSError(f"{where}: 'path' {str(p)!r} is {file_kind(st.st_mode)}, not a regular file")
+        if st.st_size == 0:  # no mesh or OctoMap is empty; /proc's files say 0 and read as anything
+            raise OSError(f"{where}: 'path' {str(p)!r} is empty")
+        return str(p)
 
     def _surface_from(self, entry: dict, where: str) -> Surface:
         if ("rectangle" in entry) == ("vertices" in entry):
@@ -294,12 +313,15 @@ class Room:
         else:
             vertices = entry["vertices"]
             if not isinstance(vertices, list) or not all(isinstance(v, list) for v in vertices):
-                raise TypeError(f"{where}: 'vertices' must be a list of [x, y, z], got {vertices!r}")
+                raise TypeError(f"{where}: 'vertices' must be a list of [x, y, z], got {shown(vertices)}")
             surface = Surface(np.array([_vector({"v": v}, "v", f"{where}.vertices[{i}]", 3) for i, v in
                                         enumerate(vertices)]).reshape(-1, 3), thickness)
+        boxes = _list(entry.get("boxes"), "boxes", where)
+        meshes = _list(entry.get("meshes"), "meshes", where)
+        self._grow(where, surfaces=1, obstacles=len(boxes) + len(meshes) + 4 * ("legs" in entry))
         if "legs" in entry:
             surface.add_legs(_number(entry, "legs", where))
-        for i, box in enumerate(_list(entry.get("boxes"), "boxes", where)):
+        for i, box in enumerate(boxes):
             bw = f"{where}.boxes[{i}]"
             _check_keys(box, _BOX_KEYS, bw)
             surface.add_box(_vector(box, "size", bw, 3), _pose(box, bw))
@@ -328,21 +350,25 @@ class Room:
         boards = _list(entry.get("boards"), "boards", where)
         if not boards:
             raise ValueError(f"{where}: 'boards' must list at least one board height")
+        if len(boards) > limits.MAX_BOARDS:
+            raise ValueError(f"{where}: {len(boards):,} boards, more than the limit of {limits.MAX_BOARDS} "
+                             "(octoreach.limits.MAX_BOARDS)")
         heights = [_number({"h": h}, "h", f"{where}.boards[{i}]") for i, h in enumerate(boards)]
         x, y, yaw = (_number(entry, k, where, 0.0) for k in ("x", "y", "yaw"))
         t = _number(entry, "thickness", where, 0.02)
         panels = entry.get("panels", True)
         if not isinstance(panels, bool):
-            raise TypeError(f"{where}: 'panels' must be true or false, got {panels!r}")
+            raise TypeError(f"{where}: 'panels' must be true or false, got {shown(panels)}")
         if min(width, depth, t) <= 0:
             raise ValueError(f"{where}: 'size' and 'thickness' must be positive")
+        self._grow(where, surfaces=len(heights), obstacles=3 * panels)
         self._claim(name, where)
         c, s = math.cos(yaw), math.sin(yaw)
         out = []
         for i, h in enumerate(sorted(heights)):
             board = Surface.rectangle(width, depth, h, x, y, yaw, t)
+            self._claim(f"{name}/{i}", where, "shelf board")
             self._surfaces[f"{name}/{i}"] = board
-            self._owner[f"{name}/{i}"] = "shelf board"
             out.append(board)
         if panels:  # two sides and a back (local -y), up to the top board and a little above
             top = max(heights) + 0.05
@@ -369,6 +395,7 @@ class Room:
     def _add_box(self, entry: dict) -> None:
         where, name = self._entry("boxes", entry, _BOX_KEYS, "box")
         size, pose = _vector(entry, "size", where, 3), _pose(entry, where)
+        self._grow(where, obstacles=1)
         self._claim(name, where)
         self._objects.add_box(size, pose, name)
         self._record("boxes", entry)
@@ -376,6 +403,7 @@ class Room:
     def _add_mesh(self, entry: dict) -> None:
         where, name = self._entry("meshes", entry, _MESH_KEYS, "mesh")
         path, pose, scale = self._path(entry, where), _pose(entry, where), _vector(entry, "scale", where, 3, [1, 1, 1])
+        self._grow(where, obstacles=1)
         self._claim(name, where)
         self._objects.add_mesh(path, pose, scale, name)
         self._record("meshes", entry)
@@ -383,9 +411,34 @@ class Room:
     def _add_octomap(self, entry: dict) -> None:
         where, name = self._entry("octomaps", entry, _OCTOMAP_KEYS, "octomap")
         path, pose = self._path(entry, where), _pose(entry, where)
+        self._grow(where, obstacles=1)
         self._claim(name, where)
         self._objects.add_octree_file(path, pose, name)
         self._record("octomaps", entry)
+
+
+def _check_counts(description: dict) -> None:
+    """The room's surfaces (boards included) and obstacles counted from its lists against the limits, before any
+    entry is built (the entries' own checks name what is wrong inside them)."""
+    def entries(key):
+        value = description.get(key)
+        return value if isinstance(value, list) else []
+
+    def length(entry, key):
+        value = entry.get(key) if isinstance(entry, dict) else None
+        return len(value) if isinstance(value, list) else 0
+
+    surfaces = entries("surfaces")
+    shelves = entries("shelves")
+    count = len(surfaces) + sum(length(s, "boards") for s in shelves)
+    if count > limits.MAX_SURFACES:
+        raise ValueError(f"room: {count:,} surfaces (shelf boards included), more than the limit of "
+                         f"{limits.MAX_SURFACES:,} (octoreach.limits.MAX_SURFACES)")
+    count = sum(len(entries(k)) for k in ("boxes", "meshes", "octomaps")) + sum(3 * (not isinstance(s, dict) or s.get("panels", True) is not False) for s in shelves) + sum(
+        length(s, "boxes") + length(s, "meshes") + 4 * (isinstance(s, dict) and "legs" in s) for s in surfaces)
+    if count > limits.MAX_OBSTACLES:
+        raise ValueError(f"room: {count:,} obstacles (boxes, meshes, OctoMaps, legs, panels), more than the limit "
+                         f"of {limits.MAX_OBSTACLES:,} (octoreach.limits.MAX_OBSTACLES)")
 
 
 def surface_from_file(path: str | os.PathLike) -> tuple[Surface, Obstacles]:
