@@ -37,6 +37,7 @@ from pathlib import Path
 import numpy as np
 
 from . import cache_check, map_files
+from .cache_files import acquire, read_note, regular, save_entry
 from ._core import Arm, CapabilityMap, CapabilityMapOptions, Robot, __version__, map_format_version
 from .atomic_write import check_target, write_atomically
 
@@ -46,7 +47,6 @@ _EXT = map_files.kinds()  # {kind: file extension} of every map kind (the C++ re
 # What the cache writes: entries and notes, locks, and the temporary files of both (<name>.tmp.<anything>).
 _OWN = re.compile(r"((%s)-[0-9a-f]{40}(%s|\.json)|[0-9a-f]{40}\.lock)(\.tmp\..+)?" % (
     "|".join(map(re.escape, _EXT)), "|".join(map(re.escape, _EXT.values()))))
-_NOTE_BYTES = 1 << 20  # a note is a few hundred bytes; a larger one is not the cache's
 _warned: set[str] = set()  # directories already warned about
 
 
@@ -119,19 +119,6 @@ def key_of(fields: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:40]
 
 
-def map_bytes(m, with_solutions: bool = False) -> bytes:
-    """The file bytes of a map, written by its own save into a private temporary folder (mode 0700: nothing
-    another user plants can redirect that write) and read back."""
-    with tempfile.TemporaryDirectory(prefix="octoreach-") as d:
-        path = os.path.join(d, "map")
-        if isinstance(m, CapabilityMap):
-            m.save(path, with_solutions=with_solutions)
-        else:
-            m.save(path)
-        with open(path, "rb") as f:
-            return f.read()
-
-
 class MapCache:
     """A cache directory of maps by content key (see the module docstring). ``hits``, ``builds``,
     ``rebuilt_damaged`` (entries that did not load or were not regular files) and ``rebuilt_mismatched``
@@ -177,7 +164,7 @@ class MapCache:
         """Exclusive lock of one key across processes (flock on <key>.lock, removed by its holder when done);
         no lock where it cannot be taken (the entry is checked on load all the same)."""
         path = self.directory / f"{key}.lock"
-        fd = _acquire(path)
+        fd = acquire(path)
         try:
             yield
         finally:
@@ -309,7 +296,7 @@ class MapCache:
         fields = capability_key_fields(robot, a, o)
         return self.get_or_build("capability", fields,
                                  lambda: CapabilityMap.build_for_arm(robot, a, o, progress=progress),
-                                 _save_entry,
+                                 save_entry,
                                  lambda m: cache_check.capability_mismatch(m, fields, robot))
 
     # ------------------------------------------------------------------ listing
@@ -321,11 +308,11 @@ class MapCache:
             return out
         for path in sorted(self.directory.iterdir()):
             m = _OWN.fullmatch(path.name)
-            if not m or m.group(4) or m.group(3) in (None, ".json") or not _regular(path):
+            if not m or m.group(4) or m.group(3) in (None, ".json") or not regular(path):
                 continue
             kind, key = m.group(2), path.name.split("-", 1)[1].split(".")[0]
             info = {"kind": kind, "key": key, "file": str(path), "bytes": path.stat().st_size}
-            note = _read_note(self.directory / f"{kind}-{key}.json", kind, key)
+            note = read_note(self.directory / f"{kind}-{key}.json", kind, key)
             out.append({**note, **info} if note else {**info, "note": "missing or damaged", "fields": {}})
         return out
 
@@ -334,7 +321,7 @@ class MapCache:
         the number of maps deleted. A folder without the cache's marker: ValueError, nothing deleted."""
         if not self.directory.is_dir():
             return 0
-        if not _regular(self.directory / MARKER):
+        if not regular(self.directory / MARKER):
             raise ValueError(f"{str(self.directory)!r} is not an octoreach map cache (it has no {MARKER} file): "
                              "nothing deleted")
         maps = 0
@@ -346,61 +333,6 @@ class MapCache:
                 path.unlink()
                 maps += m.group(3) in _EXT.values() and not m.group(4)
         return maps
-
-
-def _save_entry(m, path: str) -> None:
-    """A map saved as a cache entry: its bytes made in a private folder, then the one Python writer (an exclusive
-    temporary file in the cache folder, renamed), so that no name planted in a shared folder redirects it."""
-    write_atomically(path, map_bytes(m, with_solutions=getattr(m, "has_solutions", False)), "map cache entry")
-
-
-def _regular(path: Path) -> bool:
-    try:
-        return stat.S_ISREG(os.lstat(path).st_mode)
-    except OSError:
-        return False
-
-
-def _read_note(path: Path, kind: str, key: str) -> dict | None:
-    """The note of an entry when it is a regular file holding a JSON object of that kind and key, else None."""
-    from .data_files import read_bytes
-
-    try:
-        if not _regular(path):
-            return None
-        note = json.loads(read_bytes(path, "cache note", _NOTE_BYTES))
-    except (OSError, ValueError, RecursionError):
-        return None
-    if not isinstance(note, dict) or note.get("kind") != kind or note.get("key") != key or \
-            not isinstance(note.get("fields"), dict):
-        return None
-    return note
-
-
-def _acquire(path: Path) -> int | None:
-    """A descriptor of `path` holding its exclusive flock, or None when it cannot be taken (a link, a special
-    file, no permission). A lock file its holder removed while we waited is given up for a fresh one."""
-    import fcntl
-
-    for _ in range(100):
-        try:
-            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0),
-                         0o666)
-        except OSError:
-            return None
-        try:
-            st = os.fstat(fd)
-            if not stat.S_ISREG(st.st_mode):
-                os.close(fd)
-                return None
-            fcntl.flock(fd, fcntl.LOCK_EX)
-            now = os.stat(path, follow_symlinks=False)
-            if (now.st_ino, now.st_dev) == (st.st_ino, st.st_dev):
-                return fd
-        except OSError:
-            pass
-        os.close(fd)
-    return None
 
 
 def resolve(cache) -> MapCache | None:

@@ -18,26 +18,25 @@ surface map. ``read_job`` checks the whole file before any work starts: it loads
 every arm and surface, and names the entry and key of the first problem. Output files are named after the
 robot, arm, resolution (exactly: 0.2 and 0.2000001 differ), surface and height; two maps whose files would
 meet (names that differ only in characters a file name replaces, or in letter case) are an error, and a job
-holds at most ``limits.MAX_JOB_MAPS`` maps. The task functions here
-(``capability_task``, ``surface_task``, ``block_task``...) are plain functions of plain data, run in this
-process or by a cluster's workers (``octoreach.cluster``).
+holds at most ``limits.MAX_JOB_MAPS`` maps. The task functions (``capability_task``, ``surface_task``,
+``block_task``...: ``octoreach.job_tasks``) are plain functions of plain data, run in this process or by a
+cluster's workers (``octoreach.cluster``).
 """
 from __future__ import annotations
 
 import math
 import os
-import resource
-import tempfile
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import cache as _cache
-from . import limits, map_files
+from . import limits
 from ._checks import shown
 from .arms import default_arm
 from .data_files import read_data, sha256_of
-from ._core import Arm, CapabilityBlocks, CapabilityMap, Robot, SurfaceMap, SurfaceMapOptions
+from .job_tasks import (block_task, blocks_plan, capability_task, load_robot, map_bytes,  # noqa: F401  (what a
+                        map_from_bytes, sample_task, surface_task)                     # cluster runs, by name)
+from ._core import Arm, Robot, SurfaceMapOptions
 
 _JOB_KEYS = {"robots", "arms", "resolutions", "capability", "surfaces", "surface", "base_heights", "out"}
 _ROBOT_KEYS = {"name", "urdf", "srdf", "package_dirs", "allowed_collisions", "arms"}
@@ -46,111 +45,6 @@ _SURFACE_OPTION_EXCLUDED = {"obstacles", "z_range", "z_min", "z_max", "resolutio
 
 class JobError(ValueError):
     """A job file that cannot be run; the message names the entry and the key."""
-
-
-# ---------------------------------------------------------------------------------------------- robots
-_robots: dict[str, Robot] = {}  # per process: a worker loads each robot once
-
-
-def load_robot(spec: dict) -> Robot:
-    """The robot of a spec: {"name": N} (example-robot-data, or a project URDF such as test_arm) or
-    {"urdf": path, "srdf": path, "package_dirs": [...], "allowed_collisions": "auto"}; loaded once per process."""
-    from . import robots
-
-    key = repr(sorted(spec.items()))
-    if key not in _robots:
-        if "urdf" in spec:
-            _robots[key] = robots.from_urdf(spec["urdf"], spec.get("package_dirs", ()), spec.get("srdf"),
-                                            spec.get("allowed_collisions", "auto"))
-        else:
-            name = spec["name"]
-            try:
-                path = robots.project_urdf(name)
-            except ValueError:
-                path = None
-            _robots[key] = (Robot.from_urdf(str(path)) if path is not None else
-                            robots.load(name, allowed_collisions=spec.get("allowed_collisions", "auto")))
-    return _robots[key]
-
-
-def _checked_robot(spec: dict, model_hash: int) -> Robot:
-    robot = load_robot(spec)
-    if int(robot.model_hash) != int(model_hash):
-        raise RuntimeError(f"robot {spec} loads with model hash {robot.model_hash} on this machine, the job was "
-                           f"planned for {model_hash}: every machine needs the same robot files and octoreach build")
-    return robot
-
-
-# ---------------------------------------------------------------------------------------------- map bytes
-map_bytes = _cache.map_bytes  # the file bytes of a map (the cache writes its entries from them)
-
-
-def map_from_bytes(kind: str, data: bytes):
-    """A map of `kind` ("capability", "surface") loaded from file bytes (the loader checks the kind and the
-    checksum)."""
-    with tempfile.TemporaryDirectory(prefix="octoreach-") as d:
-        path = os.path.join(d, "map")
-        Path(path).write_bytes(data)
-        return map_files.load(path, kind)
-
-
-def _task_info(t0: float) -> dict:
-    """Seconds, node and the process's peak memory (MB) of a task, for the job report."""
-    node = ""
-    try:
-        import ray
-
-        if ray.is_initialized():
-            node = ray.get_runtime_context().get_node_id()
-    except ImportError:
-        pass
-    return {"seconds": time.perf_counter() - t0, "node": node, "pid": os.getpid(),
-            "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
-
-
-# ---------------------------------------------------------------------------------------------- tasks
-def capability_task(spec: dict, model_hash: int, arm: tuple, options: dict, threads: int = 0):
-    """(file bytes with solutions, info) of a capability map."""
-    t0 = time.perf_counter()
-    robot = _checked_robot(spec, model_hash)
-    o = _cache.capability_options(None, **options)
-    o.threads = threads
-    m = CapabilityMap.build_for_arm(robot, arm, o, progress=False)
-    return map_bytes(m, with_solutions=True), _task_info(t0)
-
-
-def surface_task(spec: dict, model_hash: int, capability: bytes, room: dict, base_dir: str, surface: str,
-                 height: float, options: dict, threads: int = 0):
-    """(file bytes, info) of the surface map of one surface of a room, base at `height`."""
-    from .rooms import Room
-
-    t0 = time.perf_counter()
-    robot = _checked_robot(spec, model_hash)
-    cap = map_from_bytes("capability", capability)
-    r = Room(room, base_dir=base_dir)
-    obstacles = r.obstacles(without=surface)
-    m = SurfaceMap.build(robot, cap, r.surfaces[surface], obstacles=obstacles if len(obstacles) else None,
-                         z_range=(height, height), threads=threads, progress=False, **options)
-    return map_bytes(m), _task_info(t0)
-
-
-def blocks_plan(spec: dict, model_hash: int, arm: tuple, options: dict) -> CapabilityBlocks:
-    return CapabilityBlocks(_checked_robot(spec, model_hash), arm, _cache.capability_options(None, **options))
-
-
-def sample_task(spec: dict, model_hash: int, arm: tuple, options: dict, threads: int = 0):
-    """[info, seed counts, seeds of block 0, 1, ...]: step 1 of a block build."""
-    t0 = time.perf_counter()
-    plan = blocks_plan(spec, model_hash, arm, {**options, "threads": threads})
-    seeds = plan.sample()
-    return [_task_info(t0), [CapabilityBlocks.seed_count(s) for s in seeds], *seeds]
-
-
-def block_task(spec: dict, model_hash: int, arm: tuple, options: dict, block: int, seeds: bytes, threads: int = 0):
-    """(result bytes, info) of one block: step 2 of a block build."""
-    t0 = time.perf_counter()
-    plan = blocks_plan(spec, model_hash, arm, {**options, "threads": threads})
-    return plan.build_block(block, seeds), _task_info(t0)
 
 
 # ---------------------------------------------------------------------------------------------- job files
