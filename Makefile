@@ -46,11 +46,16 @@ test-python: install
 	$(PY) -m pytest -q tests/fuzz
 
 # A long fuzz run: the file-damage fuzzer (counts per category: cases, loaded, OSError, crashes, hangs,
-# wrong errors) and the property tests with many examples. FUZZ_CASES and FUZZ_SEED choose the run.
+# wrong errors), the input-file fuzzer over room, job and polygon files (counts per category: cases, accepted,
+# clean errors, tracebacks, hangs, memory blow-ups, crashes), the cache forgeries and the property tests with
+# many examples. FUZZ_CASES, FUZZ_INPUT_CASES and FUZZ_SEED choose the run.
 FUZZ_CASES ?= 3000
+FUZZ_INPUT_CASES ?= 2000
 FUZZ_SEED  ?= 1
 fuzz: install
 	$(PY) tests/fuzz/file_fuzz.py --cases $(FUZZ_CASES) --seed $(FUZZ_SEED)
+	$(PY) tests/fuzz/input_fuzz.py --cases $(FUZZ_INPUT_CASES) --seed $(FUZZ_SEED)
+	OCTOREACH_FUZZ_CACHE_CASES=300 $(PY) -m pytest -q -s tests/fuzz/test_cache_forgery.py
 	OCTOREACH_FUZZ_PROFILE=long $(PY) -m pytest -q tests/fuzz/test_properties.py tests/fuzz/test_threads.py \
 	  tests/fuzz/test_wrong_types.py
 
@@ -100,6 +105,7 @@ benchmarks: install
 	$(PY) benchmarks/exploration.py
 	$(PY) benchmarks/robustness.py
 	$(PY) benchmarks/planning.py
+	$(PY) benchmarks/python_layers.py
 
 # Regenerates the type stubs of the compiled module (python/octoreach/_core.pyi); review the diff.
 stubs: install

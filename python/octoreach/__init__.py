@@ -56,7 +56,7 @@ from ._core import (  # noqa: F401
     view_gains,
     view_utility,
 )
-from . import arms, cache, map_files, progress, robots, rooms, surface_maps  # noqa: F401
+from . import arms, cache, limits, map_files, progress, robots, rooms, surface_maps  # noqa: F401
 from .rooms import Room  # noqa: F401
 
 # How progress=True is drawn by the compiled builds: the core calls back into the package's progress bar.
@@ -92,6 +92,6 @@ __all__ = [
     "Robot", "Room", "Scene", "ScoredView", "ScoredViews", "Shape", "Surface", "SurfaceMap", "SurfaceMapOptions",
     "ViewCandidate", "ViewGains", "ViewGainsResult", "VoidCluster", "__version__", "arm_names", "arms", "base_pose",
     "cache", "default_reference", "explore", "exploration", "find_arms", "grasp_orientations",
-    "infer_approach_axis", "link_roles", "map_files", "next_best_view", "robots", "rooms", "score_views",
+    "infer_approach_axis", "limits", "link_roles", "map_files", "next_best_view", "robots", "rooms", "score_views",
     "view", "view_gains", "view_utility",
 ]

@@ -39,3 +39,21 @@ def float_array(value, name: str, expected: str):
         return np.asarray(value, float)
     except (TypeError, ValueError):
         raise TypeError(f"{name} must be {expected}, got {type(value).__name__}") from None
+
+
+def shown(value) -> str:
+    """repr(value) for an error message, bounded in time and length (reprlib: at most a few items per level and
+    a few levels, then at most limits.MAX_SHOWN characters): a message names a value, it never spells out a
+    megabyte list or an alias bomb."""
+    import reprlib
+
+    from .limits import MAX_SHOWN
+
+    r = reprlib.Repr()
+    r.maxlevel, r.maxlist, r.maxtuple, r.maxdict, r.maxset = 3, 6, 6, 4, 4
+    r.maxstring = r.maxother = r.maxlong = MAX_SHOWN
+    try:
+        text = r.repr(value)
+    except ValueError:  # an int past sys.get_int_max_str_digits() has no repr
+        text = f"<{type(value).__name__} of {value.bit_length()} bits>" if isinstance(value, int) else "<unprintable>"
+    return text if len(text) <= MAX_SHOWN else text[:MAX_SHOWN - 3] + "..."

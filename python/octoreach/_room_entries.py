@@ -4,10 +4,16 @@ and the simulated camera share."""
 from __future__ import annotations
 
 import math
+import os
+import stat
+from pathlib import Path
 
 import numpy as np
 
+from . import limits
 from ._core import Shape
+from ._checks import shown
+from .data_files import file_kind
 
 BOX_KEYS = {"name", "size", "xyz", "rpy"}
 CYLINDER_KEYS = {"name", "radius", "length", "xyz", "rpy"}
@@ -25,7 +31,7 @@ def check_keys(entry, known: set, where: str) -> None:
         raise TypeError(f"{where} must be a mapping (JSON object), got {type(entry).__name__}")
     for key in entry:
         if key not in known:
-            raise ValueError(f"{where}: unknown key {key!r} (known: {', '.join(sorted(known))})")
+            raise ValueError(f"{where}: unknown key {shown(key)} (known: {', '.join(sorted(known))})")
 
 
 def number(entry: dict, key: str, where: str, default=None) -> float:
@@ -34,9 +40,18 @@ def number(entry: dict, key: str, where: str, default=None) -> float:
         raise ValueError(f"{where}: {key!r} is required")
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise TypeError(f"{where}: {key!r} must be a number, got {type(value).__name__}")
-    if not math.isfinite(value):
-        raise ValueError(f"{where}: {key!r} must be finite, got {value}")
-    return float(value)
+    return finite(value, f"{where}: {key!r}")
+
+
+def finite(value, what: str) -> float:
+    """float(value), ValueError unless finite (an integer too large for a float included)."""
+    try:
+        out = float(value)
+    except OverflowError:
+        out = math.inf
+    if not math.isfinite(out):
+        raise ValueError(f"{what} must be finite, got {shown(value)}")
+    return out
 
 
 def vector(entry: dict, key: str, where: str, n: int, default=None) -> np.ndarray:
@@ -45,18 +60,75 @@ def vector(entry: dict, key: str, where: str, n: int, default=None) -> np.ndarra
         raise ValueError(f"{where}: {key!r} is required")
     if not isinstance(value, (list, tuple, np.ndarray)) or len(value) != n or any(
             isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) for v in value):
-        raise TypeError(f"{where}: {key!r} must be a list of {n} numbers, got {value!r}")
-    out = np.asarray(value, float)
+        raise TypeError(f"{where}: {key!r} must be a list of {n} numbers, got {shown(value)}")
+    try:
+        out = np.asarray(value, float)
+    except OverflowError:  # an integer too large for a float
+        out = np.full(n, np.inf)
     if not np.all(np.isfinite(out)):
-        raise ValueError(f"{where}: {key!r} must be finite, got {value!r}")
+        raise ValueError(f"{where}: {key!r} must be finite, got {shown(value)}")
     return out
 
 
 def name(entry: dict, where: str, default: str) -> str:
-    value = entry.get("name", default)
+    """The entry's name: a non-empty string of at most limits.MAX_NAME_LENGTH characters without '/' (shelf
+    boards are "<shelf>/<i>"), '\\' or control characters (names become file names)."""
+    if "name" not in entry:
+        return default
+    value = entry["name"]
     if not isinstance(value, str) or not value:
-        raise TypeError(f"{where}: 'name' must be a non-empty string, got {value!r}")
+        raise TypeError(f"{where}: 'name' must be a non-empty string, got {shown(value)}")
+    if len(value) > limits.MAX_NAME_LENGTH:
+        raise ValueError(f"{where}: 'name' has {len(value):,} characters, more than the limit of "
+                         f"{limits.MAX_NAME_LENGTH} (octoreach.limits.MAX_NAME_LENGTH)")
+    bad = next((c for c in value if c in "/\\" or ord(c) < 32 or ord(c) == 127), None)
+    if bad is not None:
+        why = "is kept for shelf boards (<shelf>/<i>)" if bad == "/" else "cannot be part of a file name"
+        raise ValueError(f"{where}: 'name' {shown(value)} holds {bad!r}, which {why}")
     return value
+
+
+def regular_path(entry: dict, where: str, base: Path) -> str:
+    """The entry's 'path' (relative to `base`): a regular, non-empty file where it exists (a missing file is
+    the loader's to report; a FIFO would block the reader, /dev/zero never end)."""
+    path = entry.get("path")
+    if not isinstance(path, str) or not path:
+        raise TypeError(f"{where}: 'path' must be a file name, got {shown(path)}")
+    p = Path(path)
+    p = p if p.is_absolute() else base / p
+    try:
+        st = os.stat(p)
+    except (OSError, ValueError):
+        return str(p)
+    if not stat.S_ISREG(st.st_mode):
+        raise OSError(f"{where}: 'path' {str(p)!r} is {file_kind(st.st_mode)}, not a regular file")
+    if st.st_size == 0:  # no mesh or OctoMap is empty; /proc's files say 0 and read as anything
+        raise OSError(f"{where}: 'path' {str(p)!r} is empty")
+    return str(p)
+
+
+def check_counts(description: dict) -> None:
+    """The room's surfaces (boards included) and obstacles counted from its lists against the limits, before any
+    entry is built (the entries' own checks name what is wrong inside them)."""
+    def entries(key):
+        value = description.get(key)
+        return value if isinstance(value, list) else []
+
+    def length(entry, key):
+        value = entry.get(key) if isinstance(entry, dict) else None
+        return len(value) if isinstance(value, list) else 0
+
+    surfaces, shelves = entries("surfaces"), entries("shelves")
+    count = len(surfaces) + sum(length(s, "boards") for s in shelves)
+    if count > limits.MAX_SURFACES:
+        raise ValueError(f"room: {count:,} surfaces (shelf boards included), more than the limit of "
+                         f"{limits.MAX_SURFACES:,} (octoreach.limits.MAX_SURFACES)")
+    panels = sum(3 * (not isinstance(s, dict) or s.get("panels", True) is not False) for s in shelves)
+    count = sum(len(entries(k)) for k in SHAPE_ENTRIES) + panels + sum(
+        length(s, "boxes") + length(s, "meshes") + 4 * (isinstance(s, dict) and "legs" in s) for s in surfaces)
+    if count > limits.MAX_OBSTACLES:
+        raise ValueError(f"room: {count:,} obstacles (boxes, cylinders, spheres, meshes, OctoMaps, legs, panels), "
+                         f"more than the limit of {limits.MAX_OBSTACLES:,} (octoreach.limits.MAX_OBSTACLES)")
 
 
 def pose(entry: dict, where: str) -> np.ndarray:

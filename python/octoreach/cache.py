@@ -7,19 +7,28 @@ Same key, same bytes: builds are deterministic and map files hold no timing.
 
 The cache directory is ``cache_dir=`` when given, else ``$OCTOREACH_CACHE_DIR``, else
 ``$XDG_CACHE_HOME/octoreach/maps`` (``~/.cache/octoreach/maps``). Entries are ``<kind>-<key>.<ext>`` with
-a ``.json`` note beside (robot, arm, options; what ``octoreach cache list`` prints). Several processes may
-share a directory: a builder holds an exclusive lock on ``<key>.lock`` (others wait, then load its entry),
-and every file is written to a temporary name and renamed into place, so a reader sees a whole entry or
-none. An entry that does not load (checksum mismatch, truncation: map files carry a CRC-32) is reported,
-deleted and rebuilt, never used. A directory that cannot be written: maps are built anyway, with one
-warning per directory.
+a ``.json`` note beside (robot, arm, options; what ``octoreach cache list`` prints) and a marker file
+``.octoreach-cache`` in the folder. Several processes may share a directory: a builder holds an exclusive
+lock on ``<key>.lock`` (others wait, then load its entry; the builder removes the lock file when done), and
+every file is written to a temporary file created exclusively and renamed into place, so a reader sees a
+whole entry or none and a name planted in the folder cannot redirect a write.
+
+An entry is used only when it is a regular file (not a symbolic link), loads (map files carry a CRC-32)
+and agrees with its key: the map's header names the key's robot model, arm and every build option it
+records, and a capability map's stored joint solutions reach their voxels (``octoreach.cache_check``). Any
+other entry is reported, deleted and rebuilt, never used. A directory that cannot be written, or an entry
+that cannot be stored (a full disk): maps are built anyway and returned, with a warning.
+``clear()`` deletes only what the cache wrote: files with its own names in a folder that has its marker.
 """
 from __future__ import annotations
 
 import contextlib
+import errno
 import hashlib
 import json
 import os
+import re
+import stat
 import tempfile
 import time
 import warnings
@@ -27,11 +36,17 @@ from pathlib import Path
 
 import numpy as np
 
-from . import map_files
+from . import cache_check, map_files
+from .cache_files import acquire, read_note, regular, save_entry
 from ._core import Arm, CapabilityMap, CapabilityMapOptions, Robot, __version__, map_format_version
+from .atomic_write import check_target, write_atomically
 
 ENV_DIR = "OCTOREACH_CACHE_DIR"
+MARKER = ".octoreach-cache"
 _EXT = map_files.kinds()  # {kind: file extension} of every map kind (the C++ registry)
+# What the cache writes: entries and notes, locks, and the temporary files of both (<name>.tmp.<anything>).
+_OWN = re.compile(r"((%s)-[0-9a-f]{40}(%s|\.json)|[0-9a-f]{40}\.lock)(\.tmp\..+)?" % (
+    "|".join(map(re.escape, _EXT)), "|".join(map(re.escape, _EXT.values()))))
 _warned: set[str] = set()  # directories already warned about
 
 
@@ -104,30 +119,17 @@ def key_of(fields: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:40]
 
 
-def write_atomically(path: Path, data: bytes) -> None:
-    """Writes bytes to a temporary file beside `path`, flushes it to disk and renames it into place."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name + ".tmp.")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.unlink(tmp)
-        raise
-
-
 class MapCache:
-    """A cache directory of maps by content key (see the module docstring). ``hits``, ``builds`` and
-    ``rebuilt_damaged`` count what happened in this object's life."""
+    """A cache directory of maps by content key (see the module docstring). ``hits``, ``builds``,
+    ``rebuilt_damaged`` (entries that did not load or were not regular files) and ``rebuilt_mismatched``
+    (entries that disagreed with their key) count what happened in this object's life."""
 
     def __init__(self, directory: str | os.PathLike | None = None):
         self.directory = Path(directory) if directory is not None else default_dir()
         self.hits = 0
         self.builds = 0
         self.rebuilt_damaged = 0
+        self.rebuilt_mismatched = 0
 
     def __repr__(self) -> str:
         return f"<octoreach.MapCache {str(self.directory)!r}>"
@@ -136,89 +138,138 @@ class MapCache:
     def path(self, kind: str, key: str) -> Path:
         return self.directory / f"{kind}-{key}{_EXT[kind]}"
 
+    def _warn_once(self, problem: str) -> None:
+        where = str(self.directory)
+        if where not in _warned:
+            _warned.add(where)
+            warnings.warn(f"map cache {where!r} {problem}: building without the cache", RuntimeWarning, stacklevel=4)
+
     def writable(self) -> bool:
-        """True when entries can be stored (the directory exists or can be made, and takes files); else warns once."""
+        """True when entries can be stored (the directory exists or can be made, takes files and holds the
+        cache's marker); else warns once."""
         try:
             self.directory.mkdir(parents=True, exist_ok=True)
             probe = tempfile.NamedTemporaryFile(dir=self.directory, prefix=".probe.", delete=True)
             probe.close()
+            if not os.path.lexists(self.directory / MARKER):
+                write_atomically(self.directory / MARKER, "octoreach map cache: `octoreach cache clear` deletes the "
+                                 "files named <kind>-<key>.<ext> and <key>.lock here, nothing else\n", "cache marker")
             return True
         except OSError as e:
-            where = str(self.directory)
-            if where not in _warned:
-                _warned.add(where)
-                warnings.warn(f"map cache {where!r} is not writable ({e.strerror or e}): building without the cache",
-                              RuntimeWarning, stacklevel=3)
+            self._warn_once(f"is not writable ({e.strerror or e})")
             return False
 
     @contextlib.contextmanager
     def _lock(self, key: str):
-        """Exclusive lock of one key across processes (flock on <key>.lock); no lock where it cannot be taken."""
-        import fcntl
-
+        """Exclusive lock of one key across processes (flock on <key>.lock, removed by its holder when done);
+        no lock where it cannot be taken (the entry is checked on load all the same)."""
+        path = self.directory / f"{key}.lock"
+        fd = acquire(path)
         try:
-            f = open(self.directory / f"{key}.lock", "a+")
-        except OSError:
             yield
-            return
-        with f:
-            fcntl.flock(f.fileno(), fcntl.LOCK_EX)
-            try:
-                yield
-            finally:
-                fcntl.flock(f.fileno(), fcntl.LOCK_UN)
+        finally:
+            if fd is not None:
+                with contextlib.suppress(OSError):
+                    os.unlink(path)  # waiters holding the old file notice (_acquire) and take a new one
+                os.close(fd)
 
-    def _load(self, kind: str, key: str):
-        """The entry's map, None when absent; a damaged entry is reported, deleted and counted."""
+    def _discard(self, path: Path, problem: str, counter: str) -> None:
+        warnings.warn(f"map cache entry {path.name} {problem}: deleting and rebuilding it", RuntimeWarning,
+                      stacklevel=5)
+        setattr(self, counter, getattr(self, counter) + 1)
+        with contextlib.suppress(OSError):
+            path.unlink()
+
+    def _load(self, kind: str, key: str, verify=None, with_bytes: bool = False):
+        """The entry's map (and its bytes), None when absent. An entry that is not a regular file, does not load
+        or disagrees with its key (verify(map) -> None or the disagreement) is reported, deleted and counted."""
         path = self.path(kind, key)
-        if not path.exists():
+        try:
+            fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+        except OSError as e:
+            if e.errno in (errno.ENOENT, errno.ENOTDIR):
+                return None
+            if os.path.islink(path):
+                self._discard(path, "is a symbolic link", "rebuilt_damaged")
+            else:
+                self._discard(path, f"cannot be opened ({e.strerror})", "rebuilt_damaged")
             return None
         try:
-            return map_files.load(path, kind)  # OSError unless the entry holds a whole map of that kind
-        except OSError as e:
-            warnings.warn(f"map cache entry {path.name} is damaged ({e}): rebuilding it", RuntimeWarning, stacklevel=4)
-            self.rebuilt_damaged += 1
-            with contextlib.suppress(OSError):
-                path.unlink()
-            return None
+            mode = os.fstat(fd).st_mode
+            if not stat.S_ISREG(mode):
+                from .data_files import file_kind
 
-    def lookup(self, kind: str, fields: dict):
-        """The cached map of these key fields, or None (a damaged entry is deleted)."""
-        m = self._load(kind, key_of(fields))
+                self._discard(path, f"is {file_kind(mode)}, not a regular file", "rebuilt_damaged")
+                return None
+            via = f"/proc/self/fd/{fd}"  # the file opened and checked above, whatever the name points to now
+            source = via if os.path.exists(via) else str(path)
+            try:
+                m = map_files.load(source, kind)  # OSError unless it holds a whole map of that kind
+            except OSError as e:
+                self._discard(path, f"is damaged ({str(e).replace(via, path.name)})", "rebuilt_damaged")
+                return None
+            try:
+                problem = verify(m) if verify is not None else None
+            except (ValueError, TypeError, RuntimeError, LookupError) as e:  # a header the checks cannot even use
+                problem = f"it cannot be checked: {' '.join(str(e).split())[:200]}"
+            if problem:
+                self._discard(path, f"does not match its key ({problem})", "rebuilt_mismatched")
+                return None
+            if not with_bytes:
+                return m
+            size = os.fstat(fd).st_size
+            return m, os.pread(fd, size, 0)
+        finally:
+            os.close(fd)
+
+    def lookup(self, kind: str, fields: dict, verify=None):
+        """The cached map of these key fields, or None (an entry that is damaged or disagrees with `verify` is
+        deleted)."""
+        m = self._load(kind, key_of(fields), verify)
         if m is not None:
             self.hits += 1
         return m
 
-    def lookup_bytes(self, kind: str, fields: dict) -> bytes | None:
-        """The bytes of the cached map of these key fields (checked by loading it), or None."""
-        key = key_of(fields)
-        if self._load(kind, key) is None:
-            return None
-        try:
-            data = self.path(kind, key).read_bytes()
-        except OSError:
+    def lookup_bytes(self, kind: str, fields: dict, verify=None) -> bytes | None:
+        """The bytes of the cached map of these key fields, the very bytes that were loaded and checked, or None."""
+        found = self._load(kind, key_of(fields), verify, with_bytes=True)
+        if found is None:
             return None
         self.hits += 1
-        return data
+        return found[1]
 
     def _note(self, kind: str, key: str, fields: dict) -> None:
         note = {"kind": kind, "key": key, "fields": _plain(fields), "octoreach": __version__,
                 "format": map_format_version(), "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
-        write_atomically(self.directory / f"{kind}-{key}.json", json.dumps(note, indent=1).encode())
+        write_atomically(self.directory / f"{kind}-{key}.json", json.dumps(note, indent=1), "cache note")
+
+    def _stored(self, kind: str, key: str, fields: dict, write) -> bool:
+        """write(path) the entry, then its note; False with a warning when either cannot be written (a full disk)."""
+        path = self.path(kind, key)
+        try:
+            check_target(path, "map cache entry")
+            write(path)
+            self._note(kind, key, fields)
+            return True
+        except OSError as e:
+            warnings.warn(f"map cache {str(self.directory)!r}: cannot store {path.name} ({e}): the map is built and "
+                          "used without the cache", RuntimeWarning, stacklevel=4)
+            with contextlib.suppress(OSError):
+                if os.path.isfile(path) and not os.path.islink(path):
+                    path.unlink()  # an entry without its note is never read back half-described
+            return False
 
     def store_bytes(self, kind: str, fields: dict, data: bytes) -> bool:
-        """Stores a map file's bytes under its key (atomic rename); False when the directory is not writable."""
+        """Stores a map file's bytes under its key (atomic rename); False when it cannot be stored (warned)."""
         if not self.writable():
             return False
-        key = key_of(fields)
-        write_atomically(self.path(kind, key), data)
-        self._note(kind, key, fields)
-        return True
+        return self._stored(kind, key_of(fields), fields, lambda path: write_atomically(path, data, "map cache entry"))
 
-    def get_or_build(self, kind: str, fields: dict, build, save):
-        """The cached map of these key fields, else build() saved with save(map, path) and stored. One process
-        builds a key at a time; the others wait for it and load its entry."""
-        m = self.lookup(kind, fields)
+    def get_or_build(self, kind: str, fields: dict, build, save, verify=None):
+        """The cached map of these key fields (checked by verify(map) -> None or a disagreement), else build()
+        saved with save(map, path) and stored; a map that cannot be stored is returned all the same. One
+        process builds a key at a time; the others wait for it and load its entry."""
+        m = self.lookup(kind, fields, verify)
         if m is not None:
             return m
         if not self.writable():
@@ -226,14 +277,13 @@ class MapCache:
             return build()
         key = key_of(fields)
         with self._lock(key):
-            m = self._load(kind, key)  # another process may have built it while we waited
+            m = self._load(kind, key, verify)  # another process may have built it while we waited
             if m is not None:
                 self.hits += 1
                 return m
             m = build()
             self.builds += 1
-            save(m, str(self.path(kind, key)))  # the map's own atomic save (temporary file, fsync, rename)
-            self._note(kind, key, fields)
+            self._stored(kind, key, fields, lambda path: save(m, str(path)))
         return m
 
     # ------------------------------------------------------------------ maps
@@ -246,34 +296,42 @@ class MapCache:
         fields = capability_key_fields(robot, a, o)
         return self.get_or_build("capability", fields,
                                  lambda: CapabilityMap.build_for_arm(robot, a, o, progress=progress),
-                                 lambda m, path: m.save(path, with_solutions=m.has_solutions))
+                                 save_entry,
+                                 lambda m: cache_check.capability_mismatch(m, fields, robot))
 
     # ------------------------------------------------------------------ listing
     def entries(self) -> list[dict]:
-        """One dict per entry: kind, key, file, bytes, created and the key fields (robot, arm, options...)."""
+        """One dict per map entry: kind, key, file, bytes, and from its note (when it has a readable one) created
+        and the key fields (robot, arm, options...); "note": "missing or damaged" otherwise."""
         out = []
         if not self.directory.is_dir():
             return out
-        for note in sorted(self.directory.glob("*.json")):
-            try:
-                info = json.loads(note.read_text())
-                path = self.path(info["kind"], info["key"])
-            except (OSError, ValueError, KeyError):
+        for path in sorted(self.directory.iterdir()):
+            m = _OWN.fullmatch(path.name)
+            if not m or m.group(4) or m.group(3) in (None, ".json") or not regular(path):
                 continue
-            if path.exists():
-                out.append({**info, "file": str(path), "bytes": path.stat().st_size})
+            kind, key = m.group(2), path.name.split("-", 1)[1].split(".")[0]
+            info = {"kind": kind, "key": key, "file": str(path), "bytes": path.stat().st_size}
+            note = read_note(self.directory / f"{kind}-{key}.json", kind, key)
+            out.append({**note, **info} if note else {**info, "note": "missing or damaged", "fields": {}})
         return out
 
     def clear(self) -> int:
-        """Deletes every entry (maps, notes, locks, leftover temporary files); returns the number of maps deleted."""
+        """Deletes what the cache wrote (maps, notes, locks, leftover temporary files) and nothing else; returns
+        the number of maps deleted. A folder without the cache's marker: ValueError, nothing deleted."""
         if not self.directory.is_dir():
             return 0
+        if not regular(self.directory / MARKER):
+            raise ValueError(f"{str(self.directory)!r} is not an octoreach map cache (it has no {MARKER} file): "
+                             "nothing deleted")
         maps = 0
         for path in self.directory.iterdir():
-            if path.suffix in (*_EXT.values(), ".json", ".lock") or ".tmp." in path.name:
-                with contextlib.suppress(OSError):
-                    path.unlink()
-                    maps += path.suffix in _EXT.values()
+            m = _OWN.fullmatch(path.name)
+            if not m or os.path.isdir(path) and not os.path.islink(path):
+                continue
+            with contextlib.suppress(OSError):
+                path.unlink()
+                maps += m.group(3) in _EXT.values() and not m.group(4)
         return maps
 
 

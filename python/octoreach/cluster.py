@@ -9,8 +9,9 @@ within ``timeout`` seconds raises ConnectionError before Ray is asked.
 
 Results never depend on where a task ran: every task is a deterministic function of plain data (robot
 spec and model hash, arm, options, seeds), maps carry no timing, so a task that Ray retries after a lost
-worker returns the same bytes. The driver looks every map up in the map cache first and stores what
-the cluster built (``octoreach.cache``); workers never touch the cache.
+worker returns the same bytes. The driver looks every map up in the map cache first (a hit is used only
+when it agrees with its key: ``octoreach.cache_check``) and stores what the cluster built
+(``octoreach.cache``); workers never touch the cache.
 """
 from __future__ import annotations
 
@@ -22,7 +23,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import cache as _cache
+from . import cache_check as _check
 from . import jobs as _jobs
+from .atomic_write import write_atomically
 
 _remote: dict = {}
 
@@ -189,7 +192,7 @@ class BuildReport:
 
 def _store(path: Path, data: bytes) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
-    _cache.write_atomically(path, data)
+    write_atomically(path, data, "map file")
 
 
 def build_many(job, cluster: str | None = "local", out=None, cache=True, progress=True, task_cpus: int = 1,
@@ -207,8 +210,13 @@ def build_many(job, cluster: str | None = "local", out=None, cache=True, progres
     cap_refs = []
 
     def cached(kind, j):
-        """The cached bytes of a map of the job, written to its output file; None on a miss."""
-        data = store.lookup_bytes(kind, j.fields) if store else None
+        """The cached bytes of a map of the job (checked against its key), written to its output file; None on
+        a miss."""
+        if kind == "capability":
+            verify = lambda m: _check.capability_mismatch(m, j.fields, j.robot)  # noqa: E731
+        else:
+            verify = lambda m: _check.surface_mismatch(m, j.fields, j.polygon)  # noqa: E731
+        data = store.lookup_bytes(kind, j.fields, verify) if store else None
         if data is not None:
             report.cache_hits += 1
             _store(j.out, data)
@@ -262,7 +270,7 @@ def build_capability_split(robot, arm, cluster: str | None = "local", block_size
     store = _cache.resolve(cache)
     fields = _cache.capability_key_fields(robot, a, opts)
     if store is not None:
-        hit = store.lookup("capability", fields)
+        hit = store.lookup("capability", fields, lambda m: _check.capability_mismatch(m, fields, robot))
         if hit is not None:
             return hit
     spec = robot_spec or {"name": robot.name}

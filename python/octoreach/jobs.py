@@ -15,25 +15,28 @@ A job file is YAML (or JSON)::
 
 Each (robot, arm, resolution) is one capability map, each (capability map, surface, base height) one
 surface map. ``read_job`` checks the whole file before any work starts: it loads every robot, resolves
-every arm and surface, and names the entry and key of the first problem. The task functions here
-(``capability_task``, ``surface_task``, ``block_task``...) are plain functions of plain data, run in this
-process or by a cluster's workers (``octoreach.cluster``).
+every arm and surface, and names the entry and key of the first problem. Output files are named after the
+robot, arm, resolution (exactly: 0.2 and 0.2000001 differ), surface and height; two maps whose files would
+meet (names that differ only in characters a file name replaces, or in letter case) are an error, and a job
+holds at most ``limits.MAX_JOB_MAPS`` maps. The task functions (``capability_task``, ``surface_task``,
+``block_task``...: ``octoreach.job_tasks``) are plain functions of plain data, run in this process or by a
+cluster's workers (``octoreach.cluster``).
 """
 from __future__ import annotations
 
-import hashlib
 import math
 import os
-import resource
-import tempfile
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import cache as _cache
-from . import map_files
+from . import limits
+from ._checks import shown
 from .arms import default_arm
-from ._core import Arm, CapabilityBlocks, CapabilityMap, Robot, SurfaceMap, SurfaceMapOptions
+from .data_files import read_data, sha256_of
+from .job_tasks import (block_task, blocks_plan, capability_task, load_robot, map_bytes,  # noqa: F401  (what a
+                        map_from_bytes, sample_task, surface_task)                     # cluster runs, by name)
+from ._core import Arm, Robot, SurfaceMapOptions
 
 _JOB_KEYS = {"robots", "arms", "resolutions", "capability", "surfaces", "surface", "base_heights", "out"}
 _ROBOT_KEYS = {"name", "urdf", "srdf", "package_dirs", "allowed_collisions", "arms"}
@@ -42,119 +45,6 @@ _SURFACE_OPTION_EXCLUDED = {"obstacles", "z_range", "z_min", "z_max", "resolutio
 
 class JobError(ValueError):
     """A job file that cannot be run; the message names the entry and the key."""
-
-
-# ---------------------------------------------------------------------------------------------- robots
-_robots: dict[str, Robot] = {}  # per process: a worker loads each robot once
-
-
-def load_robot(spec: dict) -> Robot:
-    """The robot of a spec: {"name": N} (example-robot-data, or a project URDF such as test_arm) or
-    {"urdf": path, "srdf": path, "package_dirs": [...], "allowed_collisions": "auto"}; loaded once per process."""
-    from . import robots
-
-    key = repr(sorted(spec.items()))
-    if key not in _robots:
-        if "urdf" in spec:
-            _robots[key] = robots.from_urdf(spec["urdf"], spec.get("package_dirs", ()), spec.get("srdf"),
-                                            spec.get("allowed_collisions", "auto"))
-        else:
-            name = spec["name"]
-            try:
-                path = robots.project_urdf(name)
-            except ValueError:
-                path = None
-            _robots[key] = (Robot.from_urdf(str(path)) if path is not None else
-                            robots.load(name, allowed_collisions=spec.get("allowed_collisions", "auto")))
-    return _robots[key]
-
-
-def _checked_robot(spec: dict, model_hash: int) -> Robot:
-    robot = load_robot(spec)
-    if int(robot.model_hash) != int(model_hash):
-        raise RuntimeError(f"robot {spec} loads with model hash {robot.model_hash} on this machine, the job was "
-                           f"planned for {model_hash}: every machine needs the same robot files and octoreach build")
-    return robot
-
-
-# ---------------------------------------------------------------------------------------------- map bytes
-def map_bytes(m, with_solutions: bool = False) -> bytes:
-    """The file bytes of a map (written by its own atomic save into a temporary folder)."""
-    with tempfile.TemporaryDirectory(prefix="octoreach-") as d:
-        path = os.path.join(d, "map")
-        if isinstance(m, CapabilityMap):
-            m.save(path, with_solutions=with_solutions)
-        else:
-            m.save(path)
-        return Path(path).read_bytes()
-
-
-def map_from_bytes(kind: str, data: bytes):
-    """A map of `kind` ("capability", "surface") loaded from file bytes (the loader checks the kind and the
-    checksum)."""
-    with tempfile.TemporaryDirectory(prefix="octoreach-") as d:
-        path = os.path.join(d, "map")
-        Path(path).write_bytes(data)
-        return map_files.load(path, kind)
-
-
-def _task_info(t0: float) -> dict:
-    """Seconds, node and the process's peak memory (MB) of a task, for the job report."""
-    node = ""
-    try:
-        import ray
-
-        if ray.is_initialized():
-            node = ray.get_runtime_context().get_node_id()
-    except ImportError:
-        pass
-    return {"seconds": time.perf_counter() - t0, "node": node, "pid": os.getpid(),
-            "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
-
-
-# ---------------------------------------------------------------------------------------------- tasks
-def capability_task(spec: dict, model_hash: int, arm: tuple, options: dict, threads: int = 0):
-    """(file bytes with solutions, info) of a capability map."""
-    t0 = time.perf_counter()
-    robot = _checked_robot(spec, model_hash)
-    o = _cache.capability_options(None, **options)
-    o.threads = threads
-    m = CapabilityMap.build_for_arm(robot, arm, o, progress=False)
-    return map_bytes(m, with_solutions=True), _task_info(t0)
-
-
-def surface_task(spec: dict, model_hash: int, capability: bytes, room: dict, base_dir: str, surface: str,
-                 height: float, options: dict, threads: int = 0):
-    """(file bytes, info) of the surface map of one surface of a room, base at `height`."""
-    from .rooms import Room
-
-    t0 = time.perf_counter()
-    robot = _checked_robot(spec, model_hash)
-    cap = map_from_bytes("capability", capability)
-    r = Room(room, base_dir=base_dir)
-    obstacles = r.obstacles(without=surface)
-    m = SurfaceMap.build(robot, cap, r.surfaces[surface], obstacles=obstacles if len(obstacles) else None,
-                         z_range=(height, height), threads=threads, progress=False, **options)
-    return map_bytes(m), _task_info(t0)
-
-
-def blocks_plan(spec: dict, model_hash: int, arm: tuple, options: dict) -> CapabilityBlocks:
-    return CapabilityBlocks(_checked_robot(spec, model_hash), arm, _cache.capability_options(None, **options))
-
-
-def sample_task(spec: dict, model_hash: int, arm: tuple, options: dict, threads: int = 0):
-    """[info, seed counts, seeds of block 0, 1, ...]: step 1 of a block build."""
-    t0 = time.perf_counter()
-    plan = blocks_plan(spec, model_hash, arm, {**options, "threads": threads})
-    seeds = plan.sample()
-    return [_task_info(t0), [CapabilityBlocks.seed_count(s) for s in seeds], *seeds]
-
-
-def block_task(spec: dict, model_hash: int, arm: tuple, options: dict, block: int, seeds: bytes, threads: int = 0):
-    """(result bytes, info) of one block: step 2 of a block build."""
-    t0 = time.perf_counter()
-    plan = blocks_plan(spec, model_hash, arm, {**options, "threads": threads})
-    return plan.build_block(block, seeds), _task_info(t0)
 
 
 # ---------------------------------------------------------------------------------------------- job files
@@ -186,6 +76,7 @@ class SurfaceJob:
     options: dict
     fields: dict
     out: Path
+    polygon: object = None   # (N, 3) vertices of the surface: what its map's header must name
 
 
 @dataclass
@@ -206,16 +97,37 @@ def _numbers(value, where: str, positive: bool) -> list[float]:
     values = value if isinstance(value, list) else [value]
     out = []
     for i, v in enumerate(values):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or (positive and v <= 0):
-            raise _err(f"{where}[{i}]", f"must be a {'positive ' if positive else ''}number (m), got {v!r}")
-        out.append(float(v))
+        try:
+            f = float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else math.nan
+        except OverflowError:  # an integer too large for a float
+            f = math.inf
+        if not math.isfinite(f) or (positive and f <= 0):
+            raise _err(f"{where}[{i}]", f"must be a finite {'positive ' if positive else ''}number (m), got {shown(v)}")
+        if f in out:
+            raise _err(f"{where}[{i}]", f"{f!r} is listed twice")
+        out.append(f)
     if not out:
         raise _err(where, "must list at least one value")
     return out
 
 
 def _safe(name: str) -> str:
+    """A file-name form of a name: letters, digits, '-', '_' and '.' kept, anything else '_' (outputs whose
+    names meet in this form are refused by _check_outputs)."""
     return "".join(c if c.isalnum() or c in "-_." else "_" for c in str(name))
+
+
+def _check_outputs(result: "Job", where: str) -> None:
+    """JobError when two maps of the job would be written to one file (names that differ only in characters a
+    file name replaces, or in letter case, which some file systems ignore)."""
+    seen: dict[str, str] = {}
+    for j in [*result.capability, *result.surfaces]:
+        key = str(j.out).casefold()
+        if key in seen:
+            raise _err(where, f"the maps {seen[key]!r} and {j.name!r} would both be written to {str(j.out)!r}: "
+                              "rename one (names become file names: characters other than letters, digits, "
+                              "'-', '_' and '.' are written as '_')")
+        seen[key] = j.name
 
 
 def _file_digests(description: dict, base_dir: Path) -> dict:
@@ -228,7 +140,7 @@ def _file_digests(description: dict, base_dir: Path) -> dict:
                 p = Path(node["path"])
                 p = p if p.is_absolute() else base_dir / p
                 try:
-                    out[str(p)] = hashlib.sha256(p.read_bytes()).hexdigest()
+                    out[str(p)] = sha256_of(p, "file")
                 except OSError:
                     out[str(p)] = "unreadable"
             for v in node.values():
@@ -252,12 +164,14 @@ def _robot_specs(data: dict, where: str, base: Path) -> list[tuple[dict, list, s
         if isinstance(entry, str):
             entry = {"name": entry}
         if not isinstance(entry, dict):
-            raise _err(w, f"must be a robot name or a mapping, got {entry!r}")
+            raise _err(w, f"must be a robot name or a mapping, got {shown(entry)}")
         unknown = set(entry) - _ROBOT_KEYS
         if unknown:
-            raise _err(w, f"unknown key {sorted(unknown)[0]!r} (known: {', '.join(sorted(_ROBOT_KEYS))})")
+            first = shown(sorted(map(str, unknown))[0])
+            raise _err(w, f"unknown key {first} (known: {', '.join(sorted(_ROBOT_KEYS))})")
         if ("name" in entry) == ("urdf" in entry):
             raise _err(w, "give exactly one of 'name' and 'urdf'")
+        _check_robot_types(entry, w)
         spec = {k: v for k, v in entry.items() if k != "arms"}
         for k in ("urdf", "srdf"):
             if k in spec:
@@ -274,9 +188,23 @@ def _robot_specs(data: dict, where: str, base: Path) -> list[tuple[dict, list, s
     return out
 
 
-def _surfaces(data: dict, where: str, base: Path) -> list[tuple[dict, str, str, str]]:
-    """(room description, base dir, surface name, where) of every surface of the job."""
-    from .rooms import Room, _read_data
+def _check_robot_types(entry: dict, w: str) -> None:
+    """JobError naming the key of a robot entry whose value has the wrong type."""
+    for k in ("name", "urdf", "srdf"):
+        if k in entry and (not isinstance(entry[k], str) or not entry[k] or "\x00" in entry[k]):
+            raise _err(f"{w}: {k}", f"must be a {'robot name' if k == 'name' else 'file path'} (a non-empty string), "
+                                    f"got {shown(entry[k])}")
+    dirs = entry.get("package_dirs", [])
+    if not isinstance(dirs, list) or not all(isinstance(d, str) and d and "\x00" not in d for d in dirs):
+        raise _err(f"{w}: package_dirs", f"must be a list of folder paths, got {shown(dirs)}")
+    how = entry.get("allowed_collisions", "auto")
+    if how not in ("auto", "sample", "srdf"):
+        raise _err(f"{w}: allowed_collisions", f"must be 'auto', 'sample' or 'srdf', got {shown(how)}")
+
+
+def _surfaces(data: dict, where: str, base: Path) -> list[tuple[dict, str, str, object]]:
+    """(room description, base dir, surface name, polygon vertices) of every surface of the job."""
+    from .rooms import Room
 
     entries = data.get("surfaces", [])
     if not isinstance(entries, list):
@@ -286,9 +214,11 @@ def _surfaces(data: dict, where: str, base: Path) -> list[tuple[dict, str, str, 
         w = f"{where}: surfaces[{i}]"
         try:
             if isinstance(entry, dict) and set(entry) == {"room"}:
+                if not isinstance(entry["room"], str) or not entry["room"] or "\x00" in entry["room"]:
+                    raise TypeError(f"'room' must be a room file path, got {shown(entry['room'])}")
                 path = Path(entry["room"])
                 path = path if path.is_absolute() else base / path
-                description, room_base = _read_data(path, "room file"), path.parent.resolve()
+                description, room_base = read_data(path, "room file"), path.parent.resolve()
             else:
                 description, room_base = {"surfaces": [entry]}, base.resolve()
             room = Room(description, base_dir=room_base)
@@ -296,12 +226,13 @@ def _surfaces(data: dict, where: str, base: Path) -> list[tuple[dict, str, str, 
             raise _err(w, str(e)) from None
         if not room.surfaces:
             raise _err(w, "holds no surface")
-        for name in room.surfaces:
-            out.append((room.description, str(room_base), name, w))
-    names = [s[2] for s in out]
-    for n in names:
-        if names.count(n) > 1:
-            raise _err(f"{where}: surfaces", f"the surface name {n!r} is used twice (output files are named after it)")
+        for name, surface in room.surfaces.items():
+            out.append((room.description, str(room_base), name, surface.vertices))
+    names: set = set()
+    for s in out:
+        if s[2] in names:
+            raise _err(f"{where}: surfaces", f"the surface name {s[2]!r} is used twice (output files are named after it)")
+        names.add(s[2])
     return out
 
 
@@ -311,26 +242,31 @@ def _options(data: dict, key: str, where: str, make, excluded: set) -> dict:
         raise _err(f"{where}: {key}", "must be a mapping of option names to values")
     probe = make()
     for name, value in entry.items():
-        if name in excluded or name.startswith("_") or not hasattr(probe, name) or callable(getattr(probe, name)):
-            raise _err(f"{where}: {key}.{name}", "unknown or not settable here" +
+        if not isinstance(name, str) or name in excluded or name.startswith("_") or not hasattr(probe, name) or \
+                callable(getattr(probe, name)):
+            label = name[:60] if isinstance(name, str) else shown(name)
+            raise _err(f"{where}: {key}.{label}", "unknown or not settable here" +
                        (f" (excluded: {', '.join(sorted(excluded))})" if excluded else ""))
+        plain = isinstance(value, (int, float, str, type(None))) or isinstance(value, list) and len(value) <= 1000 \
+            and all(isinstance(v, (int, float)) for v in value)
+        if not plain:  # an option is a number, a string or a short list of numbers (a reference posture)
+            raise _err(f"{where}: {key}.{name}", f"must be a number, a string or a list of numbers, got {shown(value)}")
         try:
             setattr(probe, name, value)
-        except (TypeError, ValueError) as e:
-            raise _err(f"{where}: {key}.{name}", f"bad value {value!r} ({e})") from None
+        except (TypeError, ValueError, OverflowError) as e:
+            why = " ".join(str(e).split())[:200]
+            raise _err(f"{where}: {key}.{name}", f"bad value {shown(value)} ({why})") from None
     return dict(entry)
 
 
 def read_job(job, out: str | os.PathLike | None = None) -> Job:
     """A checked job from a job file (YAML or JSON) or a dict; raises JobError naming the entry and key."""
-    from .rooms import _read_data
-
     if isinstance(job, dict):
         data, where, base = job, "job", Path(".")
     else:
         path = Path(job)
         try:
-            data = _read_data(path, "job file")
+            data = read_data(path, "job file")
         except (OSError, ValueError) as e:
             raise JobError(str(e)) from None
         where, base = f"job file {str(path)!r}", path.parent
@@ -338,18 +274,26 @@ def read_job(job, out: str | os.PathLike | None = None) -> Job:
         raise JobError(f"{where}: must be a mapping with 'robots', 'arms', 'resolutions', 'surfaces'...")
     unknown = set(data) - _JOB_KEYS
     if unknown:
-        raise _err(where, f"unknown key {sorted(unknown)[0]!r} (known: {', '.join(sorted(_JOB_KEYS))})")
+        raise _err(where, f"unknown key {shown(sorted(map(str, unknown))[0])} (known: {', '.join(sorted(_JOB_KEYS))})")
     resolutions = _numbers(data.get("resolutions", [0.05]), f"{where}: resolutions", True)
     heights = _numbers(data.get("base_heights", [0.0]), f"{where}: base_heights", False)
     cap_options = _options(data, "capability", where, _cache.capability_options, {"resolution", "threads", "approach_axis"})
     surf_options = _options(data, "surface", where, SurfaceMapOptions, _SURFACE_OPTION_EXCLUDED)
     surfaces = _surfaces(data, where, base)
-    out_dir = Path(out) if out is not None else base / str(data.get("out", "build_many_out"))
+    out_value = data.get("out", "build_many_out")
+    if out is None and (not isinstance(out_value, str) or not out_value or "\x00" in out_value):
+        raise _err(f"{where}: out", f"must be a folder path, got {shown(out_value)}")
+    out_dir = Path(out) if out is not None else base / out_value
     result = Job(out=out_dir)
-    for spec, arm_names, w in _robot_specs(data, where, base):
+    specs = _robot_specs(data, where, base)
+    arm_count = sum(max(1, len(a)) for _, a, _ in specs)
+    maps = arm_count * len(resolutions) * (1 + len(surfaces) * len(heights))
+    if maps > limits.MAX_JOB_MAPS:
+        raise _err(where, f"{maps:,} maps, more than the limit of {limits.MAX_JOB_MAPS:,} (octoreach.limits.MAX_JOB_MAPS)")
+    for spec, arm_names, w in specs:
         try:
             robot = load_robot(spec)
-        except (ValueError, OSError, RuntimeError) as e:
+        except (ValueError, TypeError, OSError, RuntimeError) as e:
             raise _err(f"{w}", f"cannot load the robot: {e}") from None
         rname = _safe(spec.get("name") or Path(spec["urdf"]).stem)
         if not arm_names:
@@ -365,16 +309,18 @@ def read_job(job, out: str | os.PathLike | None = None) -> Job:
             for res in resolutions:
                 options = {**cap_options, "resolution": res, "keep_solutions": True}
                 fields = _cache.capability_key_fields(robot, arm, _cache.capability_options(None, **options))
-                folder = out_dir / rname / _safe(arm_name if isinstance(arm_name, str) else arm.tip_link) / f"res{res:g}"
-                cap = CapabilityJob(f"{rname}/{arm.tip_link}/{res:g}", robot, spec, arm, options, fields,
+                # repr: the shortest text that reads back as the same float (0.2 and 0.2000001 differ)
+                folder = out_dir / rname / _safe(arm_name if isinstance(arm_name, str) else arm.tip_link) / f"res{res!r}"
+                cap = CapabilityJob(f"{rname}/{arm.tip_link}/{res!r}", robot, spec, arm, options, fields,
                                     folder / "capability.orcm")
                 result.capability.append(cap)
-                for room, room_base, sname, _sw in surfaces:
+                for room, room_base, sname, polygon in surfaces:
                     for h in heights:
-                        suffix = "" if len(heights) == 1 and h == 0 else f"@z{h:g}"
+                        suffix = "" if len(heights) == 1 and h == 0 else f"@z{h!r}"
                         sfields = {"kind": "surface", "capability": fields, "room": room, "surface": sname,
                                    "files": _file_digests(room, Path(room_base)), "height": h, "options": surf_options}
                         result.surfaces.append(SurfaceJob(f"{cap.name}/{sname}{suffix}", len(result.capability) - 1,
                                                           room, room_base, sname, h, surf_options, sfields,
-                                                          folder / f"{_safe(sname)}{suffix}.orsm"))
+                                                          folder / f"{_safe(sname)}{suffix}.orsm", polygon))
+    _check_outputs(result, where)
     return result

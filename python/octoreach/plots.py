@@ -17,6 +17,7 @@ from matplotlib import colormaps
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
+from .atomic_write import save_figure
 
 #: Red (low) to blue (high), the colouring of the paper's figures.
 COLORMAP = "jet_r"
@@ -197,7 +198,7 @@ def slices(
     if title:
         fig.suptitle(title, fontsize=10)
     path = os.fspath(path)
-    fig.savefig(path, format="png")
+    save_figure(fig, path, format="png")
     return path
 
 
@@ -258,7 +259,7 @@ def reachability_histogram(data, path: Union[str, os.PathLike], *, bins: int = 2
         ax.set_title(title, fontsize=9)
     fig.tight_layout()
     path = os.fspath(path)
-    fig.savefig(path, format="png")
+    save_figure(fig, path, format="png")
     return path
 
 
@@ -337,7 +338,7 @@ def surface_slices(smap, path: Union[str, os.PathLike], *, z: Optional[float] = 
     fig.suptitle(title or f"{smap.robot_name} surface map ({getattr(smap, 'arms', '')}), z = {z_label:.2f} m, "
                  f"{r:g} m, {bins} orientations", fontsize=9)
     path = os.fspath(path)
-    fig.savefig(path, format="png")
+    save_figure(fig, path, format="png")
     return path
 
 
@@ -377,5 +378,5 @@ def sample_comparison(smap, path: Union[str, os.PathLike], *, count: int = 500, 
     axes[0].set_ylabel("y (m)")
     fig.colorbar(scatter, ax=list(axes), shrink=0.85, label="R_S")
     path = os.fspath(path)
-    fig.savefig(path, format="png")
+    save_figure(fig, path, format="png")
     return path

@@ -105,6 +105,8 @@ def package_dirs(root: Path | None = None) -> list[str]:
 def files(name: str) -> tuple[Path, Path | None, list[str]]:
     """(URDF, SRDF or None, package_dirs) of robot `name` of example-robot-data, the files load(name) reads.
     An unknown name: ValueError with the nearest names."""
+    if len(name) > 200:  # a name read from a file; difflib below is quadratic in its length
+        raise ValueError(f"unknown robot {name[:60]!r}... ({len(name):,} characters; robot names are short)")
     index = _index()
     if name not in index:
         qualified = [n for n in index if n.endswith("/" + name)]
@@ -117,6 +119,7 @@ def files(name: str) -> tuple[Path, Path | None, list[str]]:
     return urdf_path, srdf_path, package_dirs()
 
 
+_PROJECT_NAME = re.compile(r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,199}")
 _ROBOT_NAME = re.compile(r"<robot\b[^>]*?\bname\s*=\s*[\"']([^\"']+)[\"']")
 
 
@@ -172,6 +175,8 @@ def from_urdf(urdf, package_dirs=(), srdf=None, allowed_collisions: str = "auto"
     check_type(srdf, PATH + (type(None),), "srdf", "a path or SRDF text (str or os.PathLike) or None")
     check_type(allowed_collisions, str, "allowed_collisions", "'auto', 'sample' or 'srdf'")
     dirs = check_paths(package_dirs, "package_dirs")
+    for what, value in (("URDF", urdf), ("SRDF", srdf)):
+        _check_regular(value, what)
     robot = Robot.from_urdf(str(urdf), package_dirs=dirs, srdf=None if srdf is None else str(srdf),
                             srdf_mismatch=srdf_mismatch)
     if allowed_collisions == "auto":
@@ -181,6 +186,23 @@ def from_urdf(urdf, package_dirs=(), srdf=None, allowed_collisions: str = "auto"
     if allowed_collisions != "srdf":
         raise ValueError(f"allowed_collisions must be 'auto', 'sample' or 'srdf', got {allowed_collisions!r}")
     return robot
+
+
+def _check_regular(value, what: str) -> None:
+    """OSError when a path names a FIFO, a device or a folder (a reader would block or never end); URDF text
+    and missing files pass (Robot.from_urdf reports those)."""
+    import stat
+
+    if value is None or isinstance(value, str) and ("<" in value or len(value) > 4096):
+        return
+    try:
+        mode = os.stat(value).st_mode
+    except (OSError, ValueError):
+        return
+    if not stat.S_ISREG(mode):
+        from .data_files import file_kind
+
+        raise OSError(f"cannot read {what} {os.fspath(value)!r}: it is {file_kind(mode)}, not a regular file")
 
 
 def load(name: str, srdf: bool = True, allowed_collisions: str = "auto") -> Robot:
@@ -211,8 +233,12 @@ def pr2(srdf: bool = True) -> Robot:
 
 
 def project_urdf(name: str) -> Path:
-    """Path of a URDF the project owns (``urdf/NAME.urdf``), installed with the package."""
+    """Path of a URDF the project owns (``urdf/NAME.urdf``), installed with the package. A name is a file
+    stem of that folder (letters, digits, '_', '-', '.'; no path: a name read from a map header or a job file
+    never reaches a file elsewhere)."""
     check_type(name, str, "name", "a URDF name (str)")
+    if not _PROJECT_NAME.fullmatch(name):
+        raise ValueError(f"no project URDF named {name[:200]!r} (a name, not a path)")
     here = Path(__file__).resolve().parent
     for candidate in (here / "urdf" / f"{name}.urdf", here.parent.parent / "urdf" / f"{name}.urdf"):
         if candidate.is_file():

@@ -18,7 +18,9 @@ A surface is a ``rectangle`` or a polygon given by ``vertices`` (a list of [x, y
 ``thickness``, ``legs`` (leg width) and its own ``boxes`` and ``meshes``. A shelf is several boards
 (surfaces named ``<shelf>/<i>``, bottom first) between two side panels and a back panel. Relative
 mesh and OctoMap paths are relative to the file. An unknown key is a ValueError that names it; a value
-of the wrong type is a TypeError that names the field.
+of the wrong type is a TypeError that names the field. Names become file names: at most 200 characters,
+without '/', '\\' or control characters. Files are read within ``octoreach.limits`` (``data_files``), and
+a room holds at most limits.MAX_SURFACES surfaces, MAX_BOARDS boards per shelf and MAX_OBSTACLES obstacles.
 
 Every obstacle is a Shape (the description collision checks and the simulated camera share): ``Room.obstacles()``
 checks them against body and arm, ``Room.scene()`` shows the same room to a simulated depth camera.
@@ -29,41 +31,24 @@ import copy
 import json
 import math
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from . import limits
 from ._core import CapabilityMap, Obstacles, Robot, Scene, Shape, Surface, SurfaceMap
-from ._checks import PATH, check_type
+from ._checks import PATH, check_type, shown
+from .atomic_write import write_atomically
+from .data_files import read_data as _read_data
 from ._room_entries import BOX_KEYS as _BOX_KEYS, SHAPE_ENTRIES as _SHAPE_ENTRIES
 from ._room_entries import as_list as _list, check_keys as _check_keys, listed as _listed, name as _name, \
-    number as _number, pose as _pose, shape as _shape, vector as _vector
+    number as _number, pose as _pose, shape as _shape, vector as _vector, check_counts as _check_counts, \
+    regular_path as _regular_path
 
 _SURFACE_KEYS = {"name", "rectangle", "vertices", "thickness", "legs", "boxes", "meshes"}
 _RECTANGLE_KEYS = {"size", "height", "x", "y", "yaw"}
 _SHELF_KEYS = {"name", "size", "boards", "x", "y", "yaw", "thickness", "panels"}
 _ROOM_KEYS = {"surfaces", "shelves", *_SHAPE_ENTRIES}
-
-
-def _read_data(path: Path, kind: str):
-    """The data of a JSON file, or of a YAML file where PyYAML is installed."""
-    try:
-        text = path.read_text()
-    except OSError as e:
-        raise OSError(f"cannot read {kind} {str(path)!r}: {e.strerror}") from None
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as json_error:
-        try:
-            import yaml  # optional
-        except ImportError:
-            raise ValueError(f"{kind} {str(path)!r} is not valid JSON ({json_error}); YAML needs PyYAML") from None
-        try:
-            return yaml.safe_load(text)
-        except yaml.YAMLError as e:
-            problem = " ".join(str(e).split())  # one line: YAML's messages draw the place over several
-            raise ValueError(f"{kind} {str(path)!r} is neither JSON nor YAML: {problem}") from None
 
 
 class Room:
@@ -77,8 +62,10 @@ class Room:
         self._surfaces: dict[str, Surface] = {}
         self._objects = Obstacles()  # boxes, meshes, OctoMaps and shelf panels: everything but the surfaces
         self._owner: dict[str, str] = {}  # name -> kind, to refuse duplicates
+        self._obstacle_count = 0  # every obstacle entry, a surface's legs and boxes, shelf panels
         description = {} if description is None else description
         _check_keys(description, _ROOM_KEYS, "room")
+        _check_counts(description)
         for key in ("surfaces", "shelves", *_SHAPE_ENTRIES):
             for entry in _list(description.get(key), key, "room"):
                 self._add(key, entry)
@@ -110,17 +97,7 @@ class Room:
             text = yaml.safe_dump(self._description, sort_keys=False)
         else:
             text = json.dumps(self._description, indent=2)
-        fd, tmp = tempfile.mkstemp(dir=path.parent if str(path.parent) else ".", prefix=path.name, suffix=".tmp")
-        try:
-            with os.fdopen(fd, "w") as f:
-                f.write(text + "\n")
-                f.flush()
-                os.fsync(f.fileno())
-            os.replace(tmp, path)
-        except BaseException:
-            if os.path.exists(tmp):
-                os.unlink(tmp)
-            raise
+        write_atomically(path, text + "\n", "room file")
 
     # ------------------------------------------------------------------ building a room in code
     def add_table(self, name: str, size_x: float, size_y: float, height: float, x: float = 0.0, y: float = 0.0,
@@ -221,20 +198,26 @@ class Room:
                 f"{len(self._objects)} other obstacles>")
 
     # ------------------------------------------------------------------ entries
-    def _claim(self, name: str, where: str) -> None:
+    def _claim(self, name: str, where: str, kind: str | None = None) -> None:
         if name in self._owner:
             raise ValueError(f"{where}: the name {name!r} is already used by a {self._owner[name]}")
-        self._owner[name] = where.split("[")[0]
+        self._owner[name] = kind or where.split("[")[0]
+
+    def _grow(self, where: str, surfaces: int = 0, obstacles: int = 0) -> None:
+        """Counts new surfaces and obstacles against limits.MAX_SURFACES and MAX_OBSTACLES (before adding them)."""
+        if len(self._surfaces) + surfaces > limits.MAX_SURFACES:
+            raise ValueError(f"{where}: the room would hold more than {limits.MAX_SURFACES:,} surfaces (shelf boards "
+                             "included; octoreach.limits.MAX_SURFACES)")
+        if self._obstacle_count + obstacles > limits.MAX_OBSTACLES:
+            raise ValueError(f"{where}: the room would hold more than {limits.MAX_OBSTACLES:,} obstacles (boxes, "
+                             "meshes, OctoMaps, legs, panels; octoreach.limits.MAX_OBSTACLES)")
+        self._obstacle_count += obstacles
 
     def _record(self, key: str, entry: dict) -> None:
         self._description.setdefault(key, []).append(copy.deepcopy(entry))
 
     def _path(self, entry: dict, where: str) -> str:
-        path = entry.get("path")
-        if not isinstance(path, str) or not path:
-            raise TypeError(f"{where}: 'path' must be a file name, got {path!r}")
-        p = Path(path)
-        return str(p if p.is_absolute() else self._base / p)
+        return _regular_path(entry, where, self._base)
 
     def _surface_from(self, entry: dict, where: str) -> Surface:
         if ("rectangle" in entry) == ("vertices" in entry):
@@ -250,12 +233,15 @@ class Room:
         else:
             vertices = entry["vertices"]
             if not isinstance(vertices, list) or not all(isinstance(v, list) for v in vertices):
-                raise TypeError(f"{where}: 'vertices' must be a list of [x, y, z], got {vertices!r}")
+                raise TypeError(f"{where}: 'vertices' must be a list of [x, y, z], got {shown(vertices)}")
             surface = Surface(np.array([_vector({"v": v}, "v", f"{where}.vertices[{i}]", 3) for i, v in
                                         enumerate(vertices)]).reshape(-1, 3), thickness)
+        boxes = _list(entry.get("boxes"), "boxes", where)
+        meshes = _list(entry.get("meshes"), "meshes", where)
+        self._grow(where, surfaces=1, obstacles=len(boxes) + len(meshes) + 4 * ("legs" in entry))
         if "legs" in entry:
             surface.add_legs(_number(entry, "legs", where))
-        for i, box in enumerate(_list(entry.get("boxes"), "boxes", where)):
+        for i, box in enumerate(boxes):
             bw = f"{where}.boxes[{i}]"
             _check_keys(box, _BOX_KEYS, bw)
             surface.add_box(_vector(box, "size", bw, 3), _pose(box, bw))
@@ -282,21 +268,25 @@ class Room:
         boards = _list(entry.get("boards"), "boards", where)
         if not boards:
             raise ValueError(f"{where}: 'boards' must list at least one board height")
+        if len(boards) > limits.MAX_BOARDS:
+            raise ValueError(f"{where}: {len(boards):,} boards, more than the limit of {limits.MAX_BOARDS} "
+                             "(octoreach.limits.MAX_BOARDS)")
         heights = [_number({"h": h}, "h", f"{where}.boards[{i}]") for i, h in enumerate(boards)]
         x, y, yaw = (_number(entry, k, where, 0.0) for k in ("x", "y", "yaw"))
         t = _number(entry, "thickness", where, 0.02)
         panels = entry.get("panels", True)
         if not isinstance(panels, bool):
-            raise TypeError(f"{where}: 'panels' must be true or false, got {panels!r}")
+            raise TypeError(f"{where}: 'panels' must be true or false, got {shown(panels)}")
         if min(width, depth, t) <= 0:
             raise ValueError(f"{where}: 'size' and 'thickness' must be positive")
+        self._grow(where, surfaces=len(heights), obstacles=3 * panels)
         self._claim(name, where)
         c, s = math.cos(yaw), math.sin(yaw)
         out = []
         for i, h in enumerate(sorted(heights)):
             board = Surface.rectangle(width, depth, h, x, y, yaw, t)
+            self._claim(f"{name}/{i}", where, "shelf board")
             self._surfaces[f"{name}/{i}"] = board
-            self._owner[f"{name}/{i}"] = "shelf board"
             out.append(board)
         if panels:  # two sides and a back (local -y), up to the top board and a little above
             top = max(heights) + 0.05
@@ -332,6 +322,7 @@ class Room:
         """An obstacle entry of room list `key` (boxes, cylinders, spheres, meshes, octomaps)."""
         where, name = self._entry(key, entry, _SHAPE_ENTRIES[key][0], _SHAPE_ENTRIES[key][1])
         shape = _shape(key, entry, where, self._path)
+        self._grow(where, obstacles=1)
         self._claim(name, where)
         self._objects.add_shape(shape, name)
         self._record(key, entry)

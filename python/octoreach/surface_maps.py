@@ -22,15 +22,18 @@ class GraspCheck:
     """Brute-force grasp check of one arm at one surface, without any map: from a base pose, the share of
     grasps (R_P by IK) that reach each grasp point. IK in approach mode (random restarts) for every grasp
     direction, keeping only solutions free of self-collision whose arm links do not touch the surface slab or
-    any obstacle and whose gripper touches no box or obstacle; a base pose whose body (links the arm does not
-    move) touches something reaches nothing. `obstacles` is the rest of the room, as in SurfaceMap.build.
+    any obstacle and whose gripper touches no box or obstacle (nor the slab itself with `tool_checks_slab`: the
+    planner's reachability check, where a grasp inside or under the table must not count; the surface map's
+    build lets the gripper come close to the slab, and so does this check without it); a base pose whose body
+    (links the arm does not move) touches something reaches nothing. `obstacles` is the rest of the room, as in
+    SurfaceMap.build.
 
     Used by ``direct_reachability`` (tests of the maps) and by the planner's reachability attachment
     (``octoreach.planning``). ``ik_calls`` counts the IK targets solved so far."""
 
     def __init__(self, robot: Robot, capability_map: CapabilityMap, surface: Surface, reference=None,
                  reference_frame: str = "", grasps="upper_hemisphere", attempts: int = 20, seed: int = 0,
-                 obstacles: Obstacles = None):
+                 obstacles: Obstacles = None, tool_checks_slab: bool = False):
         if obstacles is not None and not isinstance(obstacles, Obstacles):
             raise TypeError(f"obstacles must be an octoreach.Obstacles or None, got {type(obstacles).__name__}")
         self.robot, self.attempts, self.seed = robot, int(attempts), int(seed)
@@ -41,8 +44,11 @@ class GraspCheck:
         self.roles = link_roles(robot, self.chain)
         self.slab = surface.obstacles()  # the slab and the surface's boxes: every check but the gripper's
         self.others = Obstacles()  # what the gripper must not touch either: the boxes and the rest of the room
-        for size, pose in surface.boxes:
-            self.others.add_box(size, pose)
+        if tool_checks_slab:
+            self.others.add(surface.obstacles())
+        else:
+            for size, pose in surface.boxes:
+                self.others.add_box(size, pose)
         if obstacles is not None:
             self.slab.add(obstacles)
             self.others.add(obstacles)

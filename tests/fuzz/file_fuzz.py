@@ -277,8 +277,12 @@ for line in sys.stdin:
 """
 
 
-def run_cases(cases: list[dict], mem_cap: int = MEM_CAP, timeout: float = CASE_TIMEOUT) -> list[dict]:
-    """Runs the cases in batched children; returns each case with its 'outcome'."""
+def run_cases(cases: list[dict], mem_cap: int = MEM_CAP, timeout: float = CASE_TIMEOUT, child_code: str = CHILD,
+              startup: float = 60.0) -> list[dict]:
+    """Runs the cases in batched children of `child_code` (reads JSON cases from stdin, prints START i / END i
+    outcome); returns each case with its 'outcome' ("hang" when a case makes no progress within `timeout`
+    seconds, "crash:<rc>" when it kills the child). The cases are fed from a file and the child's stderr goes to
+    one, so neither pipe can fill up and block a batch."""
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(p for p in sys.path if p)
     if "asan" in env.get("LD_PRELOAD", ""):
@@ -286,60 +290,63 @@ def run_cases(cases: list[dict], mem_cap: int = MEM_CAP, timeout: float = CASE_T
     results = {}
     pending = list(cases)
     while pending:
-        child = subprocess.Popen([sys.executable, "-c", CHILD, str(mem_cap)], stdin=subprocess.PIPE,
-                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env, text=True, bufsize=1)
-        for c in pending:
-            child.stdin.write(json.dumps(c) + "\n")
-        child.stdin.close()
-        current = None
-        last = time.monotonic()
-        startup = 60.0  # importing octoreach (slow under sanitizers)
-        buf = ""
-        while True:
-            limit = (startup if current is None and not results else timeout) - (time.monotonic() - last)
-            r, _, _ = select.select([child.stdout], [], [], max(0.0, limit))
-            if not r:
-                child.kill()
-                child.wait()
-                if current is not None:
-                    results[current] = "hang"
-                else:
-                    raise RuntimeError("the fuzz child did not start: " + child.stderr.read()[-2000:])
-                break
-            line = child.stdout.readline()
-            if not line:
-                rc = child.wait()
-                if current is not None:
-                    results[current] = f"crash:{rc}"
-                elif rc != 0 and len(results) < len(cases):
-                    raise RuntimeError("the fuzz child failed: " + child.stderr.read()[-2000:])
-                break
+        with tempfile.TemporaryFile("w+") as feed, tempfile.TemporaryFile("w+") as errors:
+            feed.writelines(json.dumps(c) + "\n" for c in pending)
+            feed.seek(0)
+            child = subprocess.Popen([sys.executable, "-c", child_code, str(mem_cap)], stdin=feed,
+                                     stdout=subprocess.PIPE, stderr=errors, env=env, text=True, bufsize=1)
+            current = None
             last = time.monotonic()
-            parts = line.split(maxsplit=2)
-            if parts[0] == "START":
-                current = int(parts[1])
-            elif parts[0] == "END":
-                results[int(parts[1])] = parts[2].strip()
-                current = None
+            while True:  # startup: importing octoreach (slow under sanitizers)
+                limit = (startup if current is None and not results else timeout) - (time.monotonic() - last)
+                r, _, _ = select.select([child.stdout], [], [], max(0.0, limit))
+                if not r:
+                    child.kill()
+                    child.wait()
+                    if current is None:
+                        errors.seek(0)
+                        raise RuntimeError("the fuzz child did not start: " + errors.read()[-2000:])
+                    results[current] = "hang"
+                    break
+                line = child.stdout.readline()
+                if not line:
+                    rc = child.wait()
+                    if current is not None:
+                        results[current] = f"crash:{rc}"
+                    elif rc != 0 and len(results) < len(cases):
+                        errors.seek(0)
+                        raise RuntimeError("the fuzz child failed: " + errors.read()[-2000:])
+                    break
+                last = time.monotonic()
+                parts = line.split(maxsplit=2)
+                if parts[0] == "START":
+                    current = int(parts[1])
+                elif parts[0] == "END":
+                    results[int(parts[1])] = parts[2].strip()
+                    current = None
+            if child.poll() is None:
+                child.kill()
+            child.wait()
+            child.stdout.close()
         pending = [c for c in pending if c["i"] not in results]
-        if child.poll() is None:
-            child.kill()
-        child.wait()
     return [dict(c, outcome=results[c["i"]]) for c in cases]
 
 
-def summarize(results: list[dict]) -> dict:
+def tally(results: list[dict], classify) -> dict:
+    """Counts per category and in total of each case's classify(outcome), with "cases"."""
     per = defaultdict(Counter)
     for r in results:
-        o = r["outcome"]
-        key = ("crash" if o.startswith("crash") else "hang" if o == "hang" else "wrong_error" if o.startswith("wrong")
-               else o)
         per[r["category"]]["cases"] += 1
-        per[r["category"]][key] += 1
+        per[r["category"]][classify(r["outcome"])] += 1
     total = Counter()
     for c in per.values():
         total.update(c)
     return {"categories": {k: dict(v) for k, v in sorted(per.items())}, "total": dict(total)}
+
+
+def summarize(results: list[dict]) -> dict:
+    return tally(results, lambda o: "crash" if o.startswith("crash") else "hang" if o == "hang" else
+                 "wrong_error" if o.startswith("wrong") else o)
 
 
 def fuzz(n: int, seed: int, workdir: Path) -> tuple[list[dict], dict]:
@@ -349,20 +356,28 @@ def fuzz(n: int, seed: int, workdir: Path) -> tuple[list[dict], dict]:
     return results, summarize(results)
 
 
-def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cases", type=int, default=3000)
+def run_main(doc: str, fuzz_function, bad: tuple, default_cases: int, line=None) -> int:
+    """The command line of a fuzzer: --cases, --seed; prints the summary as JSON (and line(total) when given);
+    status 1 when an outcome starts with one of `bad`."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--cases", type=int, default=default_cases)
     ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args()
     t0 = time.monotonic()
     with tempfile.TemporaryDirectory() as d:
-        results, summary = fuzz(args.cases, args.seed, Path(d))
+        results, summary = fuzz_function(args.cases, args.seed, Path(d))
     summary["seconds"] = round(time.monotonic() - t0, 1)
     summary["seed"] = args.seed
-    bad = [r for r in results if r["outcome"].startswith(("crash", "hang", "wrong"))]
-    summary["failures"] = [{k: r[k] for k in ("i", "category", "outcome")} for r in bad[:50]]
+    failed = [r for r in results if r["outcome"].startswith(bad)]
+    summary["failures"] = [{k: r[k] for k in ("i", "category", "outcome")} for r in failed[:50]]
     print(json.dumps(summary, indent=1))
-    return 1 if bad else 0
+    if line is not None:
+        print(line(summary["total"]))
+    return 1 if failed else 0
+
+
+def main() -> int:
+    return run_main(__doc__, fuzz, ("crash", "hang", "wrong"), 3000)
 
 
 if __name__ == "__main__":

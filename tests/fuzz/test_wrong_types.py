@@ -344,6 +344,10 @@ def python_entry_points(sweep):
         [("robot", robot), ("capability_map", cap), ("surface", surface), ("poses", valid["poses"]),
          ("grasps", "upper_hemisphere"), ("resolution", 0.3), ("grasp_height", 0.05), ("attempts", 2), ("seed", 0),
          ("obstacles", None)]
+    yield "atomic_write.write_atomically", o.atomic_write.write_atomically, \
+        [("path", str(sweep["dir"] / "written.txt")), ("data", b"x")]
+    yield "data_files.read_data", lambda path: o.data_files.read_data(path, "room file"), \
+        [("path", sweep["dir"] / "room.json")]
     yield "rooms.Room", o.rooms.Room, [("description", None), ("base_dir", ".")]
     yield "rooms.Room.load", o.rooms.Room.load, [("path", sweep["dir"] / "room.json")]
     yield "rooms.surface_from_file", o.rooms.surface_from_file, [("path", sweep["dir"] / "room.json")]

@@ -15,13 +15,25 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+# What bad input raises (ConnectionError and FileNotFoundError are OSErrors, JobError a ValueError, an unknown
+# surface a KeyError, an integer too large for a float an OverflowError): one line on stderr, status 2.
+_INPUT_ERRORS = (ValueError, TypeError, OSError, RuntimeError, ImportError, LookupError, ArithmeticError)
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (ValueError, OSError, RuntimeError, ImportError) as e:  # ConnectionError is an OSError
-        print(f"octoreach: error: {e}", file=sys.stderr)
+    except _INPUT_ERRORS as e:
+        message = " ".join(str(e.args[0] if isinstance(e, KeyError) and e.args else e).split())
+        print(f"octoreach: error: {message[:2000] or type(e).__name__}", file=sys.stderr)
         return 2
+    except MemoryError:
+        print("octoreach: error: out of memory (an input larger than this machine can hold?)", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("octoreach: interrupted", file=sys.stderr)
+        return 130
 
 
 __all__ = ["build_parser", "main"]

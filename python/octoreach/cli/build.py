@@ -6,8 +6,9 @@ import sys
 from .args import angle, arm_arg, arm_args, cache_args, load_robot, named_arm, robot_args, robot_spec
 
 
-def _surfaces(args):
-    """{name: (surface, obstacles of the rest of the room or None)} from --scene, --polygon or --table."""
+def _surfaces(args) -> list:
+    """[(name, file stem, surface, obstacles())] from --scene, --polygon or --table: obstacles() gives the rest of
+    the room (or None), built when that surface's turn comes (one room's worth at a time, not one per surface)."""
     from .. import rooms
     from .._core import Surface
 
@@ -15,12 +16,28 @@ def _surfaces(args):
         room = rooms.Room.load(args.scene)
         if not room.surfaces:
             raise ValueError(f"scene file {args.scene!r} holds no surface")
-        return {name: (surface, room.obstacles(without=name)) for name, surface in room.surfaces.items()}
+        stems = output_stems(list(room.surfaces), f"scene file {args.scene!r}")
+        return [(name, stems[name], surface, lambda name=name: room.obstacles(without=name))
+                for name, surface in room.surfaces.items()]
     if args.polygon:
         surface, obstacles = rooms.surface_from_file(args.polygon)
-        return {"surface": (surface, obstacles if len(obstacles) else None)}
+        return [("surface", "surface", surface, lambda: obstacles if len(obstacles) else None)]
     sx, sy, h = args.table
-    return {"table": (Surface.rectangle(sx, sy, h, args.table_x, args.table_y, args.table_yaw), None)}
+    return [("table", "table", Surface.rectangle(sx, sy, h, args.table_x, args.table_y, args.table_yaw), lambda: None)]
+
+
+def output_stems(names, where: str) -> dict:
+    """{name: file stem}: '/' (shelf boards are "<shelf>/<i>") written as '_'; ValueError naming both surfaces
+    when two stems meet (also in letter case only, which some file systems ignore)."""
+    stems, seen = {}, {}
+    for name in names:
+        stem = name.replace("/", "_")
+        if stem.casefold() in seen:
+            raise ValueError(f"{where}: the surfaces {seen[stem.casefold()]!r} and {name!r} would both be written to "
+                             f"{stem}.orsm: rename one")
+        seen[stem.casefold()] = name
+        stems[name] = stem
+    return stems
 
 
 def _cmd_capability(args) -> int:
@@ -76,14 +93,15 @@ def _cmd_surface(args) -> int:
         for folder in (args.out, args.plot, args.octovis):
             if folder:
                 os.makedirs(folder, exist_ok=True)
-    for name, (surface, obstacles) in surfaces.items():
+    for name, stem, surface, obstacles_of in surfaces:
+        obstacles = obstacles_of()
         maps = [SurfaceMap.build(robot, source, surface, resolution=args.resolution, theta_bins=args.theta_bins,
                                  z_range=(args.z, args.z), obstacles=obstacles, directions=args.directions,
                                  seed=args.seed, progress=not args.quiet) for source in sources]
+        del obstacles
         smap = maps[0] if len(maps) == 1 else SurfaceMap.combine(maps, args.combine)
         if smap.voxel_count == 0:
             print(f"octoreach: warning: empty surface map of {name!r}: {smap.empty_reason}", file=sys.stderr)
-        stem = name.replace("/", "_")
         out = os.path.join(args.out, stem + ".orsm") if args.scene else args.out
         smap.save(out)
         if args.octovis:

@@ -14,14 +14,34 @@ def _cmd_cache(args) -> int:
     entries = store.entries()
     print(f"{store.directory}: {len(entries)} maps, {sum(e['bytes'] for e in entries) / 1e6:.1f} MB")
     for e in entries:
-        f = e["fields"]
-        arm = f.get("arm") or f.get("capability", {}).get("arm", {})
-        what = f"{f.get('robot') or f.get('capability', {}).get('robot', '?')} {arm.get('base_link', '?')} -> " \
-               f"{arm.get('tip_link', '?')}"
-        res = (f.get("options") or {}).get("resolution") or f.get("capability", {}).get("options", {}).get("resolution")
-        extra = f" surface {f['surface']} z {f['height']:g}" if e["kind"] == "surface" else ""
-        print(f"  {e['kind']:10s} {e['key'][:12]}  {what} at {res} m{extra}  {e['bytes'] / 1e3:.0f} KB  {e['created']}")
+        size, created = e["bytes"] / 1e3, _plain(e.get("created", ""))
+        print(f"  {e['kind']:10s} {e['key'][:12]}  {_described(e)}  {size:.0f} KB  {created}")
     return 0
+
+
+def _plain(v) -> str:
+    """A value of a cache note as one short line (a note is a file anyone may have written)."""
+    from .._checks import shown
+
+    return " ".join(v.split())[:120] if isinstance(v, str) else shown(v)
+
+
+def _described(entry: dict) -> str:
+    """Robot, arm, resolution (and surface, height) of an entry from its note; what is missing says so."""
+    def get(d, *keys):
+        for k in keys:
+            d = d.get(k) if isinstance(d, dict) else None
+        return d if d is not None else "?"
+
+    f = entry.get("fields") or {}
+    if not f:
+        return "(note missing or damaged)"
+    cap = f if entry["kind"] == "capability" else get(f, "capability") or {}
+    what = f"{_plain(get(cap, 'robot'))} {_plain(get(cap, 'arm', 'base_link'))} -> " \
+           f"{_plain(get(cap, 'arm', 'tip_link'))} at {_plain(get(cap, 'options', 'resolution'))} m"
+    if entry["kind"] == "surface":
+        what += f" surface {_plain(get(f, 'surface'))} z {_plain(get(f, 'height'))}"
+    return what
 
 
 def _cmd_build_many(args) -> int:

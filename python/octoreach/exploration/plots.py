@@ -11,6 +11,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from .._core import ExplorationMap
+from ..atomic_write import save_figure
 
 LIGHT = np.array([-0.35, -0.55, 0.76])  # towards the light (from the viewer's side, above)
 VIEW = dict(elev=35, azim=-140)
@@ -180,7 +181,7 @@ def plot_map(emap: ExplorationMap, path, poses=(), next_pose=None, title: str = 
         ax.legend(loc="upper left", markerscale=8)
     ax.set_title(title)
     path = Path(path)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    save_figure(fig, path, dpi=110, bbox_inches="tight")
     return path
 
 
@@ -218,5 +219,5 @@ def plot_coverage(curves: dict, path, level: float = 0.9, title: str = "", ylabe
         _coverage_axes(fig.add_subplot(rows, cols, i + 1), c, level, name, ylabel)
     fig.tight_layout()
     path = Path(path)
-    fig.savefig(path, dpi=110, bbox_inches="tight")
+    save_figure(fig, path, dpi=110, bbox_inches="tight")
     return path

@@ -10,9 +10,9 @@ execute, re-plan), ``scenes`` (rooms, predefined poses, objects), ``tidy_up`` (T
 from .attachments import Attachments
 from .continual import RunRecord, run_task
 from .domain import PlannerMissing, Task, require_planner, solve
-from .planner import Planner, Unsolvable
+from .planner import Planner, PlannerTimeout, Unsolvable
 from .scenes import SCENES, Scene, place_objects, predefined_poses, scene
 from .simulation import Simulation
 
-__all__ = ["Attachments", "Planner", "PlannerMissing", "RunRecord", "SCENES", "Scene", "Simulation", "Task",
-           "Unsolvable", "place_objects", "predefined_poses", "require_planner", "run_task", "scene", "solve"]
+__all__ = ["Attachments", "Planner", "PlannerMissing", "PlannerTimeout", "RunRecord", "SCENES", "Scene", "Simulation",
+           "Task", "Unsolvable", "place_objects", "predefined_poses", "require_planner", "run_task", "scene", "solve"]

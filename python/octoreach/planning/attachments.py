@@ -9,9 +9,10 @@
   task).
 * **reachability** (``reach(pose, point, surface)`` -> {arm: R_P}): can an arm grasp an object at `point`
   from `pose`? For each arm the share of grasps that inverse kinematics reaches free of collision with the
-  surface and the room (``octoreach.surface_maps.GraspCheck``, the brute-force check the map tests use),
-  asked only when the condition holds and the arm's capability map has a reachable direction in the point's
-  voxel; results are cached per (pose, point).
+  surface and the room (``octoreach.surface_maps.GraspCheck``, the brute-force check the map tests use, with
+  the gripper checked against the surface slab too), asked only when the condition holds and the arm's
+  capability map has a reachable direction in the point's voxel; results are cached per (pose, point). A
+  point that does not lie on its surface (inside its outline, within ON_SURFACE of its top) is a ValueError.
 
 Example (any planner can call these three)::
 
@@ -30,9 +31,12 @@ from .. import arms as _arms
 from .._core import PoseSampler, Robot, SurfaceMap
 from ..surface_maps import GraspCheck
 
-__all__ = ["Attachments", "OBJECT_HEIGHT"]
+__all__ = ["Attachments", "OBJECT_HEIGHT", "ON_SURFACE"]
 
 OBJECT_HEIGHT = 0.05  # grasp point above the surface (the surface maps' grasp_height)
+#: How far an object's base may lie off its surface's top (m): half the grasp height, so that its grasp point
+#: stays nearer the height the surface maps were built for than the top itself.
+ON_SURFACE = OBJECT_HEIGHT / 2
 
 
 @dataclass
@@ -127,6 +131,7 @@ class Attachments:
         pose `pose`: the share of grasps each arm reaches by IK. Empty when the condition attachment rejects
         the pose (R_S = 0 at that surface): no IK is run then."""
         pose = np.asarray(pose, float).reshape(4)
+        self.check_position(point, surface)
         key = (tuple(np.round(pose, 6)), tuple(np.round(np.asarray(point, float), 6)), surface)
         if key in self._cache:
             return self._cache[key]
@@ -147,11 +152,31 @@ class Attachments:
         self._cache[key] = out
         return out
 
+    def check_position(self, point, surface: str) -> None:
+        """ValueError unless `point` (x, y, z of an object's base, world frame) lies on `surface`: inside its
+        outline and within ON_SURFACE of its top."""
+        p = np.asarray(point, float).reshape(-1)
+        s = self.room.surfaces.get(surface)
+        if s is None:
+            raise KeyError(f"no surface {surface!r} (surfaces: {', '.join(self.room.surfaces)})")
+        if p.shape != (3,) or not np.all(np.isfinite(p)):
+            raise ValueError("an object position must be 3 finite numbers (x, y, z in m), got "
+                             f"{np.round(p, 3).tolist()}")
+        normal = np.asarray(s.normal, float)
+        height = float((p - np.asarray(s.vertices, float)[0]) @ normal)  # above the top along the normal
+        where = f"object position {np.round(p, 3).tolist()} is not on surface {surface!r}"
+        if abs(height) > ON_SURFACE:
+            raise ValueError(f"{where}: {abs(height):.3f} m {'above' if height > 0 else 'under'} its top (at most "
+                             f"{ON_SURFACE} m, planning.attachments.ON_SURFACE)")
+        if not s.contains(p[None])[0]:
+            raise ValueError(f"{where}: outside its outline")
+
     def _check(self, arm: str, surface: str) -> GraspCheck:
         if (arm, surface) not in self._checks:
             self._checks[(arm, surface)] = GraspCheck(self.robot, self.caps[arm], self.room.surfaces[surface],
                                                       attempts=self.attempts, seed=self.seed,
-                                                      obstacles=self.room.obstacles(without=surface))
+                                                      obstacles=self.room.obstacles(without=surface),
+                                                      tool_checks_slab=True)
         return self._checks[(arm, surface)]
 
     @property

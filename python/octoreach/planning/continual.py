@@ -14,7 +14,7 @@ import numpy as np
 
 from .attachments import Attachments
 from .domain import Task
-from .planner import Planner, Unsolvable
+from .planner import Planner, PlannerTimeout, Unsolvable
 from .scenes import Scene
 from .simulation import Simulation
 
@@ -70,7 +70,7 @@ def run_task(scene: Scene, attachments: Attachments, objects: dict, strategy="sa
     while True:
         try:
             result = planner.plan(task)
-        except Unsolvable as e:
+        except (Unsolvable, PlannerTimeout) as e:
             message = str(e)
             break
         t_p += result.seconds

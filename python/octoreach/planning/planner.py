@@ -20,11 +20,16 @@ from .attachments import Attachments
 from .domain import SEARCH, Task, solve
 from .durations import expected_pickup_duration
 
-__all__ = ["Planner", "Unsolvable", "PlanResult"]
+__all__ = ["Planner", "Unsolvable", "PlannerTimeout", "PlanResult"]
 
 
 class Unsolvable(RuntimeError):
     """No plan, and no more poses to try (the message names the object or surface left out)."""
+
+
+class PlannerTimeout(RuntimeError):
+    """Fast Downward ran out of its time budget (or memory) before it found a plan or proved there is none: the
+    task is not known to be unsolvable (the message gives the budget and the size of the task)."""
 
 
 @dataclass
@@ -42,10 +47,14 @@ class Planner:
     """`attachments`: an ``Attachments``; `sampling`: whether the grounding attachment may add poses; `budget`:
     sampled poses allowed per surface and task (``reset()`` starts a task)."""
 
-    def __init__(self, attachments: Attachments, sampling: bool = True, budget: int = 8, search: str = SEARCH):
+    def __init__(self, attachments: Attachments, sampling: bool = True, budget: int = 8, search: str = SEARCH,
+                 timeout: float = 30.0):
         if budget < 0:
             raise ValueError(f"budget must be at least 0, got {budget!r}")
+        if not timeout > 0:
+            raise ValueError(f"timeout must be positive (seconds per planner call), got {timeout!r}")
         self.att, self.sampling, self.budget, self.search = attachments, sampling, int(budget), search
+        self.timeout = float(timeout)
         self.used: dict = {}
 
     def reset(self) -> None:
@@ -61,6 +70,10 @@ class Planner:
         task.reach, task.pick_costs = set(), {}
         for o, s in task.items.items():
             point = np.asarray(task.positions[o], float)
+            try:
+                self.att.check_position(point, s)
+            except ValueError as e:
+                raise ValueError(f"{o}: {e}") from None
             for p, pose in task.poses.items():
                 if (p, s) not in task.usable:
                     continue
@@ -93,11 +106,19 @@ class Planner:
         while True:
             t_call = time.perf_counter()
             self.write_facts(task)
-            solution = solve(task, search=self.search)
+            solution = solve(task, search=self.search, timeout=self.timeout)
             calls += 1
             call_seconds.append(time.perf_counter() - t_call)  # the attachments' facts and the planner
             if solution.plan is not None:
                 return PlanResult(solution.plan, time.perf_counter() - t0, calls, sampled, call_seconds)
+            if solution.status in ("TIMEOUT", "MEMOUT"):  # out of budget: not a proof that there is no plan
+                raise PlannerTimeout(
+                    f"the planner (Fast Downward) gave no answer within its budget of {self.timeout:g} s per call "
+                    f"(status {solution.status}) for {len(task.items)} objects, {len(task.surfaces)} surfaces and "
+                    f"{len(task.poses)} poses: the task is not known to be unsolvable (give more time: "
+                    "Planner(timeout=...))")
+            if not solution.status.startswith("UNSOLVABLE"):
+                raise RuntimeError(f"the planner (Fast Downward) failed: status {solution.status}")
             need, unreached = self._missing(task)
             added = 0
             if self.sampling:

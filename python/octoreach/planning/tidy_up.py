@@ -21,6 +21,7 @@ import numpy as np
 
 from .. import arms as _arms
 from .. import robots as _robots
+from ..atomic_write import save_figure
 from .attachments import Attachments
 from .continual import run_task
 from .scenes import SCENES, place_objects, scene as _scene
@@ -212,7 +213,7 @@ def plot(one: dict, two: dict, path) -> None:
     b.set_title("Table II: 3 objects, averages per run")
     b.legend()
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 

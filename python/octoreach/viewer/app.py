@@ -310,6 +310,42 @@ class Viewer:
         self.server.stop()
 
 
+def check_arguments(port=8080, host: str = "127.0.0.1", samples: int = 5, html=None, png=None,
+                    resolve_timeout: float = 10.0) -> None:
+    """ValueError (OSError for an output) naming the first bad argument of view(), before anything is loaded or
+    served: a port outside 0-65535, a host that does not resolve within `resolve_timeout` s, a sample count
+    outside 0-limits.MAX_VIEW_SAMPLES, an --html/--png target that may not be replaced (a device, a link)."""
+    import socket
+
+    from ..atomic_write import check_target
+    from ..limits import MAX_VIEW_SAMPLES
+
+    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
+        raise ValueError(f"port must be an integer in 0-65535 (0: any free port), got {port!r}")
+    if isinstance(samples, bool) or not isinstance(samples, int) or not 0 <= samples <= MAX_VIEW_SAMPLES:
+        raise ValueError(f"samples must be an integer in 0-{MAX_VIEW_SAMPLES:,} (octoreach.limits.MAX_VIEW_SAMPLES), "
+                         f"got {samples!r}")
+    if not isinstance(host, str) or not host or "\x00" in host:
+        raise ValueError(f"host must be a host name or address, got {host!r}")
+    answer: dict = {}
+
+    def resolve():
+        try:
+            answer["ok"] = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
+        except (OSError, UnicodeError) as e:
+            answer["error"] = getattr(e, "strerror", None) or str(e)
+
+    thread = threading.Thread(target=resolve, daemon=True)
+    thread.start()
+    thread.join(resolve_timeout)
+    if "ok" not in answer:
+        why = answer.get("error", f"no answer within {resolve_timeout:g} s")
+        raise ValueError(f"host {host[:200]!r} does not resolve ({why})")
+    for path, what in ((html, "HTML page"), (png, "screenshot")):
+        if path is not None:
+            check_target(path, what)
+
+
 def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
          host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
          steps=None, surface=None, verbose: bool = True) -> Viewer:
@@ -320,6 +356,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
     each view on the view slider). `surface`: the Surface a surface map was built on (its obstacle boxes are
     drawn; map files record the polygon only). `html`/`png` also write the scene as a static page / a screenshot.
     block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
+    check_arguments(port, host, samples, html, png)
     loaded = [files.load(item) for item in items]
     if not loaded:
         raise ValueError("nothing to view: give a map file (.orsm, .orcm), a .bt file or a map object")

@@ -57,7 +57,12 @@ class Browser:
         opts.binary_location = binary
         for a in (*(FLAGS if flags is None else flags), f"--window-size={width},{height}"):
             opts.add_argument(a)
-        self.driver = webdriver.Chrome(options=opts, service=Service(shutil.which("chromedriver")))
+        try:
+            self.driver = webdriver.Chrome(options=opts, service=Service(shutil.which("chromedriver")))
+        except Exception as e:  # noqa: BLE001  (selenium's WebDriverException and whatever the driver raised)
+            first = (str(e).strip().splitlines() or [type(e).__name__])[0][:300]
+            raise RuntimeError(f"cannot start headless Chromium through chromedriver ({first}); check that "
+                               "`chromium --headless` and `chromedriver --version` run here") from None
         self.driver.set_window_size(width, height)
         inner = self.driver.execute_script("return [window.innerWidth, window.innerHeight];")
         self.driver.set_window_size(2 * width - inner[0], 2 * height - inner[1])  # the page gets width x height
@@ -100,13 +105,11 @@ class Browser:
         return _png_pixels(self.driver.get_screenshot_as_png())
 
     def screenshot(self, path) -> str:
-        path = os.fspath(path)
-        data = self.driver.get_screenshot_as_png()
-        tmp = path + ".tmp"
-        with open(tmp, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-        return path
+        """Writes a PNG of the window to `path`, atomically (a device or link there is refused, never replaced)."""
+        from ..atomic_write import write_atomically
+
+        write_atomically(path, self.driver.get_screenshot_as_png(), "screenshot")
+        return os.fspath(path)
 
     def canvas(self):
         from selenium.webdriver.common.by import By
