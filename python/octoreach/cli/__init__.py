@@ -15,10 +15,19 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def _one_line(message, category, filename, lineno, file=None, line=None) -> None:
+    """How the command line shows a warning (a map build's MapWarning, an SRDF's entries left out): one line."""
+    print(f"octoreach: warning: {message}", file=sys.stderr)
+
+
 def main(argv=None) -> int:
+    import warnings
+
     args = build_parser().parse_args(argv)
     try:
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _one_line
+            return args.func(args)
     except (ValueError, OSError, RuntimeError, ImportError) as e:  # ConnectionError is an OSError
         print(f"octoreach: error: {e}", file=sys.stderr)
         return 2
