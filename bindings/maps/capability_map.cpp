@@ -153,6 +153,7 @@ void wrap_capability_map(py::module_& m) {
   wrap_queries(cls);
   def_map_identity<CapabilityMap>(cls);
   cls.attr("DEFAULT_LOOKUP") = kDefaultCapabilityLookup;
+  cls.attr("FEW_DIRECTIONS") = kFewDirections;  // the warning's threshold (map_warnings.hpp)
   cls.def_property_readonly("resolution", &CapabilityMap::resolution)
       .def_property_readonly("orientations", &CapabilityMap::orientations)
       .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)

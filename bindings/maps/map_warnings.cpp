@@ -1,6 +1,5 @@
 // MapWarning: the category of the one line a map build emits when its result looks suspicious.
 #include "common.hpp"
-#include "octoreach/map_warnings.hpp"
 
 namespace octoreach::py_bindings {
 
@@ -21,8 +20,6 @@ void wrap_map_warnings(py::module_& m) {
       PyExc_UserWarning, nullptr);
   if (!g_map_warning) throw py::error_already_set();
   m.attr("MapWarning") = py::handle(g_map_warning);
-  m.attr("FEW_DIRECTIONS") = kFewDirections;
-  m.attr("EDGE_OF_REACH") = kEdgeOfReach;
 }
 
 }  // namespace octoreach::py_bindings

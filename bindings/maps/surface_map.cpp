@@ -95,6 +95,7 @@ void wrap_surface_map(py::module_& m) {
   py::class_<SurfaceMap, std::shared_ptr<SurfaceMap>> cls(m, "SurfaceMap",
       "Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.");
   def_map_identity<SurfaceMap>(cls);
+  cls.attr("EDGE_OF_REACH") = kEdgeOfReach;  // the warning's threshold (map_warnings.hpp)
   cls.def_static("build", &build, py::arg("robot"), py::arg("arm"), py::arg("surface"), py::arg("options") = py::none(),
                   py::arg("progress") = true,
                   "Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])\n"

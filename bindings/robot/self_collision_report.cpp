@@ -24,9 +24,10 @@ void wrap_self_collision_report(py::module_& m) {
       .def("__repr__", [](const PairHits& p) {
         return "<octoreach.PairHits " + p.link_a + " / " + p.link_b + ": " + std::to_string(p.hits) + ">";
       });
-  py::class_<SelfCollisionReport>(m, "SelfCollisionReport",
-                                  "Random configurations free of self-collision and the pairs that collide, most often first.")
-      .def_readonly("samples", &SelfCollisionReport::samples)
+  py::class_<SelfCollisionReport> cls(m, "SelfCollisionReport",
+                                      "Random configurations free of self-collision and the pairs that collide, most often first.");
+  cls.attr("FREE_SHARE_HINT") = kFreeShareHint;  // the hint's threshold (self_collision_report.hpp)
+  cls.def_readonly("samples", &SelfCollisionReport::samples)
       .def_readonly("free", &SelfCollisionReport::free)
       .def_readonly("pairs", &SelfCollisionReport::pairs)
       .def_property_readonly("free_share", &SelfCollisionReport::free_share)
@@ -36,7 +37,6 @@ void wrap_self_collision_report(py::module_& m) {
         return "<octoreach.SelfCollisionReport " + std::to_string(r.free) + " of " + std::to_string(r.samples) +
                " free, " + std::to_string(r.pairs.size()) + " colliding pairs>";
       });
-  m.attr("FREE_SHARE_HINT") = kFreeShareHint;
   m.def("self_collision_report", [](const Robot& robot, const py::object& options, const py::object& progress,
                                      const py::kwargs& kw) {
           SelfCollisionOptions o = options_from<SelfCollisionOptions>(options, kw, "self_collision_report");

@@ -10,9 +10,6 @@ Poses are 4x4 numpy arrays (homogeneous transforms) unless a docstring says (x, 
 metres and radians; frames are right-handed, z up.
 """
 from ._core import (  # noqa: F401
-    EDGE_OF_REACH,
-    FEW_DIRECTIONS,
-    FREE_SHARE_HINT,
     AllowedCollisionOptions,
     Arm,
     ArmReport,
@@ -97,7 +94,7 @@ def view(*items, **kwargs):
 
 
 __all__ = [
-    "EDGE_OF_REACH", "FEW_DIRECTIONS", "FREE_SHARE_HINT", "MapWarning", "ArmReport", "CameraLink",
+    "MapWarning", "ArmReport", "CameraLink",
     "SelfCollisionOptions", "SelfCollisionReport", "arm_report", "camera_link", "find_camera_link",
     "self_collision_report",
     "AllowedCollisionOptions", "Arm", "CameraIntrinsics", "Cancelled", "CapabilityBlocks", "CapabilityLookup",

@@ -57,7 +57,7 @@ def test_self_collision_report_counts_the_colliding_elbow(own, bad_elbow):
     r_good = arm_report(good, "arm", samples=400).self_collision
     r_bad = arm_report(bad, "arm", samples=400).self_collision
     assert r_good.samples == 400 and not r_good.suspicious, r_good.pairs[:3]
-    assert r_bad.suspicious and r_bad.free_share < octoreach.FREE_SHARE_HINT
+    assert r_bad.suspicious and r_bad.free_share < octoreach.SelfCollisionReport.FREE_SHARE_HINT
     top = r_bad.pairs[0]
     assert {top.link_a, top.link_b} == {"upper_arm_link", "forearm_link"}
     assert 0.45 < top.hits / r_bad.samples < 0.75
@@ -148,7 +148,7 @@ def test_capability_map_of_a_blocked_wrist_warns_once(bad_elbow):
     assert cap.warning and len(ours) == 1 and str(ours[0].message) == cap.warning
     assert "`octoreach robot`" in cap.warning and "approach directions" in cap.warning
     _, d = cap.voxels()
-    assert d.max() < octoreach.FEW_DIRECTIONS
+    assert d.max() < octoreach.CapabilityMap.FEW_DIRECTIONS
 
 
 def test_capability_map_of_a_sound_arm_does_not_warn(own):

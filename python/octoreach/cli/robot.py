@@ -91,10 +91,8 @@ def _print_pairs(report, indent: str) -> None:
 
 
 def _print_hint(report, indent: str) -> None:
-    from .._core import FREE_SHARE_HINT
-
     p = report.pairs[0]
-    print(f"{indent}hint: under {100 * FREE_SHARE_HINT:.0f} % free (arms whose collision models match their hardware "
+    print(f"{indent}hint: under {100 * report.FREE_SHARE_HINT:.0f} % free (arms whose collision models match their hardware "
           f"are free in more): check the collision shapes of {p.link_a} and {p.link_b} (a cylinder longer or fatter "
           "than its link, a shape reaching over the joint); if they cannot touch on the real robot, allow the pair: "
           f"<disable_collisions link1=\"{p.link_a}\" link2=\"{p.link_b}\" reason=\"Never\"/> in an SRDF (--srdf)")
