@@ -15,8 +15,7 @@ namespace octoreach::detail {
 /// Shape poses and world boxes of every collision link at q (scratch of one thread).
 struct LinkBoxes {
   std::vector<Pose> link_poses;
-  std::vector<std::vector<Pose>> shape_poses;
-  std::vector<std::vector<fcl::AABBd>> boxes;
+  ShapeBoxes shapes;
 
   /// Poses and boxes of every collision link at configuration q.
   void update(const Robot& robot, const Eigen::VectorXd& q) {
@@ -25,17 +24,7 @@ struct LinkBoxes {
   }
   /// Poses and boxes of every collision link from `link_poses` as set.
   void update_shapes(const Robot& robot) {
-    shape_poses.resize(robot.links().size());
-    boxes.resize(robot.links().size());
-    for (int li : robot.collision_links()) {
-      const auto& shapes = robot.links()[li].shapes;
-      shape_poses[li].resize(shapes.size());
-      boxes[li].resize(shapes.size());
-      for (std::size_t s = 0; s < shapes.size(); ++s) {
-        shape_poses[li][s] = link_poses[li] * shapes[s].origin;
-        boxes[li][s] = world_aabb(*shapes[s].geometry, shape_poses[li][s]);
-      }
-    }
+    for (int li : robot.collision_links()) shapes.update(robot, link_poses, li);
   }
   /// True when a shape of link a touches a shape of link b.
   bool touch(const Robot& robot, int a, int b) const {
@@ -43,8 +32,8 @@ struct LinkBoxes {
     const auto& sb = robot.links()[b].shapes;
     for (std::size_t i = 0; i < sa.size(); ++i)
       for (std::size_t k = 0; k < sb.size(); ++k)
-        if (boxes[a][i].overlap(boxes[b][k]) &&
-            geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb[k].geometry.get(), shape_poses[b][k]))
+        if (shapes.boxes[a][i].overlap(shapes.boxes[b][k]) &&
+            geometry_collide(sa[i].geometry.get(), shapes.poses[a][i], sb[k].geometry.get(), shapes.poses[b][k]))
           return true;
     return false;
   }
