@@ -30,9 +30,12 @@ from .. import arms as _arms
 from .._core import PoseSampler, Robot, SurfaceMap
 from ..surface_maps import GraspCheck
 
-__all__ = ["Attachments", "OBJECT_HEIGHT"]
+__all__ = ["Attachments", "OBJECT_HEIGHT", "ON_SURFACE"]
 
 OBJECT_HEIGHT = 0.05  # grasp point above the surface (the surface maps' grasp_height)
+#: How far an object's base may lie off its surface's top (m): half the grasp height, so that its grasp point
+#: stays nearer the height the surface maps were built for than the top itself.
+ON_SURFACE = OBJECT_HEIGHT / 2
 
 
 @dataclass
@@ -146,6 +149,25 @@ class Attachments:
                 out[arm] = share
         self._cache[key] = out
         return out
+
+    def check_position(self, point, surface: str) -> None:
+        """ValueError unless `point` (x, y, z of an object's base, world frame) lies on `surface`: inside its
+        outline and within ON_SURFACE of its top."""
+        p = np.asarray(point, float).reshape(-1)
+        s = self.room.surfaces.get(surface)
+        if s is None:
+            raise KeyError(f"no surface {surface!r} (surfaces: {', '.join(self.room.surfaces)})")
+        if p.shape != (3,) or not np.all(np.isfinite(p)):
+            raise ValueError("an object position must be 3 finite numbers (x, y, z in m), got "
+                             f"{np.round(p, 3).tolist()}")
+        normal = np.asarray(s.normal, float)
+        height = float((p - np.asarray(s.vertices, float)[0]) @ normal)  # above the top along the normal
+        where = f"object position {np.round(p, 3).tolist()} is not on surface {surface!r}"
+        if abs(height) > ON_SURFACE:
+            raise ValueError(f"{where}: {abs(height):.3f} m {'above' if height > 0 else 'under'} its top (at most "
+                             f"{ON_SURFACE} m, planning.attachments.ON_SURFACE)")
+        if not s.contains(p[None])[0]:
+            raise ValueError(f"{where}: outside its outline")
 
     def _check(self, arm: str, surface: str) -> GraspCheck:
         if (arm, surface) not in self._checks:
