@@ -134,7 +134,7 @@ def add_commands(sub):
     sp = sub.add_parser("robot", help="print a robot's links, joints with limits, SRDF groups, end effectors, arms, "
                                       "where its allowed-collision pairs came from, how often it collides with itself, "
                                       "the joints map builds hold still and its camera link")
-    sp.add_argument("name", nargs="?", help="robot of example-robot-data by name (same as --robot)")
+    sp.add_argument("robot_name", metavar="name", nargs="?", help="robot of example-robot-data by name (same as --robot)")
     robot_args(sp)
     sp.add_argument("--write-srdf", metavar="PATH", help="write the robot's SRDF (groups, allowed-collision pairs) to PATH")
     from .._core import SelfCollisionOptions
