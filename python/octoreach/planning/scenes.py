@@ -4,9 +4,12 @@ Every scene is an ``octoreach.rooms.Room`` (walls, tables, shelves, chairs) with
 surfaces objects may lie on (and where on them), and the **predefined poses** a person would record for
 each surface: the middle of every side of the surface's outline, STANDOFF metres out from the edge, facing
 the surface; longest sides first (a person starts with the long side of a table), equally long sides in the
-order of their distance from the robot's start. A side shorter than MIN_SIDE, or whose pose would put the
-base (a FOOTPRINT square) into a wall, shelf panel or another surface's legs, gets no pose: nobody records a
-pose inside a wall. Chairs are movable clutter: they are put in after the poses were recorded, so a chair
+order of their distance from the robot's start. Sides shorter than MIN_SIDE that follow each other (a round
+table's rim, a rounded corner) count as one stretch, cut into one piece per right angle it turns (a whole
+round outline: four), each with a pose at its middle facing along its chord's normal. A pose that would put
+the base (a FOOTPRINT square) into a wall, shelf panel or another surface's legs, or that has an obstacle at
+base height between it and the edge (a wall behind a counter), is left out: nobody records a pose inside or
+behind a wall. Chairs are movable clutter: they are put in after the poses were recorded, so a chair
 may stand on a predefined pose (the surface map then gives it R_S = 0 and the condition attachment drops it).
 
 Rooms have no surrounding walls (the robot's poses are bounded by the surface maps; walls stand where they
