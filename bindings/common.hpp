@@ -255,6 +255,10 @@ inline void z_range_arg(const py::object& z_range, double& z_min, double& z_max)
   z_max = zr.second;
 }
 
+/// Emits `message` as an octoreach.MapWarning (a UserWarning) at the caller's line, unless it is empty: the one
+/// line a map build prints when its result looks suspicious (map_warnings.hpp). Needs the GIL.
+void warn_map(const std::string& message);
+
 void wrap_progress(py::module_& m);
 void wrap_shape(py::module_& m);
 void wrap_limits(py::module_& m);
@@ -265,6 +269,10 @@ void wrap_orientation_set(py::module_& m);
 void wrap_arm(py::module_& m);
 void wrap_arm_placement(py::module_& m);
 void wrap_map_files(py::module_& m);
+void wrap_map_warnings(py::module_& m);
+void wrap_self_collision_report(py::module_& m);
+void wrap_arm_report(py::module_& m);
+void wrap_camera_link(py::module_& m);
 void wrap_capability_map(py::module_& m);
 void wrap_capability_blocks(py::module_& m);
 void wrap_point_map(py::module_& m);

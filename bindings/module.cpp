@@ -43,9 +43,13 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_obstacles(m);
   octoreach::py_bindings::wrap_chain(m);
   octoreach::py_bindings::wrap_robot(m);
+  octoreach::py_bindings::wrap_self_collision_report(m);
   octoreach::py_bindings::wrap_orientation_set(m);
   octoreach::py_bindings::wrap_arm(m);
+  octoreach::py_bindings::wrap_camera_link(m);
   octoreach::py_bindings::wrap_arm_placement(m);
+  octoreach::py_bindings::wrap_arm_report(m);
+  octoreach::py_bindings::wrap_map_warnings(m);
   octoreach::py_bindings::wrap_map_files(m);
   octoreach::py_bindings::wrap_capability_map(m);
   octoreach::py_bindings::wrap_capability_blocks(m);

@@ -1,6 +1,7 @@
 // CapabilityMap and its build options.
 #include "maps/convert.hpp"
 #include "octoreach/capability_map.hpp"
+#include "octoreach/map_warnings.hpp"
 
 namespace octoreach::py_bindings {
 namespace {
@@ -118,8 +119,12 @@ void wrap_capability_map(py::module_& m) {
   cls.def_static("build", [](const Chain& chain, const py::object& options, const py::object& progress, const py::kwargs& kw) {
         CapabilityMapOptions o = options_from<CapabilityMapOptions>(options, kw, "CapabilityMap.build");
         ProgressCallback cb = progress_arg(progress, "capability map");
-        py::gil_scoped_release release;
-        return CapabilityMap::build(chain, o, cb);
+        CapabilityMap map = [&] {
+          py::gil_scoped_release release;
+          return CapabilityMap::build(chain, o, cb);
+        }();
+        warn_map(capability_map_warning(map));
+        return map;
       }, py::arg("chain"), py::arg("options") = py::none(), py::arg("progress") = true,
       "Builds the map of `chain` (positions in its base link frame); keyword arguments set CapabilityMapOptions\n"
       "fields. A cell (voxel, orientation) is reachable when IK finds a solution inside the limits, free of\n"
@@ -133,8 +138,12 @@ void wrap_capability_map(py::module_& m) {
         CapabilityMapOptions o = options_from<CapabilityMapOptions>(options, kw, "CapabilityMap.build_for_arm");
         Arm a = arm_from(robot, arm, axis);
         ProgressCallback cb = progress_arg(progress, "capability map");
-        py::gil_scoped_release release;
-        return CapabilityMap::build(robot, a, o, cb);
+        CapabilityMap map = [&] {
+          py::gil_scoped_release release;
+          return CapabilityMap::build(robot, a, o, cb);
+        }();
+        warn_map(capability_map_warning(map));
+        return map;
       }, py::arg("robot"), py::arg("arm"), py::arg("options") = py::none(), py::arg("progress") = true,
       "Builds the map of an arm (a name, an Arm or a (base_link, tip_link[, approach_axis]) tuple) with the arm's\n"
       "approach axis (inferred from the gripper unless given; approach_axis=(x, y, z) overrides it); other\n"
@@ -147,6 +156,7 @@ void wrap_capability_map(py::module_& m) {
   wrap_queries(cls);
   def_map_identity<CapabilityMap>(cls);
   cls.attr("DEFAULT_LOOKUP") = kDefaultCapabilityLookup;
+  cls.attr("FEW_DIRECTIONS") = kFewDirections;  // the warning's threshold (map_warnings.hpp)
   cls.def_property_readonly("resolution", &CapabilityMap::resolution)
       .def_property_readonly("orientations", &CapabilityMap::orientations)
       .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)
@@ -155,6 +165,9 @@ void wrap_capability_map(py::module_& m) {
       .def_property_readonly("has_solutions", &CapabilityMap::has_solutions)
       .def_property_readonly("voxel_count", &CapabilityMap::voxel_count)
       .def_property_readonly("stats", [](const CapabilityMap& cm) { return stats_dict(cm.stats()); })
+      .def_property_readonly("warning", &capability_map_warning,
+                             "One line when the map looks suspicious (its best voxel reaches few approach directions:\n"
+                             "something blocks the wrist), with what to try; '' otherwise. Builds emit it as a MapWarning.")
       .def_property_readonly("parameters", [](const CapabilityMap& cm) { return to_dict(cm.parameters()); })
       .def("__repr__", [](const CapabilityMap& cm) {
         return "<octoreach.CapabilityMap " + cm.robot_name() + " '" + cm.base_link() + "' -> '" + cm.tip_link() +

@@ -1,6 +1,7 @@
 // SurfaceMap and its build options.
 #include "maps/convert.hpp"
 #include "octoreach/capability_map.hpp"
+#include "octoreach/map_warnings.hpp"
 #include "octoreach/surface_map.hpp"
 
 namespace octoreach::py_bindings {
@@ -51,16 +52,28 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
                                   "tuple to build one with another axis");
     const CapabilityMap& cap = arm.cast<const CapabilityMap&>();
     ProgressCallback cb = progress_arg(progress, "surface map");
-    py::gil_scoped_release release;
-    return std::make_shared<SurfaceMap>(SurfaceMap::build(robot, cap, surface, o, cb));
+    std::shared_ptr<SurfaceMap> map;
+    {
+      py::gil_scoped_release release;
+      map = std::make_shared<SurfaceMap>(SurfaceMap::build(robot, cap, surface, o, cb));
+    }
+    warn_map(map->warning());
+    return map;
   }
   Arm a = arm_from(robot, arm, approach_axis);
   if (o.resolution != 0) co.resolution = o.resolution;
   co.reference = o.reference;
   ProgressCallback cap_cb = progress_arg(progress, "capability map"), cb = progress_arg(progress, "surface map");
-  py::gil_scoped_release release;
-  CapabilityMap cap = CapabilityMap::build(robot, a, co, cap_cb);
-  return std::make_shared<SurfaceMap>(SurfaceMap::build(robot, cap, surface, o, cb));
+  std::string cap_warning;
+  std::shared_ptr<SurfaceMap> map;
+  {
+    py::gil_scoped_release release;
+    CapabilityMap cap = CapabilityMap::build(robot, a, co, cap_cb);
+    cap_warning = capability_map_warning(cap);
+    map = std::make_shared<SurfaceMap>(SurfaceMap::build(robot, cap, surface, o, cb));
+  }
+  warn_map(cap_warning.empty() ? map->warning() : cap_warning);  // one line: the capability map's explains the rest
+  return map;
 }
 
 py::dict stats_dict(const SurfaceMapStats& s) {
@@ -82,6 +95,7 @@ void wrap_surface_map(py::module_& m) {
   py::class_<SurfaceMap, std::shared_ptr<SurfaceMap>> cls(m, "SurfaceMap",
       "Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.");
   def_map_identity<SurfaceMap>(cls);
+  cls.attr("EDGE_OF_REACH") = kEdgeOfReach;  // the warning's threshold (map_warnings.hpp)
   cls.def_static("build", &build, py::arg("robot"), py::arg("arm"), py::arg("surface"), py::arg("options") = py::none(),
                   py::arg("progress") = true,
                   "Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])\n"
@@ -124,6 +138,9 @@ void wrap_surface_map(py::module_& m) {
                              "Approach axis (tip frame) of each arm's capability map, as in arms.")
       .def_property_readonly("z_range", &SurfaceMap::z_range)
       .def_property_readonly("empty_reason", &SurfaceMap::empty_reason)
+      .def_property_readonly("warning", &SurfaceMap::warning,
+                             "One line when the build looks suspicious (the surface at the edge of the arm's reach), with\n"
+                             "what to try; '' otherwise and for a loaded map. Builds emit it as a MapWarning.")
       .def_property_readonly("polygon", [](const SurfaceMap& sm) {
         RowMatrixXd v(sm.polygon().size(), 3);
         for (std::size_t i = 0; i < sm.polygon().size(); ++i) v.row(i) = sm.polygon()[i].transpose();

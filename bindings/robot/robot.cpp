@@ -143,6 +143,16 @@ void wrap_robot_collision(py::class_<Robot, std::shared_ptr<Robot>>& c) {
            "base_pose (4x4); self_collision also checks the robot against itself.")
       .def_property_readonly("allowed_collisions", [](const Robot& r) { return pair_names(r, r.allowed_pairs()); },
                              "Link pairs whose contacts are ignored (adjacent, SRDF, sampled).")
+      .def_property_readonly("allowed_collision_sources", [](const Robot& r) {
+             py::list out;
+             for (std::size_t i = 0; i < r.allowed_pairs().size(); ++i)
+               out.append(py::make_tuple(r.links()[r.allowed_pairs()[i].first].name,
+                                         r.links()[r.allowed_pairs()[i].second].name,
+                                         allowed_source_name(r.allowed_sources()[i])));
+             return out;
+           },
+           "(link_a, link_b, reason) of every allowed pair, in the order of allowed_collisions; reason: 'adjacent',\n"
+           "'SRDF', 'never in collision', 'always in collision', 'in collision at home' (sampled) or 'given'.")
       .def_property_readonly("checked_pairs", [](const Robot& r) { return r.checked_pairs().size(); },
                              "Number of link pairs checked for self-collision.")
       .def("with_allowed_collisions", py::overload_cast<const NamePairs&>(&Robot::with_allowed_collisions, py::const_),

@@ -27,6 +27,28 @@ def test_cli_tidy_up_tiny_run(pr2, tmp_path):
     assert png.stat().st_size > 1000
 
 
+def test_cli_tidy_up_with_a_robot_written_here(tmp_path):
+    """Any robot with an arm and a camera: the URDF of own_robot.py (no SRDF), its camera found by name."""
+    pytest.importorskip("up_fast_downward")
+    from own_robot import urdf
+
+    path = tmp_path / "own_robot.urdf"
+    path.write_text(urdf())
+    r = run("experiment", "tidy-up", "--urdf", path, "--runs", 1, "--runs-table2", 1, "--objects", 1, "--scenes",
+            "paper", "--directions", 30, "--plot", tmp_path / "tidy.png", "--quiet")
+    assert r.returncode == 0, r.stderr
+    assert "Table I" in r.stdout and "Scenes" in r.stdout
+
+
+def test_cli_tidy_up_asks_for_the_camera_of_a_robot_without_one():
+    from octoreach import robots
+
+    r = run("experiment", "tidy-up", "--urdf", robots.project_urdf("test_arm"), "--quiet")
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "no link that is unambiguously its camera" in lines[0] and "--camera-link" in lines[0]
+
+
 @pytest.mark.parametrize("args, message", [
     (("experiment", "tidy-up", "--runs", 0), "--runs must be at least 1"),
     (("experiment", "tidy-up", "--scenes", "kitchen"), "unknown scene 'kitchen'"),

@@ -83,7 +83,7 @@ def test_head_camera_sees_past_nothing_but_obstacles(pr2):
     wall.add_box((0.05, 2.0, 3.0), np.array([[1, 0, 0, 0.8], [0, 1, 0, 0], [0, 0, 1, 1.5], [0, 0, 0, 1]], float))
     assert not camera.visible(pose, target, wall)[0]
     assert not camera.visible(pose, np.array([[9.0, 0.0, 0.5]]), Obstacles())[0]  # out of range
-    with pytest.raises(KeyError, match="no camera link"):
+    with pytest.raises(ValueError, match="no link named .eye."):
         HeadCamera(pr2, arms.default_reference(pr2, "right_arm"), frame="eye")
 
 

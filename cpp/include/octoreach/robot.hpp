@@ -96,6 +96,20 @@ struct AllowedCollisionOptions {
   std::string cache_dir;
 };
 
+/// \brief Why a link pair is allowed to touch: the reasons MoveIt's setup assistant writes, and where the pair
+/// came from (Robot::allowed_sources()).
+enum class AllowedSource {
+  kAdjacent,        ///< a link and its nearest ancestor with geometry
+  kSrdf,            ///< a <disable_collisions> entry of the SRDF
+  kNever,           ///< sampled: never in collision over the random configurations
+  kAlways,          ///< sampled: always in collision over them
+  kDefaultPosture,  ///< sampled: in collision at home()
+  kGiven,           ///< added by Robot::with_allowed_collisions
+};
+
+/// \brief "adjacent", "SRDF", "never in collision", "always in collision", "in collision at home", "given".
+const char* allowed_source_name(AllowedSource source);
+
 /// \brief Pairs added by sampling, by the reason MoveIt's setup assistant gives them.
 struct SampledCollisions {
   std::vector<std::pair<int, int>> never, always, default_posture;
@@ -216,13 +230,17 @@ class Robot : public std::enable_shared_from_this<Robot> {
 
   /// \brief Pairs of links whose collisions are ignored (sorted link indices, i < j).
   const std::vector<std::pair<int, int>>& allowed_pairs() const { return allowed_; }
+  /// \brief Why each pair of allowed_pairs() is allowed (same order); the first reason a pair got is kept
+  /// (adjacency before the SRDF's word). Not part of model_hash(): maps depend on the pairs only.
+  const std::vector<AllowedSource>& allowed_sources() const { return allowed_sources_; }
   /// \brief Pairs of links checked for self-collision.
   const std::vector<std::pair<int, int>>& checked_pairs() const { return checked_; }
   /// \brief A new robot, the same as this one with `pairs` (link indices, either order) added to
   /// the allowed-collision matrix; pairs of a link with itself and pairs already allowed change
-  /// nothing. This robot is left as it is.
+  /// nothing. This robot is left as it is. `source` is recorded as the new pairs' reason.
   /// \throws std::invalid_argument for a link index outside links()
-  std::shared_ptr<Robot> with_allowed_collisions(const std::vector<std::pair<int, int>>& pairs) const;
+  std::shared_ptr<Robot> with_allowed_collisions(const std::vector<std::pair<int, int>>& pairs,
+                                                 AllowedSource source = AllowedSource::kGiven) const;
   /// \brief Same as with_allowed_collisions, with links by name.
   /// \throws std::invalid_argument naming a link the robot does not have
   std::shared_ptr<Robot> with_allowed_collisions(const std::vector<std::pair<std::string, std::string>>& pairs) const;
@@ -246,7 +264,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
                                                    const std::vector<std::pair<int, int>>& pairs,
                                                    std::size_t limit = 8) const;
   /// \brief SRDF text of the model: its groups, end effectors, group states and every allowed pair
-  /// as <disable_collisions> (reason "Adjacent" for adjacent links, else "Allowed").
+  /// as <disable_collisions> with MoveIt's reason words ("Adjacent", "Never", "Always", "Default", "User";
+  /// "Allowed" for the pairs read from an SRDF).
   std::string srdf_text() const;
   /// \brief srdf_text() written atomically to `path`.
   void write_srdf(const std::string& path) const;
@@ -258,8 +277,8 @@ class Robot : public std::enable_shared_from_this<Robot> {
   friend struct detail::RobotBuilder;
   Robot() = default;
   Robot(const Robot&) = default;
-  /// Sets the allowed pairs (sorted, unique, i < j) and derives the checked pairs from them.
-  void set_allowed_pairs_(std::vector<std::pair<int, int>> allowed);
+  /// Sets the allowed pairs (i < j) with their reasons and derives the checked pairs from them.
+  void set_allowed_pairs_(const std::map<std::pair<int, int>, AllowedSource>& allowed);
   std::string name_;
   RobotSource source_;
   std::uint64_t urdf_hash_ = 0;
@@ -274,6 +293,7 @@ class Robot : public std::enable_shared_from_this<Robot> {
   std::vector<std::string> srdf_left_out_;
   std::map<std::string, std::map<std::string, double>> named_states_;
   std::vector<std::pair<int, int>> allowed_, checked_;
+  std::vector<AllowedSource> allowed_sources_;
   std::vector<int> collision_links_;
 };
 

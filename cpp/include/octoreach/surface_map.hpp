@@ -96,13 +96,16 @@ class SurfaceMap {
   std::pair<double, double> z_range() const { return {z_min_, z_max_}; }
   /// \brief Why the map is empty ("" when it is not).
   const std::string& empty_reason() const { return empty_reason_; }
+  /// \brief One line when the build looks suspicious (the surface at the edge of the arm's reach,
+  /// map_warnings.hpp), with what to try; "" otherwise and for a loaded map.
+  const std::string& warning() const { return warning_; }
   std::map<std::string, std::string> parameters() const;
 
  private:
   PoseMap map_;
   SurfaceMapStats stats_;
   MapProvenance provenance_;
-  std::string reference_frame_, arms_, approach_axes_, empty_reason_, grasp_name_;
+  std::string reference_frame_, arms_, approach_axes_, empty_reason_, grasp_name_, warning_;
   std::vector<Eigen::Vector3d> polygon_;
   double z_min_ = -1e9, z_max_ = 1e9;
   double grasp_height_ = 0.05;

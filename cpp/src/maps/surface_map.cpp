@@ -17,6 +17,7 @@
 #include "maps/map_io.hpp"
 #include "maps/reach_extent.hpp"
 #include "maps/surface_bin.hpp"
+#include "maps/surface_warning.hpp"
 
 namespace octoreach {
 namespace {
@@ -239,6 +240,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   m.stats_.arm_rejections = n.arm;
   m.stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (m.map_.voxel_count() == 0) m.empty_reason_ = "no base pose reaches the surface (out of the arm's reach)";
+  else m.warning_ = detail::surface_height_warning(b, m.map_.max_value());
   if (progress) progress(o.theta_bins, o.theta_bins);
   return m;
 }
@@ -293,6 +295,9 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
     out.stats_.arm_rejections += m->stats_.arm_rejections;
   }
   out.grasp_name_ = first.grasp_name_;
+  // The combination is suspicious when every part is (one arm at the edge of its reach, the other well in it, is not).
+  if (std::all_of(maps.begin(), maps.end(), [](const SurfaceMap* m) { return !m->warning_.empty(); }))
+    out.warning_ = first.warning_;
   out.map_ = PoseMap(first.map_.resolution(), T);
   for (std::size_t i = 0; i < maps.size(); ++i) {
     out.arms_ += (i ? " " + mode + " " : "") + maps[i]->arms_;

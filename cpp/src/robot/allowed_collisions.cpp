@@ -20,53 +20,13 @@
 #include "common/thread_pool.hpp"
 #include "octoreach/limits.hpp"
 #include "octoreach/robot.hpp"
+#include "robot/link_boxes.hpp"
 
 namespace octoreach {
 namespace {
 
+using detail::LinkBoxes;
 using Pairs = std::vector<std::pair<int, int>>;
-
-// Shape poses and world boxes of every collision link at q (scratch of one thread).
-struct LinkBoxes {
-  std::vector<Pose> link_poses;
-  std::vector<std::vector<Pose>> shape_poses;
-  std::vector<std::vector<fcl::AABBd>> boxes;
-  void update(const Robot& robot, const Eigen::VectorXd& q) {
-    robot.link_poses(q, link_poses);
-    shape_poses.resize(robot.links().size());
-    boxes.resize(robot.links().size());
-    for (int li : robot.collision_links()) {
-      const auto& shapes = robot.links()[li].shapes;
-      shape_poses[li].resize(shapes.size());
-      boxes[li].resize(shapes.size());
-      for (std::size_t s = 0; s < shapes.size(); ++s) {
-        shape_poses[li][s] = link_poses[li] * shapes[s].origin;
-        boxes[li][s] = detail::world_aabb(*shapes[s].geometry, shape_poses[li][s]);
-      }
-    }
-  }
-  bool touch(const Robot& robot, int a, int b) const {
-    const auto& sa = robot.links()[a].shapes;
-    const auto& sb = robot.links()[b].shapes;
-    for (std::size_t i = 0; i < sa.size(); ++i)
-      for (std::size_t k = 0; k < sb.size(); ++k)
-        if (boxes[a][i].overlap(boxes[b][k]) &&
-            detail::geometry_collide(sa[i].geometry.get(), shape_poses[a][i], sb[k].geometry.get(), shape_poses[b][k]))
-          return true;
-    return false;
-  }
-};
-
-Eigen::VectorXd random_configuration(const Robot& robot, std::uint64_t stream) {
-  std::mt19937_64 rng(stream);
-  const Eigen::VectorXd lo = robot.lower(), hi = robot.upper();
-  Eigen::VectorXd q(robot.dof());
-  for (int i = 0; i < robot.dof(); ++i) {
-    const double a = std::isfinite(lo[i]) ? lo[i] : -kPi, b = std::isfinite(hi[i]) ? hi[i] : kPi;
-    q[i] = std::uniform_real_distribution<double>(a, b)(rng);
-  }
-  return q;
-}
 
 std::string default_cache_dir() {
   if (const char* d = std::getenv("OCTOREACH_CACHE_DIR"); d && *d) return d;
@@ -154,7 +114,9 @@ SampledCollisions Robot::sample_allowed_collisions(const AllowedCollisionOptions
     for (auto& l : local) std::fill(l.begin(), l.end(), 0);
     detail::parallel_for(static_cast<std::size_t>(end - start), threads, [&](std::size_t i, int tid) {
       LinkBoxes& lb = scratch[tid];
-      lb.update(*this, random_configuration(*this, detail::mix64(o.seed, start + i)));
+      Eigen::VectorXd q(dof());
+      detail::random_configuration(*this, detail::mix64(o.seed, start + i), q);
+      lb.update(*this, q);
       for (int p : open) local[tid][p] += lb.touch(*this, pairs[p].first, pairs[p].second);
     }, 4);
     for (const auto& l : local)
@@ -180,10 +142,9 @@ SampledCollisions Robot::sample_allowed_collisions(const AllowedCollisionOptions
 std::shared_ptr<Robot> Robot::with_sampled_collisions(const AllowedCollisionOptions& options,
                                                       const ProgressCallback& progress) const {
   SampledCollisions s = sample_allowed_collisions(options, progress);
-  Pairs all = s.never;
-  all.insert(all.end(), s.always.begin(), s.always.end());
-  all.insert(all.end(), s.default_posture.begin(), s.default_posture.end());
-  return with_allowed_collisions(all);
+  return with_allowed_collisions(s.never, AllowedSource::kNever)
+      ->with_allowed_collisions(s.always, AllowedSource::kAlways)
+      ->with_allowed_collisions(s.default_posture, AllowedSource::kDefaultPosture);
 }
 
 std::vector<std::pair<int, int>> Robot::compute_allowed_collisions(int samples, std::uint64_t seed,
@@ -204,13 +165,7 @@ std::vector<std::pair<int, int>> Robot::colliding_pairs(const std::vector<Pose>&
                                                         std::size_t limit) const {
   LinkBoxes lb;
   lb.link_poses = poses;
-  lb.shape_poses.resize(links_.size());
-  lb.boxes.resize(links_.size());
-  for (int li : collision_links_)
-    for (const auto& s : links_[li].shapes) {
-      lb.shape_poses[li].push_back(poses[li] * s.origin);
-      lb.boxes[li].push_back(detail::world_aabb(*s.geometry, lb.shape_poses[li].back()));
-    }
+  lb.update_shapes(*this);
   Pairs out;
   for (const auto& [a, b] : pairs)
     if (out.size() < limit && lb.touch(*this, a, b)) out.emplace_back(a, b);
@@ -241,21 +196,20 @@ std::string Robot::srdf_text() const {
     if (!e.parent_group.empty()) s << " parent_group=\"" << xml_escape(e.parent_group) << "\"";
     s << "/>\n";
   }
-  // Adjacent: a link and its nearest ancestor with geometry (as the collision model defines them).
-  auto adjacent = [&](int a, int b) {
-    for (int x : {a, b}) {
-      int cur = x;
-      while (links_[cur].parent_joint >= 0) {
-        cur = joints_[links_[cur].parent_joint].parent_link;
-        if (cur == (x == a ? b : a)) return true;
-        if (!links_[cur].shapes.empty()) break;
-      }
+  auto reason = [](AllowedSource source) {
+    switch (source) {
+      case AllowedSource::kAdjacent: return "Adjacent";
+      case AllowedSource::kNever: return "Never";
+      case AllowedSource::kAlways: return "Always";
+      case AllowedSource::kDefaultPosture: return "Default";
+      case AllowedSource::kGiven: return "User";
+      case AllowedSource::kSrdf: break;
     }
-    return false;
+    return "Allowed";
   };
-  for (const auto& [a, b] : allowed_)
-    s << "  <disable_collisions link1=\"" << xml_escape(links_[a].name) << "\" link2=\"" << xml_escape(links_[b].name)
-      << "\" reason=\"" << (adjacent(a, b) ? "Adjacent" : "Allowed") << "\"/>\n";
+  for (std::size_t i = 0; i < allowed_.size(); ++i)
+    s << "  <disable_collisions link1=\"" << xml_escape(links_[allowed_[i].first].name) << "\" link2=\""
+      << xml_escape(links_[allowed_[i].second].name) << "\" reason=\"" << reason(allowed_sources_[i]) << "\"/>\n";
   s << "</robot>\n";
   return s.str();
 }

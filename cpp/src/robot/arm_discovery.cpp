@@ -11,27 +11,16 @@
 #include "common/format.hpp"
 #include "common/nearest_names.hpp"
 #include "octoreach/arm.hpp"
+#include "robot/link_names.hpp"
 
 namespace octoreach {
 namespace {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
-std::string lowercase(std::string s) {
-  for (char& c : s) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
-  return s;
-}
+using detail::lowercase;
 
-// Name tokens: lower case, split at anything that is not a letter.
-std::set<std::string> tokens(const std::string& name) {
-  std::set<std::string> out;
-  std::string cur;
-  for (char c : lowercase(name) + " ") {
-    if (c >= 'a' && c <= 'z') cur += c;
-    else if (!cur.empty()) out.insert(cur), cur.clear();
-  }
-  return out;
-}
+std::set<std::string> tokens(const std::string& name) { return detail::name_tokens(name); }
 
 // Links that are no tool frame of an arm: fingers, feet, sensors, heads, wheels.
 bool excluded_name(const std::string& name) {

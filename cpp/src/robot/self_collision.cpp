@@ -3,6 +3,7 @@
 // Obstacles.
 #include <algorithm>
 #include <limits>
+#include <map>
 
 #include <fcl/fcl.h>
 
@@ -26,22 +27,43 @@ void RobotBuilder::finish_collision_model(PairSet allowed) {
     if (!r.links_[i].shapes.empty()) r.collision_links_.push_back(static_cast<int>(i));
   // Adjacent links: a link and its nearest ancestor that has geometry (fixed joints and
   // geometry-less links in between do not separate them).
+  PairSet adjacent;
   for (int li : r.collision_links_) {
     int cur = li;
     while (r.links_[cur].parent_joint >= 0) {
       int parent = r.joints_[r.links_[cur].parent_joint].parent_link;
-      add_pair(allowed, li, parent);
+      add_pair(adjacent, li, parent);
       if (!r.links_[parent].shapes.empty()) break;
       cur = parent;
     }
   }
-  r.set_allowed_pairs_({allowed.begin(), allowed.end()});
+  std::map<std::pair<int, int>, AllowedSource> sources;
+  for (const auto& p : adjacent) sources.emplace(p, AllowedSource::kAdjacent);
+  for (const auto& p : allowed) sources.emplace(p, AllowedSource::kSrdf);
+  r.set_allowed_pairs_(sources);
 }
 
 }  // namespace detail
 
-void Robot::set_allowed_pairs_(std::vector<std::pair<int, int>> allowed) {
-  allowed_ = std::move(allowed);
+const char* allowed_source_name(AllowedSource source) {
+  switch (source) {
+    case AllowedSource::kAdjacent: return "adjacent";
+    case AllowedSource::kSrdf: return "SRDF";
+    case AllowedSource::kNever: return "never in collision";
+    case AllowedSource::kAlways: return "always in collision";
+    case AllowedSource::kDefaultPosture: return "in collision at home";
+    case AllowedSource::kGiven: return "given";
+  }
+  return "given";
+}
+
+void Robot::set_allowed_pairs_(const std::map<std::pair<int, int>, AllowedSource>& allowed) {
+  allowed_.clear();
+  allowed_sources_.clear();
+  for (const auto& [pair, source] : allowed) {
+    allowed_.push_back(pair);
+    allowed_sources_.push_back(source);
+  }
   checked_.clear();
   for (std::size_t a = 0; a < collision_links_.size(); ++a)
     for (std::size_t b = a + 1; b < collision_links_.size(); ++b) {
@@ -51,17 +73,19 @@ void Robot::set_allowed_pairs_(std::vector<std::pair<int, int>> allowed) {
     }
 }
 
-std::shared_ptr<Robot> Robot::with_allowed_collisions(const std::vector<std::pair<int, int>>& pairs) const {
-  detail::PairSet allowed(allowed_.begin(), allowed_.end());
+std::shared_ptr<Robot> Robot::with_allowed_collisions(const std::vector<std::pair<int, int>>& pairs,
+                                                      AllowedSource source) const {
+  std::map<std::pair<int, int>, AllowedSource> allowed;
+  for (std::size_t i = 0; i < allowed_.size(); ++i) allowed.emplace(allowed_[i], allowed_sources_[i]);
   const int n = static_cast<int>(links_.size());
   for (const auto& [a, b] : pairs) {
     if (a < 0 || a >= n || b < 0 || b >= n)
       throw std::invalid_argument("allowed-collision pair (" + std::to_string(a) + ", " + std::to_string(b) +
                                   ") names a link index outside [0, " + std::to_string(n) + ")");
-    detail::add_pair(allowed, a, b);
+    if (a != b) allowed.emplace(std::make_pair(std::min(a, b), std::max(a, b)), source);
   }
   std::shared_ptr<Robot> robot(new Robot(*this));
-  robot->set_allowed_pairs_({allowed.begin(), allowed.end()});
+  robot->set_allowed_pairs_(allowed);
   return robot;
 }
 

@@ -20,10 +20,19 @@ def build_parser() -> argparse.ArgumentParser:
 _INPUT_ERRORS = (ValueError, TypeError, OSError, RuntimeError, ImportError, LookupError, ArithmeticError)
 
 
+def _one_line(message, category, filename, lineno, file=None, line=None) -> None:
+    """How the command line shows a warning (a map build's MapWarning, an SRDF's entries left out): one line."""
+    print(f"octoreach: warning: {message}", file=sys.stderr)
+
+
 def main(argv=None) -> int:
+    import warnings
+
     args = build_parser().parse_args(argv)
     try:
-        return args.func(args)
+        with warnings.catch_warnings():
+            warnings.showwarning = _one_line
+            return args.func(args)
     except _INPUT_ERRORS as e:
         message = " ".join(str(e.args[0] if isinstance(e, KeyError) and e.args else e).split())
         print(f"octoreach: error: {message[:2000] or type(e).__name__}", file=sys.stderr)

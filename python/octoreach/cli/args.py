@@ -12,7 +12,7 @@ def load_robot(args):
     how = getattr(args, "allowed_collisions", "auto")
     if args.urdf:
         return robots.from_urdf(args.urdf, args.package_dir or [], args.srdf, allowed_collisions=how)
-    return robots.load(getattr(args, "name", None) or args.robot, allowed_collisions=how)
+    return robots.load(getattr(args, "robot_name", None) or args.robot, allowed_collisions=how)
 
 
 def arm_arg(args, robot):
@@ -54,7 +54,7 @@ def robot_spec(args) -> dict:
         return {"urdf": os.path.abspath(args.urdf), "srdf": os.path.abspath(args.srdf) if args.srdf else None,
                 "package_dirs": [os.path.abspath(p) for p in args.package_dir or []],
                 "allowed_collisions": args.allowed_collisions}
-    return {"name": getattr(args, "name", None) or args.robot, "allowed_collisions": args.allowed_collisions}
+    return {"name": getattr(args, "robot_name", None) or args.robot, "allowed_collisions": args.allowed_collisions}
 
 
 def robot_args(sp):

@@ -1,6 +1,8 @@
 """`octoreach experiment`: the papers' experiments (tidy-up with surface maps, exploration with frontier voids)."""
 from __future__ import annotations
 
+from .args import load_robot, robot_args
+
 
 def _cmd_experiment(args) -> int:
     from .. import experiments
@@ -22,8 +24,8 @@ def _cmd_experiment(args) -> int:
             raise RuntimeError(str(e)) from None
         experiments.tidy_up(runs=args.runs, runs_table_two=args.runs_table2, objects=tuple(args.objects),
                             scenes=scenes, seed=args.seed, resolution=args.resolution, directions=args.directions,
-                            budget=args.budget,
-                            plot_path=args.plot, progress=not args.quiet)
+                            budget=args.budget, plot_path=args.plot, progress=not args.quiet, robot=load_robot(args),
+                            camera_link=args.camera_link)
         if args.plot:
             print(f"plot: {args.plot}")
         return 0
@@ -48,6 +50,9 @@ def add_commands(sub):
     sp.add_argument("--resolution", type=float, default=0.1, help="tidy-up: map resolution in m (default 0.1)")
     sp.add_argument("--directions", type=int, help="tidy-up: capability-map directions (default 100, the experiment's)")
     sp.add_argument("--budget", type=int, default=8, help="tidy-up: sampled poses per surface and task (default 8)")
+    robot_args(sp)  # tidy-up: any robot with an arm and a camera (default: the paper's PR2)
+    sp.add_argument("--camera-link", help="tidy-up: the robot's camera link (default: the PR2's head_plate_frame, or "
+                                          "found from the link names: a camera on the head)")
     sp.add_argument("--plot", default="tidy_up.png", help="tidy-up: PNG to write (default tidy_up.png)")
     sp.add_argument("--scene", type=int, default=1, help="exploration: paper scene 1 or 2 (default 1)")
     sp.add_argument("--views", type=int, default=10, help="exploration: view budget (default 10)")

@@ -42,10 +42,78 @@ def _cmd_robot(args) -> int:
         R = (np.linalg.inv(poses[a.base_link]) @ poses[a.tip_link])[:3, :3]
         axes = ", ".join(f"{n} -> {tuple(round(float(v), 2) for v in R[:, k])}" for k, n in enumerate("xyz"))
         print(f"tool frame {a.tip_link} (arm {a.name}) at home, axes in {a.base_link}: {axes}")
+    _print_diagnostics(robot, arms, args)
     if args.write_srdf:
         robot.write_srdf(args.write_srdf)
         print(f"wrote {args.write_srdf}")
     return 0
+
+
+def _print_diagnostics(robot, arms, args) -> None:
+    """Where the allowed-collision pairs came from, how often random configurations collide, and per arm the
+    joints map builds hold still; all computed in C++ (octoreach.self_collision_report, octoreach.arm_report)."""
+    from .._core import arm_report, camera_link, self_collision_report
+
+    _print_allowed(robot)
+    whole = self_collision_report(robot, samples=args.samples, seed=args.seed)
+    print(f"self-collision, every joint drawn: {_share(whole)} free (an arm reaching into the body counts here; the "
+          "hint below looks at each arm's own links)")
+    _print_pairs(whole, "  ")
+    for a in arms:
+        r = arm_report(robot, a, samples=args.samples, seed=args.seed)
+        print(f"arm {a.name}: moves {', '.join(r.moving)}")
+        if r.held:
+            held = ", ".join(f"{h.name} at {h.value:.4g}" for h in r.held)
+            print(f"  holds still (they carry the arm; map builds never move them): {held}; to include them: "
+                  f"--base {r.base_to_include_held} --tip {a.tip_link}")
+        sc = r.self_collision
+        print(f"  self-collision, its joints drawn: {_share(sc)} free among its own links, "
+              f"{100 * r.with_body.free_share:.0f} % with the body too")
+        _print_pairs(sc, "    ")
+        if sc.suspicious and sc.pairs:
+            _print_hint(sc, "    ")
+    try:
+        cam = camera_link(robot)
+        print(f"camera link: {cam.link} ({cam.reason})")
+    except ValueError as e:
+        print(f"camera link: none found ({e})")
+
+
+def _share(report) -> str:
+    return f"{100 * report.free_share:.0f} % of {report.samples} random configurations"
+
+
+def _print_pairs(report, indent: str) -> None:
+    top = report.pairs[:5]
+    if top:
+        print(f"{indent}most often in collision: " + ", ".join(
+            f"{p.link_a}/{p.link_b} {100 * p.hits / report.samples:.0f} %" for p in top))
+
+
+def _print_hint(report, indent: str) -> None:
+    p = report.pairs[0]
+    print(f"{indent}hint: under {100 * report.FREE_SHARE_HINT:.0f} % free (arms whose collision models match their hardware "
+          f"are free in more): check the collision shapes of {p.link_a} and {p.link_b} (a cylinder longer or fatter "
+          "than its link, a shape reaching over the joint); if they cannot touch on the real robot, allow the pair: "
+          f"<disable_collisions link1=\"{p.link_a}\" link2=\"{p.link_b}\" reason=\"Never\"/> in an SRDF (--srdf)")
+
+
+def _print_allowed(robot) -> None:
+    """The allowed pairs by where they came from; the sampled 'always' and 'at home' pairs by name."""
+    by: dict = {}
+    for a, b, why in robot.allowed_collision_sources:
+        by.setdefault(why, []).append(f"{a}/{b}")
+    counts = ", ".join(f"{len(v)} {k if k != 'SRDF' else 'from the SRDF'}" for k, v in by.items())
+    print(f"allowed-collision pairs: {len(robot.allowed_collisions)} ({counts or 'none'})")
+    for why in ("always in collision", "in collision at home", "given"):
+        pairs = by.get(why, [])
+        if pairs:
+            shown = ", ".join(pairs[:12]) + (", ..." if len(pairs) > 12 else "")
+            print(f"  sampled, {why} (never checked again): {shown}" if why != "given" else f"  given: {shown}")
+    if by.get("in collision at home"):
+        print("  hint: pairs in collision at the home posture are allowed for good (MoveIt's 'Default'); if they can "
+              "touch in use (a hand inside a thigh), give an SRDF whose <disable_collisions> you choose (--srdf) "
+              "and --allowed-collisions srdf")
 
 
 def _cmd_ik(args) -> int:
@@ -63,10 +131,17 @@ def _cmd_ik(args) -> int:
 
 def add_commands(sub):
     """robot, ik."""
-    sp = sub.add_parser("robot", help="print a robot's links, joints with limits, SRDF groups, end effectors and arms")
-    sp.add_argument("name", nargs="?", help="robot of example-robot-data by name (same as --robot)")
+    sp = sub.add_parser("robot", help="print a robot's links, joints with limits, SRDF groups, end effectors, arms, "
+                                      "where its allowed-collision pairs came from, how often it collides with itself, "
+                                      "the joints map builds hold still and its camera link")
+    sp.add_argument("robot_name", metavar="name", nargs="?", help="robot of example-robot-data by name (same as --robot)")
     robot_args(sp)
     sp.add_argument("--write-srdf", metavar="PATH", help="write the robot's SRDF (groups, allowed-collision pairs) to PATH")
+    from .._core import SelfCollisionOptions
+
+    sp.add_argument("--samples", type=int, default=SelfCollisionOptions().samples,
+                    help="random configurations of the self-collision report (default %(default)s)")
+    sp.add_argument("--seed", type=int, default=0, help="random seed of the self-collision report (default 0)")
     sp.set_defaults(func=_cmd_robot)
 
     sp = sub.add_parser("ik", help="solve inverse kinematics for a position")

@@ -1,6 +1,7 @@
 """Continual planning (Section V of the surface-map paper): plan, execute action by action, and plan again
-after every surprise (objects found, a surface only partly seen, a failed grasp), until the task is done or
-the planner proves it unsolvable.
+after every surprise (objects found, a surface only partly seen, a failed grasp), until the task is done. An
+object the planner proves out of reach of every pose (or a surface no pose sees) is left out of the goal and the
+rest is still done; the record lists what was left out and why.
 
 ``run_task(scene, attachments, objects, strategy, seed)`` runs one task in the simulation and returns its
 ``RunRecord`` with the figures of the paper's Table II: total time T (execution + planning), planning time
@@ -13,20 +14,21 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .attachments import Attachments
-from .domain import Task
 from .planner import Planner, PlannerTimeout, Unsolvable
 from .scenes import Scene
 from .simulation import Simulation
+from .task import Goal, Task
 
-__all__ = ["RunRecord", "run_task"]
+__all__ = ["RunRecord", "check_objects", "run_task"]
 
 
 @dataclass
 class RunRecord:
     """One run. Times in seconds: T = execution + t_p (t_p: wall time of the attachments and planner calls on
-    this machine). solved: every object found, inspected and put back; message: why not. replans: plans made
-    after a surprise; calls: planner calls (grounding retries included); sampled: poses the grounding
-    attachment added; missed: objects never seen."""
+    this machine). solved: every object found, inspected and put back and every surface searched; message: why not.
+    replans: plans made after a surprise; calls: planner calls (grounding retries and calls that found no plan
+    included); sampled: poses the grounding attachment added; missed: objects never seen; unreachable {object:
+    reason}: objects no pose reaches (the others were done); unsearched {surface: reason}: surfaces no pose sees."""
 
     strategy: str
     objects: int
@@ -43,59 +45,119 @@ class RunRecord:
     sampled: int
     failures: int
     missed: int
+    unreachable: dict = field(default_factory=dict)
+    unsearched: dict = field(default_factory=dict)
     call_seconds: list = field(default_factory=list)
     log: list = field(default_factory=list, repr=False)
 
 
-def run_task(scene: Scene, attachments: Attachments, objects: dict, strategy="sampling", seed: int = 0,
-             budget: int = 8, max_replans: int = 60) -> RunRecord:
-    """One tidy-up task: `objects` {name: (surface, point)} (``scenes.place_objects``); `strategy` 'sampling'
-    (no poses given, the grounding attachment adds them) or k in 1..4 (the first k predefined poses of each
-    surface, nothing sampled)."""
-    if strategy != "sampling" and strategy not in (1, 2, 3, 4):
-        raise ValueError(f"strategy must be 'sampling' or 1-4 predefined poses, got {strategy!r}")
-    attachments.reset(seed)
-    sampling = strategy == "sampling"
-    planner = Planner(attachments, sampling=sampling, budget=budget)
+def check_objects(scene: Scene, attachments: Attachments, objects: dict) -> None:
+    """ValueError naming the object whose entry does not fit: (surface, point) with a surface of the scene's room
+    and a point (x, y, z) on it (Attachments.check_position)."""
+    for name, entry in objects.items():
+        try:
+            surface, point = entry
+        except (TypeError, ValueError):
+            raise ValueError(f"object {name!r}: expected (surface, point), got {entry!r}") from None
+        if surface not in scene.room.surfaces:
+            raise ValueError(f"object {name!r}: scene {scene.name!r} has no surface {surface!r} "
+                             f"(surfaces: {', '.join(scene.room.surfaces)})")
+        try:
+            attachments.check_position(point, surface)
+        except ValueError as e:
+            raise ValueError(f"object {name!r}: {e}") from None
+
+
+def _task(scene: Scene, attachments: Attachments, strategy, goal: Goal | None) -> tuple[Task, dict]:
+    """The task at the start (the predefined poses of the strategy, the surfaces some pose reaches) and
+    {surface: reason} of the surfaces no base pose reaches (left out of the task)."""
     poses = {"start": np.asarray(scene.start, float)}
-    if not sampling:
+    if strategy != "sampling":
         for s, rows in scene.predefined.items():
             for i, pose in enumerate(rows[:strategy]):
                 poses[f"{s}/pose_{i + 1}"] = pose
     surfaces = [s for s in scene.room.surfaces if attachments.maps[s].max_reachability > 0.0]
+    unreached = {s: "no base pose reaches it (its surface map is empty)" for s in scene.room.surfaces
+                 if s not in surfaces}
     arms = list(attachments.caps)
-    task = Task(poses=poses, at="start", surfaces=surfaces, arms=arms, held={a: None for a in arms})
-    sim = Simulation(scene, attachments, objects, seed=seed)
-    t_p, calls, replans, sampled, message, call_seconds = 0.0, 0, 0, 0, "", []
+    task = Task(poses=poses, at="start", surfaces=surfaces, arms=arms, held={a: None for a in arms},
+                goal=goal if goal is not None else Goal())
+    return task, unreached
+
+
+def run_task(scene: Scene, attachments: Attachments, objects: dict, strategy="sampling", seed: int = 0,
+             budget: int = 8, max_replans: int = 60, camera_link: str | None = None, goal: Goal | None = None) -> RunRecord:
+    """One tidy-up task: `objects` {name: (surface, point)} (``scenes.place_objects``; checked first: ValueError
+    naming an object whose surface the room lacks or whose point is not on it); `strategy` 'sampling' (no poses
+    given, the grounding attachment adds them) or k in 1..4 (the first k predefined poses of each surface, nothing
+    sampled); `camera_link` the robot's camera (None: ``octoreach.find_camera_link``); `goal` what the task must
+    achieve (None: ``Goal()``, every surface searched, every item inspected and put back). An object no pose
+    reaches, or a surface no pose sees, is left out and the rest is done: the record lists them with the reason."""
+    if strategy != "sampling" and strategy not in (1, 2, 3, 4):
+        raise ValueError(f"strategy must be 'sampling' or 1-4 predefined poses, got {strategy!r}")
+    check_objects(scene, attachments, objects)
+    sim = Simulation(scene, attachments, objects, seed=seed, camera_link=camera_link)
+    attachments.reset(seed)
+    planner = Planner(attachments, sampling=strategy == "sampling", budget=budget)
+    task, unsearched = _task(scene, attachments, strategy, goal)
+    planner.check(task)
+    n = _Figures()
     while True:
         try:
             result = planner.plan(task)
-        except (Unsolvable, PlannerTimeout) as e:
-            message = str(e)
+        except PlannerTimeout as e:  # not known to be unsolvable: the run stops and says so
+            n.message = str(e)
             break
-        t_p += result.seconds
-        calls += result.calls
-        sampled += result.sampled
-        call_seconds += result.call_seconds
+        except Unsolvable as e:
+            n.add(e.figures)
+            if task.give_up(e.item, e.surface, e.reason):
+                continue  # plan the rest without it
+            n.message = str(e)
+            break
+        n.add(result)
         if not result.plan:
             break
-        surprised = False
-        for action in result.plan:
-            if sim.execute(action, task):
-                surprised = True
+        if any(sim.execute(action, task) for action in result.plan):  # stops at the first surprise
+            n.replans += 1
+            if n.replans > max_replans:
+                n.message = f"gave up after {max_replans} re-plans"
                 break
-        if surprised:
-            replans += 1
-            if replans > max_replans:
-                message = f"gave up after {max_replans} re-plans"
-                break
+    return _record(strategy, objects, seed, task, sim, n, {**unsearched, **task.unsearchable})
+
+
+@dataclass
+class _Figures:
+    """What the planner calls of one run added up, and why the run stopped early ('' when it did not)."""
+
+    t_p: float = 0.0
+    calls: int = 0
+    sampled: int = 0
+    replans: int = 0
+    message: str = ""
+    call_seconds: list = field(default_factory=list)
+
+    def add(self, result) -> None:
+        if result is not None:
+            self.t_p += result.seconds
+            self.calls += result.calls
+            self.sampled += result.sampled
+            self.call_seconds += result.call_seconds
+
+
+def _record(strategy, objects: dict, seed: int, task: Task, sim: Simulation, n: _Figures, unsearched: dict) -> RunRecord:
+    """The RunRecord of a finished run: solved when every object was found, inspected and put back and every surface
+    of the goal searched; message the first reason it was not."""
     missed = sum(1 for o in objects if o not in task.items)
-    solved = not message and task.done() and missed == 0
-    if not message and missed:
-        message = f"{missed} object(s) never seen"
+    notes = [f"object {o} {why}" for o, why in task.unreachable.items()]
+    notes += [f"surface {s} {why}" for s, why in task.unsearchable.items()]
+    if missed:
+        notes.append(f"{missed} object(s) never seen")
+    message = n.message or "; ".join(notes)
+    solved = not message and task.done()
     moves = sum(1 for e in sim.log if e.action[0] == "move-robot")
-    label = "sampling" if sampling else f"{strategy} predefined"
+    label = "sampling" if strategy == "sampling" else f"{strategy} predefined"
     return RunRecord(strategy=label, objects=len(objects), seed=seed, solved=solved, message=message,
-                     T=sim.clock + t_p, t_p=t_p, execution=sim.clock, replans=replans, calls=calls, moves=moves,
-                     other=len(sim.log) - moves, sampled=sampled, failures=sim.failures, missed=missed,
-                     call_seconds=call_seconds, log=sim.log)
+                     T=sim.clock + n.t_p, t_p=n.t_p, execution=sim.clock, replans=n.replans, calls=n.calls, moves=moves,
+                     other=len(sim.log) - moves, sampled=n.sampled, failures=sim.failures, missed=missed,
+                     unreachable=dict(task.unreachable), unsearched=unsearched, call_seconds=n.call_seconds,
+                     log=sim.log)

@@ -14,19 +14,20 @@ Types: pose, surface, item, arm. Actions (costs are the durations of ``durations
 * ``inspect-object(?o ?a)``: the held item is held in front of the camera;
 * ``putdown-object(?p ?o ?s ?a)``: the item goes back where it was (reached by that arm from that pose).
 
-Goal: every surface searched; every known item inspected and back on its surface. The attachments are
-evaluated when the task is written down (``Task``): a pose/surface pair whose R_S is 0 never reaches the
-planner, so no IK is asked for it.
+Goal: the task's ``Goal`` (``task.py``; by default every surface searched, every known item inspected and back on
+its surface), without the items and surfaces the task gave up on. The attachments are evaluated when the task is
+written down (``Task``): a pose/surface pair whose R_S is 0 never reaches the planner, so no IK is asked for it.
 """
 from __future__ import annotations
 
 import re
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 from .durations import duration, move_duration
+from .task import Goal, Task
 
-__all__ = ["Task", "PlannerMissing", "solve", "require_planner", "SEARCH"]
+__all__ = ["Goal", "Task", "PlannerMissing", "solve", "require_planner", "SEARCH"]
 
 #: Fast Downward search: A* with the (inadmissible) FF heuristic: cost-aware, plans near the cheapest, and within
 #: 0.2-0.6 s per call on our tasks (lazy greedy search was as fast but drove between poses needlessly).
@@ -47,35 +48,6 @@ def require_planner():
                              f"pip install 'octoreach[planning]' ({e})") from None
     up.get_environment().credits_stream = None
     return up
-
-
-@dataclass
-class Task:
-    """What the planner is told: poses by name (x, y, z, theta), where the robot is, the surfaces, the known
-    items with their surfaces and the facts the attachments established.
-
-    usable: {(pose, surface)} with R_S > 0; reach: {(pose, item, arm)} where the arm grasps the item;
-    viewed: {(pose, surface)} already inspected from there; searched: surfaces believed searched; held:
-    {arm: item}; inspected: items inspected; items: {item: surface it lies on / belongs to}; positions:
-    {item: (3,) point on its surface}."""
-
-    poses: dict
-    at: str
-    surfaces: list
-    arms: list
-    items: dict = field(default_factory=dict)
-    usable: set = field(default_factory=set)
-    reach: set = field(default_factory=set)
-    viewed: set = field(default_factory=set)
-    searched: set = field(default_factory=set)
-    held: dict = field(default_factory=dict)
-    inspected: set = field(default_factory=set)
-    positions: dict = field(default_factory=dict)  # item -> (3,) where it lies (the continuous state)
-    pick_costs: dict = field(default_factory=dict)  # (pose, item, arm) -> expected pickup seconds (cost attachment)
-
-    def done(self) -> bool:
-        return (set(self.surfaces) <= self.searched and set(self.items) <= self.inspected
-                and not any(self.held.values()))
 
 
 def _ident(prefix: str, names) -> dict:
@@ -200,11 +172,13 @@ def build_problem(task: Task):
     _set_initial_state(problem, task, f, move_cost, pick_cost, objects)
 
     S, O = objects["s"], objects["o"]
-    for sn in task.surfaces:
+    for sn in task.goal_surfaces():
         problem.add_goal(f["searched"](S[sn]))
-    for on, sn in task.items.items():
-        problem.add_goal(f["inspected"](O[on]))
-        problem.add_goal(f["on"](O[on], S[sn]))
+    for on in task.goal_items():
+        if task.goal.inspect:
+            problem.add_goal(f["inspected"](O[on]))
+        if task.goal.put_back:
+            problem.add_goal(f["on"](O[on], S[task.items[on]]))
     problem.add_quality_metric(up.MinimizeActionCosts({k: (v if not isinstance(v, float) else int(round(v)))
                                                         for k, v in costs.items()}))
     return problem, names

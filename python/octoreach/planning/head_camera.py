@@ -5,13 +5,15 @@ The PR2 of the paper carries a Kinect on its head (57 x 43 degree field of view,
 what limits the view is range and line of sight, not the field of view: a point is seen when its distance
 from the camera lies in [MIN_RANGE, MAX_RANGE] and a thin box from the camera to it (stopping SKIP metres
 short of the point, so the surface it lies on does not hide it) touches no obstacle of the room (table tops,
-shelf boards, chairs, walls). The camera sits where the robot's head frame is in its reference posture.
+shelf boards, chairs, walls). The camera sits where the robot's camera link is in its reference posture: the link
+given, or the one ``octoreach.find_camera_link`` finds (a link named like a camera on the head, else the head's
+end); a robot without an unambiguous one is a ValueError asking for the link.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .._core import Obstacles, Robot, base_pose
+from .._core import Obstacles, Robot, base_pose, camera_link
 
 MIN_RANGE = 0.5  # m, Kinect's nearest depth
 MAX_RANGE = 4.0  # m, Kinect's useful depth indoors
@@ -20,15 +22,13 @@ SKIP = 0.04  # m, the end of the ray left unchecked (the object's own surface)
 
 
 class HeadCamera:
-    """Line-of-sight visibility of points from a base pose. `frame`: the camera's link (the PR2's
+    """Line-of-sight visibility of points from a base pose. `frame`: the camera's link (None: the robot's camera
+    as ``octoreach.find_camera_link`` finds it; ValueError asking for it when that is ambiguous; the paper's PR2:
     ``head_plate_frame``, where its Kinect is mounted); `reference`: the posture it is taken in."""
 
-    def __init__(self, robot: Robot, reference, frame: str = "head_plate_frame"):
-        poses = robot.link_poses(np.asarray(reference, float))
-        if frame not in poses:
-            raise KeyError(f"no camera link {frame!r} in the robot (links with 'head' in their name: "
-                           f"{', '.join(n for n in poses if 'head' in n) or 'none'})")
-        self.in_root = poses[frame][:3, 3].copy()
+    def __init__(self, robot: Robot, reference, frame: str | None = None):
+        self.frame = camera_link(robot, frame).link
+        self.in_root = robot.link_poses(np.asarray(reference, float))[self.frame][:3, 3].copy()
 
     def position(self, pose) -> np.ndarray:
         """Camera position (3,) in the world with the robot at base pose (x, y, z, theta)."""

@@ -24,7 +24,14 @@ __all__ = ["Planner", "Unsolvable", "PlannerTimeout", "PlanResult"]
 
 
 class Unsolvable(RuntimeError):
-    """No plan, and no more poses to try (the message names the object or surface left out)."""
+    """No plan, and no more poses to try (the message names the object or surface left out). item / surface: the
+    object no pose reaches or the surface no pose sees (None when the failure names neither); reason: why, without
+    the name; figures: the failed plan()'s PlanResult (its planner calls, seconds and sampled poses count too)."""
+
+    def __init__(self, message: str, item: str | None = None, surface: str | None = None, reason: str = "",
+                 figures: "PlanResult | None" = None):
+        super().__init__(message)
+        self.item, self.surface, self.reason, self.figures = item, surface, reason, figures
 
 
 class PlannerTimeout(RuntimeError):
@@ -85,22 +92,38 @@ class Planner:
     def _missing(self, task: Task) -> tuple[list, dict]:
         """Surfaces that need a new pose, and {surface: object} of the objects no pose reaches."""
         unreached = {}
-        for o, s in task.items.items():
+        for o in task.goal_items():
             if o in task.inspected and o not in task.held.values():
                 continue
             if not any(r[1] == o for r in task.reach):
-                unreached.setdefault(s, o)
-        blind = [s for s in task.surfaces if s not in task.searched
+                unreached.setdefault(task.items[o], o)
+        blind = [s for s in task.goal_surfaces() if s not in task.searched
                  and not any((p, s) in task.usable and (p, s) not in task.viewed for p in task.poses)]
         need = list(dict.fromkeys(list(unreached) + blind))
         if not need:
-            busy = set(unreached) | {s for s in task.surfaces if s not in task.searched}
-            busy |= {task.items[o] for o in task.items if o not in task.inspected}
+            busy = set(unreached) | {s for s in task.goal_surfaces() if s not in task.searched}
+            busy |= {task.items[o] for o in task.goal_items() if o not in task.inspected}
             need = [s for s in task.surfaces if s in busy] or list(task.surfaces)
         return need, unreached
 
     # ------------------------------------------------------------------ planning
+    def check(self, task: Task) -> None:
+        """ValueError naming what does not fit before anything is planned: Task.check, every surface among the
+        attachments' surfaces, every item's position on its surface (Attachments.check_position)."""
+        task.check()
+        for s in task.surfaces:
+            if s not in self.att.maps:
+                raise ValueError(f"surface {s!r} of the task has no surface map (surfaces: {', '.join(self.att.maps)})")
+        for o, s in task.items.items():
+            try:
+                self.att.check_position(task.positions[o], s)
+            except ValueError as e:
+                raise ValueError(f"item {o!r}: {e}") from None
+
     def plan(self, task: Task) -> PlanResult:
+        """A plan for `task` (Planner.check first), sampling poses where none serves; Unsolvable when the budget
+        is spent."""
+        self.check(task)
         t0 = time.perf_counter()
         calls, sampled, call_seconds = 0, 0, []
         while True:
@@ -131,14 +154,19 @@ class Planner:
                         added += 1
             sampled += added
             if added == 0 and not any(self.sampling and self.used.get(s, 0) < self.budget for s in need):
-                raise Unsolvable(self._why(task, need, unreached))
+                figures = PlanResult([], time.perf_counter() - t0, calls, sampled, call_seconds)
+                raise self._why(task, need, unreached, figures)
 
-    def _why(self, task: Task, need: list, unreached: dict) -> str:
+    def _why(self, task: Task, need: list, unreached: dict, figures: PlanResult) -> Unsolvable:
         tried = len(task.poses) - 1
         if unreached:
             o = next(iter(unreached.values()))
-            return f"unsolvable: object {o} is out of reach from every pose with R_S > 0 ({tried} poses tried)"
+            reason = f"out of reach from every pose with R_S > 0 ({tried} poses tried)"
+            return Unsolvable(f"unsolvable: object {o} is {reason}", item=o, reason=reason, figures=figures)
         blind = [s for s in need if s not in task.searched]
         if blind:
-            return f"unsolvable: surface {blind[0]} cannot be searched from any pose with R_S > 0 ({tried} poses tried)"
-        return f"unsolvable: no plan for the surfaces {', '.join(need)} ({tried} poses tried)"
+            reason = f"cannot be searched from any pose with R_S > 0 ({tried} poses tried)"
+            return Unsolvable(f"unsolvable: surface {blind[0]} {reason}", surface=blind[0], reason=reason,
+                              figures=figures)
+        return Unsolvable(f"unsolvable: no plan for the surfaces {', '.join(need)} ({tried} poses tried)",
+                          figures=figures)

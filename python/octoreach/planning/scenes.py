@@ -4,9 +4,12 @@ Every scene is an ``octoreach.rooms.Room`` (walls, tables, shelves, chairs) with
 surfaces objects may lie on (and where on them), and the **predefined poses** a person would record for
 each surface: the middle of every side of the surface's outline, STANDOFF metres out from the edge, facing
 the surface; longest sides first (a person starts with the long side of a table), equally long sides in the
-order of their distance from the robot's start. A side shorter than MIN_SIDE, or whose pose would put the
-base (a FOOTPRINT square) into a wall, shelf panel or another surface's legs, gets no pose: nobody records a
-pose inside a wall. Chairs are movable clutter: they are put in after the poses were recorded, so a chair
+order of their distance from the robot's start. Sides shorter than MIN_SIDE that follow each other (a round
+table's rim, a rounded corner) count as one stretch, cut into one piece per right angle it turns (a whole
+round outline: four), each with a pose at its middle facing along its chord's normal. A pose that would put
+the base (a FOOTPRINT square) into a wall, shelf panel or another surface's legs, or that has an obstacle at
+base height between it and the edge (a wall behind a counter), is left out: nobody records a pose inside or
+behind a wall. Chairs are movable clutter: they are put in after the poses were recorded, so a chair
 may stand on a predefined pose (the surface map then gives it R_S = 0 and the condition attachment drops it).
 
 Rooms have no surrounding walls (the robot's poses are bounded by the surface maps; walls stand where they
@@ -31,7 +34,8 @@ __all__ = ["Scene", "SCENES", "scene", "place_objects", "predefined_poses"]
 TABLE = (1.4, 0.65, 0.72)  # the paper's table: 1.4 x 0.65 m, 0.72 m high
 STANDOFF = 0.45  # m from the surface's edge to the base centre (the PR2's base is 0.67 m square)
 FOOTPRINT = (0.67, 0.67, 0.3)  # the PR2 base, for checking predefined poses against walls
-MIN_SIDE = 0.3  # m: shorter sides get no predefined pose
+MIN_SIDE = 0.3  # m: shorter sides get no predefined pose of their own (runs of them do, see _stretches)
+EDGE_GAP = 0.05  # m: the outline point just outside an edge, where a concave corner or a wall is looked for
 EDGE_MARGIN = 0.07  # objects stand at least this far inside the surface's outline
 OBJECT_SPACING = 0.12  # and this far from each other
 
@@ -59,6 +63,72 @@ def _pose_free(obstacles: Obstacles, pose) -> bool:
     return not obstacles.collides_box(FOOTPRINT, T)
 
 
+def _nothing_between(obstacles: Obstacles, xy, edge, n) -> bool:
+    """True when nothing stands at base height on the straight line from base position `xy` to the outline point
+    `edge` (outward normal `n`): the robot stands on the surface's side of every wall. The line stops 5 mm short of
+    the edge: clear of a cabinet flush with it, not of a wall behind it."""
+    gap = 0.005
+    length = float(np.linalg.norm(np.asarray(xy) - edge)) - gap
+    if length <= 0:
+        return True
+    T = np.eye(4)
+    T[:3, :3] = [[-n[0], n[1], 0], [-n[1], -n[0], 0], [0, 0, 1]]  # local x along -n (towards the surface)
+    T[:3, 3] = (*(edge + (gap + length / 2) * n), FOOTPRINT[2] / 2 + 0.01)
+    return not obstacles.collides_box((length, 0.02, FOOTPRINT[2]), T)
+
+
+def _stretches(v: np.ndarray, sign: float) -> list:
+    """(length, middle point, outward unit normal) of each stretch of outline `v` (N, 2) a person would stand at:
+    every side of at least MIN_SIDE, and every run of shorter sides (a round table's rim, a rounded corner) cut
+    by arc length into as many pieces as it turns right angles (at least one; a whole round outline: four),
+    each piece facing along its chord's normal. Sides in outline order; `sign` +1 for a counter-clockwise outline."""
+    sides = [(v[i], v[(i + 1) % len(v)]) for i in range(len(v))]
+    lengths = [float(np.linalg.norm(b - a)) for a, b in sides]
+    normal = lambda d: sign * np.array([d[1], -d[0]]) / np.linalg.norm(d)  # noqa: E731
+    short = [ln < MIN_SIDE for ln in lengths]
+    out = [(lengths[i], (a + b) / 2, normal(b - a)) for i, (a, b) in enumerate(sides) if not short[i]]
+    if not any(short):
+        return out
+    start = 0 if all(short) else next(i for i in range(len(v)) if short[i] and not short[i - 1])
+    order = [(start + k) % len(v) for k in range(len(v))]
+    runs, run = [], []
+    for i in order + ([] if all(short) else [None]):
+        if i is not None and short[i]:
+            run.append(i)
+        elif run:
+            runs.append(run)
+            run = []
+    if run:
+        runs.append(run)
+    for run in runs:
+        out += _run_pieces(sides, lengths, run, closed=all(short), normal=normal, sign=sign)
+    return out
+
+
+def _run_pieces(sides, lengths, run, closed, normal, sign) -> list:
+    """The pieces of one run of short sides (see _stretches)."""
+    heading = [math.atan2(*(sides[i][1] - sides[i][0])[::-1]) for i in run]
+    turns = [(b - a + math.pi) % (2 * math.pi) - math.pi for a, b in zip(heading, heading[1:] + heading[:1])]
+    turn = sign * sum(turns if closed else turns[:-1])
+    pieces = max(1, math.ceil(turn / (math.pi / 2) - 1e-6))
+    cumulative = np.concatenate([[0.0], np.cumsum([lengths[i] for i in run])])
+
+    def at(s):  # the outline point at arc length s along the run
+        k = min(int(np.searchsorted(cumulative, s, side="right")) - 1, len(run) - 1)
+        a, b = sides[run[k]]
+        return a + (b - a) * (s - cumulative[k]) / lengths[run[k]]
+    out = []
+    for j in range(pieces):
+        s0, s1 = cumulative[-1] * j / pieces, cumulative[-1] * (j + 1) / pieces
+        chord = at(s1) - at(s0)
+        middle = at((s0 + s1) / 2)
+        k = min(int(np.searchsorted(cumulative, (s0 + s1) / 2, side="right")) - 1, len(run) - 1)
+        n = normal(chord) if np.linalg.norm(chord) > 1e-9 else normal(sides[run[k]][1] - sides[run[k]][0])
+        if s1 - s0 >= MIN_SIDE:
+            out.append((float(s1 - s0), middle, n))
+    return out
+
+
 def predefined_poses(room: Room, surface: str, start, count: int = 4) -> np.ndarray:
     """The poses a person would record for `surface` of `room` (see the module docstring): (k <= count, 4)."""
     poly = room.surfaces[surface]
@@ -67,19 +137,12 @@ def predefined_poses(room: Room, surface: str, start, count: int = 4) -> np.ndar
     sign = 1.0 if area2 > 0 else -1.0  # counter-clockwise: the outward normal of edge d is (d_y, -d_x)
     obstacles = room.obstacles()
     sides = []
-    for i in range(len(v)):
-        a, b = v[i], v[(i + 1) % len(v)]
-        d = b - a
-        length = float(np.linalg.norm(d))
-        if length < MIN_SIDE:
-            continue
-        n = sign * np.array([d[1], -d[0]]) / length
-        mid = (a + b) / 2
+    for length, mid, n in _stretches(v, sign):
         xy = mid + STANDOFF * n
-        if poly.contains(np.array([[*(mid + 0.05 * n), poly.vertices[0][2]]]))[0]:
+        if poly.contains(np.array([[*(mid + EDGE_GAP * n), poly.vertices[0][2]]]))[0]:
             continue  # a concave corner: outward is the surface itself
         pose = np.array([xy[0], xy[1], 0.0, math.atan2(-n[1], -n[0])])
-        if not _pose_free(obstacles, pose):
+        if not _pose_free(obstacles, pose) or not _nothing_between(obstacles, xy, mid, n):
             continue
         sides.append((-round(length, 3), float(np.hypot(*(xy - np.asarray(start[:2], float)))), pose))
     sides.sort(key=lambda s: (s[0], s[1]))

@@ -1,4 +1,4 @@
-"""A small discrete-event simulation of the PR2 executing the tidy-up domain in a scene: the world the
+"""A small discrete-event simulation of a robot (the paper's PR2 by default) executing the tidy-up domain in a scene: the world the
 continual planner acts in. Seeded and deterministic: the same scene, objects and seed give the same events.
 
 * **Time**: every action advances the clock by its duration (``durations.py``: one table with sources).
@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import arms as _arms
 from .attachments import Attachments
-from .domain import Task
+from .task import Task
 from .durations import duration, grasp_failure_probability, move_duration
 from .head_camera import HeadCamera
 from .scenes import Scene
@@ -42,8 +42,9 @@ class Event:
 @dataclass
 class Simulation:
     """The true world of one run: the scene, where the objects really are ({name: (surface, point)}), the
-    clock, and the log. ``execute(action, task)`` runs one planned action and updates the planner's task
-    with what the robot observes; it returns the surprise (a string) or None."""
+    clock, and the log; `camera_link` the robot's camera (None: found, see ``head_camera.HeadCamera``).
+    ``execute(action, task)`` runs one planned action and updates the planner's task with what the robot
+    observes; it returns the surprise (a string) or None."""
 
     scene: Scene
     attachments: Attachments
@@ -52,12 +53,13 @@ class Simulation:
     clock: float = 0.0
     log: list = field(default_factory=list)
     failures: int = 0
+    camera_link: str | None = None
 
     def __post_init__(self):
         self.rng = np.random.default_rng([self.seed, 7])
         robot = self.attachments.robot
         reference = _arms.default_reference(robot, next(iter(self.attachments.caps)))
-        self.camera = HeadCamera(robot, reference)
+        self.camera = HeadCamera(robot, reference, self.camera_link)
         self.obstacles = self.scene.room.obstacles()
         self.points, self.seen = {}, {}
         for name, surface in self.scene.room.surfaces.items():

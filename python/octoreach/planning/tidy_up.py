@@ -22,11 +22,12 @@ import numpy as np
 from .. import arms as _arms
 from .. import robots as _robots
 from ..atomic_write import save_figure
+from .._core import camera_link as _camera_link
 from .attachments import Attachments
 from .continual import run_task
 from .scenes import SCENES, place_objects, scene as _scene
 
-__all__ = ["prepare", "table_one", "table_two", "scene_table", "format_table_one", "format_table_two",
+__all__ = ["prepare", "experiment_camera", "table_one", "table_two", "scene_table", "format_table_one", "format_table_two",
            "format_scene_table", "plot", "tidy_up", "PAPER_TABLE_ONE", "PAPER_TABLE_TWO"]
 
 STRATEGIES = (1, 2, 3, 4, "sampling")
@@ -39,18 +40,36 @@ PAPER_TABLE_TWO = {"predefined": {"T [min]": 38.0, "t_p [min]": 7.0, "# re-plan"
                    "sampling": {"T [min]": 32.0, "t_p [min]": 7.42, "# re-plan": 9.3, "# move": 2.1, "# other": 28.6}}
 
 
+#: The paper's PR2 carries its Kinect on the head plate: the camera of the experiment when the robot is the PR2
+#: and no camera link is given (any other robot's is given, or found by octoreach.find_camera_link).
+PR2_CAMERA_LINK = "head_plate_frame"
+
+
 @dataclass
 class Prepared:
-    """A scene with its attachments (maps built once)."""
+    """A scene with its attachments (maps built once) and the robot's camera link."""
 
     scene: object
     attachments: Attachments
+    camera_link: str = PR2_CAMERA_LINK
+
+
+def experiment_camera(robot, camera_link: str | None = None) -> str:
+    """The camera link of the experiment: `camera_link` when given, the PR2's Kinect mount (PR2_CAMERA_LINK) on
+    the PR2, else the one octoreach.find_camera_link finds (ValueError asking for it when that is ambiguous)."""
+    if camera_link is None and robot.name == "pr2" and robot.has_link(PR2_CAMERA_LINK):
+        camera_link = PR2_CAMERA_LINK
+    return _camera_link(robot, camera_link).link
 
 
 def prepare(scenes=tuple(SCENES), resolution: float = 0.1, directions: int | None = None, seed: int = 0, robot=None,
-            progress: bool = False) -> dict:
-    """{scene name: Prepared}: the PR2, its capability maps (built once) and each scene's surface maps."""
+            progress: bool = False, camera_link: str | None = None) -> dict:
+    """{scene name: Prepared}: the robot (None: the PR2), its capability maps (built once) and each scene's surface
+    maps; the robot must have an arm and a camera (experiment_camera), checked before any map is built."""
     robot = _robots.pr2() if robot is None else robot
+    camera = experiment_camera(robot, camera_link)
+    if not _arms.find_arms(robot):
+        raise ValueError(f"robot {robot.name!r} has no arm that could be found: the tidy-up task needs one to grasp with")
     directions = DIRECTIONS if directions is None else directions
     caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, directions=directions, seed=seed,
                                            progress=progress) for arm in _arms.find_arms(robot)}
@@ -62,7 +81,7 @@ def prepare(scenes=tuple(SCENES), resolution: float = 0.1, directions: int | Non
             if progress:
                 print(f"tidy-up: surface maps of scene {name!r}", file=sys.stderr, flush=True)
             built[key] = Attachments.build(robot, sc.room, resolution=resolution, caps=caps, seed=seed)
-        out[name] = Prepared(sc, built[key])
+        out[name] = Prepared(sc, built[key], camera)
     return out
 
 
@@ -75,7 +94,8 @@ def _runs(prep: Prepared, n: int, runs: int, seed: int, strategies, budget: int,
     for r in range(runs):
         objects = place_objects(prep.scene, n, np.random.default_rng([seed, n, r]))
         for s in strategies:
-            out[s].append(run_task(prep.scene, prep.attachments, objects, s, seed=seed * 1000 + r, budget=budget))
+            out[s].append(run_task(prep.scene, prep.attachments, objects, s, seed=seed * 1000 + r, budget=budget,
+                                   camera_link=prep.camera_link))
             if progress:
                 rec = out[s][-1]
                 print(f"tidy-up: {prep.scene.name} {n} object(s) run {r + 1} {_label(s)}: "
@@ -219,9 +239,10 @@ def plot(one: dict, two: dict, path) -> None:
 
 def tidy_up(runs: int = 2, runs_table_two: int = 7, objects=(1, 2, 3, 4), scenes=tuple(SCENES), seed: int = 0,
             resolution: float = 0.1, directions: int | None = None, budget: int = 8, plot_path=None, progress: bool = False,
-            verbose: bool = True) -> dict:
-    """Runs Table I (paper's room), Table II (paper's room, 3 objects) and the scene table; prints them when
-    `verbose`; writes the plot to `plot_path`. Returns {'table_one', 'table_two', 'scenes'} of RunRecords."""
+            verbose: bool = True, robot=None, camera_link: str | None = None) -> dict:
+    """Runs Table I (paper's room), Table II (paper's room, 3 objects) and the scene table with `robot` (None: the
+    PR2; any robot with an arm and a camera: `camera_link`, or found); prints them when `verbose`; writes the plot
+    to `plot_path`. Returns {'table_one', 'table_two', 'scenes'} of RunRecords."""
     if runs < 1 or runs_table_two < 1:
         raise ValueError(f"runs must be at least 1, got {runs!r} and {runs_table_two!r}")
     objects = tuple(int(n) for n in objects)
@@ -231,7 +252,7 @@ def tidy_up(runs: int = 2, runs_table_two: int = 7, objects=(1, 2, 3, 4), scenes
     if unknown:
         raise ValueError(f"unknown scene(s) {', '.join(map(repr, unknown))} (scenes: {', '.join(SCENES)})")
     prepared = prepare(tuple(dict.fromkeys(("paper", *scenes))), resolution=resolution, directions=directions, seed=seed,
-                       progress=progress)
+                       progress=progress, robot=robot, camera_link=camera_link)
     one = table_one(prepared["paper"], objects, runs, seed, budget, progress)
     two = table_two(prepared["paper"], runs_table_two, 3, seed + 1, budget, progress)
     sc = scene_table({k: v for k, v in prepared.items() if k in scenes}, 3, runs, seed + 2, budget, progress)

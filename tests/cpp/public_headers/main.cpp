@@ -3,10 +3,12 @@
 // OCTOREACH_VERSION comes from the exported target's compile definitions in a real consumer.
 #define OCTOREACH_VERSION "public-headers-test"
 
+#include <octoreach/camera_link.hpp>
 #include <octoreach/chain.hpp>
 #include <octoreach/collision.hpp>
 #include <octoreach/robot.hpp>
 #include <octoreach/shape.hpp>
+#include <octoreach/self_collision_report.hpp>
 #include <octoreach/types.hpp>
 
 #include <iostream>
@@ -23,6 +25,8 @@ int use(const std::string& urdf) {
   obstacles.add(octoreach::Shape::sphere(0.1), "ball");
   auto pairs = robot->compute_allowed_collisions(10, 0);
   auto wider = robot->with_allowed_collisions(pairs);
+  octoreach::SelfCollisionReport report = octoreach::self_collision_report(*robot);
+  std::cout << octoreach::camera_link(*robot).link << " " << report.free_share() << "\n";
   std::cout << robot->links().at(0).shapes.size() << " " << robot->links().at(0).visuals.size() << " "
             << robot->source().urdf << " " << octoreach::kPi << "\n";
   return q && !wider->in_collision(*q, obstacles) ? 0 : 1;

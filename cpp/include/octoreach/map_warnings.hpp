@@ -1,0 +1,29 @@
+#pragma once
+/// \file map_warnings.hpp
+/// \brief One line saying why a freshly built map looks wrong and what to try: a capability map whose best
+/// voxel reaches few approach directions (a collision model that blocks the arm), a surface at a height the
+/// arm barely reaches. The thresholds follow from the arm's geometry, not from one robot.
+
+#include <string>
+
+namespace octoreach {
+
+class CapabilityMap;
+
+/// \brief Least reachability index D a 6-DOF or longer arm reaches at its best voxel. Why one half: at a
+/// voxel the wrist centre can reach with some slack, a spherical wrist whose middle joint turns +-90 degrees
+/// points the tool along every direction of the hemisphere around the forearm, which alone is half of the
+/// directions (a free wrist, and the freedom of the arm's other joints, add more). A best voxel below it
+/// means the wrist is blocked: by self-collision, by joint limits or by an approach axis that is not the tool's.
+inline constexpr double kFewDirections = 0.5;
+
+/// \brief Share of its best grasp share (over every height) that an arm must keep at a surface's height. Why
+/// one half: below it the surface's height alone costs the arm more than half the grasps it has where it
+/// reaches best: the surface lies at the bottom or top edge of the arm's reach.
+inline constexpr double kEdgeOfReach = 0.5;
+
+/// \brief "" when the map looks right, else one line: its best voxel's D below kFewDirections (arms of 6 or
+/// more joints only; fewer joints cannot point the tool along every direction), and what to try.
+std::string capability_map_warning(const CapabilityMap& capability);
+
+}  // namespace octoreach

@@ -1,0 +1,160 @@
+"""Robot diagnostics: where allowed-collision pairs come from, how often random configurations collide, the joints a
+map build holds still, the camera link, and the one-line warnings of suspicious map builds; `octoreach robot`
+prints them. The robot is written here (own_robot.py): mobile base, torso lift, 6-DOF arm, pan/tilt head, no SRDF."""
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import octoreach
+from octoreach import Robot, arm_report, camera_link, find_camera_link, robots, self_collision_report
+from octoreach.cli import main
+
+from own_robot import urdf
+
+
+@pytest.fixture(scope="module")
+def own(tmp_path_factory):
+    """(path, Robot) of the healthy robot, allowed collisions sampled as `octoreach robot --urdf` does."""
+    path = tmp_path_factory.mktemp("own") / "own_robot.urdf"
+    path.write_text(urdf())
+    return path, robots.from_urdf(path)
+
+
+@pytest.fixture(scope="module")
+def bad_elbow(tmp_path_factory):
+    path = tmp_path_factory.mktemp("bad") / "bad_elbow.urdf"
+    path.write_text(urdf("bad_elbow", bad_elbow=True))
+    return path
+
+
+def test_allowed_pairs_say_where_they_came_from(own):
+    _, robot = own
+    sources = robot.allowed_collision_sources
+    assert [(a, b) for a, b, _ in sources] == robot.allowed_collisions
+    reasons = {why for _, _, why in sources}
+    assert "adjacent" in reasons and reasons <= {"adjacent", "never in collision", "always in collision",
+                                                 "in collision at home"}
+    assert ("base_link", "torso_link", "adjacent") in sources
+    given = Robot.from_urdf(urdf()).with_allowed_collisions([("base_link", "head_tilt_link")])  # nothing sampled
+    assert ("base_link", "head_tilt_link", "given") in given.allowed_collision_sources
+    assert 'reason="User"' in given.srdf_text() and 'reason="Adjacent"' in given.srdf_text()
+
+
+def test_srdf_pairs_are_marked_as_such():
+    pr2 = robots.pr2()
+    reasons = {why for _, _, why in pr2.allowed_collision_sources}
+    assert {"adjacent", "SRDF"} <= reasons
+
+
+def test_self_collision_report_counts_the_colliding_elbow(own, bad_elbow):
+    """Among the arm's own links the sound arm is free in most configurations, the bad elbow's upper arm and forearm
+    collide in about 60 %; over the whole robot both collide often (the arm reaches into the torso and the head)."""
+    _, good = own
+    bad = Robot.from_urdf(str(bad_elbow))
+    r_good = arm_report(good, "arm", samples=400).self_collision
+    r_bad = arm_report(bad, "arm", samples=400).self_collision
+    assert r_good.samples == 400 and not r_good.suspicious, r_good.pairs[:3]
+    assert r_bad.suspicious and r_bad.free_share < octoreach.SelfCollisionReport.FREE_SHARE_HINT
+    top = r_bad.pairs[0]
+    assert {top.link_a, top.link_b} == {"upper_arm_link", "forearm_link"}
+    assert 0.45 < top.hits / r_bad.samples < 0.75
+    whole = self_collision_report(bad, samples=400)
+    assert whole.free_share < r_bad.free_share and whole.pairs[0].hits >= top.hits
+    # the same on one thread and on every core, and for the same seed
+    one, every = (self_collision_report(bad, samples=400, threads=t) for t in (1, 0))
+    assert (one.free, [(p.link_a, p.link_b, p.hits) for p in one.pairs]) == \
+        (every.free, [(p.link_a, p.link_b, p.hits) for p in every.pairs])
+    only = self_collision_report(bad, samples=400, links=["upper_arm_link", "forearm_link"])
+    assert [(p.link_a, p.link_b) for p in only.pairs] == [("upper_arm_link", "forearm_link")]
+
+
+def test_self_collision_report_bad_input(own):
+    _, robot = own
+    with pytest.raises(ValueError, match="samples must be at least 1"):
+        self_collision_report(robot, samples=0)
+    with pytest.raises(ValueError, match="no_such_joint"):
+        self_collision_report(robot, joints=["no_such_joint"])
+    with pytest.raises(ValueError, match="does not move"):
+        self_collision_report(robot, joints=["base_joint"])
+    with pytest.raises(ValueError, match="reference configuration has 2 entries"):
+        self_collision_report(robot, reference=np.zeros(2))
+
+
+def test_arm_report_names_the_torso_lift_held_still(own):
+    _, robot = own
+    (arm,) = octoreach.find_arms(robot)
+    r = arm_report(robot, arm, samples=200)
+    assert r.moving == ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint", "wrist_2_joint",
+                        "wrist_3_joint"]
+    assert [(h.name, h.value) for h in r.held] == [("torso_lift_joint", 0.0)]
+    assert r.base_to_include_held == "base_link"
+    # the hint works: an arm from base_link moves the lift too
+    longer = arm_report(robot, (r.base_to_include_held, arm.tip_link), samples=50)
+    assert longer.moving[0] == "torso_lift_joint" and not longer.held
+
+
+def test_camera_link_is_found_given_or_asked_for(tmp_path):
+    robot = Robot.from_urdf(urdf())
+    found = find_camera_link(robot)
+    assert found.link == "camera_link" and "camera" in found.reason
+    assert camera_link(robot, "head_tilt_link").reason == "given"
+    with pytest.raises(ValueError, match="nearest|did you mean|head_tilt_link"):
+        camera_link(robot, "head_tilt")
+    # no camera link: the end of the head
+    assert find_camera_link(Robot.from_urdf(urdf(camera=False))).link == "head_tilt_link"
+    # the head's camera wins over cameras elsewhere
+    assert find_camera_link(Robot.from_urdf(urdf(extra_cameras=True))).link == "camera_link"
+    # cameras on the base and the gripper, no head: ambiguous; no camera, no head: nothing to find
+    for text in (urdf(head=False, extra_cameras=True), urdf(head=False)):
+        with pytest.raises(ValueError, match="no link that is unambiguously its camera.*camera_link='LINK'"):
+            find_camera_link(Robot.from_urdf(text))
+    # the PR2: a camera on its head
+    pr2 = find_camera_link(robots.pr2())
+    assert pr2.link.startswith("head") or "kinect" in pr2.link or "stereo" in pr2.link, pr2
+
+
+def test_cli_robot_prints_the_diagnostics(own, capsys):
+    path, _ = own
+    assert main(["robot", "--urdf", str(path), "--samples", "300"]) == 0
+    out = capsys.readouterr().out
+    assert "allowed-collision pairs:" in out and "adjacent" in out and "never in collision" in out
+    assert "self-collision, every joint drawn:" in out and "% of 300 random configurations free" in out
+    assert "holds still" in out and "torso_lift_joint at 0" in out and "--base base_link --tip tool_frame" in out
+    assert "free among its own links" in out
+    assert "camera link: camera_link" in out
+    assert "hint: under 75 % free" not in out
+
+
+def test_cli_robot_hints_at_a_self_colliding_elbow(bad_elbow, capsys):
+    assert main(["robot", "--urdf", str(bad_elbow), "--samples", "300"]) == 0
+    out = capsys.readouterr().out
+    assert "hint: under 75 % free" in out
+    hint = next(line for line in out.splitlines() if "hint: under 75 % free" in line)
+    assert "upper_arm_link" in hint and "forearm_link" in hint and "<disable_collisions" in hint
+
+
+def test_capability_map_of_a_blocked_wrist_warns_once(bad_elbow):
+    """The self-colliding elbow makes a thin shell of a map: its best voxel reaches few directions, and the build
+    says so in one MapWarning naming what to try; a healthy arm's build says nothing."""
+    bad = Robot.from_urdf(str(bad_elbow))
+    (arm,) = octoreach.find_arms(bad)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cap = octoreach.CapabilityMap.build_for_arm(bad, arm, resolution=0.1, directions=50, progress=False)
+    ours = [w for w in caught if issubclass(w.category, octoreach.MapWarning)]
+    assert cap.warning and len(ours) == 1 and str(ours[0].message) == cap.warning
+    assert "`octoreach robot`" in cap.warning and "approach directions" in cap.warning
+    _, d = cap.voxels()
+    assert d.max() < octoreach.CapabilityMap.FEW_DIRECTIONS
+
+
+def test_capability_map_of_a_sound_arm_does_not_warn(own):
+    _, robot = own
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", octoreach.MapWarning)
+        cap = octoreach.CapabilityMap.build_for_arm(robot, octoreach.find_arms(robot)[0], resolution=0.1,
+                                                    directions=50, progress=False)
+    assert cap.warning == ""
