@@ -75,6 +75,24 @@ void wrap_chain(py::module_& m) {
       .def_property_readonly("lower", &Chain::lower, "Lower joint limits (-inf for continuous joints).")
       .def_property_readonly("upper", &Chain::upper, "Upper joint limits (+inf for continuous joints).")
       .def_property_readonly("continuous", &Chain::continuous)
+      .def_property_readonly("joint_origins", [](const Chain& c) {
+             std::vector<Pose> out;
+             for (const Chain::Segment& s : c.segments()) out.push_back(s.origin);
+             return poses_to_array(out);
+           }, "(dof, 4, 4): joint i's frame in joint i-1's frame (the base link's for joint 0), fixed joints\n"
+              "folded in. With joint_axes, prismatic, the limits and tip_offset: the chain's description.")
+      .def_property_readonly("joint_axes", [](const Chain& c) {
+             RowMatrixXd axes(c.dof(), 3);
+             for (int i = 0; i < c.dof(); ++i) axes.row(i) = c.segments()[i].axis.transpose();
+             return axes;
+           }, "(dof, 3): each joint's axis in its own frame (unit vectors).")
+      .def_property_readonly("prismatic", [](const Chain& c) {
+             std::vector<bool> out;
+             for (const Chain::Segment& s : c.segments()) out.push_back(s.type == JointType::Prismatic);
+             return out;
+           }, "True for prismatic joints (the others rotate about their axis).")
+      .def_property_readonly("tip_offset", [](const Chain& c) { return pose_to_array(c.tip_offset()); },
+                             "Fixed transform (4x4) from the last joint's frame to the tip link.")
       .def_property_readonly("robot_indices", &Chain::robot_indices,
                              "Positions of this chain's joints in the robot configuration vector.")
       .def("fk", [](const Chain& c, const py::object& q) { return pose_to_array(c.fk(q_from(c, q))); }, py::arg("q"),
