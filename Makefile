@@ -22,7 +22,7 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 WHEEL  := $(BUILD)/wheel.txt
 EXTRAS := robots,test,viewer,cluster,planning
 
-SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf benchmarks/reference -type f 2>/dev/null) \
+SOURCES := $(shell find cpp bindings python tests/cpp cmake urdf benchmarks/reference -type f 2>/dev/null) \
            CMakeLists.txt pyproject.toml scripts/build_wheel.sh
 
 .PHONY: all demo demo-exploration stubs test test-cpp test-python test-packaging install sysdeps venv benchmarks \

@@ -64,23 +64,14 @@ const IkOptions kIkDefaults;
   py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none(),      \
   py::arg("obstacle_links") = py::none()
 
-}  // namespace
-
-void wrap_chain(py::module_& m) {
-  py::class_<Chain>(m, "Chain", "Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).")
-      .def_property_readonly("base_link", &Chain::base_link)
-      .def_property_readonly("tip_link", &Chain::tip_link)
-      .def_property_readonly("dof", &Chain::dof)
-      .def_property_readonly("joint_names", &Chain::joint_names)
-      .def_property_readonly("lower", &Chain::lower, "Lower joint limits (-inf for continuous joints).")
-      .def_property_readonly("upper", &Chain::upper, "Upper joint limits (+inf for continuous joints).")
-      .def_property_readonly("continuous", &Chain::continuous)
-      .def_property_readonly("joint_origins", [](const Chain& c) {
-             std::vector<Pose> out;
-             for (const Chain::Segment& s : c.segments()) out.push_back(s.origin);
-             return poses_to_array(out);
-           }, "(dof, 4, 4): joint i's frame in joint i-1's frame (the base link's for joint 0), fixed joints\n"
-              "folded in. With joint_axes, prismatic, the limits and tip_offset: the chain's description.")
+// The chain's description as plain arrays (what the benchmark references build their KDL chain from).
+void def_description(py::class_<Chain>& cls) {
+  cls.def_property_readonly("joint_origins", [](const Chain& c) {
+         std::vector<Pose> out;
+         for (const Chain::Segment& s : c.segments()) out.push_back(s.origin);
+         return poses_to_array(out);
+       }, "(dof, 4, 4): joint i's frame in joint i-1's frame (the base link's for joint 0), fixed joints\n"
+          "folded in. With joint_axes, prismatic, the limits and tip_offset: the chain's description.")
       .def_property_readonly("joint_axes", [](const Chain& c) {
              RowMatrixXd axes(c.dof(), 3);
              for (int i = 0; i < c.dof(); ++i) axes.row(i) = c.segments()[i].axis.transpose();
@@ -92,7 +83,22 @@ void wrap_chain(py::module_& m) {
              return out;
            }, "True for prismatic joints (the others rotate about their axis).")
       .def_property_readonly("tip_offset", [](const Chain& c) { return pose_to_array(c.tip_offset()); },
-                             "Fixed transform (4x4) from the last joint's frame to the tip link.")
+                             "Fixed transform (4x4) from the last joint's frame to the tip link.");
+}
+
+}  // namespace
+
+void wrap_chain(py::module_& m) {
+  py::class_<Chain> cls(m, "Chain", "Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).");
+  def_description(cls);
+  cls
+      .def_property_readonly("base_link", &Chain::base_link)
+      .def_property_readonly("tip_link", &Chain::tip_link)
+      .def_property_readonly("dof", &Chain::dof)
+      .def_property_readonly("joint_names", &Chain::joint_names)
+      .def_property_readonly("lower", &Chain::lower, "Lower joint limits (-inf for continuous joints).")
+      .def_property_readonly("upper", &Chain::upper, "Upper joint limits (+inf for continuous joints).")
+      .def_property_readonly("continuous", &Chain::continuous)
       .def_property_readonly("robot_indices", &Chain::robot_indices,
                              "Positions of this chain's joints in the robot configuration vector.")
       .def("fk", [](const Chain& c, const py::object& q) { return pose_to_array(c.fk(q_from(c, q))); }, py::arg("q"),
