@@ -1,19 +1,32 @@
-# octoreach: `make demo` and `make test` set everything up on a fresh Debian 12
-# machine (Debian packages, a virtual environment, the project) and then run.
-# Running them again with nothing changed rebuilds nothing.
+# octoreach: `make demo` and `make test` set everything up on a fresh Debian 12 machine (Debian
+# packages, a virtual environment, the project) and then run. Running them again with nothing changed
+# rebuilds nothing. The project is built once, as the wheel users install (`make wheel`: scikit-build-core
+# then auditwheel repair); the virtual environment installs that repaired wheel, and the same CMake build
+# gives ctest its binaries and the tests their benchmark module (octoreach_bench, never in the wheel).
+#
+# Another interpreter gets its own environment and build: PYTHON=/path/to/python3.12 make wheel.
 
 PYTHON ?= python3
-VENV   ?= .venv
+ifeq ($(PYTHON),python3)
+SUFFIX :=
+else
+SUFFIX := -$(notdir $(PYTHON))
+endif
+VENV   ?= .venv$(SUFFIX)
 PY     := $(VENV)/bin/python
 PIP    := $(PY) -m pip
-BUILD  := build/py
+BUILD  := build/py$(SUFFIX)
+DIST   ?= dist
 JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
+# The file that names the repaired wheel of this interpreter (written by scripts/build_wheel.sh).
+WHEEL  := $(BUILD)/wheel.txt
+EXTRAS := robots,test,viewer,cluster,planning
 
-SOURCES := $(shell find cpp bindings python tests/cpp tests/packaging cmake urdf benchmarks/reference -type f 2>/dev/null) \
-           CMakeLists.txt pyproject.toml
+SOURCES := $(shell find cpp bindings python tests/cpp cmake urdf benchmarks/reference -type f 2>/dev/null) \
+           CMakeLists.txt pyproject.toml scripts/build_wheel.sh
 
-.PHONY: all demo demo-exploration stubs test test-cpp test-python install sysdeps venv benchmarks clean \
-        fuzz test-sanitize check-sizes
+.PHONY: all demo demo-exploration stubs test test-cpp test-python test-packaging install sysdeps venv benchmarks \
+        clean fuzz test-sanitize wheel test-wheel sdist test-sdist check-sizes
 
 all: install
 
@@ -25,14 +38,21 @@ $(VENV)/.created: | sysdeps
 	$(PIP) install -q --upgrade pip
 	@touch $@
 
-# Build requirements come from pyproject.toml's [build-system] table.
+# Build requirements and release tools come from pyproject.toml ([build-system], dependency group "release").
 $(VENV)/.build-deps: $(VENV)/.created pyproject.toml
 	$(PIP) install -q $$($(PY) scripts/build_requires.py)
 	@touch $@
 
-$(BUILD)/.installed: $(VENV)/.build-deps $(SOURCES)
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PIP) install --no-build-isolation \
-	  -Cbuild-dir=$(BUILD) -Ccmake.define.BUILD_TESTING=ON ".[robots,test,viewer,cluster,planning]"
+$(WHEEL): $(VENV)/.build-deps $(SOURCES)
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) bash scripts/build_wheel.sh $(PY) $(BUILD) $(DIST)
+
+wheel: sysdeps $(WHEEL)
+
+# The repaired wheel with every extra, and the benchmark module beside it (site-packages/octoreach_bench).
+$(BUILD)/.installed: $(WHEEL)
+	$(PIP) install -q --force-reinstall --no-deps "$$(cat $(WHEEL))"
+	$(PIP) install -q "$$(cat $(WHEEL))[$(EXTRAS)]"
+	cp $(BUILD)/bench/octoreach_bench*.so "$$($(PY) -c 'import sysconfig; print(sysconfig.get_paths()["platlib"])')/"
 	@touch $@
 
 install: sysdeps $(BUILD)/.installed
@@ -44,6 +64,11 @@ test-cpp: install
 test-python: install
 	$(PY) -m pytest -q tests/python
 	$(PY) -m pytest -q tests/fuzz
+
+# The installed package is the repaired wheel, auditwheel finds nothing outside the policy, the wheel holds
+# octoreach's code once and no benchmark module, one version everywhere.
+test-packaging: install
+	OCTOREACH_WHEEL="$$(cat $(WHEEL))" $(PY) -m pytest -q -p no:cacheprovider tests/packaging
 
 # A long fuzz run: the file-damage fuzzer (counts per category: cases, loaded, OSError, crashes, hangs,
 # wrong errors), the input-file fuzzer over room, job and polygon files (counts per category: cases, accepted,
@@ -86,11 +111,25 @@ test-sanitize: install
 	cmake --build build/tsan -j $(JOBS) --target octoreach_thread_tests
 	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build/tsan/tests/cpp/octoreach_thread_tests
 
-test: check-sizes test-cpp test-python
+test: check-sizes test-cpp test-packaging test-python
 
 # Size limits of the code: prints the largest file and function, names every one over its limit, fails if any.
 check-sizes:
 	$(PYTHON) scripts/check_sizes.py
+
+# The release check: the repaired wheel in a bare Debian 12 root (debootstrap minbase + python3-venv, cached
+# in build/debian12-root), installed with its extras from PyPI, runs tests/wheel/smoke.py.
+test-wheel: wheel
+	bash scripts/test_wheel_root.sh "$$(cat $(WHEEL))" build/debian12-root
+
+sdist: $(VENV)/.build-deps
+	$(PY) -m build --sdist --outdir $(DIST)
+
+# Installs the sdist from source into a scratch environment (a full compile) and imports it.
+test-sdist: sdist
+	rm -rf build/sdist-venv && $(PYTHON) -m venv build/sdist-venv
+	build/sdist-venv/bin/python -m pip install -q "$$(ls -t $(DIST)/octoreach-*.tar.gz | head -1)"
+	cd build && sdist-venv/bin/python -c "import octoreach, sys; r = octoreach.Robot.from_urdf(octoreach.robots.project_urdf('test_arm')); print('octoreach', octoreach.__version__, 'from the sdist:', r.dof, 'joints')"
 
 demo: install
 	$(PY) -m octoreach.demo --out demo_out
@@ -114,4 +153,4 @@ stubs: install
 	@echo "generated build/stubs/octoreach/_core.pyi: compare with python/octoreach/_core.pyi"
 
 clean:
-	rm -rf build $(VENV) demo_out
+	rm -rf build $(VENV) demo_out $(DIST)

@@ -1,7 +1,7 @@
 """Frontier-void exploration benchmark; prints JSON.
 
 Reference: stock OctoMap OcTree::insertPointCloud of the same cloud into a fresh tree, measured in
-the same run (octoreach._bench.stock_insert_point_cloud), and the paper's figures (3-4.5 s per
+the same run (octoreach_bench.stock_insert_point_cloud, built beside the C++ tests), and the paper's figures (3-4.5 s per
 integration, 14-100 s per next-best-view search). Cloud: one 640 x 480 depth image of a cluttered
 scene (12 crates and closed boxes, a wall, a floor), 2.5 cm cells, 4 m range.
 Explorations: the explorer robot with a coarse capability map (built once, timed separately), fixed
@@ -26,7 +26,8 @@ import time
 import numpy as np
 
 import octoreach
-from octoreach import DepthCamera, ExplorationMap, _bench, _core, next_best_view, score_views
+import octoreach_bench as _bench
+from octoreach import DepthCamera, ExplorationMap, _core, next_best_view, score_views
 from octoreach import exploration as ex
 
 

@@ -2,7 +2,7 @@
 """IK and FK speed and success of octoreach against plain KDL, measured in the same process.
 
 Reference: orocos KDL (Debian's liborocos-kdl, 1.5) through the private bindings
-``octoreach._bench.kdl_ik_batch`` (KDL::ChainIkSolverPos_NR_JL with ChainIkSolverVel_pinv and
+``octoreach_bench.kdl_ik_batch`` (KDL::ChainIkSolverPos_NR_JL with ChainIkSolverVel_pinv and
 ChainFkSolverPos_recursive, or KDL::ChainIkSolverPos_LMA) and ``kdl_fk_batch``
 (ChainFkSolverPos_recursive), run on ``bench::to_kdl(chain)`` of the very chain octoreach solves, with the
 same random restarts (same count, drawn inside the same limits) and the same success test
@@ -28,7 +28,8 @@ import time
 import numpy as np
 
 import octoreach
-from octoreach import _bench, robots
+import octoreach_bench as _bench
+from octoreach import robots
 
 CHAINS = [
     ("pr2_right_arm_from_base_footprint", "pr2", "base_footprint", "r_wrist_roll_link"),

@@ -67,10 +67,34 @@ const IkOptions kIkDefaults;
   py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none(),      \
   py::arg("obstacle_links") = py::none()
 
+// The chain's description as plain arrays (what the benchmark references build their KDL chain from).
+void def_description(py::class_<Chain>& cls) {
+  cls.def_property_readonly("joint_origins", [](const Chain& c) {
+         std::vector<Pose> out;
+         for (const Chain::Segment& s : c.segments()) out.push_back(s.origin);
+         return poses_to_array(out);
+       }, "(dof, 4, 4): joint i's frame in joint i-1's frame (the base link's for joint 0), fixed joints\n"
+          "folded in. With joint_axes, prismatic, the limits and tip_offset: the chain's description.")
+      .def_property_readonly("joint_axes", [](const Chain& c) {
+             RowMatrixXd axes(c.dof(), 3);
+             for (int i = 0; i < c.dof(); ++i) axes.row(i) = c.segments()[i].axis.transpose();
+             return axes;
+           }, "(dof, 3): each joint's axis in its own frame (unit vectors).")
+      .def_property_readonly("prismatic", [](const Chain& c) {
+             std::vector<bool> out;
+             for (const Chain::Segment& s : c.segments()) out.push_back(s.type == JointType::Prismatic);
+             return out;
+           }, "True for prismatic joints (the others rotate about their axis).")
+      .def_property_readonly("tip_offset", [](const Chain& c) { return pose_to_array(c.tip_offset()); },
+                             "Fixed transform (4x4) from the last joint's frame to the tip link.");
+}
+
 }  // namespace
 
 void wrap_chain(py::module_& m) {
-  py::class_<Chain>(m, "Chain", "Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).")
+  py::class_<Chain> cls(m, "Chain", "Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).");
+  def_description(cls);
+  cls
       .def_property_readonly("base_link", &Chain::base_link)
       .def_property_readonly("tip_link", &Chain::tip_link)
       .def_property_readonly("dof", &Chain::dof)

@@ -207,8 +207,19 @@ class Chain:
     def dof(self) -> int:
         ...
     @property
+    def joint_axes(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
+        """
+        (dof, 3): each joint's axis in its own frame (unit vectors).
+        """
+    @property
     def joint_names(self) -> list[str]:
         ...
+    @property
+    def joint_origins(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (dof, 4, 4): joint i's frame in joint i-1's frame (the base link's for joint 0), fixed joints
+        folded in. With joint_axes, prismatic, the limits and tip_offset: the chain's description.
+        """
     @property
     def lower(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
@@ -221,6 +232,11 @@ class Chain:
         Robot.collision_links order.
         """
     @property
+    def prismatic(self) -> list[bool]:
+        """
+        True for prismatic joints (the others rotate about their axis).
+        """
+    @property
     def robot_indices(self) -> list[int]:
         """
         Positions of this chain's joints in the robot configuration vector.
@@ -228,6 +244,11 @@ class Chain:
     @property
     def tip_link(self) -> str:
         ...
+    @property
+    def tip_offset(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Fixed transform (4x4) from the last joint's frame to the tip link.
+        """
     @property
     def upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
@@ -2500,7 +2521,7 @@ def void_enclosure(map: ExplorationMap, range: typing.SupportsFloat | typing.Sup
     from the cell through unknown cells up to `range` metres, meet an occupied cell (1) rather than a
     free one (0; unknown all the way: 1/2).
     """
-__version__: str = '0.1.0'
+__version__: str = '0.2.0'
 
 def view_gains(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, pass_probability: typing.Any = None) -> ViewGainsResult:
     """
@@ -2516,4 +2537,4 @@ def view_utility(map: ExplorationMap, camera: typing.Any, camera_pose: typing.An
     (void cells, unknown cells) a camera at camera_pose (4x4) sees before the first occupied cell,
     casting a score_width x score_height grid of rays.
     """
-__version__: str = '0.1.0'
+__version__: str = '0.2.0'

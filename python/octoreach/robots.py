@@ -50,7 +50,8 @@ def data_dir() -> Path:
         if (c / "robots").is_dir():
             return c
     raise FileNotFoundError(
-        "example-robot-data is not installed (pip install example-robot-data, or `make demo` does it); "
+        "robots by name come from example-robot-data, which is not installed: install octoreach's robots extra "
+        "(pip install 'octoreach[robots]' beside an installed octoreach, or pip install example-robot-data); "
         "set OCTOREACH_ROBOT_DATA to a folder holding its robots/ to override"
     )
 

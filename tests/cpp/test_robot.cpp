@@ -95,7 +95,7 @@ TEST(Robot, ForwardKinematicsOfSomeLinks) {
 TEST(Robot, MatchesKdlForwardKinematics) {
   auto r = arm_robot();
   Chain c = r->chain("base_link", "tool0");
-  KDL::Chain kc = bench::to_kdl(c);
+  KDL::Chain kc = bench::to_kdl(bench::arrays_of(c));
   ASSERT_EQ(static_cast<int>(kc.getNrOfJoints()), c.dof());
   KDL::ChainFkSolverPos_recursive fk(kc);
   std::mt19937_64 rng(3);

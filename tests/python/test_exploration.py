@@ -37,7 +37,7 @@ def test_incremental_equals_from_scratch_after_each_insert():
 
 
 def test_same_occupancy_as_stock_octomap():
-    from octoreach import _bench
+    import octoreach_bench as _bench
 
     scene = ex.cluttered_scene()
     cam = DepthCamera(160, 120, FOV, 4.0)
@@ -150,7 +150,7 @@ def test_bad_inputs():
 
 
 def test_same_occupancy_as_stock_fine_resolution_noisy_clouds():
-    from octoreach import _bench
+    import octoreach_bench as _bench
 
     scene = ex.cluttered_scene()
     cam = DepthCamera(320, 240, FOV, 4.0, noise=0.003, seed=5)

@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from pose_helpers import pose_error, reachable_targets, rot_z, translation
-from octoreach import Obstacles, Robot, _bench, _core, robots
+import octoreach_bench as _bench
+from octoreach import Obstacles, Robot, _core, robots
 
 POS_TOL, ROT_TOL = 1e-4, 1e-3  # the IK defaults
 

@@ -83,19 +83,6 @@ void check_void_box(const std::vector<Eigen::Vector3d>& hull_vertices, const std
 
 }  // namespace
 
-OccupancyDigest occupancy_digest(const octomap::OcTree& tree) {
-  OccupancyDigest d;
-  detail::for_each_leaf_cell(tree, [&](CellKey c, const auto& it) {
-    bool occ = tree.isNodeOccupied(*it);
-    float lo = it->getLogOdds();
-    std::uint32_t lo_bits;
-    std::memcpy(&lo_bits, &lo, 4);
-    d.hash += detail::mix64(c ^ (std::uint64_t(lo_bits) << 48) ^ (std::uint64_t(occ) << 47), 0);
-    (occ ? d.occupied : d.free)++;
-  });
-  return d;
-}
-
 ExplorationMap::ExplorationMap(const ExplorationOptions& options) : options_(options) {
   if (!(options.resolution > 0) || !std::isfinite(options.resolution))
     throw std::invalid_argument("resolution must be a positive number of metres, got " +
