@@ -26,7 +26,7 @@ SOURCES := $(shell find cpp bindings python tests/cpp cmake urdf benchmarks/refe
            CMakeLists.txt pyproject.toml scripts/build_wheel.sh
 
 .PHONY: all demo demo-exploration stubs test test-cpp test-python test-packaging install sysdeps venv benchmarks \
-        clean fuzz test-sanitize wheel test-wheel sdist test-sdist check-sizes
+        clean fuzz test-sanitize wheel test-wheel sdist test-sdist check-sizes check-layers
 
 all: install
 
@@ -111,11 +111,16 @@ test-sanitize: install
 	cmake --build build/tsan -j $(JOBS) --target octoreach_thread_tests
 	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build/tsan/tests/cpp/octoreach_thread_tests
 
-test: check-sizes test-cpp test-packaging test-python
+test: check-sizes check-layers test-cpp test-packaging test-python
 
 # Size limits of the code: prints the largest file and function, names every one over its limit, fails if any.
 check-sizes:
 	$(PYTHON) scripts/check_sizes.py
+
+# The layering of docs/architecture.md: includes from cpp/src, no layer including a higher one, the table's files
+# present, recipes of at most eight files.
+check-layers:
+	$(PYTHON) scripts/check_layers.py
 
 # The release check: the repaired wheel in a bare Debian 12 root (debootstrap minbase + python3-venv, cached
 # in build/debian12-root), installed with its extras from PyPI, runs tests/wheel/smoke.py.

@@ -1,7 +1,7 @@
 #pragma once
 // Argument conversion shared by the Robot, Arm, Chain and map bindings: robot configurations and arms.
 #include "common.hpp"
-#include "octoreach/arm.hpp"
+#include "octoreach/arm_discovery.hpp"
 #include "octoreach/robot.hpp"
 
 namespace octoreach::py_bindings {

@@ -3,6 +3,7 @@
 // OCTOREACH_VERSION comes from the exported target's compile definitions in a real consumer.
 #define OCTOREACH_VERSION "public-headers-test"
 
+#include <octoreach/arm_discovery.hpp>
 #include <octoreach/camera_link.hpp>
 #include <octoreach/chain.hpp>
 #include <octoreach/collision.hpp>
@@ -26,6 +27,7 @@ int use(const std::string& urdf) {
   auto pairs = robot->compute_allowed_collisions(10, 0);
   auto wider = robot->with_allowed_collisions(pairs);
   octoreach::SelfCollisionReport report = octoreach::self_collision_report(*robot);
+  for (const octoreach::Arm& a : octoreach::find_arms(*robot)) std::cout << a.name << " " << a.reason << "\n";
   std::cout << octoreach::camera_link(*robot).link << " " << report.free_share() << "\n";
   std::cout << robot->links().at(0).shapes.size() << " " << robot->links().at(0).visuals.size() << " "
             << robot->source().urdf << " " << octoreach::kPi << "\n";

@@ -10,7 +10,7 @@
 
 #include "common/format.hpp"
 #include "common/nearest_names.hpp"
-#include "octoreach/arm.hpp"
+#include "octoreach/arm_discovery.hpp"
 #include "robot/link_names.hpp"
 
 namespace octoreach {
