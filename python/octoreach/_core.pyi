@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import types
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'CameraIntrinsics', 'Cancelled', 'CapabilityBlocks', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'InversePointMap', 'MapProvenance', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'base_pose', 'default_reference', 'find_arms', 'grasp_orientations', 'infer_approach_axis', 'limits', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'next_best_view', 'ranks_before', 'score_views', 'set_progress_factory', 'view_gains', 'view_utility']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'ArmReport', 'CameraIntrinsics', 'CameraLink', 'Cancelled', 'CapabilityBlocks', 'CapabilityLookup', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'HeldJoint', 'InversePointMap', 'MapProvenance', 'MapWarning', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PairHits', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'SelfCollisionOptions', 'SelfCollisionReport', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'arm_report', 'base_pose', 'camera_link', 'default_reference', 'expect_view', 'exposed_cells', 'find_arms', 'find_camera_link', 'grasp_orientations', 'infer_approach_axis', 'limits', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'missed_cells', 'next_best_view', 'ranks_before', 'score_views', 'self_collision_report', 'set_progress_factory', 'view_gains', 'view_utility', 'visibility_curve', 'void_enclosure']
 class Cancelled(KeyboardInterrupt):
     pass
 class Shape:
@@ -470,6 +470,12 @@ class Robot:
         """
         {link name: [Visual]} of the links with <visual> elements.
         """
+    @property
+    def allowed_collision_sources(self) -> list:
+        """
+        (link_a, link_b, reason) of every allowed pair, in the order of allowed_collisions; reason: 'adjacent',
+        'SRDF', 'never in collision', 'always in collision', 'in collision at home' (sampled) or 'given'.
+        """
 class Visual:
     """
     One URDF <visual> of a link: its Shape (link frame) and colour.
@@ -869,6 +875,12 @@ class CapabilityMap:
     @property
     def voxel_count(self) -> int:
         ...
+    @property
+    def warning(self) -> str:
+        """
+        One line when the map looks suspicious (its best voxel reaches few approach directions:
+        something blocks the wrist), with what to try; '' otherwise. Builds emit it as a MapWarning.
+        """
 class CapabilityBlocks:
     """
     The block build of a capability map (block_size voxels per block edge, default 16): one FK sampling
@@ -1361,6 +1373,12 @@ class SurfaceMap:
     @property
     def z_range(self) -> tuple[float, float]:
         ...
+    @property
+    def warning(self) -> str:
+        """
+        One line when the build looks suspicious (the surface at the edge of the arm's reach), with
+        what to try; '' otherwise and for a loaded map. Builds emit it as a MapWarning.
+        """
 class CostMap:
     """
     2D navigation cost map: grid[row, col] covers x in [ox + col r, ...), y in [oy + row r, ...);
@@ -2538,3 +2556,174 @@ def view_utility(map: ExplorationMap, camera: typing.Any, camera_pose: typing.An
     casting a score_width x score_height grid of rays.
     """
 __version__: str = '0.2.0'
+class SelfCollisionOptions:
+    """
+    What self_collision_report samples (defaults defined once, in C++).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def joints(self) -> list[str]:
+        """
+        Joints drawn at random (names; empty: every joint).
+        """
+    @joints.setter
+    def joints(self, arg0: collections.abc.Sequence[str]) -> None:
+        ...
+    @property
+    def links(self) -> list[str]:
+        """
+        Only the checked pairs of two of these links count (empty: every pair).
+        """
+    @links.setter
+    def links(self, arg0: collections.abc.Sequence[str]) -> None:
+        ...
+    @property
+    def reference(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Values of the joints not drawn (empty: home()).
+        """
+    @reference.setter
+    def reference(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
+        ...
+    @property
+    def samples(self) -> int:
+        """
+        Random configurations.
+        """
+    @samples.setter
+    def samples(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @seed.setter
+    def seed(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def threads(self) -> int:
+        """
+        0: every core.
+        """
+    @threads.setter
+    def threads(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class PairHits:
+    """
+    A checked link pair and the sampled configurations that put it in collision.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def hits(self) -> int:
+        ...
+    @property
+    def link_a(self) -> str:
+        ...
+    @property
+    def link_b(self) -> str:
+        ...
+class SelfCollisionReport:
+    """
+    Random configurations free of self-collision and the pairs that collide, most often first.
+    """
+    FREE_SHARE_HINT: typing.ClassVar[float] = 0.75
+    def __repr__(self) -> str:
+        ...
+    @property
+    def free(self) -> int:
+        ...
+    @property
+    def free_share(self) -> float:
+        ...
+    @property
+    def pairs(self) -> list[PairHits]:
+        ...
+    @property
+    def samples(self) -> int:
+        ...
+    @property
+    def suspicious(self) -> bool:
+        """
+        free_share below FREE_SHARE_HINT: the collision model likely blocks the joints.
+        """
+class CameraLink:
+    """
+    A robot's camera link and why it was chosen.
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def link(self) -> str:
+        ...
+    @property
+    def reason(self) -> str:
+        """
+        'given', or how find_camera_link found it.
+        """
+class HeldJoint:
+    """
+    A moving joint a map build holds still, at its reference value (rad or m).
+    """
+    def __repr__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> float:
+        ...
+class ArmReport:
+    """
+    An arm's joints as map builds see them.
+    """
+    @property
+    def base_to_include_held(self) -> str:
+        """
+        The link to give as the chain's base (--base LINK) to include every held joint; '' when none.
+        """
+    @property
+    def held(self) -> list[HeldJoint]:
+        """
+        Moving joints between the root and the arm's base link, held at default_reference().
+        """
+    @property
+    def moving(self) -> list[str]:
+        """
+        The chain's moving joints, base to tip.
+        """
+    @property
+    def self_collision(self) -> SelfCollisionReport:
+        """
+        The arm's joints drawn at random, the rest of the robot at default_reference(); only pairs of two
+        links the arm moves count (its collision model fighting its joints).
+        """
+    @property
+    def with_body(self) -> SelfCollisionReport:
+        """
+        The same draws with every checked pair (the body too).
+        """
+class MapWarning(UserWarning):
+    """
+    A map build whose result looks suspicious (a capability map whose best voxel reaches few directions, a
+    surface at the edge of the arm's reach): the message says why and what to try.
+    """
+def arm_report(robot: Robot, arm: typing.Any, options: typing.Any = None, progress: typing.Any = False, **kwargs) -> ArmReport:
+    """
+    The ArmReport of an arm (a name, an Arm or a (base_link, tip_link) tuple); keywords set SelfCollisionOptions
+    fields of the arm's self-collision sampling (samples, seed, threads).
+    """
+def camera_link(robot: Robot, given: typing.Any = None) -> CameraLink:
+    """
+    `given` checked against the robot's links (reason 'given'), or find_camera_link(robot) when it is None.
+    """
+def find_camera_link(robot: Robot) -> CameraLink:
+    """
+    The robot's head camera link: the links named like a camera on one rigid body (on the head when they are
+    on several), else the end of the head; ValueError naming the candidates and asking for the link otherwise.
+    """
+def self_collision_report(robot: Robot, options: typing.Any = None, progress: typing.Any = False, **kwargs) -> SelfCollisionReport:
+    """
+    How often configurations drawn uniformly inside the joint limits are free of self-collision, and how often
+    each checked pair collides; keywords set SelfCollisionOptions fields (samples, seed, joints, reference).
+    """
