@@ -6,27 +6,42 @@ namespace octoreach::py_bindings {
 
 namespace {
 
+// A box added with the GIL released while the scene's exclusive lock is taken (see the mutators below).
+void unlocked_add_box(Scene& s, const py::object& lo, const py::object& hi) {
+  const Eigen::Vector3d l = vec3_from(lo, "lo"), h = vec3_from(hi, "hi");
+  py::gil_scoped_release release;
+  s.add_box(l, h);
+}
+
 void wrap_scene(py::module_& m) {
   py::class_<Scene>(m, "Scene",
                     "Simulated world: Shapes (boxes with any pose, cylinders, spheres, meshes, OctoMaps), crates, closed\n"
                     "boxes with an opening, boards. Whatever it holds is seen by the DepthCamera and is an obstacle\n"
                     "(obstacles()). Metres, world frame.")
       .def(py::init<>())
-      .def("add_shape", py::overload_cast<const Shape&>(&Scene::add), py::arg("shape"), "Adds a Shape (world frame).")
+      // Mutators release the GIL before they wait for the scene's exclusive lock: a capture on another thread
+      // holds the shared lock and may need the GIL to poll for Ctrl-C.
+      .def("add_shape", py::overload_cast<const Shape&>(&Scene::add), py::arg("shape"),
+           py::call_guard<py::gil_scoped_release>(), "Adds a Shape (world frame).")
       .def("add_obstacles", py::overload_cast<const Obstacles&>(&Scene::add), py::arg("obstacles"),
+           py::call_guard<py::gil_scoped_release>(),
            "Adds every shape of an Obstacles set (a Room's, a Surface's).")
       .def_property_readonly("shapes", &Scene::shapes, "Every Shape of the scene (world frame), in the order added.")
       .def("obstacles", &Scene::obstacles, "The scene's shapes as Obstacles (for collision checks).")
-      .def("add_box", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_box(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
+      .def("add_box", [](Scene& s, const py::object& lo, const py::object& hi) { unlocked_add_box(s, lo, hi); },
            py::arg("lo"), py::arg("hi"), "Solid box (a board is a thin box).")
-      .def("add_board", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_box(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
+      .def("add_board", [](Scene& s, const py::object& lo, const py::object& hi) { unlocked_add_box(s, lo, hi); },
            py::arg("lo"), py::arg("hi"))
       .def("add_crate", [](Scene& s, const py::object& lo, const py::object& hi, double th) {
-             s.add_crate(vec3_from(lo, "lo"), vec3_from(hi, "hi"), th);
+             const Eigen::Vector3d l = vec3_from(lo, "lo"), h = vec3_from(hi, "hi");
+             py::gil_scoped_release release;
+             s.add_crate(l, h, th);
            }, py::arg("lo"), py::arg("hi"), py::arg("thickness") = 0.02, "Open-topped crate; its inside is an interior.")
       .def("add_closed_box", [](Scene& s, const py::object& lo, const py::object& hi, double th, const std::string& face,
                                 double w, double h) {
-             s.add_closed_box(vec3_from(lo, "lo"), vec3_from(hi, "hi"), th, face, w, h);
+             const Eigen::Vector3d l = vec3_from(lo, "lo"), u = vec3_from(hi, "hi");
+             py::gil_scoped_release release;
+             s.add_closed_box(l, u, th, face, w, h);
            }, py::arg("lo"), py::arg("hi"), py::arg("thickness") = 0.02, py::arg("face") = "-x",
            py::arg("opening_width") = 0.1, py::arg("opening_height") = 0.1,
            "Closed box with one opening centred in face '+x', '-x', '+y', '-y' or '+z'; its inside is an interior.")
@@ -35,11 +50,16 @@ void wrap_scene(py::module_& m) {
              IndexTriples tri = index_triples_from(triangles, v.size(), "triangles");
              std::vector<Eigen::Vector3i> t(std::size_t(tri.rows()));
              for (Eigen::Index i = 0; i < tri.rows(); ++i) t[std::size_t(i)] = tri.row(i).transpose();
+             py::gil_scoped_release release;
              s.add_mesh(v, t);
            }, py::arg("vertices"), py::arg("triangles"))
-      .def("load_octomap", &Scene::load_octomap, py::arg("path"),
+      .def("load_octomap", &Scene::load_octomap, py::arg("path"), py::call_guard<py::gil_scoped_release>(),
            "Adds the occupied cells of an OctoMap .bt file to the world (OSError if it cannot be read).")
-      .def("add_interior", [](Scene& s, const py::object& lo, const py::object& hi) { s.add_interior(vec3_from(lo, "lo"), vec3_from(hi, "hi")); },
+      .def("add_interior", [](Scene& s, const py::object& lo, const py::object& hi) {
+             const Eigen::Vector3d l = vec3_from(lo, "lo"), h = vec3_from(hi, "hi");
+             py::gil_scoped_release release;
+             s.add_interior(l, h);
+           },
            py::arg("lo"), py::arg("hi"), "Records a region of interest for coverage figures.")
       .def_property_readonly("boxes", [](const Scene& s) {
         py::list out;
