@@ -13,7 +13,7 @@ void wrap_camera_link(py::module_& m) {
         "The robot's head camera link: the links named like a camera on one rigid body (on the head when they are\n"
         "on several), else the end of the head; ValueError naming the candidates and asking for the link otherwise.");
   m.def("camera_link", [](const Robot& robot, const py::object& given) {
-          return camera_link(robot, given.is_none() ? std::string() : cast_arg<std::string>(given, "camera_link", "a link name (str) or None"));
+          return camera_link(robot, given.is_none() ? std::string() : cast_arg<std::string>(given, "given", "a link name (str) or None"));
         }, py::arg("robot"), py::arg("given") = py::none(),
         "`given` checked against the robot's links (reason 'given'), or find_camera_link(robot) when it is None.");
 }
