@@ -120,6 +120,15 @@ class RobotLayer:
             handle.wxyz = _wxyz(T[:3, :3])
             handle.position = T[:3, 3]
 
+    def points(self) -> np.ndarray:
+        """The robot's mesh vertices (N, 3) in the world frame, at its configuration and base pose."""
+        poses = self.meshes.robot.link_poses(self.q)
+        pts = []
+        for link, mesh in self.meshes.meshes.items():
+            T = self.base_pose @ poses[link]
+            pts.append(mesh.vertices @ T[:3, :3].T + T[:3, 3])
+        return np.vstack(pts) if pts else np.zeros((1, 3))
+
     def set_base_pose(self, T) -> None:
         """Moves the root link to the 4x4 world pose T."""
         T = np.asarray(T, dtype=float)
