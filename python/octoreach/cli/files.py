@@ -42,8 +42,8 @@ def _cmd_query(args) -> int:
         poses = np.array([[float(x), float(y), float(z), angle(t)] for x, y, z, t in args.pose], dtype=float)
     except argparse.ArgumentTypeError as e:
         raise ValueError(f"--pose: {e}") from None
-    touched = _touched(smap, poses, args)
-    for pose, r, hit in zip(poses, smap.reachability(poses), touched):
+    rs = smap.reachability(poses)  # checks the poses first
+    for pose, r, hit in zip(poses, rs, _touched(smap, poses, args)):
         note = f"  in collision with {hit!r}" if hit else ""
         print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}{note}")
     return 0
