@@ -22,6 +22,13 @@ def _cmd_info(args) -> int:
         print(f"  values: min {values[values > 0].min():.4f}, max {values.max():.4f}, voxels {len(centres)}")
     lo, hi = m.bounds
     print(f"  bounds: {np.round(lo, 3).tolist()} .. {np.round(hi, 3).tolist()}")
+    room = getattr(m, "room", None)
+    if room is not None:
+        others = list(dict.fromkeys(list(room.obstacles.names)[room.surface_count:]))  # each name once
+        print("  room: none recorded (a file written before maps recorded their room)" if room.empty else
+              f"  room: {len(room.obstacles)} obstacles ({room.surface_count} of the surface; "
+              f"{', '.join(others[:8]) or 'no others'}{' ...' if len(others) > 8 else ''}), "
+              f"body of {len(room.body)} shapes on {len(set(room.body_links))} links")
     return 0
 
 

@@ -36,7 +36,7 @@ def shape_mesh(shape) -> mesh_files.Mesh | None:
 
 def room_obstacles(room):
     """(Obstacles, surface_count, label) of a room given as a MapRoom (its first surface_count obstacles are its
-    map's surface), a rooms.Room, a room file path or an Obstacles."""
+    map's surface), a rooms.Room or a room file path (its working surfaces first), or an Obstacles."""
     from .._core import MapRoom, Obstacles
 
     if isinstance(room, MapRoom):
@@ -45,13 +45,20 @@ def room_obstacles(room):
         return room, 0, "the given room"
     from .. import room_checks
 
+    from ..rooms import Room
+
     label = os.fspath(room) if isinstance(room, (str, os.PathLike)) else "the given room"
+    if isinstance(room, (str, os.PathLike)):
+        room = Room.load(room)
+    if isinstance(room, Room):  # its working surfaces (boards, tops, their legs and boxes) come first
+        return room.obstacles(), sum(len(s.obstacles()) for s in room.surfaces.values()), label
     return room_checks.scene_obstacles(room), 0, label
 
 
 class RoomLayer:
-    """A room's obstacles under a frame node `name`: `surface` (the map's own surface: slab and boxes) and
-    `obstacles` (the rest) as meshes, `octomap_<i>` as cells."""
+    """A room's obstacles under a frame node `name`: `surface` (the first `surface_count` obstacles: the map's own
+    surface, or a room's working surfaces, with their legs and boxes) and `obstacles` (the rest) as meshes,
+    `octomap_<i>` as cells."""
 
     def __init__(self, scene, obstacles, surface_count: int = 0, name: str = "/room"):
         self.scene, self.name = scene, name
@@ -74,8 +81,8 @@ class RoomLayer:
             points.append(mesh.vertices)
             self.handles[key] = scene.add_mesh_simple(
                 f"{name}/{key}", np.asarray(mesh.vertices, np.float32), np.asarray(mesh.faces, np.uint32),
-                color=colours.SURFACE if key == "surface" else colours.ROOM, side="double", cast_shadow=False,
-                opacity=None if key == "surface" else ROOM_OPACITY)
+                color=colours.SURFACE if key == "surface" else colours.ROOM, side="double", flat_shading=True,
+                cast_shadow=False, opacity=None if key == "surface" else ROOM_OPACITY)
         self.points = np.vstack(points) if points else np.zeros((0, 3))
 
     def _octree(self, shape, node: str) -> np.ndarray:

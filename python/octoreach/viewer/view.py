@@ -89,7 +89,7 @@ def _show(v: Viewer, loaded, robot, q, joints, samples, seed, steps, surface, ro
         r = files.robot_by_name(robot) if isinstance(robot, str) else robot
         v.add_robot(r, q=q)
         if not loaded and v.room_layer is None:  # the robot alone: framed
-            v.frame_camera(v.robot_layer.points(), distance=0.9)
+            v.frame_camera(v.robot_layer.points(), distance=1.4)
     if joints and v.robot_layer is not None:
         v.robot_layer.set_configuration(files.with_joints(v.robot_layer.meshes.robot, v.robot_layer.q, joints))
     layer, rl = v.capability_map, v.robot_layer
