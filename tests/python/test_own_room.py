@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import re
-import socket
 import subprocess
 import sys
 
@@ -18,6 +17,7 @@ import octoreach
 from octoreach.viewer import colours
 from octoreach.viewer.browser import Browser, chromium_missing
 
+from browser_helpers import changed as _changed, free_port as _free_port
 from own_robot import urdf
 from own_room import COUNTER, COUNTER_AREA, room
 
@@ -102,25 +102,6 @@ def test_the_l_shaped_counter_is_drawn_with_its_own_area():
     assert octoreach.Surface(COUNTER).contains(centroids[top]).all()  # no triangle over the floor in the corner
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _changed(browser, before: np.ndarray, timeout: float = 15.0) -> np.ndarray:
-    import time
-
-    t_end = time.time() + timeout
-    while time.time() < t_end:
-        time.sleep(0.2)
-        px = browser.pixels()
-        if np.abs(px.astype(int) - before).mean() > 0.01:
-            time.sleep(0.3)
-            return browser.pixels()
-    raise AssertionError("the page did not change")
-
-
 @pytest.mark.skipif(_MISSING is not None, reason=f"no headless browser: {_MISSING}")
 def test_the_viewer_shows_your_robot_in_your_kitchen(kitchen, tmp_path):
     d, _ = kitchen
@@ -136,11 +117,11 @@ def test_the_viewer_shows_your_robot_in_your_kitchen(kitchen, tmp_path):
             px = b.screenshot(tmp_path / "kitchen.png") and b.pixels()
             assert px.std() > 20, "blank page"
             v.robot_layer.root.visible = False
-            no_robot = _changed(b, px)
+            no_robot = _changed(b, px, timeout=15.0)
             robot_px = np.abs(px.astype(int) - no_robot).max(axis=-1) > 8
             assert robot_px.sum() > 300, int(robot_px.sum())
             v.room_layer.visible = False
-            no_room = _changed(b, no_robot)
+            no_room = _changed(b, no_robot, timeout=15.0)
             room_px = np.abs(no_robot.astype(int) - no_room).max(axis=-1) > 8
             assert room_px.sum() > 5000, int(room_px.sum())
             # The room's own colours: the blue-grey of its obstacles and the counter's brown, lit.

@@ -5,7 +5,6 @@ from __future__ import annotations
 import socket
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -14,6 +13,8 @@ import pytest
 import octoreach
 from octoreach.viewer import Viewer, colours
 from octoreach.viewer.browser import Browser, chromium_missing
+
+from browser_helpers import changed as _changed, free_port as _free_port
 
 _MISSING = chromium_missing()
 OLD_MAP = Path(__file__).parent / "data" / "test_arm_table_format1.orsm"  # written by octoreach 0.1.0 (format 1)
@@ -35,24 +36,6 @@ def viewer():
     v = Viewer(port=_free_port(), verbose=False)
     yield v
     v.close()
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _changed(browser, before: np.ndarray, timeout: float = 10.0) -> np.ndarray:
-    """The page's pixels once they differ from `before` (and have settled)."""
-    t_end = time.time() + timeout
-    while time.time() < t_end:
-        time.sleep(0.2)
-        px = browser.pixels()
-        if np.abs(px.astype(int) - before).mean() > 0.01:
-            time.sleep(0.3)
-            return browser.pixels()
-    raise AssertionError("the page did not change")
 
 
 def _hue_bins(rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -18,22 +18,6 @@ from . import cells, colours, mesh_files
 ROOM_OPACITY = 0.8
 
 
-def shape_mesh(shape) -> mesh_files.Mesh | None:
-    """A box, cylinder, sphere or mesh Shape as a triangle mesh in its parent frame (its pose applied); None for
-    an OctoMap (drawn as cells)."""
-    if shape.kind == "box":
-        mesh = mesh_files.box(shape.size)
-    elif shape.kind == "cylinder":
-        mesh = mesh_files.cylinder(shape.radius, shape.length)
-    elif shape.kind == "sphere":
-        mesh = mesh_files.sphere(shape.radius)
-    elif shape.kind == "mesh":
-        mesh = mesh_files.Mesh(*shape.mesh_triangles())
-    else:
-        return None
-    return mesh.transformed(shape.pose)
-
-
 def room_obstacles(room):
     """(Obstacles, surface_count, label) of a room given as a MapRoom (its first surface_count obstacles are its
     map's surface), a rooms.Room or a room file path (its working surfaces first), or an Obstacles."""
@@ -71,7 +55,7 @@ class RoomLayer:
             if shape.kind == "octree":
                 points.append(self._octree(shape, f"{name}/octomap_{len(self.handles)}"))
                 continue
-            mesh = shape_mesh(shape)
+            mesh = mesh_files.shape_mesh(shape)
             if mesh is not None and len(mesh.faces):
                 parts["surface" if i < surface_count else "obstacles"].append(mesh)
         for key, meshes in parts.items():
