@@ -278,6 +278,7 @@ void wrap_capability_blocks(py::module_& m);
 void wrap_point_map(py::module_& m);
 void wrap_surface(py::module_& m);
 void wrap_surface_map(py::module_& m);
+void wrap_map_room(py::module_& m);
 void wrap_pose_sampler(py::module_& m);
 void wrap_simulation(py::module_& m);
 void wrap_exploration_map(py::module_& m);

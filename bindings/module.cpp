@@ -24,7 +24,8 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "octoreach compiled core: robot model, IK, collision, reachability maps, exploration";
   m.attr("__version__") = octoreach::version();
   m.def("map_format_version", &octoreach::map_format_version,
-        "Version of the map file format this library writes and reads (part of a map cache key).");
+        "The newest map file format version this library writes and reads (part of a map cache key); older\n"
+        "versions are read too, and each map kind writes its own (SurfaceMap.format_version).");
   py::register_exception<octoreach::Cancelled>(m, "Cancelled", PyExc_KeyboardInterrupt);
   g_main_thread = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
   octoreach::set_cancel_check(&python_interrupted);
@@ -56,6 +57,7 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_point_map(m);
   octoreach::py_bindings::wrap_surface(m);
   octoreach::py_bindings::wrap_surface_map(m);
+  octoreach::py_bindings::wrap_map_room(m);
   octoreach::py_bindings::wrap_pose_sampler(m);
   octoreach::py_bindings::wrap_simulation(m);
   octoreach::py_bindings::wrap_exploration_map(m);

@@ -18,7 +18,7 @@ HEADER_LAYER = {
     "arm_discovery": "kinematics", "chain": "kinematics", "arm": "maps", "arm_report": "maps",
     "orientation_set": "maps", "capability_map": "maps", "capability_blocks": "maps", "voxel_octree": "maps",
     "point_map": "maps", "pose_map": "maps", "surface": "maps", "surface_map": "maps", "pose_sampler": "maps",
-    "map_files": "maps", "map_provenance": "maps", "map_warnings": "maps", "exploration": "exploration",
+    "map_files": "maps", "map_provenance": "maps", "map_room": "maps", "map_warnings": "maps", "exploration": "exploration",
     "next_best_view": "exploration",
 }
 # Where a column of the architecture table looks for the names it lists.

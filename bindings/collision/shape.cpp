@@ -2,6 +2,8 @@
 #include "common.hpp"
 #include "octoreach/shape.hpp"
 
+#include <octomap/OcTree.h>
+
 namespace octoreach::py_bindings {
 
 namespace {
@@ -17,6 +19,20 @@ py::tuple mesh_arrays(const Shape& s) {
   for (std::size_t i = 0; i < triangles.size(); ++i)
     for (int k = 0; k < 3; ++k) w(py::ssize_t(i), k) = triangles[i][k];
   return py::make_tuple(to_points(vertices), f);
+}
+
+// (centres (N, 3), edges (N,)) of an OctoMap shape's occupied leaves, in its own frame (before `pose`).
+py::tuple octree_cells(const Shape& s) {
+  if (s.type != Shape::Type::Octree || !s.octree)
+    throw std::invalid_argument(std::string("a ") + s.type_name() + " has no OctoMap cells");
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> edges;
+  for (auto it = s.octree->begin_leafs(), end = s.octree->end_leafs(); it != end; ++it) {
+    if (!s.octree->isNodeOccupied(*it)) continue;
+    centres.emplace_back(it.getX(), it.getY(), it.getZ());
+    edges.push_back(it.getSize());
+  }
+  return py::make_tuple(to_points(centres), py::array_t<double>(py::ssize_t(edges.size()), edges.data()));
 }
 
 }  // namespace
@@ -62,6 +78,9 @@ void wrap_shape(py::module_& m) {
       .def("mesh_triangles", &mesh_arrays,
            "(vertices (N, 3), triangles (M, 3)) of a mesh shape in its own frame (before `pose`); ValueError for\n"
            "other kinds.")
+      .def("octree_cells", &octree_cells,
+           "(centres (N, 3), edges (N,)) of an OctoMap shape's occupied cells in its own frame (before `pose`);\n"
+           "ValueError for other kinds.")
       .def("__repr__", [](const Shape& s) { return std::string("<octoreach.Shape ") + s.type_name() + ">"; });
 }
 

@@ -107,6 +107,7 @@ template <class Map, class Class>
 void def_map_identity(Class& cls) {
   cls.attr("kind") = Map::kKind;
   cls.attr("extension") = Map::kExtension;
+  cls.attr("format_version") = Map::kFormatVersion;
   cls.def_property_readonly("provenance", &Map::provenance, "The robot the map was built for.")
       .def_property_readonly("robot_name", &Map::robot_name)
       .def_property_readonly("urdf_hash", &Map::urdf_hash)

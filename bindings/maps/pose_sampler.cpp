@@ -4,6 +4,39 @@
 
 namespace octoreach::py_bindings {
 
+namespace {
+
+// PoseSampler(in_collision=...): an Obstacles (the map's body against them), a tuple (robot, obstacles[, reference])
+// or a callable replaces the room check; None keeps it.
+void collision_arg(PoseSampler& s, const py::object& in_collision) {
+  if (py::isinstance<Obstacles>(in_collision)) {
+    s.set_room(in_collision.cast<std::shared_ptr<Obstacles>>());
+    return;
+  }
+  if (py::isinstance<py::tuple>(in_collision)) {
+    py::tuple t = in_collision;
+    if (t.size() < 2 || t.size() > 3)
+      throw std::invalid_argument("in_collision must be a callable or a tuple (robot, obstacles[, reference])");
+    Eigen::VectorXd ref = t.size() == 3 && !t[2].is_none()
+                              ? cast_arg<Eigen::VectorXd>(t[2], "in_collision[2] (reference)", "a float array")
+                              : Eigen::VectorXd();
+    s.set_collision(cast_arg<std::shared_ptr<Robot>>(t[0], "in_collision[0]", "an octoreach.Robot"),
+                    cast_arg<std::shared_ptr<Obstacles>>(t[1], "in_collision[1]", "an octoreach.Obstacles"),
+                    ref);
+  } else if (!in_collision.is_none()) {
+    if (!PyCallable_Check(in_collision.ptr()))
+      throw py::type_error("in_collision must be an Obstacles, a tuple (robot, obstacles[, reference]) or a callable, got " +
+                           type_name(in_collision));
+    py::function f = in_collision;
+    s.set_in_collision([f](const Eigen::Vector4d& c) {
+      py::gil_scoped_acquire gil;
+      return bool_result(f(c), "in_collision");
+    });
+  }
+}
+
+}  // namespace
+
 void wrap_pose_sampler(py::module_& m) {
   py::class_<CostMap>(m, "CostMap",
       "2D navigation cost map: grid[row, col] covers x in [ox + col r, ...), y in [oy + row r, ...);\n"
@@ -30,8 +63,9 @@ void wrap_pose_sampler(py::module_& m) {
   py::class_<PoseSampler>(m, "PoseSampler",
       "Samples good, well spread base poses (x, y, z, theta) from a surface map: the grounding attachment.")
       .def(py::init([](std::shared_ptr<SurfaceMap> map, int candidates, const Eigen::Vector4d& sigma, std::uint64_t seed,
-                       const py::object& is_free, const py::object& in_collision, std::size_t max_draws) {
+                       const py::object& is_free, const py::object& in_collision, std::size_t max_draws, bool room_check) {
              PoseSamplerOptions o;
+             o.room_check = room_check;
              o.candidates = candidates;
              o.discount_sigma = sigma;
              o.seed = seed;
@@ -47,34 +81,17 @@ void wrap_pose_sampler(py::module_& m) {
                  return bool_result(f(c), "is_free");
                });
              }
-             if (py::isinstance<py::tuple>(in_collision)) {
-               py::tuple t = in_collision;
-               if (t.size() < 2 || t.size() > 3)
-                 throw std::invalid_argument("in_collision must be a callable or a tuple (robot, obstacles[, reference])");
-               Eigen::VectorXd ref = t.size() == 3 && !t[2].is_none()
-                                         ? cast_arg<Eigen::VectorXd>(t[2], "in_collision[2] (reference)", "a float array")
-                                         : Eigen::VectorXd();
-               s.set_collision(cast_arg<std::shared_ptr<Robot>>(t[0], "in_collision[0]", "an octoreach.Robot"),
-                               cast_arg<std::shared_ptr<Obstacles>>(t[1], "in_collision[1]", "an octoreach.Obstacles"),
-                               ref);
-             } else if (!in_collision.is_none()) {
-               if (!PyCallable_Check(in_collision.ptr()))
-                 throw py::type_error("in_collision must be a callable or a tuple (robot, obstacles[, reference]), got " +
-                                      type_name(in_collision));
-               py::function f = in_collision;
-               s.set_in_collision([f](const Eigen::Vector4d& c) {
-                 py::gil_scoped_acquire gil;
-                 return bool_result(f(c), "in_collision");
-               });
-             }
+             collision_arg(s, in_collision);
              return s;
            }), py::arg("surface_map"), py::arg("candidates") = 40,
            py::arg("discount_sigma") = Eigen::Vector4d(0.5, 0.5, 0.5, M_PI / 4), py::arg("seed") = 0,
            py::arg("is_free") = py::none(), py::arg("in_collision") = py::none(), py::arg("max_draws") = 0,
-           py::keep_alive<1, 2>(),
+           py::arg("room_check") = PoseSamplerOptions().room_check, py::keep_alive<1, 2>(),
            "candidates: valid candidates per sample (best R_S x w wins). discount_sigma: S of eq. (3).\n"
-           "is_free: a CostMap or a callable (pose (4,) as x, y, z, theta) -> bool. in_collision: a tuple (robot, obstacles[,\n"
-           "reference configuration]) checked with FCL in C++, or a callable (pose (4,)) -> bool (True = in collision).")
+           "is_free: a CostMap or a callable (pose (4,) as x, y, z, theta) -> bool. By default the body is checked against\n"
+           "the room the map was built with (SurfaceMap.room); in_collision replaces that check: an Obstacles (the map's\n"
+           "body against them), a tuple (robot, obstacles[, reference configuration]) checked with FCL in C++, or a\n"
+           "callable (pose (4,)) -> bool (True = in collision). room_check=False turns the room check off.")
       .def("sample", [](PoseSampler& s, const py::object& k) -> py::object {
              auto one = [&]() {
                auto p = s.sample();
@@ -110,6 +127,8 @@ void wrap_pose_sampler(py::module_& m) {
              return s.discount(c);
            }, py::arg("pose"),
            "w of eq. (3) for a pose against the history.")
+      .def_property_readonly("checks_room", &PoseSampler::checks_room,
+                             "True when the map's body is checked against a room (its own, or in_collision's Obstacles).")
       .def_property_readonly("last_counts", [](const PoseSampler& s) {
         auto c = s.last_counts();
         py::dict d;

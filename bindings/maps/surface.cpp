@@ -37,6 +37,14 @@ void wrap_surface(py::module_& m) {
         for (const auto& [size, pose] : s.boxes()) out.append(py::make_tuple(size, pose_to_array(pose)));
         return out;
       }, "The obstacle boxes as (size (3,), pose (4, 4)) pairs.")
+      .def_property_readonly("triangles", [](const Surface& s) {
+        py::array_t<std::int64_t> out({py::ssize_t(s.triangles().size()), py::ssize_t(3)});
+        auto w = out.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < s.triangles().size(); ++i)
+          for (int k = 0; k < 3; ++k) w(py::ssize_t(i), k) = s.triangles()[i][k];
+        return out;
+      }, "The polygon's triangles (M, 3) as indices into vertices (ear clipping; any simple polygon), wound\n"
+         "counter-clockwise seen from the normal; their areas add up to area.")
       .def_property_readonly("normal", &Surface::normal)
       .def_property_readonly("area", &Surface::area)
       .def_property_readonly("thickness", &Surface::thickness)

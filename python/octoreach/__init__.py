@@ -26,6 +26,7 @@ from ._core import (  # noqa: F401
     ExplorationMap,
     ExploreOptions,
     InversePointMap,
+    MapRoom,
     MapWarning,
     NbvOptions,
     NbvResult,
@@ -65,7 +66,7 @@ from ._core import (  # noqa: F401
     view_gains,
     view_utility,
 )
-from . import arms, cache, limits, map_files, progress, robots, rooms, surface_maps  # noqa: F401
+from . import arms, cache, limits, map_files, progress, robots, room_checks, rooms, surface_maps  # noqa: F401
 from .rooms import Room  # noqa: F401
 
 # How progress=True is drawn by the compiled builds: the core calls back into the package's progress bar.
@@ -95,7 +96,7 @@ def view(*items, **kwargs):
 
 
 __all__ = [
-    "MapWarning", "ArmReport", "CameraLink",
+    "MapRoom", "MapWarning", "ArmReport", "CameraLink",
     "SelfCollisionOptions", "SelfCollisionReport", "arm_report", "camera_link", "find_camera_link",
     "self_collision_report",
     "AllowedCollisionOptions", "Arm", "CameraIntrinsics", "Cancelled", "CapabilityBlocks", "CapabilityLookup",

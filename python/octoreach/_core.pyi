@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import types
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'ArmReport', 'CameraIntrinsics', 'CameraLink', 'Cancelled', 'CapabilityBlocks', 'CapabilityLookup', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'HeldJoint', 'InversePointMap', 'MapProvenance', 'MapWarning', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PairHits', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'SelfCollisionOptions', 'SelfCollisionReport', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'arm_report', 'base_pose', 'camera_link', 'default_reference', 'expect_view', 'exposed_cells', 'find_arms', 'find_camera_link', 'grasp_orientations', 'infer_approach_axis', 'limits', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'missed_cells', 'next_best_view', 'ranks_before', 'score_views', 'self_collision_report', 'set_progress_factory', 'view_gains', 'view_utility', 'visibility_curve', 'void_enclosure']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'ArmReport', 'CameraIntrinsics', 'CameraLink', 'Cancelled', 'CapabilityBlocks', 'CapabilityLookup', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'HeldJoint', 'InversePointMap', 'MapProvenance', 'MapRoom', 'MapWarning', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PairHits', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'SelfCollisionOptions', 'SelfCollisionReport', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'arm_report', 'base_pose', 'camera_link', 'default_reference', 'expect_view', 'exposed_cells', 'find_arms', 'find_camera_link', 'grasp_orientations', 'infer_approach_axis', 'limits', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'missed_cells', 'next_best_view', 'ranks_before', 'score_views', 'self_collision_report', 'set_progress_factory', 'view_gains', 'view_utility', 'visibility_curve', 'void_enclosure']
 class Cancelled(KeyboardInterrupt):
     pass
 class Shape:
@@ -50,6 +50,11 @@ class Shape:
         """
         (vertices (N, 3), triangles (M, 3)) of a mesh shape in its own frame (before `pose`); ValueError for
         other kinds.
+        """
+    def octree_cells(self) -> tuple:
+        """
+        (centres (N, 3), edges (N,)) of an OctoMap shape's occupied cells in its own frame (before `pose`);
+        ValueError for other kinds.
         """
     @property
     def kind(self) -> str:
@@ -773,6 +778,7 @@ class CapabilityMap:
     Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.
     """
     extension: typing.ClassVar[str] = '.orcm'
+    format_version: typing.ClassVar[int] = 1
     kind: typing.ClassVar[str] = 'capability'
     DEFAULT_LOOKUP: typing.ClassVar[CapabilityLookup]
     @staticmethod
@@ -1022,6 +1028,7 @@ class InversePointMap:
     Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.
     """
     extension: typing.ClassVar[str] = '.orpm'
+    format_version: typing.ClassVar[int] = 1
     kind: typing.ClassVar[str] = 'point'
     @staticmethod
     def build(robot: Robot, capability_map: CapabilityMap, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> InversePointMap:
@@ -1161,6 +1168,12 @@ class Surface:
     def normal(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[3, 1]"]:
         ...
     @property
+    def triangles(self) -> numpy.typing.NDArray[numpy.int64]:
+        """
+        The polygon's triangles (M, 3) as indices into vertices (ear clipping; any simple polygon), wound
+        counter-clockwise seen from the normal; their areas add up to area.
+        """
+    @property
     def thickness(self) -> float:
         ...
     @property
@@ -1275,6 +1288,7 @@ class SurfaceMap:
     Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.
     """
     extension: typing.ClassVar[str] = '.orsm'
+    format_version: typing.ClassVar[int] = 2
     kind: typing.ClassVar[str] = 'surface'
     @staticmethod
     def build(robot: Robot, arm: typing.Any, surface: Surface, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> SurfaceMap:
@@ -1347,6 +1361,12 @@ class SurfaceMap:
         The robot the map was built for.
         """
     @property
+    def room(self) -> MapRoom:
+        """
+        The room the map was built with (MapRoom: obstacles and body); empty (room.empty) for files written before
+        maps recorded their room.
+        """
+    @property
     def polygon(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"]:
         ...
     @property
@@ -1392,11 +1412,13 @@ class PoseSampler:
     """
     Samples good, well spread base poses (x, y, z, theta) from a surface map: the grounding attachment.
     """
-    def __init__(self, surface_map: SurfaceMap, candidates: typing.SupportsInt | typing.SupportsIndex = 40, discount_sigma: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"] = ..., seed: typing.SupportsInt | typing.SupportsIndex = 0, is_free: typing.Any = None, in_collision: typing.Any = None, max_draws: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, surface_map: SurfaceMap, candidates: typing.SupportsInt | typing.SupportsIndex = 40, discount_sigma: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"] = ..., seed: typing.SupportsInt | typing.SupportsIndex = 0, is_free: typing.Any = None, in_collision: typing.Any = None, max_draws: typing.SupportsInt | typing.SupportsIndex = 0, room_check: bool = True) -> None:
         """
         candidates: valid candidates per sample (best R_S x w wins). discount_sigma: S of eq. (3).
-        is_free: a CostMap or a callable (pose (4,) as x, y, z, theta) -> bool. in_collision: a tuple (robot, obstacles[,
-        reference configuration]) checked with FCL in C++, or a callable (pose (4,)) -> bool (True = in collision).
+        is_free: a CostMap or a callable (pose (4,) as x, y, z, theta) -> bool. By default the body is checked against
+        the room the map was built with (SurfaceMap.room); in_collision replaces that check: an Obstacles (the map's
+        body against them), a tuple (robot, obstacles[, reference configuration]) checked with FCL in C++, or a
+        callable (pose (4,)) -> bool (True = in collision). room_check=False turns the room check off.
         """
     def discount(self, pose: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[4, 1]"]) -> float:
         """
@@ -1416,7 +1438,46 @@ class PoseSampler:
         Poses returned so far (K, 4).
         """
     @property
+    def checks_room(self) -> bool:
+        """
+        True when the map's body is checked against a room (its own, or in_collision's Obstacles).
+        """
+    @property
     def last_counts(self) -> dict:
+        ...
+class MapRoom:
+    """
+    The room a surface map was built with (SurfaceMap.room): its obstacles (world frame) and the robot's body as
+    the build checked it (in the map's reference frame). Saved in the map file.
+    """
+    def __repr__(self) -> str:
+        ...
+    def body_collides(self, poses: typing.Any, obstacles: Obstacles | None = None) -> numpy.typing.NDArray[numpy.bool_]:
+        """
+        (N,) bools: whether the body at base poses (N, 4) touches `obstacles` (default: the recorded ones).
+        """
+    def differences(self, obstacles: Obstacles, tolerance: typing.SupportsFloat = 0.0001) -> list[str]:
+        """
+        How `obstacles` differ from the recorded ones: a line per obstacle in only one of them.
+        """
+    def touched(self, poses: typing.Any, obstacles: Obstacles | None = None) -> list[str]:
+        """
+        Per base pose (N, 4), the name of the first obstacle the body touches there ('' when none).
+        """
+    @property
+    def body(self) -> list[Shape]:
+        ...
+    @property
+    def body_links(self) -> list[str]:
+        ...
+    @property
+    def empty(self) -> bool:
+        ...
+    @property
+    def obstacles(self) -> Obstacles:
+        ...
+    @property
+    def surface_count(self) -> int:
         ...
 class Scene:
     """
@@ -2476,7 +2537,8 @@ limits: types.MappingProxyType[str, int | float]
 """The numeric limits octoreach checks its inputs against (cpp/include/octoreach/limits.hpp), read-only."""
 def map_format_version() -> int:
     """
-    Version of the map file format this library writes and reads (part of a map cache key).
+    The newest map file format version this library writes and reads (part of a map cache key); older
+    versions are read too, and each map kind writes its own (SurfaceMap.format_version).
     """
 def map_kind(path: str) -> str:
     """

@@ -157,8 +157,10 @@ class Room:
             raise KeyError(f"no surface {without!r} in the room (surfaces: {', '.join(self._surfaces) or 'none'})")
         out = Obstacles()
         for name, surface in self._surfaces.items():
-            if name != without:
-                out.add(surface.obstacles())
+            if name != without:  # each piece named after its surface: "counter", "counter/box" (legs, boxes)
+                own = surface.obstacles()
+                for shape, part in zip(own.shapes, own.names):
+                    out.add_shape(shape, name if part == "surface" else f"{name}/{part.removeprefix('surface_')}")
         out.add(self._objects)
         return out
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import socket
 import subprocess
 import sys
-import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,7 +14,10 @@ import octoreach
 from octoreach.viewer import Viewer, colours
 from octoreach.viewer.browser import Browser, chromium_missing
 
+from browser_helpers import changed as _changed, free_port as _free_port
+
 _MISSING = chromium_missing()
+OLD_MAP = Path(__file__).parent / "data" / "test_arm_table_format1.orsm"  # written by octoreach 0.1.0 (format 1)
 needs_chromium = pytest.mark.skipif(_MISSING is not None, reason=f"no headless browser: {_MISSING}")
 
 
@@ -35,24 +38,6 @@ def viewer():
     v.close()
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _changed(browser, before: np.ndarray, timeout: float = 10.0) -> np.ndarray:
-    """The page's pixels once they differ from `before` (and have settled)."""
-    t_end = time.time() + timeout
-    while time.time() < t_end:
-        time.sleep(0.2)
-        px = browser.pixels()
-        if np.abs(px.astype(int) - before).mean() > 0.01:
-            time.sleep(0.3)
-            return browser.pixels()
-    raise AssertionError("the page did not change")
-
-
 def _hue_bins(rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Of RGB colours (..., 3): which are saturated (max - min > 40 of 255) and their hue in 10-degree bins."""
     c = np.asarray(rgb, dtype=float).reshape(-1, 3)
@@ -67,7 +52,7 @@ def test_scene_nodes_and_theta_slider(arm_map, viewer):
     robot, _, sm = arm_map
     layer = viewer.add_surface_map(sm, samples=3)  # the robot comes from the map's robot name
     for node in ("/robot", "/robot/base_link", "/robot/tool0" if "tool0" in viewer.robot_layer.links else
-                 "/robot/wrist_3_link", "/surface", "/surface_map", "/surface_map/best", "/surface_map/theta_00",
+                 "/robot/wrist_3_link", "/room/surface", "/surface_map", "/surface_map/best", "/surface_map/theta_00",
                  f"/surface_map/theta_{sm.theta_bins - 1:02d}", "/samples/footprints", "/samples/headings"):
         assert viewer.has_node(node), node
     # The sampled poses' R_S (the map's own lookup) listed in the control panel, one line a pose.
@@ -132,11 +117,17 @@ def test_surface_obstacles_drawn_or_said_missing(arm_map, viewer):
     assert not viewer.notes
     other = Viewer(port=_free_port(), verbose=False)
     try:
-        other.add_surface_map(sm, samples=0)  # as from a file: the polygon only, and a note saying so
-        assert not other.has_node("/surface/boxes") and not other.has_node("/surface/boxes/0")
-        assert any("polygon only" in n for n in other.notes)
+        other.add_surface_map(sm, samples=0)  # the room the map was built with: its table
+        assert other.has_node("/room/surface") and not other.notes
     finally:
         other.close()
+    old = Viewer(port=_free_port(), verbose=False)
+    try:  # a file written before maps recorded their room: the polygon only, and a note saying so
+        old.add_surface_map(octoreach.SurfaceMap.load(str(OLD_MAP)), samples=2)
+        assert old.has_node("/surface") and not old.has_node("/room")
+        assert any("records no room" in n for n in old.notes) and len(old.samples.poses) == 2
+    finally:
+        old.close()
 
 
 def test_map_files_load_any_kind(arm_map, tmp_path):

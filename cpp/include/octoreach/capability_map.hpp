@@ -76,6 +76,8 @@ class CapabilityMap {
   /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
   static constexpr char kKind[] = "capability";
   static constexpr char kExtension[] = ".orcm";
+  /// \brief The map file format version its files are written in.
+  static constexpr std::uint32_t kFormatVersion = 1;
 
   /// \brief Builds the map: forward-kinematics sampling finds candidate cells and IK seeds, IK at
   /// the voxel centres settles them, and a flood fill over neighbouring cells finds the rest.

@@ -15,7 +15,8 @@
 namespace octoreach {
 
 /// \brief The registry of map kinds: one alternative per kind a map file can hold. A map class joins it
-/// with its kind tag `kKind` (written in its files' header) and file extension `kExtension`, a static
+/// with its kind tag `kKind` (written in its files' header), file extension `kExtension` and the file format
+/// version it writes `kFormatVersion` (every version up to map_format_version() is read), a static
 /// `load(path)`, `save(path)` and `provenance()`.
 using AnyMap = std::variant<CapabilityMap, InversePointMap, SurfaceMap>;
 
@@ -23,6 +24,7 @@ using AnyMap = std::variant<CapabilityMap, InversePointMap, SurfaceMap>;
 struct MapKind {
   std::string tag;
   std::string extension;
+  int format_version = 1;  ///< the map file format version its files are written in
 };
 
 /// \brief Every kind of the registry, in the order of AnyMap's alternatives.

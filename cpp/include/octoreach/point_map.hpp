@@ -37,6 +37,8 @@ class InversePointMap {
   /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
   static constexpr char kKind[] = "point";
   static constexpr char kExtension[] = ".orpm";
+  /// \brief The map file format version its files are written in.
+  static constexpr std::uint32_t kFormatVersion = 1;
 
   static InversePointMap build(const Robot& robot, const CapabilityMap& capability, const PointMapOptions& options = {},
                                const ProgressCallback& progress = nullptr);

@@ -51,10 +51,14 @@ class PoseMap {
   void finalize();
   const VoxelOcTree& tree() const { return *tree_; }
 
-  /// \brief Atomic save with the given kind and header; payload is the octree and the values.
-  void save(const std::string& path, const std::string& kind, const std::map<std::string, std::string>& header) const;
-  /// \brief Loads a pose map of the given kind; returns the header. Throws FileError on damage.
-  static PoseMap load(const std::string& path, const std::string& kind, std::map<std::string, std::string>& header);
+  /// \brief Atomic save with the given kind and header; payload is the octree and the values. `format_version`
+  /// (the kind's) and `sections` (which need version 2 or later) as map_files.hpp describes.
+  void save(const std::string& path, const std::string& kind, const std::map<std::string, std::string>& header,
+            std::uint32_t format_version = 1, const MapSections& sections = {}) const;
+  /// \brief Loads a pose map of the given kind; returns the header and, when `sections` is given, the file's
+  /// sections (none in a version 1 file). Throws FileError on damage.
+  static PoseMap load(const std::string& path, const std::string& kind, std::map<std::string, std::string>& header,
+                      MapSections* sections = nullptr);
   /// \brief Colour octree (.ot) for octovis: one cell per voxel, coloured by the best theta value.
   void export_octovis(const std::string& path) const;
 

@@ -31,6 +31,9 @@ struct PoseSamplerOptions {
   Eigen::Vector4d discount_sigma = Eigen::Vector4d(0.5, 0.5, 0.5, kPi / 4);  ///< S of eq. (3)
   std::uint64_t seed = 0;
   std::size_t max_draws = 0;  ///< give up after this many draws per sample (0: 2000 x candidates)
+  /// Check the body against the room the map was built with (SurfaceMap::room), unless a collision test
+  /// replaces it (set_room, set_collision, set_in_collision).
+  bool room_check = true;
 };
 
 /// \brief Draws continuous base poses (x, y, z, theta) inside a surface map's bounds and keeps valid
@@ -48,7 +51,16 @@ class PoseSampler {
   /// frame at the candidate pose, against `obstacles` (world frame).
   void set_collision(std::shared_ptr<const Robot> robot, std::shared_ptr<const Obstacles> obstacles,
                      const Eigen::VectorXd& reference = Eigen::VectorXd());
-  void set_in_collision(PoseTest test) { in_collision_ = std::move(test); }
+  void set_in_collision(PoseTest test) {
+    in_collision_ = std::move(test);
+    room_ = nullptr;
+  }
+  /// \brief The body the map records (SurfaceMap::room) checked against `obstacles` (world frame) instead of the
+  /// room it records. \throws std::invalid_argument when the map records no body (a file written before maps
+  /// recorded their room, or a build without the body check): use set_collision then.
+  void set_room(std::shared_ptr<const Obstacles> obstacles);
+  /// \brief True when the sampler checks the map's body against a room (its own or set_room's).
+  bool checks_room() const { return room_ != nullptr; }
 
   /// \brief One pose, or nothing when no valid candidate was found within max_draws draws.
   std::optional<Eigen::Vector4d> sample(double* score = nullptr);
@@ -70,6 +82,8 @@ class PoseSampler {
   std::shared_ptr<const Robot> robot_;
   std::shared_ptr<const Obstacles> obstacles_;
   std::vector<Pose> robot_poses_;
+  std::shared_ptr<const MapRoom> room_;            // the body checked against room_obstacles_
+  std::shared_ptr<const Obstacles> room_obstacles_;
   Pose root_in_reference_ = Pose::Identity();
   std::vector<Eigen::Vector4d> history_;
   std::array<std::size_t, 4> counts_{{0, 0, 0, 0}};

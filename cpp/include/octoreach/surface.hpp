@@ -56,6 +56,9 @@ class Surface {
     return contains_even_odd(uv);
   }
   bool convex() const { return convex_; }
+  /// \brief The polygon's triangles (ear clipping, O(n r) for r reflex corners): vertex indices, counter-clockwise
+  /// seen from the normal; their areas add up to area().
+  const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
   /// \brief For a convex polygon, its edges as half-planes (a, b, c): inside where a u + b v <= c.
   const std::vector<Eigen::Vector3d>& halfplanes() const { return halfplanes_; }
   /// \brief Grid points inside the polygon at `resolution` (cell centres of a grid aligned with u, v

@@ -12,6 +12,7 @@
 #include "octoreach/arm.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/map_provenance.hpp"
+#include "octoreach/map_room.hpp"
 #include "octoreach/pose_map.hpp"
 #include "octoreach/robot.hpp"
 #include "octoreach/surface.hpp"
@@ -59,6 +60,8 @@ class SurfaceMap {
   /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
   static constexpr char kKind[] = "surface";
   static constexpr char kExtension[] = ".orsm";
+  /// \brief The map file format version its files are written in (2: the room it was built with).
+  static constexpr std::uint32_t kFormatVersion = 2;
 
   static SurfaceMap build(const Robot& robot, const CapabilityMap& capability, const Surface& surface,
                           const SurfaceMapOptions& options = {}, const ProgressCallback& progress = nullptr);
@@ -94,6 +97,11 @@ class SurfaceMap {
   /// \brief The base z range the map was built for (world frame): poses are evaluated at heights
   /// clipped into it, so a single height (a robot on the floor) is exact.
   std::pair<double, double> z_range() const { return {z_min_, z_max_}; }
+  /// \brief The room the map was built with: its obstacles and the body checked against them (map_room.hpp);
+  /// empty for files written before maps recorded it.
+  const MapRoom& room() const { return *room_; }
+  /// \brief The room, shared (a sampler keeps it as long as it needs it).
+  std::shared_ptr<const MapRoom> shared_room() const { return room_; }
   /// \brief Why the map is empty ("" when it is not).
   const std::string& empty_reason() const { return empty_reason_; }
   /// \brief One line when the build looks suspicious (the surface at the edge of the arm's reach,
@@ -110,6 +118,7 @@ class SurfaceMap {
   double z_min_ = -1e9, z_max_ = 1e9;
   double grasp_height_ = 0.05;
   std::string checks_ = "body+arm";
+  std::shared_ptr<const MapRoom> room_ = std::make_shared<const MapRoom>();
 };
 
 }  // namespace octoreach

@@ -5,8 +5,10 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "octoreach/limits.hpp"
 
@@ -55,7 +57,10 @@ class FileNotFound : public FileError {
 
 /// \brief Library version string.
 inline const char* version() { return OCTOREACH_VERSION; }
-/// \brief Version of the map file format this library writes and reads (part of a map cache key).
+/// \brief The newest version of the map file format this library writes and reads (part of a map cache key);
+/// every older version is read too, and each map kind writes its own (map_files.hpp: MapKind).
 int map_format_version();
+/// \brief Named extra blocks of a map file (format version 2 and later), e.g. the room a surface map records.
+using MapSections = std::map<std::string, std::vector<char>>;
 
 }  // namespace octoreach

@@ -14,7 +14,7 @@ template <std::size_t I = 0>
 void add_kinds(std::vector<MapKind>& out) {
   if constexpr (I < kKinds) {
     using Map = std::variant_alternative_t<I, AnyMap>;
-    out.push_back({Map::kKind, Map::kExtension});
+    out.push_back({Map::kKind, Map::kExtension, static_cast<int>(Map::kFormatVersion)});
     add_kinds<I + 1>(out);
   }
 }

@@ -35,35 +35,63 @@ bool get(std::istream& s, T& v) {
 }
 }  // namespace
 
+namespace {
+struct Compressed {
+  std::vector<Bytef> bytes;
+  std::uint64_t raw = 0;
+};
+
+Compressed compress_bytes(const std::vector<char>& data, const std::string& path) {
+  uLongf bound = compressBound(data.size());
+  Compressed c{std::vector<Bytef>(bound), data.size()};
+  if (compress2(c.bytes.data(), &bound, reinterpret_cast<const Bytef*>(data.data()), data.size(), 6) != Z_OK)
+    throw FileError("cannot compress map data for '" + path + "'");
+  c.bytes.resize(bound);
+  return c;
+}
+
+std::uint32_t crc_of(std::uint32_t crc, const std::string& text) {
+  return crc32(crc, reinterpret_cast<const Bytef*>(text.data()), text.size());
+}
+}  // namespace
+
 void write_map_file(const std::string& path, const std::string& kind, const Header& header,
-                    const std::vector<char>& payload) {
+                    const std::vector<char>& payload, std::uint32_t version, const Sections& sections) {
+  if (version < kFirstFormatVersion || version > kFormatVersion || (version < 2 && !sections.empty()))
+    throw std::logic_error("map format version " + std::to_string(version) + " cannot hold these sections");
   std::string text;
   for (const auto& [k, v] : header) {
     if (k.find_first_of("=\n") != std::string::npos || v.find('\n') != std::string::npos)
       throw std::invalid_argument("map header entry '" + k + "' holds '=' or a newline");
     text += k + "=" + v + "\n";
   }
-  uLongf bound = compressBound(payload.size());
-  std::vector<Bytef> compressed(bound);
-  if (compress2(compressed.data(), &bound, reinterpret_cast<const Bytef*>(payload.data()), payload.size(), 6) != Z_OK)
-    throw FileError("cannot compress map data for '" + path + "'");
-  compressed.resize(bound);
+  const Compressed body = compress_bytes(payload, path);
   // The checksum covers the kind, the header (build parameters) and the payload.
-  std::uint32_t crc = crc32(0L, reinterpret_cast<const Bytef*>(kind.data()), kind.size());
-  crc = crc32(crc, reinterpret_cast<const Bytef*>(text.data()), text.size());
-  crc = crc32(crc, compressed.data(), compressed.size());
+  const std::uint32_t crc = crc32(crc_of(crc_of(0L, kind), text), body.bytes.data(), body.bytes.size());
+  std::vector<std::pair<std::string, Compressed>> extra;
+  for (const auto& [name, data] : sections) extra.emplace_back(name, compress_bytes(data, path));
 
   write_file_atomically(path, [&](std::ostream& f) {
     f.write(kMagic, kMagicLen);
-    put(f, kFormatVersion);
+    put(f, version);
     put(f, static_cast<std::uint32_t>(kind.size()));
     f.write(kind.data(), kind.size());
     put(f, static_cast<std::uint32_t>(text.size()));
     f.write(text.data(), text.size());
-    put(f, static_cast<std::uint64_t>(payload.size()));
-    put(f, static_cast<std::uint64_t>(compressed.size()));
+    put(f, body.raw);
+    put(f, static_cast<std::uint64_t>(body.bytes.size()));
     put(f, crc);
-    f.write(reinterpret_cast<const char*>(compressed.data()), compressed.size());
+    f.write(reinterpret_cast<const char*>(body.bytes.data()), body.bytes.size());
+    if (version < 2) return;
+    put(f, static_cast<std::uint32_t>(extra.size()));
+    for (const auto& [name, c] : extra) {  // each section checksummed with its name
+      put(f, static_cast<std::uint32_t>(name.size()));
+      f.write(name.data(), name.size());
+      put(f, c.raw);
+      put(f, static_cast<std::uint64_t>(c.bytes.size()));
+      put(f, static_cast<std::uint32_t>(crc32(crc_of(0L, name), c.bytes.data(), c.bytes.size())));
+      f.write(reinterpret_cast<const char*>(c.bytes.data()), c.bytes.size());
+    }
   }, "map file");
 }
 
@@ -78,16 +106,18 @@ std::ifstream open_map_file(const std::string& path) {
   return f;
 }
 
-// Reads the magic, the format version and the kind field; returns the kind as written.
-std::string read_kind_field(std::istream& f, const std::string& path) {
+// Reads the magic, the format version (into `version`) and the kind field; returns the kind as written.
+std::string read_kind_field(std::istream& f, const std::string& path, std::uint32_t* version_out = nullptr) {
   char magic[kMagicLen];
   if (!f.read(magic, kMagicLen) || std::memcmp(magic, kMagic, kMagicLen) != 0)
     throw FileError("'" + path + "' is not an octoreach map file (bad magic)");
   std::uint32_t version = 0, klen = 0;
   if (!get(f, version)) throw FileError("'" + path + "' is truncated (no format version)");
-  if (version != kFormatVersion)
+  if (version < kFirstFormatVersion || version > kFormatVersion)
     throw FileError("'" + path + "' has map format version " + std::to_string(version) + ", this octoreach reads " +
-                    std::to_string(kFormatVersion));
+                    std::to_string(kFirstFormatVersion) + " to " + std::to_string(kFormatVersion) +
+                    (version > kFormatVersion ? " (written by a newer octoreach?)" : ""));
+  if (version_out) *version_out = version;
   if (!get(f, klen) || klen > 64) throw FileError("'" + path + "' is damaged (bad kind field)");
   std::string file_kind(klen, '\0');
   if (!f.read(file_kind.data(), klen)) throw FileError("'" + path + "' is truncated (kind)");
@@ -101,18 +131,52 @@ std::string printable(std::string kind) {
 }
 }  // namespace
 
+namespace {
+// The sections of a version 2 file, after its payload: each bounded by the file's size and the payload limit,
+// checksummed, then inflated.
+Sections read_sections(std::istream& f, const std::string& path, std::uint64_t file_size) {
+  constexpr std::uint32_t kMaxSections = 64;
+  std::uint32_t count = 0;
+  if (!get(f, count) || count > kMaxSections) throw FileError("'" + path + "' is damaged (bad section count)");
+  Sections sections;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    std::uint32_t nlen = 0, crc = 0;
+    std::uint64_t raw = 0, size = 0;
+    if (!get(f, nlen) || nlen > 64) throw FileError("'" + path + "' is damaged (bad section name)");
+    std::string name(nlen, '\0');
+    if (!f.read(name.data(), nlen) || !get(f, raw) || !get(f, size) || !get(f, crc))
+      throw FileError("'" + path + "' is truncated (section " + std::to_string(i) + ")");
+    if (size > file_size || raw > limits::kMapPayloadBytes || raw > 1032 * size + 1024)
+      throw FileError("'" + path + "' is damaged (implausible sizes of section '" + printable(name) + "')");
+    std::vector<Bytef> compressed(size);
+    if (!f.read(reinterpret_cast<char*>(compressed.data()), size))
+      throw FileError("'" + path + "' is truncated (section '" + printable(name) + "')");
+    if (crc32(crc_of(0L, name), compressed.data(), compressed.size()) != crc)
+      throw FileError("'" + path + "' is damaged (checksum mismatch in section '" + printable(name) + "')");
+    std::vector<char> data(raw);
+    uLongf out = raw;
+    if (uncompress(reinterpret_cast<Bytef*>(data.data()), &out, compressed.data(), size) != Z_OK || out != raw)
+      throw FileError("'" + path + "' is damaged (section '" + printable(name) + "' does not decompress)");
+    if (!sections.emplace(name, std::move(data)).second)
+      throw FileError("'" + path + "' is damaged (section '" + printable(name) + "' twice)");
+  }
+  return sections;
+}
+}  // namespace
+
 std::string read_map_kind(const std::string& path) {
   std::ifstream f = open_map_file(path);
   return printable(read_kind_field(f, path));
 }
 
 void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload,
-                   const std::function<std::uint64_t(const Header&)>& max_payload) {
+                   const std::function<std::uint64_t(const Header&)>& max_payload, Sections* sections) {
   std::ifstream f = open_map_file(path);
   f.seekg(0, std::ios::end);
   const std::uint64_t file_size = std::uint64_t(std::max<std::streamoff>(0, f.tellg()));
   f.seekg(0, std::ios::beg);
-  const std::string file_kind = read_kind_field(f, path);
+  std::uint32_t version = 0;
+  const std::string file_kind = read_kind_field(f, path, &version);
   if (file_kind != kind) throw FileError("'" + path + "' holds a " + printable(file_kind) + " map, expected a " + kind + " map");
   std::uint32_t hlen = 0;
   if (!get(f, hlen) || hlen > (1u << 24)) throw FileError("'" + path + "' is damaged (bad header length)");
@@ -151,6 +215,12 @@ void read_map_file(const std::string& path, const std::string& kind, Header& hea
   uLongf out = raw;
   if (uncompress(reinterpret_cast<Bytef*>(payload.data()), &out, compressed.data(), size) != Z_OK || out != raw)
     throw FileError("'" + path + "' is damaged (payload does not decompress)");
+  Sections read;
+  if (version >= 2) {
+    read = read_sections(f, path, file_size);
+    if (f.peek() != std::char_traits<char>::eof()) throw FileError("'" + path + "' is damaged (trailing bytes)");
+  }
+  if (sections) *sections = std::move(read);
 }
 
 std::uint64_t payload_bound(std::uint64_t voxels, std::uint64_t record_bytes) {

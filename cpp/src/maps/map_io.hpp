@@ -9,6 +9,10 @@
 //   uint32 header length, header text: "key=value\n" lines (build parameters, robot)
 //   uint64 raw payload size, uint64 compressed size, uint32 CRC-32 of kind, header and compressed bytes
 //   compressed payload (zlib)
+// Format version 2 (surface maps, which record their room) adds named sections after the payload:
+//   uint32 section count; per section: uint32 name length, name, uint64 raw size, uint64 compressed size,
+//   uint32 CRC-32 of name and compressed bytes, compressed bytes (zlib)
+// A version 1 file is a version 2 file without the section count: both are read.
 // Saves go through detail::write_file_atomically (temporary file, fsync, rename).
 #include <cstdint>
 #include <cstring>
@@ -25,7 +29,12 @@
 
 namespace octoreach::detail {
 
-constexpr std::uint32_t kFormatVersion = 1;
+/// The newest map file format version this library reads and writes (every older one is read too).
+constexpr std::uint32_t kFormatVersion = 2;
+/// The first format version (no sections).
+constexpr std::uint32_t kFirstFormatVersion = 1;
+/// Named sections of a version 2 map file.
+using Sections = MapSections;
 
 class ByteWriter {
  public:
@@ -72,15 +81,18 @@ class ByteReader {
 
 using Header = std::map<std::string, std::string>;
 
-/// Writes kind + header + payload atomically to `path`.
+/// Writes kind + header + payload atomically to `path`, in format `version` (the kind's kFormatVersion);
+/// `sections` need version 2 or later.
 void write_map_file(const std::string& path, const std::string& kind, const Header& header,
-                    const std::vector<char>& payload);
+                    const std::vector<char>& payload, std::uint32_t version = kFirstFormatVersion,
+                    const Sections& sections = {});
 /// Reads a map file of the expected kind; throws FileError naming the problem. `max_payload(header)`
 /// says how many bytes the contents the header declares can take (payload_bound of its counts): a file
 /// declaring more decompressed bytes (or more than limits::kMapPayloadBytes) is refused before
 /// anything is allocated or inflated.
+/// `sections` (when given) gets the file's sections (none in a version 1 file).
 void read_map_file(const std::string& path, const std::string& kind, Header& header, std::vector<char>& payload,
-                   const std::function<std::uint64_t(const Header&)>& max_payload);
+                   const std::function<std::uint64_t(const Header&)>& max_payload, Sections* sections = nullptr);
 
 /// The most bytes a payload of `voxels` records of `record_bytes` each can take: the voxel count, the
 /// root flag, at most one child mask per tree level per voxel, the records (saturating at 2^64 - 1).

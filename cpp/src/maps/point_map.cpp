@@ -224,7 +224,7 @@ std::map<std::string, std::string> InversePointMap::parameters() const {
   return p;
 }
 
-void InversePointMap::save(const std::string& path) const { map_.save(path, kKind, parameters()); }
+void InversePointMap::save(const std::string& path) const { map_.save(path, kKind, parameters(), kFormatVersion); }
 
 InversePointMap InversePointMap::load(const std::string& path) {
   std::map<std::string, std::string> h;

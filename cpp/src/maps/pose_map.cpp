@@ -114,7 +114,8 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> PoseMap::bounds() const {
 double PoseMap::max_value() const { return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end()); }
 
 
-void PoseMap::save(const std::string& path, const std::string& kind, const std::map<std::string, std::string>& header) const {
+void PoseMap::save(const std::string& path, const std::string& kind, const std::map<std::string, std::string>& header,
+                   std::uint32_t format_version, const MapSections& sections) const {
   detail::Header h(header.begin(), header.end());
   h["resolution"] = detail::format_number(resolution_);
   h["theta_bins"] = std::to_string(theta_bins_);
@@ -130,17 +131,18 @@ void PoseMap::save(const std::string& path, const std::string& kind, const std::
   } else {
     w.put(std::uint8_t{0});
   }
-  detail::write_map_file(path, kind, h, w.bytes);
+  detail::write_map_file(path, kind, h, w.bytes, format_version, sections);
 }
 
-PoseMap PoseMap::load(const std::string& path, const std::string& kind, std::map<std::string, std::string>& header) {
+PoseMap PoseMap::load(const std::string& path, const std::string& kind, std::map<std::string, std::string>& header,
+                      MapSections* sections) {
   detail::Header h;
   std::vector<char> payload;
   detail::read_map_file(path, kind, h, payload, [&](const detail::Header& head) {  // a value per theta bin per voxel
     const long long bins = detail::header_int(head, "theta_bins", path);
     if (bins < 1 || bins > limits::kThetaBins) throw FileError("'" + path + "' has implausible map parameters");
     return detail::payload_bound(detail::header_voxels(head, path), std::uint64_t(bins) * sizeof(float));
-  });
+  }, sections);
   double res = detail::header_double(h, "resolution", path);
   long long bins = detail::header_int(h, "theta_bins", path);
   if (!(res >= limits::kMinMapResolution) || !(res <= limits::kMaxMapResolution) || bins < 1 ||

@@ -27,6 +27,20 @@ PoseSampler::PoseSampler(std::shared_ptr<const SurfaceMap> map, const PoseSample
   auto b = map_->map().bounds();
   lo_ = b.first;
   hi_ = b.second;
+  if (options_.room_check && !map_->room().body().empty() && !map_->room().obstacles().empty()) {
+    room_ = map_->shared_room();
+    room_obstacles_ = std::shared_ptr<const Obstacles>(room_, &room_->obstacles());
+  }
+}
+
+void PoseSampler::set_room(std::shared_ptr<const Obstacles> obstacles) {
+  if (!obstacles) throw std::invalid_argument("set_room needs obstacles");
+  if (map_->room().body().empty())
+    throw std::invalid_argument("the surface map records no body to check against a room (a file written before maps "
+                                "recorded their room, or built without the body check): give in_collision=(robot, "
+                                "obstacles) instead");
+  room_ = map_->shared_room();
+  room_obstacles_ = std::move(obstacles);
 }
 
 void PoseSampler::set_collision(std::shared_ptr<const Robot> robot, std::shared_ptr<const Obstacles> obstacles,
@@ -39,6 +53,7 @@ void PoseSampler::set_collision(std::shared_ptr<const Robot> robot, std::shared_
   root_in_reference_ = robot_poses_[robot->link_index(map_->reference_frame())].inverse();
   robot_ = std::move(robot);
   obstacles_ = std::move(obstacles);
+  room_ = nullptr;
 }
 
 double PoseSampler::discount(const Eigen::Vector4d& c) const {
@@ -93,6 +108,7 @@ std::optional<Eigen::Vector4d> PoseSampler::sample(double* score) {
       B.linear() = Eigen::AngleAxisd(c[3], Eigen::Vector3d::UnitZ()).toRotationMatrix();
       collides = robot_->links_in_collision(robot_poses_, *obstacles_, B * root_in_reference_);
     }
+    if (!collides && room_) collides = room_->body_collides(c, *room_obstacles_);
     if (!collides && in_collision_) collides = in_collision_(c);
     if (collides) {
       ++counts_[3];

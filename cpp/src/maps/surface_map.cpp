@@ -15,6 +15,7 @@
 #include "common/thread_pool.hpp"
 #include "maps/batch.hpp"
 #include "maps/map_io.hpp"
+#include "maps/map_room_io.hpp"
 #include "maps/reach_extent.hpp"
 #include "maps/surface_bin.hpp"
 #include "maps/surface_warning.hpp"
@@ -200,6 +201,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   const double res = o.resolution == 0 ? cap.resolution() : o.resolution;
   SurfaceMap m;
   m.provenance_ = MapProvenance::of(robot);
+  m.room_ = std::make_shared<const MapRoom>(MapRoom::of_build(robot, place, surface, o.obstacles.get(), o.check_body));
   m.reference_frame_ = place.reference_frame;
   m.arms_ = cap.base_link() + "->" + cap.tip_link();
   m.approach_axes_ = detail::format_vector(cap.approach_axis());
@@ -278,6 +280,9 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
   }
   const int T = first.map_.theta_bins();
   SurfaceMap out;
+  std::vector<const MapRoom*> rooms;
+  for (const SurfaceMap* m : maps) rooms.push_back(m->room_.get());
+  out.room_ = std::make_shared<const MapRoom>(MapRoom::combined(rooms));
   out.provenance_ = first.provenance_;
   out.reference_frame_ = first.reference_frame_;
   out.polygon_ = first.polygon_;
@@ -351,12 +356,16 @@ std::map<std::string, std::string> SurfaceMap::parameters() const {
   return p;
 }
 
-void SurfaceMap::save(const std::string& path) const { map_.save(path, kKind, parameters()); }
+void SurfaceMap::save(const std::string& path) const {
+  map_.save(path, kKind, parameters(), kFormatVersion, detail::room_sections(*room_));
+}
 
 SurfaceMap SurfaceMap::load(const std::string& path) {
   std::map<std::string, std::string> h;
   SurfaceMap m;
-  m.map_ = PoseMap::load(path, kKind, h);
+  MapSections sections;
+  m.map_ = PoseMap::load(path, kKind, h, &sections);
+  m.room_ = detail::room_of_sections(sections, path);
   using detail::header_string;
   m.provenance_ = detail::header_provenance(h, path);
   m.stats_.surface_points = detail::header_u64(h, "surface_points", path);

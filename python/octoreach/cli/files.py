@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 
 import numpy as np
 
@@ -21,6 +22,13 @@ def _cmd_info(args) -> int:
         print(f"  values: min {values[values > 0].min():.4f}, max {values.max():.4f}, voxels {len(centres)}")
     lo, hi = m.bounds
     print(f"  bounds: {np.round(lo, 3).tolist()} .. {np.round(hi, 3).tolist()}")
+    room = getattr(m, "room", None)
+    if room is not None:
+        others = list(dict.fromkeys(list(room.obstacles.names)[room.surface_count:]))  # each name once
+        print("  room: none recorded (a file written before maps recorded their room)" if room.empty else
+              f"  room: {len(room.obstacles)} obstacles ({room.surface_count} of the surface; "
+              f"{', '.join(others[:8]) or 'no others'}{' ...' if len(others) > 8 else ''}), "
+              f"body of {len(room.body)} shapes on {len(set(room.body_links))} links")
     return 0
 
 
@@ -41,20 +49,48 @@ def _cmd_query(args) -> int:
         poses = np.array([[float(x), float(y), float(z), angle(t)] for x, y, z, t in args.pose], dtype=float)
     except argparse.ArgumentTypeError as e:
         raise ValueError(f"--pose: {e}") from None
-    for pose, r in zip(poses, smap.reachability(poses)):
-        print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}")
+    rs = smap.reachability(poses)  # checks the poses first
+    for pose, r, hit in zip(poses, rs, _touched(smap, poses, args)):
+        note = f"  in collision with {hit!r}" if hit else ""
+        print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}{note}")
     return 0
 
 
+def _touched(smap, poses, args) -> list[str]:
+    """Per pose, the obstacle of the room (the map's own, or --scene's) its body touches ('' when none or unchecked)."""
+    from .. import room_checks
+
+    if args.no_room_check or not smap.room.body:
+        if not args.no_room_check:
+            print("octoreach: note: the surface map records no room (a file written before maps recorded theirs): "
+                  "poses are not checked for collisions", file=sys.stderr)
+        return [""] * len(poses)
+    obstacles = smap.room.obstacles
+    if args.scene:
+        obstacles = room_checks.scene_obstacles(args.scene)
+        room_checks.warn_differences(smap, obstacles, args.scene)
+    return list(smap.room.touched(poses, obstacles))
+
+
 def _cmd_sample(args) -> int:
-    from .._core import PoseSampler, SurfaceMap
+    from .. import room_checks
+    from .._core import SurfaceMap
 
     smap = SurfaceMap.load(args.map)
-    sampler = PoseSampler(smap, candidates=args.candidates, seed=args.seed)
+    sampler = room_checks.sampler(smap, scene=args.scene, room_check=not args.no_room_check,
+                                  candidates=args.candidates, seed=args.seed)
     poses = sampler.sample(args.count)
     for pose, r in zip(poses, smap.reachability(poses)):
         print(f"x={pose[0]:+.3f} y={pose[1]:+.3f} z={pose[2]:+.3f} theta={pose[3]:+.4f}  R_S={r:.4f}")
     return 0
+
+
+def _room_arguments(sp, what: str) -> None:
+    sp.add_argument("--scene", help=f"room file (JSON or YAML) to check {what} against instead of the room the map was "
+                                    "built with (a room that differs from it is said)")
+    sp.add_argument("--no-room-check", action="store_true",
+                    help=f"do not check {what} against the room (by default the body is kept out of the room the "
+                         "map was built with)")
 
 
 def add_commands(sub):
@@ -72,6 +108,7 @@ def add_commands(sub):
     sp.add_argument("map", help="a surface map file")
     sp.add_argument("--pose", nargs=4, action="append", required=True, metavar=("X", "Y", "Z", "THETA"),
                     help="a base pose: x y z in m, theta in rad (or degrees as e.g. 90deg); repeatable")
+    _room_arguments(sp, "the poses")
     sp.set_defaults(func=_cmd_query)
 
     sp = sub.add_parser("sample", help="sample well spread base poses from a surface map (the grounding attachment); "
@@ -80,4 +117,5 @@ def add_commands(sub):
     sp.add_argument("--count", type=int, default=5, help="poses to sample (default 5)")
     sp.add_argument("--candidates", type=int, default=40, help="valid candidates per pose (default 40)")
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    _room_arguments(sp, "the sampled poses")
     sp.set_defaults(func=_cmd_sample)

@@ -6,10 +6,11 @@ One concept per file: robot_meshes (a Robot's visuals at link poses), surfaces (
 surface_map (cells per theta), capability_map (voxels and slice plane), samples (footprints and arrows),
 exploration (cells, frontiers, voids, ellipsoids, frusta), cells (batched boxes, outer shells, picking),
 mesh_files (STL with numpy; boxes, cylinders, spheres), colours,
-files (what can be opened), app (the server and its controls), export (static HTML), browser (headless
-Chromium screenshots and clicks).
+room (a room's obstacles from their shapes), files (what can be opened), app (the server and its controls), view
+(view(): everything in one call), export (static HTML), browser (headless Chromium screenshots and clicks).
 """
-from .app import Viewer, view  # noqa: F401
+from .app import Viewer  # noqa: F401
+from .view import view  # noqa: F401
 from .exploration import ExplorationRecorder  # noqa: F401
 
 __all__ = ["ExplorationRecorder", "Viewer", "view"]

@@ -22,7 +22,7 @@ from .exploration import ExplorationLayer
 from .robot_meshes import RobotLayer, RobotMeshes
 from .samples import SamplesLayer, sample_poses
 from .surface_map import BEST, SurfaceMapLayer
-from .surfaces import add_boxes, add_surface
+from .room import RoomLayer, draw_surroundings, room_obstacles
 
 
 def _import_viser():
@@ -48,6 +48,7 @@ class Viewer:
             print(f"octoreach: viewer at {self.url}", flush=True)
         self.notes: list[str] = []
         self.robot_layer = None
+        self.room_layer = None
         self.surface_map = None
         self.capability_map = None
         self.exploration = None
@@ -74,24 +75,14 @@ class Viewer:
         return self.robot_layer
 
     def add_surface_map(self, smap, robot=None, samples: int = 5, seed: int = 1, q=None, surface=None,
-                        surface_thickness=0.03):
-        """A surface map: its surface, cells (theta slider), `samples` sampled poses and the robot standing at
-        the first of them (robot: a Robot, a name, or None for the robot the map was built for). `surface`:
-        the Surface the map was built on, to draw (and sample against) its obstacle boxes too; a map file
-        records the polygon only, drawn as a slab `surface_thickness` thick, and the viewer says so."""
-        from .._core import Surface
-
-        polygon = np.asarray(smap.polygon if surface is None else surface.vertices, float)
-        if surface is not None:
-            surface_thickness = float(surface.thickness)
-        if len(polygon) >= 3:
-            add_surface(self.scene, polygon, surface_thickness)
-        if surface is not None:
-            add_boxes(self.scene, surface.boxes)
-        elif len(polygon) >= 3:
-            self.note("the surface map records its surface polygon only: the surface is drawn as a "
-                      f"{surface_thickness * 100:.0f} cm slab, without the obstacles it was built with (table legs, "
-                      "boxes); in Python, view(..., surface=the Surface) draws them")
+                        surface_thickness=0.03, room=None):
+        """A surface map: its surface and room, cells (theta slider), `samples` sampled poses and the robot standing
+        at the first of them (robot: a Robot, a name, or None for the robot the map was built for). The room is the
+        one the map was built with (SurfaceMap.room), or `room` (a room file, rooms.Room or Obstacles: drawn, and
+        the samples checked against it; one that differs from the map's is said); `surface`: the Surface the map
+        was built on, to draw its slab and boxes. A map file written before maps recorded their room shows its
+        polygon as a slab `surface_thickness` thick, and the viewer says so."""
+        frame, in_collision = draw_surroundings(self, smap, surface=surface, room=room, thickness=surface_thickness)
         self.surface_map = SurfaceMapLayer(self.scene, smap, atomic=self.server.atomic)
         self._watch_surface_clicks(self.surface_map)
         if isinstance(robot, str):
@@ -101,7 +92,7 @@ class Viewer:
                 robot = files.robot_by_name(smap.robot_name, smap.urdf_hash)
             except (ValueError, OSError):
                 self.note(f"the map's robot {smap.robot_name!r} is neither the project's nor example-robot-data's: "
-                          "drawn without it (give --robot NAME, or robot= in Python)")
+                          "drawn without it (give --urdf FILE or --robot NAME, or robot= in Python)")
         if robot is not None:
             if smap.urdf_hash and robot.urdf_hash != smap.urdf_hash:
                 print(f"octoreach: warning: the map was built for another robot model ({smap.robot_name}) than "
@@ -113,10 +104,13 @@ class Viewer:
             samples = 0
         footprint = self.robot_layer.meshes.footprint(self.robot_layer.q) if self.robot_layer else \
             np.array([[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]])
-        obstacles = surface.obstacles() if surface is not None else \
-            Surface(polygon, surface_thickness).obstacles() if len(polygon) >= 3 else None
-        poses, rs = sample_poses(smap, samples, seed=seed, robot=robot, obstacles=obstacles,
-                                 reference=self.robot_layer.q if self.robot_layer else None)
+        if in_collision is None and smap.room.empty:  # an old file: the robot against the surface, when known
+            from .._core import Surface
+
+            in_collision = (surface if surface is not None else Surface(smap.polygon, surface_thickness)).obstacles()
+        if not smap.room.body and in_collision is not None:
+            in_collision = (robot, in_collision, self.robot_layer.q) if self.robot_layer else None
+        poses, rs = sample_poses(smap, samples, seed=seed, in_collision=in_collision)
         layer = self.surface_map
         # Outlines and arrows just above the tiles, which lie on the floor (below a pose's z when the robot's
         # reference frame is above its feet: lift < 0 then).
@@ -129,8 +123,16 @@ class Viewer:
             self.stand(poses[0], smap.reference_frame)
         self._surface_controls(smap)
         drawn = self.surface_map.drawn_centres
-        self.frame_camera(np.vstack([polygon, drawn]) if len(polygon) else drawn)
+        self.frame_camera(np.vstack([frame, drawn]) if len(frame) else drawn)
         return self.surface_map
+
+    def add_room(self, room):
+        """A room on its own (a room file, rooms.Room, Obstacles or a SurfaceMap's MapRoom): every obstacle drawn."""
+        obstacles, count, _ = room_obstacles(room)
+        self.room_layer = RoomLayer(self.scene, obstacles, count)
+        if len(self.room_layer.points):
+            self.frame_camera(self.room_layer.points)
+        return self.room_layer
 
     def add_capability_map(self, cap, base_pose=None):
         """A capability map's voxels (arm base frame at base_pose) with a slice-plane slider."""
@@ -308,84 +310,3 @@ class Viewer:
 
     def close(self) -> None:
         self.server.stop()
-
-
-def check_arguments(port=8080, host: str = "127.0.0.1", samples: int = 5, html=None, png=None,
-                    resolve_timeout: float = 10.0) -> None:
-    """ValueError (OSError for an output) naming the first bad argument of view(), before anything is loaded or
-    served: a port outside 0-65535, a host that does not resolve within `resolve_timeout` s, a sample count
-    outside 0-limits.MAX_VIEW_SAMPLES, an --html/--png target that may not be replaced (a device, a link)."""
-    import socket
-
-    from ..atomic_write import check_target
-    from ..limits import MAX_VIEW_SAMPLES
-
-    if isinstance(port, bool) or not isinstance(port, int) or not 0 <= port <= 65535:
-        raise ValueError(f"port must be an integer in 0-65535 (0: any free port), got {port!r}")
-    if isinstance(samples, bool) or not isinstance(samples, int) or not 0 <= samples <= MAX_VIEW_SAMPLES:
-        raise ValueError(f"samples must be an integer in 0-{MAX_VIEW_SAMPLES:,} (octoreach.limits.MAX_VIEW_SAMPLES), "
-                         f"got {samples!r}")
-    if not isinstance(host, str) or not host or "\x00" in host:
-        raise ValueError(f"host must be a host name or address, got {host!r}")
-    answer: dict = {}
-
-    def resolve():
-        try:
-            answer["ok"] = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)
-        except (OSError, UnicodeError) as e:
-            answer["error"] = getattr(e, "strerror", None) or str(e)
-
-    thread = threading.Thread(target=resolve, daemon=True)
-    thread.start()
-    thread.join(resolve_timeout)
-    if "ok" not in answer:
-        why = answer.get("error", f"no answer within {resolve_timeout:g} s")
-        raise ValueError(f"host {host[:200]!r} does not resolve ({why})")
-    for path, what in ((html, "HTML page"), (png, "screenshot")):
-        if path is not None:
-            check_target(path, what)
-
-
-def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
-         host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
-         steps=None, surface=None, verbose: bool = True) -> Viewer:
-    """Shows maps and explorations in the browser: each item is a file path (.orsm, .orcm, .bt), a SurfaceMap,
-    CapabilityMap, ExplorationMap or an explore() result. `robot` (Robot or name) defaults to the one a surface
-    map records; its configuration is `q`, else the map's reference posture (other arm tucked) or home, with
-    `joints` ({name: value}) set on top. `steps`: an ExplorationRecorder for an explore() result (the map after
-    each view on the view slider). `surface`: the Surface a surface map was built on (its obstacle boxes are
-    drawn; map files record the polygon only). `html`/`png` also write the scene as a static page / a screenshot.
-    block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
-    check_arguments(port, host, samples, html, png)
-    loaded = [files.load(item) for item in items]
-    if not loaded:
-        raise ValueError("nothing to view: give a map file (.orsm, .orcm), a .bt file or a map object")
-    v = Viewer(port=port, host=host, verbose=verbose)
-    try:
-        for kind, obj in loaded:
-            if kind == "surface_map":
-                v.add_surface_map(obj, robot=robot, samples=samples, seed=seed, q=q, surface=surface)
-            elif kind == "capability_map":
-                v.add_capability_map(obj)
-            else:
-                v.add_exploration(obj, steps=steps)
-        if robot is not None and v.robot_layer is None:
-            r = files.robot_by_name(robot) if isinstance(robot, str) else robot
-            v.add_robot(r, q=q)
-        if joints and v.robot_layer is not None:
-            v.robot_layer.set_configuration(files.with_joints(v.robot_layer.meshes.robot, v.robot_layer.q, joints))
-        layer, rl = v.capability_map, v.robot_layer
-        if layer is not None and rl is not None and rl.meshes.robot.has_link(layer.cap.base_link):
-            T = rl.base_pose @ rl.meshes.robot.link_poses(rl.q)[layer.cap.base_link]
-            layer.place(T)  # on the robot's arm
-            v.frame_camera(layer.centres @ T[:3, :3].T + T[:3, 3])
-        if html:
-            print(f"octoreach: wrote {v.save_html(html)}", flush=True)
-        if png:
-            print(f"octoreach: wrote {v.screenshot(png)}", flush=True)
-    except BaseException:
-        v.close()
-        raise
-    if block:
-        v.wait()
-    return v

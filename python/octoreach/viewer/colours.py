@@ -6,6 +6,7 @@ import numpy as np
 # Fixed colours (RGB) of the scene's parts; tests look for them in screenshots.
 ROBOT = (170, 174, 182)
 SURFACE = (150, 105, 60)
+ROOM = (95, 135, 190)  # the room's obstacles: walls, cabinets, other surfaces
 FOOTPRINT = (20, 20, 20)
 ARROW = (230, 30, 120)
 SELECTED = (255, 0, 255)

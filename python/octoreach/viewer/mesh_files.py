@@ -113,3 +113,19 @@ def sphere(radius: float, rings: int = 12, sections: int = 24) -> Mesh:
         faces.append([north, s, (s + 1) % sections])
         faces.append([south, last + (s + 1) % sections, last + s])
     return Mesh(v, faces)
+
+
+def shape_mesh(shape) -> Mesh | None:
+    """A box, cylinder, sphere or mesh Shape (a mesh from its triangles) as a triangle mesh in its parent frame
+    (its pose applied); None for an OctoMap."""
+    if shape.kind == "box":
+        mesh = box(shape.size)
+    elif shape.kind == "cylinder":
+        mesh = cylinder(shape.radius, shape.length)
+    elif shape.kind == "sphere":
+        mesh = sphere(shape.radius)
+    elif shape.kind == "mesh":
+        mesh = Mesh(*shape.mesh_triangles())
+    else:
+        return None
+    return mesh.transformed(shape.pose)

@@ -16,22 +16,13 @@ from . import colours, mesh_files
 def _mesh(shape, cache: dict, from_file: bool):
     """A shape as a triangle mesh in the link frame (None for a kind with no surface to draw here). Visual meshes
     are read from their files (`from_file`); collision meshes come from the loader's triangles."""
-    if shape.kind == "mesh":
-        if from_file:
-            if shape.mesh_path not in cache:
-                cache[shape.mesh_path] = mesh_files.read_mesh(shape.mesh_path)
-            mesh = cache[shape.mesh_path].scaled(shape.scale)
-        else:
-            mesh = mesh_files.Mesh(*shape.mesh_triangles())
-    elif shape.kind == "box":
-        mesh = mesh_files.box(shape.size)
-    elif shape.kind == "cylinder":
-        mesh = mesh_files.cylinder(shape.radius, shape.length)
-    elif shape.kind == "sphere":
-        mesh = mesh_files.sphere(shape.radius)
+    if shape.kind == "mesh" and from_file:
+        if shape.mesh_path not in cache:
+            cache[shape.mesh_path] = mesh_files.read_mesh(shape.mesh_path)
+        mesh = cache[shape.mesh_path].scaled(shape.scale).transformed(shape.pose)
     else:
-        return None
-    return mesh.transformed(shape.pose) if len(mesh.faces) else None
+        mesh = mesh_files.shape_mesh(shape)
+    return mesh if mesh is not None and len(mesh.faces) else None
 
 
 class RobotMeshes:
@@ -119,6 +110,15 @@ class RobotLayer:
             T = poses[link]
             handle.wxyz = _wxyz(T[:3, :3])
             handle.position = T[:3, 3]
+
+    def points(self) -> np.ndarray:
+        """The robot's mesh vertices (N, 3) in the world frame, at its configuration and base pose."""
+        poses = self.meshes.robot.link_poses(self.q)
+        pts = []
+        for link, mesh in self.meshes.meshes.items():
+            T = self.base_pose @ poses[link]
+            pts.append(mesh.vertices @ T[:3, :3].T + T[:3, 3])
+        return np.vstack(pts) if pts else np.zeros((1, 3))
 
     def set_base_pose(self, T) -> None:
         """Moves the root link to the 4x4 world pose T."""

@@ -50,16 +50,14 @@ class SamplesLayer:
             for i, (p, r) in enumerate(zip(self.poses, self.rs))])
 
 
-def sample_poses(smap, count: int, seed: int = 1, robot=None, obstacles=None, reference=None):
-    """`count` well spread base poses from the compiled PoseSampler (checked against `obstacles` with the
-    robot at `reference` when given) and their R_S."""
+def sample_poses(smap, count: int, seed: int = 1, in_collision=None):
+    """`count` well spread base poses from the compiled PoseSampler and their R_S: checked against the room the
+    map was built with, or `in_collision` (PoseSampler's: Obstacles, (robot, obstacles, reference), a callable)."""
     from .._core import PoseSampler
 
     if count <= 0:
         return np.zeros((0, 4)), np.zeros(0)
-    kwargs = {}
-    if robot is not None and obstacles is not None and reference is not None:
-        kwargs["in_collision"] = (robot, obstacles, reference)
+    kwargs = {} if in_collision is None else {"in_collision": in_collision}
     sampler = PoseSampler(smap, seed=seed, **kwargs)
     poses = np.asarray(sampler.sample(count), dtype=float).reshape(-1, 4)
     return poses, smap.reachability(poses)

@@ -1,5 +1,5 @@
-"""The work surface in the scene: the map's table or shelf polygon as a slab, and a Surface's obstacle boxes
-(table legs, walls) when the Surface itself is given (map files record the polygon only)."""
+"""The work surface in the scene: the map's table or shelf polygon as a slab (triangulated as the C++ Surface does:
+any simple polygon), and a Surface's obstacle boxes (table legs, walls) when the Surface itself is given."""
 from __future__ import annotations
 
 import numpy as np
@@ -8,24 +8,36 @@ from . import colours
 
 
 def slab(vertices, thickness: float) -> tuple[np.ndarray, np.ndarray]:
-    """Vertices and triangles of the polygon (K, 3) extruded `thickness` downwards, every face wound outwards
-    (fan triangulation: exact for convex polygons, which is what surfaces are in practice)."""
-    top = np.asarray(vertices, dtype=float).reshape(-1, 3)
-    x, y = top[:, 0], top[:, 1]
-    if np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)) < 0:  # clockwise seen from above: turn it round
-        top = top[::-1]
+    """Vertices and triangles of the polygon (K, 3) extruded `thickness` below its top face (along its normal),
+    every face wound outwards. The top and bottom are the polygon's own triangles (``Surface.triangles``: ear
+    clipping in C++), right for any simple polygon, an L-shaped counter as well as a convex table."""
+    from .._core import Surface
+
+    surface = Surface(np.asarray(vertices, dtype=float).reshape(-1, 3), thickness)
+    top = np.asarray(surface.vertices, dtype=float)
+    n = np.asarray(surface.normal, dtype=float)
     k = len(top)
-    bottom = top - np.array([0.0, 0.0, thickness])
-    v = np.vstack([top, bottom]).astype(np.float32)
-    faces = []
-    for i in range(1, k - 1):
-        faces.append([0, i, i + 1])
-        faces.append([k, k + i + 1, k + i])
-    for i in range(k):
-        j = (i + 1) % k
-        faces.append([i, k + i, k + j])
-        faces.append([i, k + j, j])
-    return v, np.array(faces, dtype=np.uint32)
+    tri = np.array(surface.triangles, dtype=np.int64).reshape(-1, 3)
+    a, b, c = top[tri[:, 0]], top[tri[:, 1]], top[tri[:, 2]]
+    flip = np.cross(b - a, c - a) @ n < 0  # each triangle counter-clockwise seen from the normal
+    tri[flip] = tri[flip][:, ::-1]
+    loop = np.arange(k)
+    if np.cross(top, np.roll(top, -1, axis=0)).sum(axis=0) @ n < 0:  # the outline clockwise seen from the normal
+        loop = loop[::-1]
+    v = np.vstack([top, top - thickness * n]).astype(np.float32)
+    nxt = np.roll(loop, -1)
+    sides = np.vstack([np.column_stack([loop, k + loop, k + nxt]), np.column_stack([loop, k + nxt, nxt])])
+    faces = np.vstack([tri, tri[:, ::-1] + k, sides])
+    return v, faces.astype(np.uint32)
+
+
+def top_area(vertices, faces) -> float:
+    """Area of the slab's top faces (those facing up): the surface drawn, to compare with the polygon's."""
+    v = np.asarray(vertices, dtype=float)
+    f = np.asarray(faces, dtype=np.int64)
+    cross = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    up = cross[:, 2] > 1e-12
+    return float(np.linalg.norm(cross[up], axis=1).sum() / 2.0)
 
 
 def add_surface(scene, vertices, thickness: float = 0.03, name: str = "/surface"):
