@@ -32,9 +32,10 @@ def file_kind(mode: int) -> str:
     return "a regular file" if stat.S_ISREG(mode) else _KINDS.get(stat.S_IFMT(mode), "a special file")
 
 
-def read_bytes(path, kind: str, limit: int = limits.MAX_DATA_FILE_BYTES) -> bytes:
-    """The bytes of a regular file of at most `limit` bytes; OSError naming the file otherwise (checked
-    before reading: a FIFO or /dev/zero is never read)."""
+def read_bytes(path, kind: str, limit: int = limits.MAX_DATA_FILE_BYTES,
+               limit_name: str = "octoreach.limits.MAX_DATA_FILE_BYTES") -> bytes:
+    """The bytes of a regular file of at most `limit` bytes (`limit_name` says where that limit is); OSError
+    naming the file otherwise (checked before reading: a FIFO or /dev/zero is never read)."""
     from ._checks import PATH, check_type
 
     check_type(path, PATH, "path", "a file path (str or os.PathLike)")
@@ -49,7 +50,7 @@ def read_bytes(path, kind: str, limit: int = limits.MAX_DATA_FILE_BYTES) -> byte
             raise OSError(f"cannot read {where}: it is {file_kind(st.st_mode)}, not a regular file")
         if st.st_size > limit:
             raise OSError(f"cannot read {where}: {st.st_size:,} bytes, more than the limit of {limit:,} "
-                          "(octoreach.limits.MAX_DATA_FILE_BYTES)")
+                          f"({limit_name})")
         chunks, total = [], 0
         while True:
             try:

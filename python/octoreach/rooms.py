@@ -246,6 +246,7 @@ class Room:
         for i, box in enumerate(boxes):
             bw = f"{where}.boxes[{i}]"
             _check_keys(box, _BOX_KEYS, bw)
+            _name(box, bw, "box")  # not a file name, but checked as every name of the room is
             surface.add_box(_vector(box, "size", bw, 3), _pose(box, bw))
         return surface
 

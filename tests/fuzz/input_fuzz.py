@@ -6,7 +6,8 @@ nesting, YAML aliases (bombs, recursive anchors, many aliases), duplicate keys, 
 (paths, NUL, control characters, overlong), special files (the file itself, or a mesh, OctoMap, URDF or
 room path inside it, is a FIFO, /dev/zero, a folder, a link to a device, or too large), counts past the
 limits, or damaged text. The file is written as JSON or YAML and read in a child process with a memory
-cap (Room.load and every surface's obstacles, surface_from_file, jobs.read_job).
+cap (Room.load, every surface's obstacles and the room's Scene, each asked a collision check, a ray and a
+small depth image; surface_from_file; jobs.read_job).
 
 Outcomes: accepted; a clean error (ValueError, TypeError or OSError with a message of one paragraph:
 at most 2,000 characters); a traceback (any other exception); a memory blow-up (MemoryError); a crash
@@ -63,6 +64,12 @@ def valid_room(rng: random.Random) -> dict:
         room["shelves"] = [{"name": "shelf", "size": [0.8, 0.35], "boards": [0.4, 0.8, 1.2], "x": -2, "y": 1}]
     if rng.random() < 0.5:
         room["boxes"] = [{"name": "wall", "size": [0.05, 2, 2], "xyz": [4, 0, 1]}]
+    if rng.random() < 0.4:
+        room["cylinders"] = [{"name": "bin", "radius": round(rng.uniform(0.05, 0.3), 3),
+                              "length": round(rng.uniform(0.2, 1.0), 3), "xyz": [-3, -2, 0.4],
+                              "rpy": [0, round(rng.uniform(-1, 1), 3), 0]}]
+    if rng.random() < 0.4:
+        room["spheres"] = [{"name": "ball", "radius": round(rng.uniform(0.05, 0.3), 3), "xyz": [3, -2, 0.2]}]
     return room
 
 
@@ -243,7 +250,9 @@ def counts(rng: random.Random, valid, kind: str):
         elif roll < 0.7:
             data["shelves"] = [{"name": "s", "size": [0.8, 0.35], "boards": [0.1 * i for i in range(1, n)]}]
         else:
-            data["boxes"] = [{"name": f"b{i}", "size": [0.1, 0.1, 0.1], "xyz": [i, 0, 0]} for i in range(n + 20000)]
+            key, entry = rng.choice([("boxes", {"size": [0.1, 0.1, 0.1]}), ("cylinders", {"radius": 0.1, "length": 0.2}),
+                                     ("spheres", {"radius": 0.1})])
+            data[key] = [{"name": f"o{i}", **entry, "xyz": [i, 0, 0]} for i in range(n + 20000)]
         return data
     if roll < 0.5:
         data["resolutions"] = [0.2 + 1e-6 * i for i in range(n)]
@@ -362,8 +371,18 @@ cap = int(sys.argv[1])
 if cap:
     resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
 warnings.simplefilter("ignore")
-from octoreach import jobs, rooms
+import numpy as np
+from octoreach import DepthCamera, _core, jobs, rooms
 from octoreach.cli.build import output_stems
+
+CAMERA = DepthCamera(16, 12, 1.0, 8.0)
+LOOK = _core.look_at([0.0, -4.0, 1.5], [0.0, 0.0, 0.5])
+
+def query(obstacles, scene=None):  # what a map build and a simulated camera ask of the room's shapes
+    obstacles.collides_box([0.2, 0.2, 0.2], np.eye(4))
+    if scene is not None:
+        scene.raycast([0.0, 0.0, 3.0], [0.0, 0.0, -1.0], max_range=10.0)
+        CAMERA.capture(scene, LOOK)
 
 def use(kind, path):
     if kind == "room":
@@ -373,11 +392,13 @@ def use(kind, path):
         json.dumps(room.description)
         repr(room)
         output_stems(list(room.surfaces), "room")
+        query(room.obstacles(), room.scene())
     elif kind == "polygon":
         surface, obstacles = rooms.surface_from_file(path)
         surface.area
         surface.contains([[0.0, 0.0, 0.0]])
         len(obstacles)
+        query(obstacles)
     else:
         job = jobs.read_job(path, out=os.path.dirname(path) + "/out")
         len(job)

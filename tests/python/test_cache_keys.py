@@ -253,3 +253,23 @@ def test_cache_list_survives_damaged_notes(robot, tmp_path, note):
     r = run("cache", "list", "--cache-dir", tmp_path)
     assert r.returncode == 0 and "1 maps" in r.stdout and "Traceback" not in r.stderr, r.stderr
     assert len(MapCache(tmp_path).entries()) == 1
+
+
+@pytest.mark.parametrize("other", ["surface", "point"])
+def test_a_map_of_another_kind_under_a_capability_key_is_rebuilt(robot, tmp_path, other):
+    # Every map kind of the registry loads through map_files.load: a surface or point map's bytes at a capability
+    # entry's name are refused by kind, reported and rebuilt, never used.
+    cache = MapCache(tmp_path)
+    honest, _ = cached(cache, robot, resolution=0.2)
+    entry = entry_of(cache, robot, ARM, resolution=0.2, **KW_OPTS)
+    if other == "surface":
+        m = octoreach.SurfaceMap.build(robot, honest, octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55),
+                                       resolution=0.2, theta_bins=8, z_range=(0, 0), progress=False)
+    else:
+        m = octoreach.InversePointMap.build(robot, honest, theta_bins=8, progress=False)
+    entry.unlink()
+    m.save(str(entry))
+    again, said = cached(cache, robot, resolution=0.2)
+    assert any("deleting and rebuilding" in s for s in said), said
+    assert again.voxel_count == honest.voxel_count and cache.builds == 2
+    assert octoreach.map_files.kind(entry) == "capability"

@@ -232,3 +232,43 @@ def test_honest_maps_still_load(maps):
     cap = octoreach.CapabilityMap.load(str(maps["dir"] / "cap.orcm"))
     assert cap.voxel_count == maps["cap"].voxel_count
     assert octoreach.SurfaceMap.load(str(maps["dir"] / "surf.orsm")).resolution == maps["sm"].resolution
+
+
+_VISUAL_URDF = """<robot name="visual_only">
+  <link name="base"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="tool"><visual><geometry><mesh filename="{mesh}"/></geometry></visual></link>
+  <joint name="turn" type="revolute"><parent link="base"/><child link="tool"/><origin xyz="0 0 0.1"/>
+    <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("mesh", ["tool.stl", "tool.dae"])
+@pytest.mark.parametrize("special", ["fifo", "dev_zero", "oversized"])
+def test_visual_meshes_the_viewer_reads_are_bounded(tmp_path, mesh, special):
+    # The loader resolves a visual mesh without reading it; the viewer reads it to draw the robot. A FIFO there
+    # used to block the viewer for good, /dev/zero to fill its memory: both are refused, as oversized files are.
+    path = tmp_path / mesh
+    if special == "fifo":
+        os.mkfifo(path)
+    elif special == "dev_zero":
+        os.symlink("/dev/zero", path)
+    else:
+        with open(path, "wb") as f:
+            f.truncate(octoreach._core.limits["mesh_file_bytes"] + 1)
+    (tmp_path / "robot.urdf").write_text(_VISUAL_URDF.format(mesh=mesh))
+    child = run_python(f"""
+import octoreach as o
+from octoreach.viewer.robot_meshes import RobotMeshes
+robot = o.Robot.from_urdf({str(tmp_path / 'robot.urdf')!r})
+assert robot.visuals['tool'][0].shape.mesh_path, 'the loader resolves the visual mesh'
+try:
+    RobotMeshes(robot)
+    print('DRAWN')
+except OSError as e:
+    print('OSError', e)
+""", timeout=60, mem_bytes=1 << 30)
+    assert not child.hung, "the viewer still reads the visual mesh after 60 s"
+    assert child.returncode == 0, child.stderr[-2000:]
+    expected = {"fifo": "FIFO", "dev_zero": "character device", "oversized": "mesh_file_bytes"}[special]
+    assert "OSError" in child.stdout and expected in child.stdout and mesh in child.stdout, child.stdout

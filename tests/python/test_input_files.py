@@ -333,3 +333,10 @@ def test_room_save_uses_the_umask_and_refuses_special_targets(tmp_path, fifo):
     assert victim.read_text() == "mine" and (tmp_path / "link.json").is_symlink()
     assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")
     assert not [p for p in tmp_path.iterdir() if ".tmp." in p.name]
+
+
+@pytest.mark.parametrize("name", [float("nan"), 5, None, ["n"], "", "a\x00b"])
+def test_names_of_a_surfaces_own_boxes_are_checked_too(name):
+    entry = {**TABLE, "boxes": [{"name": name, "size": [0.1, 0.1, 0.1], "xyz": [0.55, 0, 0.45]}]}
+    with pytest.raises((TypeError, ValueError), match=r"surfaces\[0\] \('t'\)\.boxes\[0\]: 'name'"):
+        Room({"surfaces": [entry]})

@@ -5,6 +5,7 @@ allocate much on a broken build run in a child process with a timeout and a memo
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -165,3 +166,36 @@ def test_absurd_magnitudes_are_out_of_range_not_misdescribed():
         octoreach.Surface.rectangle(1.0, 1.0, 0.7).add_box([1e300, 1, 1], np.eye(4))
     big = L["coordinate"]
     assert octoreach.Surface.rectangle(1.0, 1.0, 0.7, x=big - 1).area == pytest.approx(1.0)
+
+
+def test_obstacle_shapes_beyond_the_coordinate_limit_are_refused(tmp_path):
+    # Boxes, cylinders, spheres and meshes of an Obstacles, a Scene or a room: a position or an extent past
+    # `coordinate` (a sphere at 1e30 m, a mesh scaled by 1e300) is refused with its name, never placed where no
+    # collision check or ray can hold it.
+    from octoreach.rooms import Room
+
+    far = np.eye(4)
+    far[0, 3] = 1e300
+    tri = tmp_path / "tri.stl"
+    tri.write_text("solid t\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+                   "endfacet\nendsolid t\n")
+    calls = {
+        "box size": lambda: octoreach.Shape.box([1e300, 1, 1], np.eye(4)),
+        "shape position": lambda: octoreach.Shape.box([1, 1, 1], far),
+        "cylinder radius": lambda: octoreach.Shape.cylinder(1e7, 1.0, np.eye(4)),
+        "cylinder length": lambda: octoreach.Shape.cylinder(0.1, 1e300, np.eye(4)),
+        "sphere radius": lambda: octoreach.Shape.sphere(1e300, np.eye(4)),
+        "out of range": lambda: octoreach.Obstacles().add_box([1, 1, 1], far),
+        "mesh vertices": lambda: octoreach.Shape.triangle_mesh([[0, 0, 0], [1e300, 0, 0], [0, 1, 0]], [[0, 1, 2]], np.eye(4)),
+        "has a vertex at": lambda: octoreach.Shape.mesh_file(str(tri), np.eye(4), [1e300, 1, 1]),
+        "spheres[0]: shape position": lambda: Room({"spheres": [{"name": "b", "radius": 0.1, "xyz": [1e30, 0, 0]}]}),
+        "cylinders[0]: cylinder length": lambda: Room({"cylinders": [{"name": "c", "radius": 0.1, "length": 1e300}]}),
+        "boxes[0]: box size": lambda: Room({"boxes": [{"name": "w", "size": [1e9, 1, 1]}]}),
+        "meshes[0]: mesh": lambda: Room({"meshes": [{"name": "m", "path": str(tri), "scale": [1e300, 1, 1]}]}),
+    }
+    for fragment, call in calls.items():
+        with pytest.raises(ValueError, match=re.escape(fragment)):
+            call()
+    room = Room({"spheres": [{"name": "b", "radius": 0.5, "xyz": [L["coordinate"] - 1, 0, 0]}],
+                 "meshes": [{"name": "m", "path": str(tri), "scale": [1000, 1000, 1000]}]})
+    assert len(room.obstacles()) == 2

@@ -8,6 +8,7 @@
 #include "octoreach/shape.hpp"
 #include "octoreach/types.hpp"
 #include "collision/mesh_pair_check.hpp"
+#include "common/checks.hpp"
 #include "common/file_read.hpp"
 #include "octoreach/limits.hpp"
 
@@ -63,6 +64,11 @@ std::shared_ptr<fcl::CollisionGeometryd> load_mesh(const std::string& path, cons
   std::vector<fcl::Triangle> triangles;
   collect_triangles(scene, scene->mRootNode, aiMatrix4x4(), points, triangles, scale);
   if (triangles.empty()) throw FileError("mesh '" + path + "' holds no triangles");
+  for (const auto& p : points)  // a scale of 1e300 gives vertices no collision check can place
+    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > limits::kCoordinate)
+      throw std::invalid_argument("mesh '" + path + "' scaled by " + detail::format_point(scale) + " has a vertex at " +
+                                  detail::format_point(p) + ", out of range (at most " +
+                                  detail::format_number(limits::kCoordinate) + " m in magnitude)");
   return bvh_from(points, triangles);
 }
 
@@ -70,6 +76,7 @@ std::shared_ptr<fcl::CollisionGeometryd> make_mesh(const MeshVertices& vertices,
   if (vertices.rows() == 0 || triangles.rows() == 0)
     throw std::invalid_argument("a mesh needs at least one vertex and one triangle");
   if (!vertices.allFinite()) throw std::invalid_argument("mesh vertices must be finite");
+  detail::check_coordinates(vertices, "mesh vertices");
   std::vector<fcl::Vector3d> points;
   std::vector<fcl::Triangle> tris;
   for (Eigen::Index i = 0; i < vertices.rows(); ++i) points.emplace_back(vertices.row(i).transpose());

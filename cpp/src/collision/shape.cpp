@@ -8,6 +8,7 @@
 #include <fcl/fcl.h>
 #include <octomap/OcTree.h>
 
+#include "common/checks.hpp"
 #include "common/file_read.hpp"
 #include "common/octree_file.hpp"
 #include "octoreach/limits.hpp"
@@ -17,8 +18,11 @@ namespace {
 
 using BVH = fcl::BVHModel<fcl::OBBRSSd>;
 
+// A finite pose whose position lies within limits::kCoordinate (far beyond, the millimetres the collision
+// checks work in are lost, and extents add up to infinity).
 void check_pose(const Pose& pose, const char* what) {
   if (!pose.matrix().allFinite()) throw std::invalid_argument(std::string(what) + " pose must be finite");
+  detail::check_coordinates(pose.translation(), (std::string(what) + " position").c_str());
 }
 
 Shape with_geometry_at(Shape s, std::shared_ptr<fcl::CollisionGeometryd> geometry, const Pose& pose) {
@@ -49,6 +53,7 @@ std::shared_ptr<octomap::OcTree> read_octree(const std::string& path) {
 Shape Shape::box(const Eigen::Vector3d& size, const Pose& pose) {
   if (!(size.array() > 0).all() || !size.allFinite())
     throw std::invalid_argument("box size must be three positive numbers");
+  detail::check_coordinates(size, "box size");
   Shape s;
   s.type = Type::Box;
   s.size = size;
@@ -60,6 +65,8 @@ Shape Shape::cylinder(double radius, double length, const Pose& pose) {
     throw std::invalid_argument("cylinder radius must be a positive finite number, got " + std::to_string(radius));
   if (!(length > 0) || !std::isfinite(length))
     throw std::invalid_argument("cylinder length must be a positive finite number, got " + std::to_string(length));
+  detail::check_coordinate(radius, "cylinder radius");
+  detail::check_coordinate(length, "cylinder length");
   Shape s;
   s.type = Type::Cylinder;
   s.radius = radius;
@@ -69,6 +76,7 @@ Shape Shape::cylinder(double radius, double length, const Pose& pose) {
 
 Shape Shape::sphere(double radius, const Pose& pose) {
   if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("sphere radius must be positive");
+  detail::check_coordinate(radius, "sphere radius");
   Shape s;
   s.type = Type::Sphere;
   s.radius = radius;

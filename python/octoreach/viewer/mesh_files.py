@@ -38,10 +38,18 @@ def _welded(corners: np.ndarray) -> Mesh:
     return Mesh(vertices, inverse.reshape(-1, 3))
 
 
+def _mesh_bytes(path: str) -> bytes:
+    """The bytes of a mesh file: a regular file within the compiled library's mesh_file_bytes limit (a URDF's
+    visual mesh may name a FIFO or a device, which would block the viewer or fill its memory)."""
+    from .._core import limits
+    from ..data_files import read_bytes
+
+    return read_bytes(path, "mesh file", int(limits["mesh_file_bytes"]), "octoreach._core.limits['mesh_file_bytes']")
+
+
 def read_stl(path: str) -> Mesh:
     """An STL file (binary or ASCII); OSError naming the file when it is neither."""
-    with open(path, "rb") as f:
-        data = f.read()
+    data = _mesh_bytes(path)
     if len(data) >= 84:
         count = int(np.frombuffer(data, dtype="<u4", count=1, offset=80)[0])
         if 84 + 50 * count == len(data):
@@ -63,9 +71,14 @@ def read_mesh(path: str) -> Mesh:
     """A mesh file: STL here, anything else through trimesh."""
     if path.lower().endswith(".stl"):
         return read_stl(path)
+    import io
+    import os
+
     import trimesh
 
-    loaded = trimesh.load(path, force="mesh")
+    data = _mesh_bytes(path)  # trimesh reads what it is given: the checked bytes, never the path again
+    loaded = trimesh.load(io.BytesIO(data), file_type=os.path.splitext(path)[1].lstrip(".").lower(), force="mesh",
+                          resolver=trimesh.resolvers.FilePathResolver(path))
     return Mesh(loaded.vertices, loaded.faces)
 
 
