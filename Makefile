@@ -134,7 +134,7 @@ sdist: $(VENV)/.build-deps
 test-sdist: sdist
 	rm -rf build/sdist-venv && $(PYTHON) -m venv build/sdist-venv
 	build/sdist-venv/bin/python -m pip install -q "$$(ls -t $(DIST)/octoreach-*.tar.gz | head -1)"
-	cd build && sdist-venv/bin/python -c "import octoreach, sys; r = octoreach.Robot.from_urdf(octoreach.robots.project_urdf('test_arm')); print('octoreach', octoreach.__version__, 'from the sdist:', r.dof, 'joints')"
+	cd build && sdist-venv/bin/python -c "import octoreach, sys; r = octoreach.robots.from_urdf(octoreach.robots.project_urdf('test_arm')); print('octoreach', octoreach.__version__, 'from the sdist:', r.dof, 'joints')"
 
 demo: install
 	$(PY) -m octoreach.demo --out demo_out

@@ -1,7 +1,7 @@
 """The package under test is the repaired wheel users install (`make test` runs this with OCTOREACH_WHEEL set to
 the file `make wheel` wrote): auditwheel finds nothing the wheel needs outside its manylinux policy, the wheel
-holds octoreach's code once and no benchmark module, the installed files are the wheel's, and the version
-is pyproject.toml's everywhere. Without OCTOREACH_WHEEL (a source install) the wheel checks are skipped."""
+holds octoreach's code once and no benchmark module and stays within 8 MB, the installed files are the wheel's,
+and the version is pyproject.toml's everywhere. Without OCTOREACH_WHEEL (a source install) the wheel checks are skipped."""
 from __future__ import annotations
 
 import base64
@@ -61,6 +61,20 @@ def test_the_wheel_holds_the_code_once_and_no_benchmark_module():
     assert vendored == VENDORED, vendored ^ VENDORED
     assert not [n for n in names if "bench" in n or "kdl" in n.lower() or "liboctoreach" in n], names
     assert "octoreach/py.typed" in names and "octoreach/urdf/test_arm.urdf" in names
+
+
+# What a user downloads: the wheel file, octoreach's code and every vendored library, compressed.
+WHEEL_BUDGET_BYTES = 8_000_000
+
+
+@needs_wheel
+def test_the_wheel_stays_within_its_size_budget():
+    size = Path(WHEEL).stat().st_size
+    with zipfile.ZipFile(WHEEL) as z:
+        largest = sorted(((i.compress_size, i.filename) for i in z.infolist()), reverse=True)[:4]
+    assert size <= WHEEL_BUDGET_BYTES, (
+        f"{Path(WHEEL).name}: {size} bytes, over the {WHEEL_BUDGET_BYTES}-byte budget; largest members "
+        f"(compressed): {largest}")
 
 
 @needs_wheel

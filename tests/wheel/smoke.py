@@ -197,13 +197,13 @@ def exploration(tmp: Path):
         emap.insert(cam.capture(scene, T), T[:3, 3], cam.max_range)
     assert emap.void_clusters() and emap.void_cell_count > 100, emap.void_cell_count
     r = next_best_view(emap, cam, workspace_sphere=((0.8, 0.0, 0.3), 1.0), min_distance=0.05)
-    assert r["best_pose"] is not None and r["void_cells"] > 0, r["void_cells"]
+    assert r.best_pose is not None and r.void_cells > 0, r.void_cells
     emap.write_bt(str(tmp / "scan.bt"))
     back = ExplorationMap.from_file(str(tmp / "scan.bt"), search_space=ex.scene_region(scene))
     assert back.occupancy_digest()["occupied"] == emap.occupancy_digest()["occupied"]
     world = Scene()
     world.load_octomap(str(tmp / "scan.bt"))
-    print(f"exploration: {len(emap.void_clusters())} void(s), next best view sees {r['void_cells']} void cells; "
+    print(f"exploration: {len(emap.void_clusters())} void(s), next best view sees {r.void_cells} void cells; "
           ".bt written and read")
 
 
