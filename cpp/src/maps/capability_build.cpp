@@ -10,6 +10,7 @@
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
 #include "maps/map_io.hpp"
+#include "octoreach/manipulability.hpp"
 
 namespace octoreach::detail {
 
@@ -267,6 +268,42 @@ void CapabilityBuilder::solve() {
     flood(newly);
   }
   report(0.95, 0.0, 1.0);
+}
+
+void CapabilityBuilder::rate() {
+  if (!o_.keep_solutions) return;
+  const std::size_t rows = sol_pool_.size() / dof_;
+  quality_.assign(rows, CellQuality{});
+  const int rank = jacobian_rank(chain_);
+  // From the stored (float) solution, so that the quality is the one its solution gives when read back.
+  detail::parallel_for(rows, o_.threads, [&](std::size_t row, int) {
+    const Eigen::VectorXd q =
+        Eigen::Map<const Eigen::VectorXf>(sol_pool_.data() + row * dof_, dof_).cast<double>();
+    quality_[row].manipulability = static_cast<float>(manipulability(chain_, q, rank));
+    quality_[row].penalty = static_cast<float>(joint_limit_penalty(chain_, q));
+  }, 256);
+}
+
+void CapabilityBuilder::collect(std::size_t v, VoxelCellData& out) const {
+  const int O = box_.O;
+  out.clear((O + 63) / 64);
+  for (int oi = 0; oi < O; ++oi) {
+    const std::size_t c = v * O + oi;
+    if (status_[c] == kReachable) {
+      out.bits[oi >> 6] |= 1ULL << (oi & 63);
+      if (!o_.keep_solutions) continue;
+      out.solutions.insert(out.solutions.end(), solution(c), solution(c) + dof_);
+      out.quality.push_back(quality_.empty() ? CellQuality{} : quality_[sol_row_[c]]);
+    } else if (seed_row_[c] >= 0) {
+      out.mixed[oi >> 6] |= 1ULL << (oi & 63);
+    }
+  }
+  if (!o_.keep_solutions) return;
+  for (int oi = 0; oi < O; ++oi)
+    if ((out.mixed[oi >> 6] >> (oi & 63)) & 1ULL) {
+      const float* q = seed(v * O + oi);
+      out.mixed_solutions.insert(out.mixed_solutions.end(), q, q + dof_);
+    }
 }
 
 }  // namespace octoreach::detail

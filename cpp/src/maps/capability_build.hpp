@@ -8,6 +8,7 @@
 
 #include "octoreach/capability_map.hpp"
 #include "octoreach/chain.hpp"
+#include "maps/capability_cells.hpp"
 
 namespace octoreach::detail {
 
@@ -42,6 +43,13 @@ class CapabilityBuilder {
   /// Stage 2: seeded IK at the voxel centres, a flood fill over neighbours, one retry pass with
   /// several neighbours' seeds, and (exhaustive) random restarts on every untried cell.
   void solve();
+
+  /// Stage 3: the quality of every reachable cell's solution (keep_solutions), on every core.
+  void rate();
+  /// The cells of voxel v (box index) as a map record holds them: reachable cells, mixed cells (a forward-
+  /// kinematics sample landed in them, IK at their centre failed) and, with keep_solutions, their solutions,
+  /// quality (after rate()) and the mixed cells' samples.
+  void collect(std::size_t v, VoxelCellData& out) const;
 
   bool reachable(std::size_t cell) const { return status_[cell] == kReachable; }
   /// The solution (dof floats) of a reachable cell.
@@ -84,6 +92,7 @@ class CapabilityBuilder {
   std::vector<std::uint8_t> status_;
   std::vector<std::int32_t> sol_row_;
   std::vector<float> sol_pool_;
+  std::vector<CellQuality> quality_;  // per sol_pool_ row (rate())
   std::size_t ik_calls_ = 0;
 };
 

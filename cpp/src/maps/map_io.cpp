@@ -85,9 +85,9 @@ std::string read_kind_field(std::istream& f, const std::string& path) {
     throw FileError("'" + path + "' is not an octoreach map file (bad magic)");
   std::uint32_t version = 0, klen = 0;
   if (!get(f, version)) throw FileError("'" + path + "' is truncated (no format version)");
-  if (version != kFormatVersion)
+  if (version < kOldestFormatVersion || version > kFormatVersion)
     throw FileError("'" + path + "' has map format version " + std::to_string(version) + ", this octoreach reads " +
-                    std::to_string(kFormatVersion));
+                    std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion));
   if (!get(f, klen) || klen > 64) throw FileError("'" + path + "' is damaged (bad kind field)");
   std::string file_kind(klen, '\0');
   if (!f.read(file_kind.data(), klen)) throw FileError("'" + path + "' is truncated (kind)");

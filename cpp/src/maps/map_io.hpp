@@ -25,7 +25,10 @@
 
 namespace octoreach::detail {
 
-constexpr std::uint32_t kFormatVersion = 1;
+// Version 2: capability maps record their mixed cells and cell quality (header "cell_data"); the payloads of
+// the other kinds are those of version 1, which this version still reads.
+constexpr std::uint32_t kFormatVersion = 2;
+constexpr std::uint32_t kOldestFormatVersion = 1;
 
 class ByteWriter {
  public:
