@@ -156,8 +156,10 @@ def certified_figures(cmap, robot, chain, reference, poses, truth) -> dict:
     c0 = cpu_seconds()
     answer = check.reachable(poses, threads=1)
     seconds = cpu_seconds() - c0
+    certain = check.certain(poses)
     out = {"lookup": "certified", **shares(answer, truth.reachable),
-           "ik_share_percent": round(100 * check.last_ik_share, 3),
+           "ik_share_percent": round(100 * float(1 - certain.mean()), 3),
+           "errors_where_certain_percent": round(100 * float(((answer != truth.reachable) & certain).mean()), 3),
            "us_per_pose_check_poses": round(1e6 * seconds / len(poses), 3)}
     lo, hi = cmap.bounds
     rng = np.random.default_rng(12345)
@@ -168,11 +170,11 @@ def certified_figures(cmap, robot, chain, reference, poses, truth) -> dict:
     c0 = cpu_seconds()
     check.reachable(uniform, threads=1)
     out["us_per_pose_uniform_in_map_box"] = round(1e6 * (cpu_seconds() - c0) / n, 3)
-    out["ik_share_uniform_percent"] = round(100 * check.last_ik_share, 3)
+    out["ik_share_uniform_percent"] = round(100 * float(1 - check.certain(uniform).mean()), 3)
     return out
 
 
-def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, progress) -> list[dict]:
+def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, progress, map_cache=None) -> list[dict]:
     robot, arm, chain, reference = load_arm(robot_name, arm_name)
     t0 = time.perf_counter()
     poses, truth, cached = truth_of(robot, arm, chain, reference, n, seed, cache_dir)
@@ -182,8 +184,8 @@ def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, 
     rows = []
     for res in resolutions:
         c0, w0 = cpu_seconds(), time.perf_counter()
-        cmap = arms.capability_map(robot, arm_name, resolution=res, progress=progress)
-        row = dict(base, resolution_m=res, build={"cpu_seconds": round(cpu_seconds() - c0, 2),
+        cmap = arms.capability_map(robot, arm_name, resolution=res, progress=progress, cache=map_cache)
+        row = dict(base, resolution_m=res, build={"cpu_seconds": round(cpu_seconds() - c0, 2), "map_cache": map_cache,
                                                   "wall_seconds": round(time.perf_counter() - w0, 2),
                                                   **{k: int(v) for k, v in cmap.stats.items() if k != "seconds"}})
         row["lookups"] = {}
@@ -234,13 +236,22 @@ def main(argv=None) -> int:
     ap.add_argument("--diagnose", action="store_true", help="split the nearest-cell errors by cause")
     ap.add_argument("--truth-cache", type=Path, default=Path("benchmarks/out/panel_truth"))
     ap.add_argument("--table", default="", help="also write the markdown table to this file")
+    ap.add_argument("--jsonl", default="", help="also append each arm's figures to this file as they come")
+    ap.add_argument("--map-cache", default=None,
+                    help="a map cache directory (octoreach.cache): maps built once serve reruns (build figures are "
+                         "then those of a load)")
     ap.add_argument("--progress", action="store_true")
     args = ap.parse_args(argv)
     panel = args.arms or (HOLD_OUT if args.hold_out else PANEL)
     rows = []
     for robot_name, arm_name in panel:
-        rows += run_arm(robot_name, arm_name, args.resolutions, args.poses, args.seed, args.truth_cache,
-                        args.diagnose, args.progress)
+        new = run_arm(robot_name, arm_name, args.resolutions, args.poses, args.seed, args.truth_cache, args.diagnose,
+                      args.progress, args.map_cache)
+        rows += new
+        if args.jsonl:
+            with open(args.jsonl, "a") as f:
+                for row in new:
+                    f.write(json.dumps(row) + "\n")
     out = {"benchmark": "arm_panel", "octoreach": octoreach.__version__, "targets": TARGETS, "arms": rows,
            "machine": {"cpu_count": os.cpu_count(), "platform": platform.platform(),
                        "load_average": [round(x, 2) for x in os.getloadavg()]}}

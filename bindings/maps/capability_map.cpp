@@ -106,13 +106,16 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
            "(manipulability, joint-limit penalty) of the stored solution of reachable cell (point, orientation), or\n"
            "None when the cell is not reachable; their product is the cell's quality. ValueError (saying how to\n"
            "rebuild) for a map without quality.")
-      .def("voxel_quality", [](const CapabilityMap& cm, const std::string& how) {
+      .def("voxel_quality", [](const CapabilityMap& cm, const std::string& how, bool relative) {
              if (how != "mean" && how != "max") throw std::invalid_argument("how must be 'mean' or 'max', got '" + how + "'");
-             const std::vector<double> v = cm.voxel_quality(how == "max");
-             return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())).eval();
-           }, py::arg("how") = "mean",
+             const std::vector<double> q = cm.voxel_quality(how == "max");
+             Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
+             if (relative && cm.max_quality() > 0) v /= cm.max_quality();
+             return v;
+           }, py::arg("how") = "mean", py::arg("relative") = false,
            "Per voxel of voxels() (D > 0): the mean or the largest quality (manipulability x penalty) of its reachable\n"
-           "cells. ValueError (saying how to rebuild) for a map without quality.")
+           "cells; relative=True divides by the map's best cell (values in [0, 1]). ValueError (saying how to rebuild)\n"
+           "for a map without quality.")
       .def("mixed_cell", [](const CapabilityMap& cm, const Eigen::Vector3d& p, int o) {
              const std::int64_t r = cm.record_at(p);
              if (o < 0 || o >= cm.orientations().size()) throw std::invalid_argument("orientation index out of range");

@@ -164,8 +164,15 @@ class CapabilityMap {
   const float* record_mixed_solution(std::uint32_t rec, int o) const;
   /// \brief The quality of reachable cell (record, orientation), or nullptr.
   const CellQuality* record_quality(std::uint32_t rec, int o) const;
-  /// \brief Record of the voxel with integer grid coordinates `key` (octomap keys), or DenseIndex::kNone.
-  std::uint32_t record_of_key(const octomap::OcTreeKey& key) const;
+  /// \brief Record of the voxel with octree key `key`, or DenseIndex::kNone.
+  std::uint32_t record_of_key(const octomap::OcTreeKey& key) const {
+    if (index_.active()) return index_.find(key);
+    const VoxelNode* n = tree_->search(key);
+    return n && !tree_->nodeHasChildren(n) ? n->payload : DenseIndex::kNone;
+  }
+  /// \brief The 8 voxels whose centres surround p: their records (DenseIndex::kNone where there is none) and
+  /// trilinear weights (summing to 1), corner k at +1 voxel along axis a where bit a of k is set.
+  void corners(const Eigen::Vector3d& p, std::uint32_t records[8], double weights[8]) const;
 
   /// \brief Centres (base link frame) and D of every voxel with D > 0 (voxels holding only mixed cells left out).
   void voxels(std::vector<Eigen::Vector3d>& centres, std::vector<double>& values) const;

@@ -157,12 +157,6 @@ void CapabilityBuilder::run_wave(const std::vector<Item>& wave, const std::vecto
     if (it.seed >= 0)
       s = Eigen::Map<const Eigen::VectorXf>(pool.data() + static_cast<std::size_t>(it.seed) * dof, dof).cast<double>();
     auto q = chain_.ik(target, opt, it.seed >= 0 ? &s : nullptr);
-    for (std::int32_t extra : it.more) {
-      if (q || extra < 0) break;
-      s = Eigen::Map<const Eigen::VectorXf>(sol_pool_.data() + static_cast<std::size_t>(extra) * dof, dof).cast<double>();
-      opt.attempts = 1;
-      q = chain_.ik(target, opt, &s);
-    }
     if (q) {
       results[i] = q->cast<float>();
       ok[i] = 1;
@@ -205,33 +199,26 @@ void CapabilityBuilder::flood(std::vector<std::uint32_t> frontier) {
   }
 }
 
-// A failed cell next to several reachable ones gets their solutions as seeds (a single
-// neighbour's seed can sit on the wrong side of a joint limit or a collision). The seed the cell
-// failed with in the flood is not tried again: IK from the same seed at the same target repeats the
-// same descent, so leaving it out changes no result, only the cost (about a third of the pass's calls).
+// A failed cell next to at least two reachable ones gets another neighbour's solution as its seed (a single
+// neighbour's seed can sit on the wrong side of a joint limit or a collision): the first reachable neighbour's
+// whose solution is not the seed the cell failed with (IK from the same seed at the same target repeats the same
+// descent). One seed: on the PR2 arm at 0.05 m it recovers 74,000 cells in 450,000 calls; three more seeds per
+// cell recovered 15,000 more in 560,000 more calls, cells that CertifiedLookup answers by IK anyway (their
+// neighbours disagree).
 std::vector<CapabilityBuilder::Item> CapabilityBuilder::retry_items() const {
   std::vector<Item> retry;
   std::vector<std::uint32_t> nb;
   for (std::uint32_t c = 0; c < box_.cells; ++c) {
     if (status_[c] != kFailed) continue;
     box_.neighbours(c, set_, nb);
-    std::array<std::int32_t, 4> seeds{{-1, -1, -1, -1}};
     int k = 0;
+    std::int32_t seed = -1;
     for (std::uint32_t n : nb)
       if (status_[n] == kReachable) {
-        if (k <= 3) seeds[k] = sol_row_[n];
         ++k;
+        if (seed < 0 && sol_row_[n] != sol_row_[c]) seed = sol_row_[n];
       }
-    if (k < 2) continue;
-    Item it{c, -1};
-    int m = 0;
-    for (std::int32_t s : seeds)
-      if (s >= 0 && s != sol_row_[c]) {
-        if (m == 0) it.seed = s;
-        else it.more[m - 1] = s;
-        ++m;
-      }
-    if (m > 0) retry.push_back(it);
+    if (k >= 2 && seed >= 0) retry.push_back({c, seed});
   }
   return retry;
 }

@@ -41,7 +41,7 @@ class CapabilityBuilder {
   /// cell they hit a seed configuration. Returns the number of samples.
   std::size_t sample();
   /// Stage 2: seeded IK at the voxel centres, a flood fill over neighbours, one retry pass with
-  /// several neighbours' seeds, and (exhaustive) random restarts on every untried cell.
+  /// another neighbour's seed, and (exhaustive) random restarts on every untried cell.
   void solve();
 
   /// Stage 3: the quality of every reachable cell's solution (keep_solutions), on every core.
@@ -71,8 +71,7 @@ class CapabilityBuilder {
  private:
   struct Item {
     std::uint32_t cell;
-    std::int32_t seed;  // row in seed_pool_ (wave 0) or sol_pool_ (flood); -1 none
-    std::array<std::int32_t, 3> more{{-1, -1, -1}};  // further seeds from sol_pool_ (retry pass)
+    std::int32_t seed;  // row in seed_pool_ (wave 0) or sol_pool_ (flood, retry); -1 none
   };
   void run_wave(const std::vector<Item>& wave, const std::vector<float>& pool, int attempts,
                 std::vector<std::uint32_t>& newly);

@@ -168,27 +168,57 @@ double CapabilityMap::reachability(const Eigen::Vector3d& p) const {
   return r == DenseIndex::kNone ? 0.0 : d_[r];
 }
 
-bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
-  // Grid coordinates of p in units of voxels, measured from the centre of voxel key 0 (octomap's
-  // voxel i spans [i, i + 1) * resolution; its centre is at (i + 0.5) * resolution).
-  const double inv = 1.0 / resolution_;
-  double base[3], frac[3];
+namespace {
+
+// Grid coordinates of p in voxels from the centre of voxel key 0 (octomap's voxel i spans [i, i + 1) * resolution,
+// its centre is at (i + 0.5) * resolution): the lower corner's key and the fractions towards the upper ones.
+// False when a corner falls outside the octree's keys.
+bool corner_grid(const Eigen::Vector3d& p, double resolution, octomap::OcTreeKey& low, double frac[3]) {
+  constexpr double kOffset = 32768.0;  // octomap's tree_max_val at depth 16: key = floor(x / res) + 32768
+  const double inv = 1.0 / resolution;
   for (int a = 0; a < 3; ++a) {
-    const double g = p[a] * inv - 0.5;
-    base[a] = std::floor(g);
-    frac[a] = g - base[a];
+    const double g = p[a] * inv - 0.5, base = std::floor(g);
+    frac[a] = g - base;
+    if (!(base + kOffset >= 0.0 && base + kOffset + 1.0 <= 65535.0)) return false;
+    low[a] = static_cast<octomap::key_type>(base + kOffset);
   }
-  double yes = 0.0, left = 1.0;
+  return true;
+}
+
+}  // namespace
+
+void CapabilityMap::corners(const Eigen::Vector3d& p, std::uint32_t records[8], double weights[8]) const {
+  octomap::OcTreeKey low;
+  double frac[3];
+  const bool inside = corner_grid(p, resolution_, low, frac);
   for (int k = 0; k < 8; ++k) {
     double w = 1.0;
-    Eigen::Vector3d c;
+    octomap::OcTreeKey key = low;
     for (int a = 0; a < 3; ++a) {
       const bool up = (k >> a) & 1;
       w *= up ? frac[a] : 1.0 - frac[a];
-      c[a] = (base[a] + (up ? 1.5 : 0.5)) * resolution_;  // the centre of the corner voxel
+      key[a] = static_cast<octomap::key_type>(key[a] + up);
+    }
+    weights[k] = w;
+    records[k] = inside ? record_of_key(key) : DenseIndex::kNone;
+  }
+}
+
+bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
+  octomap::OcTreeKey low;
+  double frac[3];
+  if (!corner_grid(p, resolution_, low, frac)) return false;
+  double yes = 0.0, left = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    double w = 1.0;
+    octomap::OcTreeKey key = low;
+    for (int a = 0; a < 3; ++a) {
+      const bool up = (k >> a) & 1;
+      w *= up ? frac[a] : 1.0 - frac[a];
+      key[a] = static_cast<octomap::key_type>(key[a] + up);
     }
     if (w <= 0.0) continue;
-    const std::uint32_t r = record(c);
+    const std::uint32_t r = record_of_key(key);
     if (r != DenseIndex::kNone && bit(r, o)) yes += w;
     left -= w;
     if (yes >= 0.5) return true;
@@ -264,11 +294,6 @@ const float* CapabilityMap::record_mixed_solution(std::uint32_t rec, int o) cons
 const CellQuality* CapabilityMap::record_quality(std::uint32_t rec, int o) const {
   if (quality_.empty() || !bit(rec, o)) return nullptr;
   return quality_.data() + sol_offset_[rec] + rank_(bits_.data() + std::size_t(rec) * words_, o);
-}
-
-std::uint32_t CapabilityMap::record_of_key(const octomap::OcTreeKey& key) const {
-  const octomap::point3d c = tree_->keyToCoord(key);
-  return record(Eigen::Vector3d(c.x(), c.y(), c.z()));
 }
 
 void CapabilityMap::require_quality(const std::string& what) const {

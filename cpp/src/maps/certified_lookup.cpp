@@ -62,14 +62,9 @@ CertifiedLookup::CertifiedLookup(const CapabilityMap& map, const Robot& robot, c
 CertifiedLookup::Cells CertifiedLookup::cells(const Pose& T, const float** seeds, int& n_seeds) const {
   const CapabilityMap& m = map_;
   const int o = m.orientations().nearest(T.linear(), m.approach_axis());
-  const double res = m.resolution(), inv = 1.0 / res;
-  // The 8 voxel centres around the position (octomap's voxel i spans [i, i + 1) * res), with trilinear weights.
-  double base[3], frac[3];
-  for (int a = 0; a < 3; ++a) {
-    const double g = T.translation()[a] * inv - 0.5;
-    base[a] = std::floor(g);
-    frac[a] = g - base[a];
-  }
+  std::uint32_t records[8];
+  double weights[8];
+  m.corners(T.translation(), records, weights);
   struct Corner {
     double weight;
     std::uint32_t rec;
@@ -77,23 +72,16 @@ CertifiedLookup::Cells CertifiedLookup::cells(const Pose& T, const float** seeds
   std::array<Corner, 8> corners;
   int reachable = 0, mixed = 0;
   for (int k = 0; k < 8; ++k) {
-    double w = 1.0;
-    Eigen::Vector3d c;
-    for (int a = 0; a < 3; ++a) {
-      const bool up = (k >> a) & 1;
-      w *= up ? frac[a] : 1.0 - frac[a];
-      c[a] = (base[a] + (up ? 1.5 : 0.5)) * res;
-    }
-    const std::int64_t rec = m.record_at(c);
-    corners[k] = {w, rec < 0 ? DenseIndex::kNone : static_cast<std::uint32_t>(rec)};
-    if (rec >= 0 && m.record_has(corners[k].rec, o)) ++reachable;
-    else if (rec >= 0 && m.record_mixed(corners[k].rec, o)) ++mixed;
+    corners[k] = {weights[k], records[k]};
+    if (records[k] == DenseIndex::kNone) continue;
+    if (m.record_has(records[k], o)) ++reachable;
+    else if (m.record_mixed(records[k], o)) ++mixed;
   }
   n_seeds = 0;
   if (reachable == 8) return Cells::reachable;
   if (reachable == 0 && mixed == 0) return Cells::unreachable;
   if (!seeds) return Cells::mixed;
-  std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.weight > b.weight; });
+  std::stable_sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.weight > b.weight; });
   for (const Corner& c : corners) {
     if (c.rec == DenseIndex::kNone || n_seeds >= options_.seeds) continue;
     const float* q = m.record_solution(c.rec, o);

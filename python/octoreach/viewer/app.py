@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from . import files
-from .capability_map import CapabilityMapLayer
+from .capability_map import COLOUR_BY, CapabilityMapLayer
 from .exploration import ExplorationLayer
 from .robot_meshes import RobotLayer, RobotMeshes
 from .samples import SamplesLayer, sample_poses
@@ -132,9 +132,10 @@ class Viewer:
         self.frame_camera(np.vstack([polygon, drawn]) if len(polygon) else drawn)
         return self.surface_map
 
-    def add_capability_map(self, cap, base_pose=None):
-        """A capability map's voxels (arm base frame at base_pose) with a slice-plane slider."""
-        self.capability_map = layer = CapabilityMapLayer(self.scene, cap, base_pose=base_pose)
+    def add_capability_map(self, cap, base_pose=None, colour_by: str = "reachability"):
+        """A capability map's voxels (arm base frame at base_pose) with a slice-plane slider; coloured by
+        "reachability" (D) or "quality" (of the cells' stored solutions), with a selector when the map has quality."""
+        self.capability_map = layer = CapabilityMapLayer(self.scene, cap, base_pose=base_pose, colour_by=colour_by)
         lo, hi = layer.z_range
         step = float(cap.resolution)
         slider = self.server.gui.add_slider("slice z (m)", min=lo, max=max(hi, lo + step), step=step, initial_value=layer.z)
@@ -143,6 +144,14 @@ class Viewer:
         def _(_event) -> None:
             layer.cut(slider.value)
             self._watch_clicks(layer)  # cut() makes a new node
+
+        if cap.has_quality:
+            choice = self.server.gui.add_dropdown("colour by", options=COLOUR_BY, initial_value=colour_by)
+
+            @choice.on_update
+            def _(_event) -> None:
+                layer.recolour(choice.value)
+                self._watch_clicks(layer)
 
         self._watch_clicks(layer)
         self.frame_camera(layer.centres)
@@ -348,13 +357,14 @@ def check_arguments(port=8080, host: str = "127.0.0.1", samples: int = 5, html=N
 
 def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
          host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
-         steps=None, surface=None, verbose: bool = True) -> Viewer:
+         steps=None, surface=None, verbose: bool = True, colour_by: str = "reachability") -> Viewer:
     """Shows maps and explorations in the browser: each item is a file path (.orsm, .orcm, .bt), a SurfaceMap,
     CapabilityMap, ExplorationMap or an explore() result. `robot` (Robot or name) defaults to the one a surface
     map records; its configuration is `q`, else the map's reference posture (other arm tucked) or home, with
     `joints` ({name: value}) set on top. `steps`: an ExplorationRecorder for an explore() result (the map after
     each view on the view slider). `surface`: the Surface a surface map was built on (its obstacle boxes are
     drawn; map files record the polygon only). `html`/`png` also write the scene as a static page / a screenshot.
+    colour_by: a capability map's voxels by "reachability" (D) or "quality" (of their cells' stored solutions).
     block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
     check_arguments(port, host, samples, html, png)
     loaded = [files.load(item) for item in items]
@@ -366,7 +376,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
             if kind == "surface_map":
                 v.add_surface_map(obj, robot=robot, samples=samples, seed=seed, q=q, surface=surface)
             elif kind == "capability_map":
-                v.add_capability_map(obj)
+                v.add_capability_map(obj, colour_by=colour_by)
             else:
                 v.add_exploration(obj, steps=steps)
         if robot is not None and v.robot_layer is None:
