@@ -164,6 +164,12 @@ class CapabilityMap {
   const float* record_mixed_solution(std::uint32_t rec, int o) const;
   /// \brief The quality of reachable cell (record, orientation), or nullptr.
   const CellQuality* record_quality(std::uint32_t rec, int o) const;
+  /// \brief CellQuality::value() of reachable cell (record, orientation) over max_quality(), in [0, 1]; 0 for a cell
+  /// that is not reachable or a map without quality (or whose best cell scores 0).
+  double relative_quality(std::uint32_t rec, int o) const {
+    const CellQuality* q = record_quality(rec, o);
+    return q && max_quality_ > 0 ? q->value() / max_quality_ : 0.0;
+  }
   /// \brief Record of the voxel with octree key `key`, or DenseIndex::kNone.
   std::uint32_t record_of_key(const octomap::OcTreeKey& key) const {
     if (index_.active()) return index_.find(key);

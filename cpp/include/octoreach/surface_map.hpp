@@ -39,6 +39,11 @@ struct SurfaceMapOptions {
   /// Grasp points lie this far above the surface along its normal (the tool frame holds an object,
   /// it does not touch the board): 0.05 m suits cans and cups.
   double grasp_height = 0.05;
+  /// R_P counts each valid grasp with its cell's quality relative to the capability map's best cell
+  /// (CellQuality::value() / CapabilityMap::max_quality()), so R_S and the sampler prefer base poses the arm reaches
+  /// away from its joint limits and singularities; false, the paper's R_S: each counts 1. Needs a capability
+  /// map with quality (CapabilityMap::has_quality()).
+  bool quality_weight = false;
   int threads = 0;
 };
 
@@ -94,6 +99,8 @@ class SurfaceMap {
   /// \brief The base z range the map was built for (world frame): poses are evaluated at heights
   /// clipped into it, so a single height (a robot on the floor) is exact.
   std::pair<double, double> z_range() const { return {z_min_, z_max_}; }
+  /// \brief "quality" when R_P weights grasps by their cells' quality (SurfaceMapOptions::quality_weight), else "".
+  const std::string& weight() const { return weight_; }
   /// \brief Why the map is empty ("" when it is not).
   const std::string& empty_reason() const { return empty_reason_; }
   /// \brief One line when the build looks suspicious (the surface at the edge of the arm's reach,
@@ -110,6 +117,7 @@ class SurfaceMap {
   double z_min_ = -1e9, z_max_ = 1e9;
   double grasp_height_ = 0.05;
   std::string checks_ = "body+arm";
+  std::string weight_;
 };
 
 }  // namespace octoreach
