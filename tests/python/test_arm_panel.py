@@ -44,3 +44,16 @@ def test_certified_lookup_agrees_with_ik(robot_name, arm_name):
                             f"{np.count_nonzero(answer & ~truth)} false positives, "
                             f"{np.count_nonzero(~answer & truth)} false negatives")
     assert agree >= vote
+
+
+def test_user_path_map_is_byte_identical_for_any_thread_count(tmp_path):
+    """arms.capability_map (the user's and the benchmark's call, joint solutions, mixed cells and quality kept) writes
+    the same bytes on one thread as on two."""
+    robot = robots.load("pr2")
+    paths = []
+    for threads in (1, 2):
+        cmap = arms.capability_map(robot, "right_arm", resolution=0.2, directions=24, threads=threads, progress=False)
+        assert cmap.has_solutions and cmap.has_cell_data and cmap.has_quality
+        paths.append(tmp_path / f"t{threads}.orcm")
+        cmap.save(str(paths[-1]), with_solutions=True)
+    assert paths[0].read_bytes() == paths[1].read_bytes()
