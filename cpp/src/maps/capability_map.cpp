@@ -185,6 +185,18 @@ bool corner_grid(const Eigen::Vector3d& p, double resolution, octomap::OcTreeKey
   return true;
 }
 
+// Corner k (bit a: one voxel up along axis a) of the 8 around a position: its key and trilinear weight.
+inline double corner(const octomap::OcTreeKey& low, const double frac[3], int k, octomap::OcTreeKey& key) {
+  double w = 1.0;
+  key = low;
+  for (int a = 0; a < 3; ++a) {
+    const bool up = (k >> a) & 1;
+    w *= up ? frac[a] : 1.0 - frac[a];
+    key[a] = static_cast<octomap::key_type>(key[a] + up);
+  }
+  return w;
+}
+
 }  // namespace
 
 void CapabilityMap::corners(const Eigen::Vector3d& p, std::uint32_t records[8], double weights[8]) const {
@@ -192,14 +204,8 @@ void CapabilityMap::corners(const Eigen::Vector3d& p, std::uint32_t records[8], 
   double frac[3];
   const bool inside = corner_grid(p, resolution_, low, frac);
   for (int k = 0; k < 8; ++k) {
-    double w = 1.0;
-    octomap::OcTreeKey key = low;
-    for (int a = 0; a < 3; ++a) {
-      const bool up = (k >> a) & 1;
-      w *= up ? frac[a] : 1.0 - frac[a];
-      key[a] = static_cast<octomap::key_type>(key[a] + up);
-    }
-    weights[k] = w;
+    octomap::OcTreeKey key;
+    weights[k] = corner(low, frac, k, key);
     records[k] = inside ? record_of_key(key) : DenseIndex::kNone;
   }
 }
@@ -210,13 +216,8 @@ bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
   if (!corner_grid(p, resolution_, low, frac)) return false;
   double yes = 0.0, left = 1.0;
   for (int k = 0; k < 8; ++k) {
-    double w = 1.0;
-    octomap::OcTreeKey key = low;
-    for (int a = 0; a < 3; ++a) {
-      const bool up = (k >> a) & 1;
-      w *= up ? frac[a] : 1.0 - frac[a];
-      key[a] = static_cast<octomap::key_type>(key[a] + up);
-    }
+    octomap::OcTreeKey key;
+    const double w = corner(low, frac, k, key);
     if (w <= 0.0) continue;
     const std::uint32_t r = record_of_key(key);
     if (r != DenseIndex::kNone && bit(r, o)) yes += w;
