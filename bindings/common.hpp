@@ -274,6 +274,7 @@ void wrap_self_collision_report(py::module_& m);
 void wrap_arm_report(py::module_& m);
 void wrap_camera_link(py::module_& m);
 void wrap_capability_map(py::module_& m);
+void wrap_certified_lookup(py::module_& m);
 void wrap_capability_blocks(py::module_& m);
 void wrap_point_map(py::module_& m);
 void wrap_surface(py::module_& m);

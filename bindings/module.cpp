@@ -53,6 +53,7 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_map_warnings(m);
   octoreach::py_bindings::wrap_map_files(m);
   octoreach::py_bindings::wrap_capability_map(m);
+  octoreach::py_bindings::wrap_certified_lookup(m);
   octoreach::py_bindings::wrap_capability_blocks(m);
   octoreach::py_bindings::wrap_point_map(m);
   octoreach::py_bindings::wrap_surface(m);

@@ -1,6 +1,7 @@
 // Python binding of Chain: FK, Jacobian, IK (keyword options converted to IkOptions).
 #include "common.hpp"
 #include "octoreach/chain.hpp"
+#include "octoreach/manipulability.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
 #include "robot/robot_args.hpp"
@@ -120,6 +121,17 @@ void wrap_chain(py::module_& m) {
              c.fk_jacobian(q_from(c, q), J);
              return Eigen::MatrixXd(J);
            }, py::arg("q"), "Geometric Jacobian (6, dof), rows vx vy vz wx wy wz, in the base link frame.")
+      .def("manipulability", [](const Chain& c, const py::object& q, const py::object& rank) {
+             return manipulability(c, q_from(c, q), rank.is_none() ? jacobian_rank(c) : cast_arg<int>(rank, "rank", "an int or None"));
+           }, py::arg("q"), py::arg("rank") = py::none(),
+           "Yoshikawa's manipulability of q: sqrt(det(J J^T)), the product of the Jacobian's singular values; for a chain\n"
+           "of Jacobian rank r < 6 (rank None: jacobian_rank) the product of its r largest.")
+      .def_property_readonly("jacobian_rank", [](const Chain& c) { return jacobian_rank(c); },
+                             "Generic rank of the 6 x dof Jacobian (6 for six or more independent joints).")
+      .def("joint_limit_penalty", [](const Chain& c, const py::object& q) { return joint_limit_penalty(c, q_from(c, q)); },
+           py::arg("q"),
+           "Joint-limit penalty of q in [0, 1] (Tsai; Vahrenkamp et al.): 1 - exp(-4^n prod (q - l)(u - q) / (u - l)^2)\n"
+           "over the n bounded joints; 1 - 1/e in the middle of every range, 0 at a limit.")
       .def("link_mask", [](const Chain& c, const std::string& link) { return c.link_mask(c.robot().link_index(link)); },
            py::arg("link"),
            "Bit i set when chain joint i moves `link`: 0 for links the chain does not move, all bits for links\n"

@@ -14,6 +14,7 @@ py::dict stats_dict(const BuildStats& s) {
   d["cells"] = s.cells;
   d["reachable_cells"] = s.reachable_cells;
   d["voxels"] = s.voxels;
+  d["mixed_cells"] = s.mixed_cells;
   return d;
 }
 
@@ -97,6 +98,31 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
              return cm.solution(vec3_from(point, "point"), orientation);
            }, py::arg("point"), py::arg("orientation"),
            "Stored joint solution of a reachable cell, or None.")
+      .def("quality", [](const CapabilityMap& cm, const Eigen::Vector3d& p, int o) -> py::object {
+             auto q = cm.quality(p, o);
+             if (!q) return py::none();
+             return py::make_tuple(q->manipulability, q->penalty);
+           }, py::arg("point"), py::arg("orientation"),
+           "(manipulability, joint-limit penalty) of the stored solution of reachable cell (point, orientation), or\n"
+           "None when the cell is not reachable; their product is the cell's quality. ValueError (saying how to\n"
+           "rebuild) for a map without quality.")
+      .def("voxel_quality", [](const CapabilityMap& cm, const std::string& how, bool relative) {
+             if (how != "mean" && how != "max") throw std::invalid_argument("how must be 'mean' or 'max', got '" + how + "'");
+             const std::vector<double> q = cm.voxel_quality(how == "max");
+             Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(q.data(), static_cast<Eigen::Index>(q.size()));
+             if (relative && cm.max_quality() > 0) v /= cm.max_quality();
+             return v;
+           }, py::arg("how") = "mean", py::arg("relative") = false,
+           "Per voxel of voxels() (D > 0): the mean or the largest quality (manipulability x penalty) of its reachable\n"
+           "cells; relative=True divides by the map's best cell (values in [0, 1]). ValueError (saying how to rebuild)\n"
+           "for a map without quality.")
+      .def("mixed_cell", [](const CapabilityMap& cm, const Eigen::Vector3d& p, int o) {
+             const std::int64_t r = cm.record_at(p);
+             if (o < 0 || o >= cm.orientations().size()) throw std::invalid_argument("orientation index out of range");
+             return r >= 0 && cm.record_mixed(static_cast<std::uint32_t>(r), o);
+           }, py::arg("point"), py::arg("orientation"),
+           "True when cell (point, orientation) is mixed: IK at its centre fails but a configuration reaches a pose\n"
+           "inside it.")
       .def("voxels", [](const CapabilityMap& cm) {
         std::vector<Eigen::Vector3d> c;
         std::vector<double> v;
@@ -163,6 +189,16 @@ void wrap_capability_map(py::module_& m) {
       .def_property_readonly("base_link", &CapabilityMap::base_link)
       .def_property_readonly("tip_link", &CapabilityMap::tip_link)
       .def_property_readonly("has_solutions", &CapabilityMap::has_solutions)
+      .def_property_readonly("has_cell_data", &CapabilityMap::has_cell_data,
+                             "True when the map marks its mixed cells (format 2; CertifiedLookup needs it).")
+      .def_property_readonly("has_quality", &CapabilityMap::has_quality,
+                             "True when the map keeps a quality per reachable cell (built with solutions).")
+      .def_property_readonly("max_quality", &CapabilityMap::max_quality, "Largest cell quality of the map (0: none).")
+      .def_property_readonly("jacobian_rank", &CapabilityMap::jacobian_rank,
+                             "Jacobian rank the manipulability was computed with (0: unknown).")
+      .def_property_readonly("reference", [](const CapabilityMap& cm) -> py::object {
+             return cm.reference().size() ? py::cast(cm.reference()) : py::none();
+           }, "Robot configuration the map was built at (None for older files).")
       .def_property_readonly("voxel_count", &CapabilityMap::voxel_count)
       .def_property_readonly("stats", [](const CapabilityMap& cm) { return stats_dict(cm.stats()); })
       .def_property_readonly("warning", &capability_map_warning,

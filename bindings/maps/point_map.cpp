@@ -13,6 +13,9 @@ void wrap_options(py::module_& m) {
       .def_readwrite("theta_bins", &O::theta_bins)
       .def_readwrite("use_symmetry", &O::use_symmetry,
                      "Derive the theta bins the grasp set's z symmetry determines by rotating the grid.")
+      .def_readwrite("quality_weight", &O::quality_weight,
+                     "R_P weights each reachable grasp by its cell's quality relative to the capability map's best\n"
+                     "cell (needs a map with quality); False: the paper's R_P, each grasp counts 1.")
       .def_readwrite("threads", &O::threads, "0: every core.");
   def_grasps<O>(cls);
   def_map_resolution<O>(cls);
@@ -72,6 +75,8 @@ void wrap_point_map(py::module_& m) {
       .def_property_readonly("reference_to_arm", [](const InversePointMap& pm) { return pose_to_array(pm.reference_to_arm()); })
       .def_property_readonly("grasp_orientations", &InversePointMap::grasp_orientations)
       .def_property_readonly("used_symmetry", &InversePointMap::used_symmetry)
+      .def_property_readonly("weight", &InversePointMap::weight,
+                             "'quality' when R_P weights grasps by their cells' quality, else ''.")
       .def_property_readonly("build_seconds", &InversePointMap::build_seconds)
       .def_property_readonly("parameters", [](const InversePointMap& pm) { return to_dict(pm.parameters()); })
       .def("__repr__", [](const InversePointMap& pm) {

@@ -24,6 +24,10 @@ void wrap_options(py::module_& m) {
       .def_readwrite("check_arm", &O::check_arm,
                      "Reject grasps whose arm passes below the surface inside its outline or touches a box or obstacle.")
       .def_readwrite("grasp_height", &O::grasp_height, "Grasp points lie this far above the surface (m).")
+      .def_readwrite("quality_weight", &O::quality_weight,
+                     "R_P weights each valid grasp by its cell's quality relative to the capability map's best cell, so\n"
+                     "R_S and the sampler prefer base poses reached away from joint limits and singularities (needs a\n"
+                     "map with quality); False: the paper's R_S, each grasp counts 1.")
       .def_readwrite("threads", &O::threads, "0: every core.");
   def_grasps<O>(cls);
   def_map_resolution<O>(cls);
@@ -141,6 +145,8 @@ void wrap_surface_map(py::module_& m) {
       .def_property_readonly("warning", &SurfaceMap::warning,
                              "One line when the build looks suspicious (the surface at the edge of the arm's reach), with\n"
                              "what to try; '' otherwise and for a loaded map. Builds emit it as a MapWarning.")
+      .def_property_readonly("weight", &SurfaceMap::weight,
+                             "'quality' when R_P weights grasps by their cells' quality, else ''.")
       .def_property_readonly("polygon", [](const SurfaceMap& sm) {
         RowMatrixXd v(sm.polygon().size(), 3);
         for (std::size_t i = 0; i < sm.polygon().size(); ++i) v.row(i) = sm.polygon()[i].transpose();

@@ -773,6 +773,49 @@ class CapabilityLookup:
     @property
     def value(self) -> int:
         ...
+class CertifiedLookupOptions:
+    """
+    Options of CertifiedLookup (defaults defined once, in C++).
+    """
+    def __init__(self) -> None:
+        ...
+    @property
+    def max_iterations(self) -> int:
+        """
+        Iterations per descent.
+        """
+    @max_iterations.setter
+    def max_iterations(self, arg0: int) -> None:
+        ...
+    @property
+    def seeds(self) -> int:
+        """
+        Stored configurations IK starts from at most, nearest cells first.
+        """
+    @seeds.setter
+    def seeds(self, arg0: int) -> None:
+        ...
+class CertifiedLookup:
+    """
+    Reachability of tool poses from a capability map, answered by IK where the 8 cells around a pose disagree.
+    """
+    def __init__(self, map: CapabilityMap, robot: Robot, reference: typing.Any = None, options: typing.Any = None, **kwargs) -> None:
+        ...
+    def certain(self, poses: typing.Any) -> numpy.ndarray:
+        ...
+    def reachable(self, poses: typing.Any, threads: int = 0) -> typing.Any:
+        ...
+    def solution(self, pose: typing.Any) -> typing.Any:
+        ...
+    @property
+    def chain(self) -> Chain:
+        ...
+    @property
+    def options(self) -> CertifiedLookupOptions:
+        ...
+    @property
+    def reference(self) -> numpy.ndarray:
+        ...
 class CapabilityMap:
     """
     Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.

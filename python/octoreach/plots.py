@@ -208,11 +208,21 @@ def _map_title(cmap) -> str:
 
 
 def capability_slices(cmap, heights: Sequence[float], path: Union[str, os.PathLike], *,
-                      title: Optional[str] = None, polygon=None, **kwargs) -> str:
-    """Writes horizontal slices of capability map `cmap` at z = `heights` (m, chain base link frame),
-    coloured by the reachability index D, red (low) to blue (high); returns `path`."""
-    return slices(cmap, heights, path, polygon=polygon, title=title or _map_title(cmap),
-                  value_label="reachability index D", **kwargs)
+                      title: Optional[str] = None, polygon=None, colour_by: str = "reachability", **kwargs) -> str:
+    """Writes horizontal slices of capability map `cmap` at z = `heights` (m, chain base link frame), coloured red
+    (low) to blue (high) by the reachability index D, or (colour_by="quality") by the mean quality of each voxel's
+    reachable cells (manipulability x joint-limit penalty of their stored solutions) relative to the map's best
+    cell; returns `path`. A map without quality raises ValueError saying how to rebuild it."""
+    if colour_by == "reachability":
+        return slices(cmap, heights, path, polygon=polygon, title=title or _map_title(cmap),
+                      value_label="reachability index D", **kwargs)
+    if colour_by != "quality":
+        raise ValueError(f"colour_by must be 'reachability' or 'quality', got {colour_by!r}")
+    values = np.asarray(cmap.voxel_quality("mean", relative=True), float)
+    kwargs.setdefault("vmax", float(values.max()) if len(values) and values.max() > 0 else 1.0)  # the colours span the map
+    centres = np.asarray(cmap.voxels()[0], float).reshape(-1, 3)
+    return slices((centres, values), heights, path, resolution=cmap.resolution, polygon=polygon,
+                  title=title or _map_title(cmap), value_label="quality (relative to the map's best cell)", **kwargs)
 
 
 def default_heights(cmap, count: int = 4) -> list[float]:

@@ -16,6 +16,11 @@
 
 namespace octoreach {
 
+namespace detail {
+class ByteReader;
+struct VoxelCellData;
+}
+
 /// \brief Build parameters of a capability map.
 struct CapabilityMapOptions {
   double resolution = 0.05;                                  ///< voxel edge (m)
@@ -61,14 +66,28 @@ struct BuildStats {
   std::size_t cells = 0;            ///< voxels x orientations in the bounding box
   std::size_t reachable_cells = 0;
   std::size_t voxels = 0;           ///< voxels with at least one reachable orientation
+  std::size_t mixed_cells = 0;      ///< cells marked mixed (CapabilityMap::record_mixed)
+};
+
+/// \brief Quality of a reachable cell's stored joint solution (manipulability.hpp).
+struct CellQuality {
+  float manipulability = 0;  ///< Yoshikawa's sqrt(det(J J^T)) (product of the jacobian_rank largest singular values)
+  float penalty = 0;         ///< joint-limit penalty in [0, 1] (Tsai; Vahrenkamp et al.)
+  /// The product: manipulability scaled down near the joint limits.
+  float value() const { return manipulability * penalty; }
 };
 
 /// \brief Capability map (Zacharias et al.): for each voxel around the arm's base link, the set of
 /// reachable orientations and the reachability index D = reachable / total.
 ///
 /// A cell (voxel, orientation) is reachable when IK finds a solution inside the joint limits (and
-/// free of self-collision) for the voxel centre and that orientation. Positions are in the chain's
-/// base link frame. Immutable after build or load; queries are thread-safe.
+/// free of self-collision) for the voxel centre and that orientation. A cell whose centre is not reachable
+/// but that holds the tool pose of a configuration inside the limits is mixed: it holds reachable and
+/// unreachable poses (a five-joint arm reaches a thin set of directions that rarely passes through a
+/// direction bin's centre). With solutions kept, a map stores per reachable cell one joint solution and its
+/// quality (CellQuality), and per mixed cell the configuration found in it; CertifiedLookup answers from them
+/// where the cells around a pose disagree. Positions are in the chain's base link frame. Immutable after
+/// build or load; queries are thread-safe.
 class CapabilityBlocks;
 
 class CapabilityMap {
@@ -76,8 +95,9 @@ class CapabilityMap {
   /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
   static constexpr char kKind[] = "capability";
   static constexpr char kExtension[] = ".orcm";
-  /// \brief The map file format version its files are written in.
-  static constexpr std::uint32_t kFormatVersion = 1;
+  /// \brief The map file format version its files are written in: 2, as its payload may hold the mixed cells
+  /// and the quality per cell (header "cell_data"); version 1 files load without them.
+  static constexpr std::uint32_t kFormatVersion = 2;
 
   /// \brief Builds the map: forward-kinematics sampling finds candidate cells and IK seeds, IK at
   /// the voxel centres settles them, and a flood fill over neighbouring cells finds the rest.
@@ -116,6 +136,24 @@ class CapabilityMap {
   /// \brief The stored joint solution of cell (p, orientation), if the map kept solutions.
   std::optional<Eigen::VectorXd> solution(const Eigen::Vector3d& p, int orientation) const;
   bool has_solutions() const { return !solutions_.empty(); }
+  /// \brief True when the map marks its mixed cells (maps of files older than format 2 do not).
+  bool has_cell_data() const { return cell_data_; }
+  /// \brief True when the map keeps a CellQuality per reachable cell (built with solutions, format 2).
+  bool has_quality() const { return !quality_.empty() || (cell_data_ && has_solutions()); }
+  /// \brief Quality of the reachable cell (p, orientation); nothing when the cell is not reachable.
+  /// \throws std::invalid_argument when the map holds no quality (see has_quality(); the message says how to rebuild).
+  std::optional<CellQuality> quality(const Eigen::Vector3d& p, int orientation) const;
+  /// \brief Throws std::invalid_argument saying how to rebuild unless has_quality(); `what` names the feature asked for.
+  void require_quality(const std::string& what) const;
+  /// \brief Largest CellQuality::value() of the map's cells (0 without cell data): the scale of quality weights.
+  double max_quality() const { return max_quality_; }
+  /// \brief Per voxel with D > 0 (in voxels() order): the mean (`max` false) or the largest CellQuality::value()
+  /// of its reachable cells. \throws std::invalid_argument without quality (see quality()).
+  std::vector<double> voxel_quality(bool max = false) const;
+  /// \brief Generic rank of the chain's Jacobian the manipulability was computed with (0: unknown).
+  int jacobian_rank() const { return jacobian_rank_; }
+  /// \brief The robot configuration the map was built at (the joints off the chain); empty for older files.
+  const Eigen::VectorXd& reference() const { return reference_; }
 
   /// \brief Record (voxel) index of the voxel holding p, or -1; its centre goes to `centre`.
   std::int64_t record_at(const Eigen::Vector3d& p, Eigen::Vector3d* centre = nullptr) const;
@@ -123,8 +161,29 @@ class CapabilityMap {
   bool record_has(std::uint32_t rec, int o) const { return bit(rec, o); }
   /// \brief The stored solution (dof floats) of (record, orientation), or nullptr.
   const float* record_solution(std::uint32_t rec, int o) const;
+  /// \brief True when cell (record, orientation) is mixed (its centre is not reachable, a pose in it is).
+  bool record_mixed(std::uint32_t rec, int o) const { return cell_data_ && mixed_bit(rec, o); }
+  /// \brief The configuration (dof floats) stored for a mixed cell, or nullptr.
+  const float* record_mixed_solution(std::uint32_t rec, int o) const;
+  /// \brief The quality of reachable cell (record, orientation), or nullptr.
+  const CellQuality* record_quality(std::uint32_t rec, int o) const;
+  /// \brief CellQuality::value() of reachable cell (record, orientation) over max_quality(), in [0, 1]; 0 for a cell
+  /// that is not reachable or a map without quality (or whose best cell scores 0).
+  double relative_quality(std::uint32_t rec, int o) const {
+    const CellQuality* q = record_quality(rec, o);
+    return q && max_quality_ > 0 ? q->value() / max_quality_ : 0.0;
+  }
+  /// \brief Record of the voxel with octree key `key`, or DenseIndex::kNone.
+  std::uint32_t record_of_key(const octomap::OcTreeKey& key) const {
+    if (index_.active()) return index_.find(key);
+    const VoxelNode* n = tree_->search(key);
+    return n && !tree_->nodeHasChildren(n) ? n->payload : DenseIndex::kNone;
+  }
+  /// \brief The 8 voxels whose centres surround p: their records (DenseIndex::kNone where there is none) and
+  /// trilinear weights (summing to 1), corner k at +1 voxel along axis a where bit a of k is set.
+  void corners(const Eigen::Vector3d& p, std::uint32_t records[8], double weights[8]) const;
 
-  /// \brief Centres (base link frame) and D of every voxel with D > 0.
+  /// \brief Centres (base link frame) and D of every voxel with D > 0 (voxels holding only mixed cells left out).
   void voxels(std::vector<Eigen::Vector3d>& centres, std::vector<double>& values) const;
   /// \brief Axis-aligned bounds of the voxels with D > 0: (min, max) corners.
   std::pair<Eigen::Vector3d, Eigen::Vector3d> bounds() const;
@@ -139,11 +198,16 @@ class CapabilityMap {
   /// \brief Robot::model_hash() of the robot built for (URDF and allowed-collision matrix); 0 when
   /// unknown (a file written before maps recorded it).
   std::uint64_t model_hash() const { return provenance_.model_hash; }
+  /// \brief The IK tolerances the cells were settled with (m, rad) and whether solutions avoid self-collision.
+  double position_tolerance() const { return position_tolerance_; }
+  double orientation_tolerance() const { return orientation_tolerance_; }
+  bool self_collision() const { return self_collision_; }
   const std::string& base_link() const { return base_link_; }
   const std::string& tip_link() const { return tip_link_; }
   int dof() const { return dof_; }
   const BuildStats& stats() const { return stats_; }
   const VoxelOcTree& tree() const { return *tree_; }
+  /// \brief Number of voxel records: voxels with a reachable or a mixed cell.
   std::size_t voxel_count() const { return sol_offset_.size(); }
   /// \brief The build parameters as recorded in files (key -> text).
   std::vector<std::pair<std::string, std::string>> parameters() const;
@@ -154,9 +218,13 @@ class CapabilityMap {
   /// The empty map of a build of `chain` (parameters, orientations, robot, tree) after checking the options
   /// and that the reference posture (returned in `reference`) is free of self-collision.
   static CapabilityMap shell_(const Chain& chain, const CapabilityMapOptions& o, Eigen::VectorXd& reference);
-  /// Appends the voxel at `key`: its orientation bits (words_ words, not all zero) and, when solutions are
-  /// kept, one row of dof_ floats per set bit, in bit order.
-  void add_voxel_(const octomap::OcTreeKey& key, const std::uint64_t* bits, const float* solutions);
+  /// Appends the voxel at `key` with its cells (reachable and mixed bits not all zero; solutions, quality and
+  /// mixed-cell configurations when the map keeps solutions).
+  void add_voxel_(const octomap::OcTreeKey& key, const detail::VoxelCellData& cells);
+  /// The record of `leaf` (a leaf of tree_, the next record) from `cells`.
+  void append_record_(VoxelNode& leaf, const detail::VoxelCellData& cells);
+  /// The cells of record `rec` as add_voxel_ takes them (what files hold).
+  void cells_of_(std::uint32_t rec, detail::VoxelCellData& cells) const;
   /// Completes a build: inner node values, query tables and the figures.
   void finish_build_(std::size_t samples, std::size_t ik_calls, std::size_t cells, double seconds);
   /// Record of the voxel holding p, or DenseIndex::kNone.
@@ -171,6 +239,12 @@ class CapabilityMap {
   bool bit(std::uint32_t record, int o) const {
     return (bits_[static_cast<std::size_t>(record) * words_ + (o >> 6)] >> (o & 63)) & 1ULL;
   }
+  bool mixed_bit(std::uint32_t record, int o) const {
+    return (mixed_[static_cast<std::size_t>(record) * words_ + (o >> 6)] >> (o & 63)) & 1ULL;
+  }
+  /// Rank of bit o among the set bits of `words` (words_ words).
+  std::size_t rank_(const std::uint64_t* words, int o) const;
+  void read_payload_(detail::ByteReader& r, std::uint64_t count, bool sols);
   void set_parameters_(const CapabilityMapOptions& o);
 
   std::shared_ptr<VoxelOcTree> tree_;
@@ -182,6 +256,14 @@ class CapabilityMap {
   std::vector<std::uint64_t> sol_offset_;  // per record: first solution row
   std::vector<float> solutions_;         // rows of dof_ floats, in record/bit order
   std::vector<float> d_;                 // per record: reachability index D
+  bool cell_data_ = false;               // mixed cells marked, their configurations and the quality kept
+  std::vector<std::uint64_t> mixed_;     // records x words_ (cell_data_)
+  std::vector<std::uint64_t> mixed_offset_;  // per record: first mixed-cell row (cell_data_ with solutions)
+  std::vector<float> mixed_solutions_;   // rows of dof_ floats, in record/bit order
+  std::vector<CellQuality> quality_;     // per reachable cell, in solution order
+  double max_quality_ = 0;
+  int jacobian_rank_ = 0;
+  Eigen::VectorXd reference_;
   DenseIndex index_;
   MapProvenance provenance_;
   std::string base_link_, tip_link_;

@@ -140,6 +140,7 @@ class Chain {
   std::vector<bool> continuous_;
   std::vector<std::uint64_t> link_masks_;  // per robot link: bit i set if chain joint i moves it
   std::vector<std::int8_t> axis_kind_;     // per joint: 0-2 = +x, +y, +z; 3-5 = -x, -y, -z; -1 any other axis
+  std::vector<char> turned_origin_;        // per joint: its origin rotates (not the identity)
 };
 
 template <class Rng>

@@ -25,13 +25,17 @@ struct PointMapOptions {
   Eigen::VectorXd reference;   ///< robot configuration for the joints between reference frame and arm (empty: default_reference)
   double z_min = -1e9, z_max = 1e9;  ///< base z range relative to the target (clipped to what can reach)
   bool use_symmetry = true;    ///< derive theta bins by rotating the grid where the grasp set allows it
+  /// R_P counts each reachable grasp with its cell's quality relative to the capability map's best cell
+  /// (CellQuality::value() / CapabilityMap::max_quality(): a grasp whose solution sits at a joint limit counts 0);
+  /// false, the paper's R_P: each counts 1. Needs a capability map with quality (CapabilityMap::has_quality()).
+  bool quality_weight = false;
   int threads = 0;
 };
 
 /// \brief Inverse point map: for base poses (x, y, z, theta) of the reference frame around a target
 /// point at the origin (axes parallel to the world's, z up), R_P = share of the grasp set that the
-/// capability map marks reachable from that pose. A grasp direction d means the tool approaches the
-/// target along d (world frame).
+/// capability map marks reachable from that pose (with PointMapOptions::quality_weight, each grasp weighted by
+/// its cell's quality). A grasp direction d means the tool approaches the target along d (world frame).
 class InversePointMap {
  public:
   /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
@@ -70,6 +74,8 @@ class InversePointMap {
   /// \brief Orientation indices (of the capability map's set) in the grasp set.
   const std::vector<int>& grasp_orientations() const { return grasp_orientations_; }
   bool used_symmetry() const { return used_symmetry_; }
+  /// \brief "quality" when R_P weights grasps by their cells' quality (PointMapOptions::quality_weight), else "".
+  const std::string& weight() const { return weight_; }
   double build_seconds() const { return seconds_; }
   /// \brief The parameters recorded in files.
   std::map<std::string, std::string> parameters() const;
@@ -82,6 +88,7 @@ class InversePointMap {
   Pose reference_to_arm_ = Pose::Identity();
   std::vector<int> grasp_orientations_;
   bool used_symmetry_ = false;
+  std::string weight_;
   double seconds_ = 0;
 };
 

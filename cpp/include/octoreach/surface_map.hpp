@@ -40,6 +40,11 @@ struct SurfaceMapOptions {
   /// Grasp points lie this far above the surface along its normal (the tool frame holds an object,
   /// it does not touch the board): 0.05 m suits cans and cups.
   double grasp_height = 0.05;
+  /// R_P counts each valid grasp with its cell's quality relative to the capability map's best cell
+  /// (CellQuality::value() / CapabilityMap::max_quality()), so R_S and the sampler prefer base poses the arm reaches
+  /// away from its joint limits and singularities; false, the paper's R_S: each counts 1. Needs a capability
+  /// map with quality (CapabilityMap::has_quality()).
+  bool quality_weight = false;
   int threads = 0;
 };
 
@@ -102,6 +107,8 @@ class SurfaceMap {
   const MapRoom& room() const { return *room_; }
   /// \brief The room, shared (a sampler keeps it as long as it needs it).
   std::shared_ptr<const MapRoom> shared_room() const { return room_; }
+  /// \brief "quality" when R_P weights grasps by their cells' quality (SurfaceMapOptions::quality_weight), else "".
+  const std::string& weight() const { return weight_; }
   /// \brief Why the map is empty ("" when it is not).
   const std::string& empty_reason() const { return empty_reason_; }
   /// \brief One line when the build looks suspicious (the surface at the edge of the arm's reach,
@@ -119,6 +126,7 @@ class SurfaceMap {
   double grasp_height_ = 0.05;
   std::string checks_ = "body+arm";
   std::shared_ptr<const MapRoom> room_ = std::make_shared<const MapRoom>();
+  std::string weight_;
 };
 
 }  // namespace octoreach

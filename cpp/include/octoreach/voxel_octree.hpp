@@ -115,6 +115,10 @@ class DenseIndex {
   std::uint32_t find(const VoxelOcTree& tree, double x, double y, double z) const {
     octomap::OcTreeKey key;
     if (!tree.coordToKeyChecked(x, y, z, key)) return kNone;
+    return find(key);
+  }
+  /// \brief Record of the voxel with octree key `key`, or kNone; the caller checks active() first.
+  std::uint32_t find(const octomap::OcTreeKey& key) const {
     for (int a = 0; a < 3; ++a)
       if (key[a] < lo_[a] || key[a] > hi_[a]) return kNone;
     return records_[offset(key)];

@@ -85,6 +85,7 @@ Chain Robot::chain(const std::string& base_link, const std::string& tip_link) co
       if (s.axis == -Eigen::Vector3d::Unit(k)) kind = static_cast<std::int8_t>(3 + k);
     }
     c.axis_kind_.push_back(kind);
+    c.turned_origin_.push_back(!s.origin.linear().isIdentity(0.0));
   }
   c.lower_ = Eigen::Map<Eigen::VectorXd>(lo.data(), lo.size());
   c.upper_ = Eigen::Map<Eigen::VectorXd>(hi.data(), hi.size());
@@ -130,7 +131,7 @@ Pose Chain::fk_jacobian(const double* q, double* jacobian) const {
   for (int i = 0; i < n; ++i) {
     const Segment& s = segments_[i];
     p += R * s.origin.translation();
-    R = R * s.origin.linear();
+    if (turned_origin_[i]) R = R * s.origin.linear();  // most URDF joint frames are not turned: no product
     const int kind = axis_kind_[i];
     if (jacobian) {
       origins[i] = p;

@@ -110,6 +110,7 @@ struct CollisionSetup {
       if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
     r->link_poses(reference, s.poses);
     s.hinges = detail::HingePairs(c, s.moving_pairs, reference);
+    s.full = reference;
     s.boxes = detail::ShapeBoxes();
     s.moved_links.clear();
     for (int li : r->collision_links()) {
@@ -126,11 +127,12 @@ struct CollisionSetup {
       double v = 0.0;
       if (j.index >= 0) v = full[j.index];
       else if (j.mimic >= 0) v = full[robot.joints()[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
-      Pose m = Pose::Identity();
-      if (j.type == JointType::Prismatic) m.translation() = j.axis * v;
+      // parent * origin * motion, the motion applied to the product's columns (a fixed joint has none)
+      Pose& child = poses[j.child_link];
+      child = poses[j.parent_link] * j.origin;
+      if (j.type == JointType::Prismatic) child.translation() += child.linear() * (j.axis * v);
       else if (j.type == JointType::Revolute || j.type == JointType::Continuous)
-        m.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
-      poses[j.child_link] = poses[j.parent_link] * j.origin * m;
+        child.linear() = child.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
     }
   }
 };
@@ -306,7 +308,7 @@ class LmIk {
     if (!need_full_) return true;
     const Robot& robot = c_.robot();
     CollisionSetup& s = *setup_;
-    s.full = c_.to_robot_configuration(sol, s.reference);
+    for (int i = 0; i < n_; ++i) s.full[c_.robot_indices()[i]] = sol[i];  // the rest stays at the reference
     s.place(robot, s.full);
     if (o_.obstacles && robot.links_in_collision(s.poses, *o_.obstacles, o_.base_pose,
                                                  o_.obstacle_links.empty() ? nullptr : &o_.obstacle_links))

@@ -11,10 +11,11 @@
 
 namespace octoreach::detail {
 
-/// Runs f(i) for i in [0, n): every core above 20000 lookups, one thread below.
+/// Runs f(i) for i in [0, n) in chunks of `chunk`: on `threads` threads (0: every core), or with threads < 0
+/// on every core above 20000 lookups and one thread below.
 template <class F>
-void batch_lookup(std::size_t n, F&& f) {
-  parallel_for(n, n > 20000 ? 0 : 1, [&](std::size_t i, int) { f(i); }, 4096);
+void batch_lookup(std::size_t n, F&& f, int threads = -1, std::size_t chunk = 4096) {
+  parallel_for(n, threads >= 0 ? threads : (n > 20000 ? 0 : 1), [&](std::size_t i, int) { f(i); }, chunk);
 }
 
 /// batch_lookup over n rows of `width` doubles, each row checked for NaN and infinity as it is read
@@ -22,7 +23,8 @@ void batch_lookup(std::size_t n, F&& f) {
 /// only for finite rows. Throws std::invalid_argument "<what> <i> is not finite<hint>" naming the first
 /// non-finite row afterwards: a NaN would fall outside every voxel and read 0, a wrong answer.
 template <class F>
-void batch_lookup_finite(const double* rows, std::size_t n, int width, const char* what, const char* hint, F&& f) {
+void batch_lookup_finite(const double* rows, std::size_t n, int width, const char* what, const char* hint, F&& f,
+                         int threads = -1, std::size_t chunk = 4096) {
   std::atomic<std::size_t> first_bad{n};
   batch_lookup(n, [&](std::size_t i) {
     const double* r = rows + i * static_cast<std::size_t>(width);
@@ -35,7 +37,7 @@ void batch_lookup_finite(const double* rows, std::size_t n, int width, const cha
     std::size_t seen = first_bad.load(std::memory_order_relaxed);
     while (i < seen && !first_bad.compare_exchange_weak(seen, i, std::memory_order_relaxed)) {
     }
-  });
+  }, threads, chunk);
   if (first_bad.load() < n)
     throw std::invalid_argument(std::string(what) + " " + std::to_string(first_bad.load()) + " is not finite" + hint);
 }

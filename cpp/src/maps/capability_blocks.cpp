@@ -2,7 +2,7 @@
 // anywhere, merge. Byte strings between the steps:
 //   seeds:  "ORBS" u64 fingerprint, u64 block, u64 samples, u64 n; n x (u32 local cell, dof floats)
 //   result: "ORBR" u64 fingerprint, u64 block, u64 samples, u64 ik_calls, u64 voxels, u8 solutions;
-//           per voxel: u32 local voxel, words x u64 orientation bits, (solutions) one row of dof floats per bit
+//           per voxel: u32 local voxel, its cells as map files hold them (maps/capability_cells.hpp)
 #include "octoreach/capability_blocks.hpp"
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include "common/cancel.hpp"
 #include "maps/map_io.hpp"
 #include "maps/capability_build.hpp"
+#include "maps/capability_cells.hpp"
 
 namespace octoreach {
 namespace {
@@ -169,7 +170,7 @@ std::string CapabilityBlocks::build_block(std::size_t block, const std::string& 
   detail::ByteReader r(data, "seed list of block " + std::to_string(block));
   p.check_head(r, kSeedsMagic, block, "seed list");
   const auto samples = r.get<std::uint64_t>(), n = r.get<std::uint64_t>();
-  const int dof = p.chain.dof(), O = p.box.O, words = p.shell.words_;
+  const int dof = p.chain.dof();
   const std::size_t row = sizeof(std::uint32_t) + sizeof(float) * dof;
   if (n > r.remaining() / row || r.remaining() != n * row) r.fail("damaged (its length does not match its seed count)");
 
@@ -195,21 +196,17 @@ std::string CapabilityBlocks::build_block(std::size_t block, const std::string& 
     builder.add_seed(cell, q.data());
   }
   builder.solve();
+  builder.rate();
 
   detail::ByteWriter cells;
   std::uint64_t voxels = 0;
-  std::vector<std::uint64_t> bits(words);
+  detail::VoxelCellData record;
   for (std::size_t v = 0; v < bb.voxels; ++v) {
-    std::fill(bits.begin(), bits.end(), 0);
-    for (int oi = 0; oi < O; ++oi)
-      if (builder.reachable(v * O + oi)) bits[oi >> 6] |= 1ULL << (oi & 63);
-    if (std::all_of(bits.begin(), bits.end(), [](std::uint64_t b) { return b == 0; })) continue;
+    builder.collect(v, record);
+    if (record.empty()) continue;
     ++voxels;
     cells.put(static_cast<std::uint32_t>(v));
-    cells.put_bytes(bits.data(), sizeof(std::uint64_t) * words);
-    if (p.options.keep_solutions)
-      for (int oi = 0; oi < O; ++oi)
-        if (builder.reachable(v * O + oi)) cells.put_bytes(builder.solution(v * O + oi), sizeof(float) * dof);
+    record.write(cells, p.options.keep_solutions);
   }
   w.put(static_cast<std::uint64_t>(builder.ik_calls()));
   w.put(voxels);
@@ -228,8 +225,7 @@ CapabilityMap CapabilityBlocks::merge(const std::vector<std::string>& results) c
   const int dof = p.chain.dof(), words = m.words_;
   struct Voxel {
     std::size_t global;
-    std::vector<std::uint64_t> bits;
-    std::vector<float> solutions;
+    detail::VoxelCellData cells;
   };
   std::vector<Voxel> voxels;
   std::uint64_t samples = 0, ik_calls = 0;
@@ -251,23 +247,13 @@ CapabilityMap CapabilityBlocks::merge(const std::vector<std::string>& results) c
       const auto local = r.get<std::uint32_t>();
       if (local >= bb.voxels) r.fail("damaged (a voxel outside the block)");
       v.global = p.global(bb, local);
-      v.bits.resize(words);
-      r.get_bytes(v.bits.data(), sizeof(std::uint64_t) * words);
-      std::size_t count = 0;
-      for (std::uint64_t x : v.bits) count += std::bitset<64>(x).count();
-      if (count == 0 || count > static_cast<std::size_t>(p.box.O)) r.fail("damaged (voxel record)");
-      if (sols) {
-        if (r.remaining() / (sizeof(float) * dof) < count) r.fail("damaged (solutions end early)");
-        v.solutions.resize(count * dof);
-        r.get_bytes(v.solutions.data(), sizeof(float) * v.solutions.size());
-      }
+      v.cells.read(r, words, p.box.O, dof, sols, true);
       voxels.push_back(std::move(v));
     }
     if (!r.done()) r.fail("damaged (trailing bytes)");
   }
   std::sort(voxels.begin(), voxels.end(), [](const Voxel& a, const Voxel& b) { return a.global < b.global; });
-  for (const Voxel& v : voxels)
-    m.add_voxel_(p.box.key(v.global), v.bits.data(), v.solutions.empty() ? nullptr : v.solutions.data());
+  for (const Voxel& v : voxels) m.add_voxel_(p.box.key(v.global), v.cells);
   m.finish_build_(samples, ik_calls, p.box.cells, 0.0);
   return m;
 }

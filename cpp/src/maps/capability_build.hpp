@@ -8,6 +8,7 @@
 
 #include "octoreach/capability_map.hpp"
 #include "octoreach/chain.hpp"
+#include "maps/capability_cells.hpp"
 
 namespace octoreach::detail {
 
@@ -40,8 +41,15 @@ class CapabilityBuilder {
   /// cell they hit a seed configuration. Returns the number of samples.
   std::size_t sample();
   /// Stage 2: seeded IK at the voxel centres, a flood fill over neighbours, one retry pass with
-  /// several neighbours' seeds, and (exhaustive) random restarts on every untried cell.
+  /// another neighbour's seed, and (exhaustive) random restarts on every untried cell.
   void solve();
+
+  /// Stage 3: the quality of every reachable cell's solution (keep_solutions), on every core.
+  void rate();
+  /// The cells of voxel v (box index) as a map record holds them: reachable cells, mixed cells (a forward-
+  /// kinematics sample landed in them, IK at their centre failed) and, with keep_solutions, their solutions,
+  /// quality (after rate()) and the mixed cells' samples.
+  void collect(std::size_t v, VoxelCellData& out) const;
 
   bool reachable(std::size_t cell) const { return status_[cell] == kReachable; }
   /// The solution (dof floats) of a reachable cell.
@@ -63,8 +71,7 @@ class CapabilityBuilder {
  private:
   struct Item {
     std::uint32_t cell;
-    std::int32_t seed;  // row in seed_pool_ (wave 0) or sol_pool_ (flood); -1 none
-    std::array<std::int32_t, 3> more{{-1, -1, -1}};  // further seeds from sol_pool_ (retry pass)
+    std::int32_t seed;  // row in seed_pool_ (wave 0) or sol_pool_ (flood, retry); -1 none
   };
   void run_wave(const std::vector<Item>& wave, const std::vector<float>& pool, int attempts,
                 std::vector<std::uint32_t>& newly);
@@ -84,6 +91,7 @@ class CapabilityBuilder {
   std::vector<std::uint8_t> status_;
   std::vector<std::int32_t> sol_row_;
   std::vector<float> sol_pool_;
+  std::vector<CellQuality> quality_;  // per sol_pool_ row (rate())
   std::size_t ik_calls_ = 0;
 };
 

@@ -16,6 +16,8 @@
 #include "maps/map_io.hpp"
 #include "maps/batch.hpp"
 #include "maps/capability_build.hpp"
+#include "maps/capability_cells.hpp"
+#include "octoreach/manipulability.hpp"
 #include "octoreach/capability_blocks.hpp"
 #include "octoreach/arm.hpp"
 #include "octoreach/chain.hpp"
@@ -64,8 +66,11 @@ CapabilityMap CapabilityMap::shell_(const Chain& chain, const CapabilityMapOptio
   m.dof_ = chain.dof();
   m.words_ = (m.orientations_.size() + 63) / 64;
   m.tree_ = std::make_shared<VoxelOcTree>(o.resolution);
+  m.cell_data_ = true;
+  m.jacobian_rank_ = octoreach::jacobian_rank(chain);
 
   reference = reference_or_default(robot, chain, o.reference);
+  m.reference_ = reference;
   if (o.self_collision) {
     std::vector<std::pair<int, int>> moving, fixed;
     chain.split_collision_pairs(moving, fixed);
@@ -85,15 +90,25 @@ CapabilityMap CapabilityMap::shell_(const Chain& chain, const CapabilityMapOptio
   return m;
 }
 
-void CapabilityMap::add_voxel_(const octomap::OcTreeKey& key, const std::uint64_t* bits, const float* solutions) {
-  std::size_t count = 0;
-  for (int i = 0; i < words_; ++i) count += std::bitset<64>(bits[i]).count();
-  VoxelNode* leaf = tree_->touch(key);
-  leaf->payload = static_cast<std::uint32_t>(sol_offset_.size());
-  leaf->setValue(static_cast<float>(count) / orientations_.size());
-  bits_.insert(bits_.end(), bits, bits + words_);
+void CapabilityMap::add_voxel_(const octomap::OcTreeKey& key, const detail::VoxelCellData& cells) {
+  append_record_(*tree_->touch(key), cells);
+}
+
+void CapabilityMap::append_record_(VoxelNode& leaf, const detail::VoxelCellData& cells) {
+  const std::size_t count = cells.reachable_count();
+  leaf.payload = static_cast<std::uint32_t>(sol_offset_.size());
+  leaf.setValue(static_cast<float>(count) / orientations_.size());
+  bits_.insert(bits_.end(), cells.bits.begin(), cells.bits.end());
   sol_offset_.push_back(stats_.reachable_cells);
-  if (solutions) solutions_.insert(solutions_.end(), solutions, solutions + count * dof_);
+  solutions_.insert(solutions_.end(), cells.solutions.begin(), cells.solutions.end());
+  quality_.insert(quality_.end(), cells.quality.begin(), cells.quality.end());
+  for (const CellQuality& q : cells.quality) max_quality_ = std::max(max_quality_, double(q.value()));
+  if (cell_data_) {
+    mixed_.insert(mixed_.end(), cells.mixed.begin(), cells.mixed.end());
+    mixed_offset_.push_back(stats_.mixed_cells);
+    mixed_solutions_.insert(mixed_solutions_.end(), cells.mixed_solutions.begin(), cells.mixed_solutions.end());
+    stats_.mixed_cells += cells.mixed_count();
+  }
   stats_.reachable_cells += count;
 }
 
@@ -104,7 +119,6 @@ void CapabilityMap::finish_build_(std::size_t samples, std::size_t ik_calls, std
   stats_.fk_samples = samples;
   stats_.ik_calls = ik_calls;
   stats_.cells = cells;
-  stats_.voxels = sol_offset_.size();
   stats_.seconds = seconds;
 }
 
@@ -120,20 +134,12 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   const std::size_t samples = builder.sample();
   builder.solve();
 
+  builder.rate();
   // The octree and the per-voxel records, in voxel order.
-  std::vector<std::uint64_t> bits(m.words_);
-  std::vector<float> sols;
+  detail::VoxelCellData cells;
   for (std::size_t v = 0; v < box.voxels; ++v) {
-    std::fill(bits.begin(), bits.end(), 0);
-    sols.clear();
-    bool any = false;
-    for (int oi = 0; oi < O; ++oi)
-      if (builder.reachable(v * O + oi)) {
-        any = true;
-        bits[oi >> 6] |= 1ULL << (oi & 63);
-        if (o.keep_solutions) sols.insert(sols.end(), builder.solution(v * O + oi), builder.solution(v * O + oi) + m.dof_);
-      }
-    if (any) m.add_voxel_(box.key(v), bits.data(), o.keep_solutions ? sols.data() : nullptr);
+    builder.collect(v, cells);
+    if (!cells.empty()) m.add_voxel_(box.key(v), cells);
   }
   m.finish_build_(samples, builder.ik_calls(), box.cells,
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
@@ -153,6 +159,8 @@ void CapabilityMap::finish_() {
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it)
     if (it->payload != DenseIndex::kNone) d_[it->payload] = it->getValue();
   index_.build(*tree_);
+  stats_.voxels = 0;
+  for (float d : d_) stats_.voxels += d > 0;
 }
 
 double CapabilityMap::reachability(const Eigen::Vector3d& p) const {
@@ -160,27 +168,58 @@ double CapabilityMap::reachability(const Eigen::Vector3d& p) const {
   return r == DenseIndex::kNone ? 0.0 : d_[r];
 }
 
-bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
-  // Grid coordinates of p in units of voxels, measured from the centre of voxel key 0 (octomap's
-  // voxel i spans [i, i + 1) * resolution; its centre is at (i + 0.5) * resolution).
-  const double inv = 1.0 / resolution_;
-  double base[3], frac[3];
+namespace {
+
+// Grid coordinates of p in voxels from the centre of voxel key 0 (octomap's voxel i spans [i, i + 1) * resolution,
+// its centre is at (i + 0.5) * resolution): the lower corner's key and the fractions towards the upper ones.
+// False when a corner falls outside the octree's keys.
+bool corner_grid(const Eigen::Vector3d& p, double resolution, octomap::OcTreeKey& low, double frac[3]) {
+  constexpr double kOffset = 32768.0;  // octomap's tree_max_val at depth 16: key = floor(x / res) + 32768
+  const double inv = 1.0 / resolution;
   for (int a = 0; a < 3; ++a) {
-    const double g = p[a] * inv - 0.5;
-    base[a] = std::floor(g);
-    frac[a] = g - base[a];
+    const double g = p[a] * inv - 0.5, base = std::floor(g);
+    frac[a] = g - base;
+    if (!(base + kOffset >= 0.0 && base + kOffset + 1.0 <= 65535.0)) return false;
+    low[a] = static_cast<octomap::key_type>(base + kOffset);
   }
+  return true;
+}
+
+// Corner k (bit a: one voxel up along axis a) of the 8 around a position: its key and trilinear weight.
+inline double corner(const octomap::OcTreeKey& low, const double frac[3], int k, octomap::OcTreeKey& key) {
+  double w = 1.0;
+  key = low;
+  for (int a = 0; a < 3; ++a) {
+    const bool up = (k >> a) & 1;
+    w *= up ? frac[a] : 1.0 - frac[a];
+    key[a] = static_cast<octomap::key_type>(key[a] + up);
+  }
+  return w;
+}
+
+}  // namespace
+
+void CapabilityMap::corners(const Eigen::Vector3d& p, std::uint32_t records[8], double weights[8]) const {
+  octomap::OcTreeKey low;
+  double frac[3];
+  const bool inside = corner_grid(p, resolution_, low, frac);
+  for (int k = 0; k < 8; ++k) {
+    octomap::OcTreeKey key;
+    weights[k] = corner(low, frac, k, key);
+    records[k] = inside ? record_of_key(key) : DenseIndex::kNone;
+  }
+}
+
+bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
+  octomap::OcTreeKey low;
+  double frac[3];
+  if (!corner_grid(p, resolution_, low, frac)) return false;
   double yes = 0.0, left = 1.0;
   for (int k = 0; k < 8; ++k) {
-    double w = 1.0;
-    Eigen::Vector3d c;
-    for (int a = 0; a < 3; ++a) {
-      const bool up = (k >> a) & 1;
-      w *= up ? frac[a] : 1.0 - frac[a];
-      c[a] = (base[a] + (up ? 1.5 : 0.5)) * resolution_;  // the centre of the corner voxel
-    }
+    octomap::OcTreeKey key;
+    const double w = corner(low, frac, k, key);
     if (w <= 0.0) continue;
-    const std::uint32_t r = record(c);
+    const std::uint32_t r = record_of_key(key);
     if (r != DenseIndex::kNone && bit(r, o)) yes += w;
     left -= w;
     if (yes >= 0.5) return true;
@@ -237,19 +276,69 @@ std::int64_t CapabilityMap::record_at(const Eigen::Vector3d& p, Eigen::Vector3d*
   return r;
 }
 
+std::size_t CapabilityMap::rank_(const std::uint64_t* w, int o) const {
+  std::size_t rank = 0;
+  for (int i = 0; i < (o >> 6); ++i) rank += std::bitset<64>(w[i]).count();
+  return rank + std::bitset<64>(w[o >> 6] & ((1ULL << (o & 63)) - 1)).count();
+}
+
 const float* CapabilityMap::record_solution(std::uint32_t rec, int o) const {
   if (!has_solutions() || !bit(rec, o)) return nullptr;
-  std::size_t rank = 0;
-  const std::uint64_t* w = bits_.data() + static_cast<std::size_t>(rec) * words_;
-  for (int i = 0; i < (o >> 6); ++i) rank += std::bitset<64>(w[i]).count();
-  rank += std::bitset<64>(w[o >> 6] & ((1ULL << (o & 63)) - 1)).count();
-  return solutions_.data() + (sol_offset_[rec] + rank) * dof_;
+  return solutions_.data() + (sol_offset_[rec] + rank_(bits_.data() + std::size_t(rec) * words_, o)) * dof_;
+}
+
+const float* CapabilityMap::record_mixed_solution(std::uint32_t rec, int o) const {
+  if (mixed_solutions_.empty() || !mixed_bit(rec, o)) return nullptr;
+  return mixed_solutions_.data() + (mixed_offset_[rec] + rank_(mixed_.data() + std::size_t(rec) * words_, o)) * dof_;
+}
+
+const CellQuality* CapabilityMap::record_quality(std::uint32_t rec, int o) const {
+  if (quality_.empty() || !bit(rec, o)) return nullptr;
+  return quality_.data() + sol_offset_[rec] + rank_(bits_.data() + std::size_t(rec) * words_, o);
+}
+
+void CapabilityMap::require_quality(const std::string& what) const {
+  if (!quality_.empty()) return;
+  throw std::invalid_argument(
+      what + " needs the quality of the map's cells, which this map does not hold (" +
+      (has_solutions() ? "its file was written by an older octoreach" : "it was built or saved without joint solutions") +
+      "): rebuild it with solutions, e.g. arms.capability_map(robot, arm, ...) (keep_solutions=True, the default) "
+      "and save it with save(path, with_solutions=True)");
+}
+
+std::optional<CellQuality> CapabilityMap::quality(const Eigen::Vector3d& p, int orientation) const {
+  require_quality("CapabilityMap.quality");
+  if (orientation < 0 || orientation >= orientations_.size())
+    throw std::invalid_argument("orientation index " + std::to_string(orientation) + " out of range [0, " +
+                                std::to_string(orientations_.size()) + ")");
+  const std::uint32_t r = record(p);
+  if (r == DenseIndex::kNone || !bit(r, orientation)) return std::nullopt;
+  return *record_quality(r, orientation);
+}
+
+std::vector<double> CapabilityMap::voxel_quality(bool max) const {
+  require_quality("CapabilityMap.voxel_quality");
+  std::vector<double> out;
+  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
+    if (!(it->getValue() > 0)) continue;
+    const std::uint32_t rec = it->payload;
+    const std::size_t first = sol_offset_[rec];
+    const std::size_t last = rec + 1 < sol_offset_.size() ? sol_offset_[rec + 1] : quality_.size();
+    double sum = 0, best = 0;
+    for (std::size_t k = first; k < last; ++k) {
+      sum += quality_[k].value();
+      best = std::max(best, double(quality_[k].value()));
+    }
+    out.push_back(max ? best : sum / double(last - first));
+  }
+  return out;
 }
 
 void CapabilityMap::voxels(std::vector<Eigen::Vector3d>& centres, std::vector<double>& values) const {
   centres.clear();
   values.clear();
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
+    if (!(it->getValue() > 0)) continue;  // a voxel of mixed cells only
     centres.emplace_back(it.getX(), it.getY(), it.getZ());
     values.push_back(it->getValue());
   }
@@ -260,6 +349,7 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> CapabilityMap::bounds() const {
   bool first = true;
   double h = resolution_ / 2;
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
+    if (!(it->getValue() > 0)) continue;
     Eigen::Vector3d c(it.getX(), it.getY(), it.getZ());
     if (first) {
       lo = c.array() - h;
@@ -292,126 +382,20 @@ std::vector<std::pair<std::string, std::string>> CapabilityMap::parameters() con
           {"orientation_tolerance", format_number(orientation_tolerance_)},
           {"block_size", std::to_string(block_size_)},
           {"voxels", std::to_string(voxel_count())},
+          {"cell_data", cell_data_ ? "1" : "0"},
+          {"jacobian_rank", std::to_string(jacobian_rank_)},
+          {"reference", detail::format_vector(reference_)},
           {"octoreach_version", version()}});
   return p;
 }
 
 
-void CapabilityMap::save(const std::string& path, bool with_solutions) const {
-  detail::Header h;
-  for (auto& [k, v] : parameters()) h[k] = v;
-  bool sols = with_solutions && has_solutions();
-  h["solutions"] = sols ? "1" : "0";
-  detail::ByteWriter w;
-  w.put(static_cast<std::uint64_t>(voxel_count()));
-  if (tree_->getRoot()) {
-    w.put(std::uint8_t{1});
-    write_tree(*tree_, tree_->getRoot(), 0, w, [&](const VoxelNode& n) {
-      w.put_bytes(bits_.data() + static_cast<std::size_t>(n.payload) * words_, words_ * sizeof(std::uint64_t));
-      if (sols) {
-        std::size_t count = 0;
-        for (int i = 0; i < words_; ++i) count += std::bitset<64>(bits_[static_cast<std::size_t>(n.payload) * words_ + i]).count();
-        w.put_bytes(solutions_.data() + sol_offset_[n.payload] * dof_, count * dof_ * sizeof(float));
-      }
-    });
-  } else {
-    w.put(std::uint8_t{0});
-  }
-  detail::write_map_file(path, kKind, h, w.bytes, kFormatVersion);
+void CapabilityMap::export_octovis(const std::string& path) const {
+  VoxelOcTree reachable(resolution_);  // the voxels with D > 0 (mixed-only voxels are not drawn)
+  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it)
+    if (it->getValue() > 0) reachable.touch(it.getKey())->setValue(it->getValue());
+  reachable.update_inner_values();
+  detail::write_color_octree(reachable, 1.0, path);
 }
-
-CapabilityMap CapabilityMap::load(const std::string& path) {
-  detail::Header h;
-  std::vector<char> payload;
-  // The contents the header declares: per voxel a bit per orientation, and (with solutions) a joint
-  // vector per orientation; the counts are checked before they are multiplied.
-  detail::read_map_file(path, kKind, h, payload, [&](const detail::Header& head) {
-    const long long dirs = detail::header_int(head, "directions", path), rolls = detail::header_int(head, "rolls", path),
-                    dof = detail::header_int(head, "dof", path);
-    if (dirs < 1 || dirs > OrientationSet::kMaxDirections || rolls < 1 || rolls > OrientationSet::kMaxRolls ||
-        dof < 1 || dof > 64)
-      throw FileError("'" + path + "' has implausible map parameters");
-    const std::uint64_t O = std::uint64_t(dirs) * std::uint64_t(rolls);
-    std::uint64_t record = (O + 63) / 64 * sizeof(std::uint64_t);
-    if (detail::header_int(head, "solutions", path) != 0) record += O * std::uint64_t(dof) * sizeof(float);
-    return detail::payload_bound(detail::header_voxels(head, path), record);
-  });
-  CapabilityMap m;
-  using detail::header_double;
-  using detail::header_int;
-  using detail::header_string;
-  m.provenance_ = detail::header_provenance(h, path);
-  m.base_link_ = header_string(h, "base_link", path);
-  m.tip_link_ = header_string(h, "tip_link", path);
-  m.resolution_ = header_double(h, "resolution", path);
-  // counts checked at full width before they are narrowed
-  const auto dof64 = header_int(h, "dof", path), dirs64 = header_int(h, "directions", path),
-             rolls64 = header_int(h, "rolls", path), sym64 = header_int(h, "symmetry", path);
-  if (!(m.resolution_ >= limits::kMinMapResolution && m.resolution_ <= limits::kMaxMapResolution) || dirs64 < 1 ||
-      dirs64 > OrientationSet::kMaxDirections || rolls64 < 1 || rolls64 > OrientationSet::kMaxRolls || sym64 < 1 ||
-      sym64 > 64 || dof64 < 1 || dof64 > 64)
-    throw FileError("'" + path + "' has implausible map parameters");
-  m.dof_ = static_cast<int>(dof64);
-  const int dirs = static_cast<int>(dirs64), rolls = static_cast<int>(rolls64), sym = static_cast<int>(sym64);
-  {
-    std::istringstream axis(header_string(h, "approach_axis", path));
-    if (!(axis >> m.approach_axis_.x() >> m.approach_axis_.y() >> m.approach_axis_.z()))
-      throw FileError("'" + path + "' has a malformed approach_axis");
-    if (!m.approach_axis_.allFinite() || std::abs(m.approach_axis_.norm() - 1.0) > 1e-6)
-      throw FileError("'" + path + "' has an approach_axis that is not a unit vector");
-  }
-  m.self_collision_ = header_int(h, "self_collision", path) != 0;
-  m.seed_ = detail::header_u64(h, "seed", path);
-  m.fk_samples_ = static_cast<std::size_t>(header_int(h, "fk_samples", path));
-  m.exhaustive_ = header_int(h, "exhaustive", path) != 0;
-  m.position_tolerance_ = header_double(h, "position_tolerance", path);
-  m.orientation_tolerance_ = header_double(h, "orientation_tolerance", path);
-  // Files hold no timing (the same build gives the same bytes); files of older versions recorded one.
-  m.stats_.seconds = h.count("build_seconds") ? header_double(h, "build_seconds", path) : 0.0;
-  m.block_size_ = h.count("block_size") ? static_cast<int>(std::clamp<long long>(header_int(h, "block_size", path), 0, 1 << 20)) : 0;
-  bool sols = header_int(h, "solutions", path) != 0;
-  m.orientations_ = OrientationSet::sphere(dirs, rolls, sym);
-  if (m.orientations_.directions() != dirs) throw FileError("'" + path + "' has an inconsistent direction count");
-  const int O = m.orientations_.size();
-  m.words_ = (O + 63) / 64;
-  m.tree_ = std::make_shared<VoxelOcTree>(m.resolution_);
-  detail::ByteReader r(payload, "'" + path + "'");
-  auto count = r.get<std::uint64_t>();
-  if (count > payload.size()) r.fail("damaged map data (voxel count)");
-  std::size_t cells = 0;
-  if (r.get<std::uint8_t>()) {
-    VoxelOcTree& tree = *m.tree_;
-    VoxelNode* new_root = tree.ensure_root();
-    read_tree(tree, new_root, 0, r, [&](VoxelNode& n) {
-      std::uint32_t rec = static_cast<std::uint32_t>(m.sol_offset_.size());
-      if (rec >= count) r.fail("damaged map data (more voxels than recorded)");
-      n.payload = rec;
-      m.bits_.resize(m.bits_.size() + m.words_);
-      r.get_bytes(m.bits_.data() + static_cast<std::size_t>(rec) * m.words_, m.words_ * sizeof(std::uint64_t));
-      std::size_t c = 0;
-      for (int i = 0; i < m.words_; ++i) c += std::bitset<64>(m.bits_[static_cast<std::size_t>(rec) * m.words_ + i]).count();
-      if (c == 0 || c > static_cast<std::size_t>(O)) r.fail("damaged map data (voxel record)");
-      m.sol_offset_.push_back(cells);
-      if (sols) {
-        std::size_t n_floats = c * m.dof_;
-        if (r.remaining() < n_floats * sizeof(float)) r.fail("damaged map data (solutions end early)");
-        std::size_t off = m.solutions_.size();
-        m.solutions_.resize(off + n_floats);
-        r.get_bytes(m.solutions_.data() + off, n_floats * sizeof(float));
-      }
-      cells += c;
-      n.setValue(static_cast<float>(c) / O);
-    });
-    tree.update_inner_values();
-  }
-  if (!r.done()) r.fail("damaged map data (trailing bytes)");
-  if (m.sol_offset_.size() != count) r.fail("damaged map data (voxel count mismatch)");
-  m.stats_.voxels = count;
-  m.stats_.reachable_cells = cells;
-  m.finish_();
-  return m;
-}
-
-void CapabilityMap::export_octovis(const std::string& path) const { detail::write_color_octree(*tree_, 1.0, path); }
 
 }  // namespace octoreach

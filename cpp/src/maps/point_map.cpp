@@ -100,9 +100,15 @@ bool make_grid(const CapabilityMap& cap, const Pose& reference_to_arm, const Poi
   return true;
 }
 
+// What a grasp counts in R_P: 1 (the paper's), or its cell's quality relative to the map's best cell.
+float grasp_weight(const CapabilityMap& cap, bool quality, const Eigen::Vector3d& p, int orientation) {
+  if (!quality) return 1.0f;
+  return static_cast<float>(cap.relative_quality(static_cast<std::uint32_t>(cap.record_at(p)), orientation));
+}
+
 // R_P of every grid pose of the first `direct_bins` theta bins, straight from the capability map.
 void fill_direct_bins(const CapabilityMap& cap, const Pose& reference_to_arm, const std::vector<int>& grasps,
-                      int direct_bins, int threads, const VoxelOcTree& tree, PointGrid& g,
+                      int direct_bins, bool quality, int threads, const VoxelOcTree& tree, PointGrid& g,
                       const ProgressCallback& progress) {
   const int T = g.T;
   // Per theta bin, the arm-frame orientation of each grasp (independent of position).
@@ -119,8 +125,9 @@ void fill_direct_bins(const CapabilityMap& cap, const Pose& reference_to_arm, co
       for (int k = 0; k < direct_bins; ++k) {
         Eigen::Vector3d p = target_in_arm(reference_to_arm, c.x(), c.y(), c.z(), 2.0 * M_PI * k / T);
         if (cap.reachability(p) <= 0) continue;
-        int count = 0;
-        for (int mo : mapped[k]) count += cap.reachable(p, mo);
+        float count = 0;  // whole numbers without quality weights: exact in a float
+        for (int mo : mapped[k])
+          if (cap.reachable(p, mo)) count += grasp_weight(cap, quality, p, mo);
         g.at(col, iz, k) = static_cast<float>(count * inv);
       }
     }
@@ -168,6 +175,7 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
     throw std::invalid_argument("z_min and z_max (z_range) must be finite, got " + detail::format_number(o.z_min) +
                                 ", " + detail::format_number(o.z_max));
   if (!(o.z_min < o.z_max)) throw std::invalid_argument("z_min must be below z_max");
+  if (o.quality_weight) cap.require_quality("quality_weight");
   const ArmPlacement place = ArmPlacement::make(robot, cap, o.reference_frame, o.reference, o.grasps, o.grasp_subset);
   InversePointMap m;
   m.provenance_ = MapProvenance::of(robot);
@@ -177,6 +185,7 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
   m.approach_axis_ = cap.approach_axis();
   m.grasp_name_ = place.grasps.name;
   m.grasp_orientations_ = place.grasps.orientations;
+  m.weight_ = o.quality_weight ? "quality" : "";
   m.reference_to_arm_ = place.reference_to_arm;
   const OrientationSet& set = cap.orientations();
   const bool symmetric = grasps_symmetric(set, m.grasp_orientations_, o);
@@ -190,8 +199,8 @@ InversePointMap InversePointMap::build(const Robot& robot, const CapabilityMap& 
     return m;
   }
   const int sym = set.symmetry();
-  fill_direct_bins(cap, m.reference_to_arm_, m.grasp_orientations_, symmetric ? g.T / sym : g.T, o.threads, tree, g,
-                   progress);
+  fill_direct_bins(cap, m.reference_to_arm_, m.grasp_orientations_, symmetric ? g.T / sym : g.T, o.quality_weight,
+                   o.threads, tree, g, progress);
   if (symmetric) derive_rotated_bins(sym, g);
   const std::size_t ncols = g.columns();
   for (std::size_t col = 0; col < ncols; ++col, detail::poll_cancel("point map build cancelled"))
@@ -221,6 +230,7 @@ std::map<std::string, std::string> InversePointMap::parameters() const {
           {"grasp_set", grasp_name_},
           {"grasp_orientations", g.str()},
           {"used_symmetry", used_symmetry_ ? "1" : "0"}});  // no timing: the same build gives the same bytes
+  if (!weight_.empty()) p.insert({"weight", weight_});  // absent for the paper's R_P: those files are unchanged
   return p;
 }
 
@@ -255,6 +265,7 @@ InversePointMap InversePointMap::load(const std::string& path) {
     while (s >> g) m.grasp_orientations_.push_back(g);
   }
   m.used_symmetry_ = detail::header_int(h, "used_symmetry", path) != 0;
+  if (auto it = h.find("weight"); it != h.end()) m.weight_ = it->second;
   m.seconds_ = h.count("build_seconds") ? detail::header_double(h, "build_seconds", path) : 0.0;  // older files
   return m;
 }

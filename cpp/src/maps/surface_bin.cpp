@@ -131,10 +131,17 @@ struct BinFrame {
 // scattered low set per grasp (the build was bound by those memory reads), and tests the bounds of
 // all grasps of its record in one pass (grasps side by side: the compiler vectorises it). The bounds
 // are the ones arm_under computes, so the answers are the same.
+// What a valid grasp of capability cell (rec, orientation) counts in R_P: 1 (the paper's), or with quality_weight
+// its cell's quality relative to the capability map's best cell.
+inline float grasp_weight(const SurfaceBuild& b, std::uint32_t rec, int orientation) {
+  return b.o.quality_weight ? static_cast<float>(b.cap.relative_quality(rec, orientation)) : 1.0f;
+}
+
 struct PackedBin {
   struct Entry {
     std::int32_t slot;  // CellSlots::kNone: no stored solution there
     std::uint32_t first, count;  // the low set's points in ArmClearance::shared_points()
+    float weight;       // what a valid grasp counts (grasp_weight)
   };
   // The first kNear points of each low set (the nearest to the target, which end most tests) are
   // kept beside the bounds as their products with the half-planes, g_j . w (the values any_inside
@@ -180,10 +187,11 @@ struct PackedBin {
         if (slot < 0) {
           if (b.cap.record_has(records[l].rec, f.mapped[m]))
             throw std::logic_error("surface map: capability cell outside the precomputed layers");
-          entries[e] = {slot, 0, 0};
+          entries[e] = {slot, 0, 0, 0.0f};
           continue;
         }
-        entries[e] = {slot, b.clearance->shared_start(slot), b.clearance->shared_count(slot)};
+        entries[e] = {slot, b.clearance->shared_start(slot), b.clearance->shared_count(slot),
+                      grasp_weight(b, records[l].rec, f.mapped[m])};
         const detail::LowSetRef low = b.clearance->shared(slot);
         for (std::size_t j = 0; j < nh && low.count > 0; ++j) bounds[(l * nh + j) * G + m] = f.bound(low, j);
         for (std::uint32_t p = 0; p < std::min(low.count, kNear); ++p)
@@ -227,14 +235,14 @@ class GraspCounter {
 
   // Cell by cell: the grasps of the bin that the capability record `r` holds and that pass the arm
   // checks at target i (`centre`: the record's voxel centre, read in the non-upright case only).
-  int plain_count(std::uint32_t r, std::size_t i, const Eigen::Vector3d& centre, const Pose& world_from_arm,
-                  const detail::NearObstacles& near) {
+  float plain_count(std::uint32_t r, std::size_t i, const Eigen::Vector3d& centre, const Pose& world_from_arm,
+                    const detail::NearObstacles& near) {
     const float* d = f_.fast ? dtab_.data() + i * nh_ : nullptr;
-    int count = 0;
+    float count = 0;  // whole numbers without quality weights: exact in a float
     for (int mo : f_.mapped) {
       if (!b_.cap.record_has(r, mo)) continue;
       if (!b_.o.check_arm) {
-        ++count;
+        count += grasp_weight(b_, r, mo);
         continue;
       }
       const std::int32_t slot = b_.slots->slot(r, mo);
@@ -242,19 +250,19 @@ class GraspCounter {
       const bool ok = !f_.arm_under(b_, low_points(r, mo, slot, centre), b_.target_uv[i], d) &&
                       !b_.obstacles->collides(slot, near, world_from_arm, scratch_);
       if (!ok) ++arm_;
-      count += ok;
+      if (ok) count += grasp_weight(b_, r, mo);
     }
     return count;
   }
 
   // The same from the packed bin (`local`: the record's index in the CellSlots).
-  int packed_count(std::int32_t local, std::size_t i, const Pose& world_from_arm, const detail::NearObstacles& near) {
+  float packed_count(std::int32_t local, std::size_t i, const Pose& world_from_arm, const detail::NearObstacles& near) {
     const float* d = dtab_.data() + i * nh_;
     const bool rectangle = nh_ == 4;  // the loops unrolled
     if (rectangle) packed_->classify<4>(local, d, state_.data());
     else packed_->classify(local, d, state_.data());
     const PackedBin::Entry* E = packed_->entries.data() + static_cast<std::size_t>(local) * packed_->G;
-    int count = 0;
+    float count = 0;
     for (std::size_t m = 0; m < packed_->G; ++m) {
       if (E[m].slot < 0) continue;
       bool under = state_[m] == PackedBin::kUnder;
@@ -265,7 +273,7 @@ class GraspCounter {
       }
       const bool ok = !under && !b_.obstacles->collides(E[m].slot, near, world_from_arm, scratch_);
       if (!ok) ++arm_;
-      count += ok;
+      if (ok) count += E[m].weight;
     }
     return count;
   }
@@ -311,7 +319,7 @@ struct BinBlock {
   std::vector<Eigen::Vector3d> centres;  // voxel centres of the candidates (not upright only)
   std::vector<std::uint32_t> keys, key_start;
   std::vector<std::pair<Candidate, std::uint32_t>> sorted;  // the candidates by key, with their index
-  std::vector<std::uint32_t> counts;     // valid grasps of each candidate
+  std::vector<float> counts;             // valid grasps of each candidate (their weights' sum)
 
   // Collects the rows ix0 .. ix1 - 1 (at least one, at most about kCandidates candidates); returns ix1.
   int collect(const SurfaceBuild& b, const BinFrame& f, const SurfaceGrid& g, int ix0) {
@@ -377,10 +385,9 @@ struct BinBlock {
       if ((++done & 0xffff) == 0) detail::poll_cancel("surface map build cancelled");  // up to 2^20 per block
       const std::size_t at = cd.cell - cell0;
       const std::int32_t local = counter.local(cd.rec);
-      const int count = local >= 0 ? counter.packed_count(local, cd.target, world_from_arm[at], near[at])
-                                   : counter.plain_count(cd.rec, cd.target, b.upright ? Eigen::Vector3d::Zero() : centres[c],
-                                                         world_from_arm[at], near[at]);
-      counts[c] = static_cast<std::uint32_t>(count);
+      counts[c] = local >= 0 ? counter.packed_count(local, cd.target, world_from_arm[at], near[at])
+                             : counter.plain_count(cd.rec, cd.target, b.upright ? Eigen::Vector3d::Zero() : centres[c],
+                                                   world_from_arm[at], near[at]);
     }
   }
 

@@ -85,6 +85,7 @@ void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
     throw std::invalid_argument("z_min and z_max (z_range) must be finite, got " + detail::format_number(o.z_min) +
                                 ", " + detail::format_number(o.z_max));
   if (!(o.z_min <= o.z_max)) throw std::invalid_argument("z_min must not exceed z_max");
+  if (o.quality_weight) cap.require_quality("quality_weight");
 }
 
 // Every obstacle but the slab meets the arm at its stored solutions (the slab has the finer "arm under
@@ -209,6 +210,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
   m.z_min_ = o.z_min;
   m.z_max_ = o.z_max;
   m.grasp_height_ = o.grasp_height;
+  m.weight_ = o.quality_weight ? "quality" : "";
   m.checks_ = std::string(o.check_body ? "body" : "") + (o.check_body && o.check_arm ? "+" : "") + (o.check_arm ? "arm" : "");
   if (o.obstacles && !o.obstacles->empty()) m.checks_ += " (room: " + std::to_string(o.obstacles->size()) + " obstacles)";
   m.map_ = PoseMap(res, o.theta_bins);
@@ -277,6 +279,8 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
       throw std::invalid_argument("cannot combine maps of different z ranges");
     if (m->grasp_name_ != first.grasp_name_ || m->grasp_height_ != first.grasp_height_ || m->checks_ != first.checks_)
       throw std::invalid_argument("cannot combine maps built with different grasp sets, grasp heights or checks");
+    if (m->weight_ != first.weight_)
+      throw std::invalid_argument("cannot combine a quality-weighted map with one that is not (quality_weight differs)");
   }
   const int T = first.map_.theta_bins();
   SurfaceMap out;
@@ -290,6 +294,7 @@ SurfaceMap SurfaceMap::combine(const std::vector<const SurfaceMap*>& maps, const
   out.z_max_ = first.z_max_;
   out.grasp_height_ = first.grasp_height_;
   out.checks_ = first.checks_;
+  out.weight_ = first.weight_;
   out.stats_.surface_points = first.stats_.surface_points;
   for (const SurfaceMap* m : maps) {  // the combination's cost and scale are those of its parts
     out.stats_.seconds += m->stats_.seconds;
@@ -353,6 +358,7 @@ std::map<std::string, std::string> SurfaceMap::parameters() const {
           {"z_max", detail::format_number(z_max_)},
           {"candidate_poses", std::to_string(stats_.candidate_poses)},
           {"valid_poses", std::to_string(stats_.valid_poses)}});  // no timing: the same build gives the same bytes
+  if (!weight_.empty()) p.insert({"weight", weight_});  // absent for the paper's R_S: those files are unchanged
   return p;
 }
 
@@ -380,6 +386,7 @@ SurfaceMap SurfaceMap::load(const std::string& path) {
   m.z_min_ = detail::header_double(h, "z_min", path);
   m.grasp_height_ = detail::header_double(h, "grasp_height", path);
   m.checks_ = header_string(h, "checks", path);
+  if (auto it = h.find("weight"); it != h.end()) m.weight_ = it->second;
   m.stats_.body_collisions = detail::header_u64(h, "body_collisions", path);
   m.stats_.arm_rejections = detail::header_u64(h, "arm_rejections", path);
   m.z_max_ = detail::header_double(h, "z_max", path);

@@ -27,7 +27,8 @@ def _cmd_view(args) -> int:
     if not args.files and robot is None and args.scene is None:
         raise ValueError("nothing to view: give map files, --urdf FILE (or --robot NAME) or --scene ROOM")
     view(*args.files, robot=robot, joints=joints, samples=args.samples, seed=args.seed, port=args.port,
-         host=args.host, html=args.html, png=args.png, block=not args.no_serve, room=args.scene)
+         host=args.host, html=args.html, png=args.png, block=not args.no_serve, room=args.scene,
+         colour_by=args.colour_by)
     return 0
 
 
@@ -53,4 +54,7 @@ def add_commands(sub):
     sp.add_argument("--html", help="also write the scene as a static HTML page")
     sp.add_argument("--png", help="also write a screenshot (headless Chromium)")
     sp.add_argument("--no-serve", action="store_true", help="write --html/--png and exit instead of serving")
+    sp.add_argument("--colour-by", choices=("reachability", "quality"), default="reachability",
+                    help="colour a capability map's voxels by reachability index D (default) or by the quality of "
+                         "their cells' joint solutions (manipulability x joint-limit penalty)")
     sp.set_defaults(func=_cmd_view)

@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from . import files
-from .capability_map import CapabilityMapLayer
+from .capability_map import COLOUR_BY, CapabilityMapLayer
 from .exploration import ExplorationLayer
 from .robot_meshes import RobotLayer, RobotMeshes
 from .samples import SamplesLayer, sample_poses
@@ -134,9 +134,10 @@ class Viewer:
             self.frame_camera(self.room_layer.points)
         return self.room_layer
 
-    def add_capability_map(self, cap, base_pose=None):
-        """A capability map's voxels (arm base frame at base_pose) with a slice-plane slider."""
-        self.capability_map = layer = CapabilityMapLayer(self.scene, cap, base_pose=base_pose)
+    def add_capability_map(self, cap, base_pose=None, colour_by: str = "reachability"):
+        """A capability map's voxels (arm base frame at base_pose) with a slice-plane slider; coloured by
+        "reachability" (D) or "quality" (of the cells' stored solutions), with a selector when the map has quality."""
+        self.capability_map = layer = CapabilityMapLayer(self.scene, cap, base_pose=base_pose, colour_by=colour_by)
         lo, hi = layer.z_range
         step = float(cap.resolution)
         slider = self.server.gui.add_slider("slice z (m)", min=lo, max=max(hi, lo + step), step=step, initial_value=layer.z)
@@ -145,6 +146,14 @@ class Viewer:
         def _(_event) -> None:
             layer.cut(slider.value)
             self._watch_clicks(layer)  # cut() makes a new node
+
+        if cap.has_quality:
+            choice = self.server.gui.add_dropdown("colour by", options=COLOUR_BY, initial_value=colour_by)
+
+            @choice.on_update
+            def _(_event) -> None:
+                layer.recolour(choice.value)
+                self._watch_clicks(layer)
 
         self._watch_clicks(layer)
         self.frame_camera(layer.centres)

@@ -1,4 +1,5 @@
-"""A capability map in the scene: its voxels coloured by reachability index, cut by a horizontal slice plane.
+"""A capability map in the scene: its voxels coloured by reachability index (or by the quality of their cells),
+cut by a horizontal slice plane.
 
 Voxel centres and values come from the compiled ``CapabilityMap.voxels()``; the viewer only selects the
 voxels below the plane and, of those, draws the outer shell (voxels with a face neighbour missing, the slice
@@ -12,19 +13,40 @@ import numpy as np
 from . import cells, colours
 
 
+COLOUR_BY = ("reachability", "quality")
+
+
+def voxel_colour_values(cap, colour_by: str) -> np.ndarray:
+    """Per voxel of cap.voxels(), in [0, 1]: the reachability index D, or (colour_by "quality") the mean quality
+    (manipulability x joint-limit penalty) of its reachable cells relative to the map's best cell. A map without
+    quality raises ValueError saying how to rebuild it."""
+    if colour_by == "reachability":
+        return np.asarray(cap.voxels()[1], dtype=float).reshape(-1)
+    if colour_by == "quality":
+        return np.asarray(cap.voxel_quality("mean", relative=True), dtype=float)
+    raise ValueError(f"colour_by must be one of {', '.join(COLOUR_BY)}, got {colour_by!r}")
+
+
+def _colours(cap, colour_by: str) -> np.ndarray:
+    """Red (low) to blue (high): D over [0, 1]; quality over [0, the largest voxel's] (few come near the best cell)."""
+    return colours.scale(voxel_colour_values(cap, colour_by), 1.0 if colour_by == "reachability" else None)
+
+
 class CapabilityMapLayer:
     """Voxels under `name` (arm base frame placed at `base_pose`); `cut(z)` shows those with centre z <= z.
     `shown`: indices (into `centres`) of the voxels below the cut; `drawn`: those of the drawn shell, in the
-    order of the node's instances (a click's instance index i is voxel drawn[i])."""
+    order of the node's instances (a click's instance index i is voxel drawn[i]). colour_by: "reachability"
+    (D) or "quality" (voxel_colour_values)."""
 
-    def __init__(self, scene, cap, name: str = "/capability_map", base_pose=None):
+    def __init__(self, scene, cap, name: str = "/capability_map", base_pose=None, colour_by: str = "reachability"):
         self.scene, self.cap, self.name = scene, cap, name
         centres, values = cap.voxels()
         self.centres = np.asarray(centres, dtype=float).reshape(-1, 3)
         self.values = np.asarray(values, dtype=float).reshape(-1)
         self.edge = float(cap.resolution)
         self.keys = cells.grid_keys(self.centres, self.edge)
-        self.colours = colours.scale(self.values, 1.0)
+        self.colour_by = colour_by
+        self.colours = _colours(cap, colour_by)
         self.frame = scene.add_frame(name, show_axes=False)
         if base_pose is not None:
             self.place(base_pose)
@@ -58,6 +80,12 @@ class CapabilityMapLayer:
                                       self.colours[self.drawn], self.edge * 0.9)
         p = self.plane.position
         self.plane.position = (p[0], p[1], self.z + self.edge / 2)
+
+    def recolour(self, colour_by: str) -> None:
+        """Colours the voxels by "reachability" or "quality" and redraws the current cut."""
+        self.colours = _colours(self.cap, colour_by)
+        self.colour_by = colour_by
+        self.cut(self.z)
 
     def voxel(self, instance: int) -> int:
         """Voxel index (into `centres`) of the drawn instance `instance`."""

@@ -46,7 +46,7 @@ def check_arguments(port=8080, host: str = "127.0.0.1", samples: int = 5, html=N
 
 def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
          host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
-         steps=None, surface=None, room=None, verbose: bool = True) -> Viewer:
+         steps=None, surface=None, room=None, verbose: bool = True, colour_by: str = "reachability") -> Viewer:
     """Shows maps, explorations, a robot and a room in the browser: each item is a file path (.orsm, .orcm, .bt), a
     SurfaceMap, CapabilityMap, ExplorationMap or an explore() result. `robot`: a Robot (any: from a URDF file,
     example-robot-data, ...) or a name; it defaults to the one a surface map records; its configuration is `q`,
@@ -54,7 +54,8 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
     `room`: a room file, rooms.Room or Obstacles, drawn (a surface map's samples are checked against it); a
     surface map shows the room it was built with by itself. `steps`: an ExplorationRecorder for an explore()
     result (the map after each view on the view slider). `surface`: the Surface a surface map was built on (its
-    slab and boxes are drawn). `html`/`png` also write the scene as a static page / a screenshot. With no item,
+    slab and boxes are drawn). `colour_by`: a capability map's voxels by "reachability" (D) or "quality" (of their
+    cells' stored solutions). `html`/`png` also write the scene as a static page / a screenshot. With no item,
     the robot and the room alone. block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
     check_arguments(port, host, samples, html, png)
     loaded = [files.load(item) for item in items]
@@ -80,7 +81,7 @@ def _show(v: Viewer, loaded, robot, q, joints, samples, seed, steps, surface, ro
         if kind == "surface_map":
             v.add_surface_map(obj, robot=robot, samples=samples, seed=seed, q=q, surface=surface, room=room)
         elif kind == "capability_map":
-            v.add_capability_map(obj)
+            v.add_capability_map(obj, colour_by=colour_by)
         else:
             v.add_exploration(obj, steps=steps)
     if room is not None and v.room_layer is None:

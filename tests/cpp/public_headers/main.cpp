@@ -7,6 +7,7 @@
 #include <octoreach/camera_link.hpp>
 #include <octoreach/chain.hpp>
 #include <octoreach/collision.hpp>
+#include <octoreach/manipulability.hpp>
 #include <octoreach/robot.hpp>
 #include <octoreach/shape.hpp>
 #include <octoreach/self_collision_report.hpp>
@@ -30,7 +31,8 @@ int use(const std::string& urdf) {
   for (const octoreach::Arm& a : octoreach::find_arms(*robot)) std::cout << a.name << " " << a.reason << "\n";
   std::cout << octoreach::camera_link(*robot).link << " " << report.free_share() << "\n";
   std::cout << robot->links().at(0).shapes.size() << " " << robot->links().at(0).visuals.size() << " "
-            << robot->source().urdf << " " << octoreach::kPi << "\n";
+            << robot->source().urdf << " " << octoreach::kPi << " "
+            << octoreach::manipulability(arm, *q, octoreach::jacobian_rank(arm)) << "\n";
   return q && !wider->in_collision(*q, obstacles) ? 0 : 1;
 }
 
