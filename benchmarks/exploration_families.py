@@ -54,6 +54,7 @@ def _run(a, inst, strategy, seed, oracle, cmap) -> dict:
     cover = []
     r = ex.explore(inst.scene, _camera(a, seed), scene_families.start_pose(), robot=True, strategy=strategy,
                    max_views=a.views, resolution=a.resolution, seed=seed, capability_map=cmap, target=inst.target,
+                   search_space=inst.search_space,
                    min_utility=a.min_utility, patience=a.patience,
                    on_view=lambda row, emap, info: cover.append(oracle.share(emap)))
     return {

@@ -70,9 +70,10 @@ void set_search_space(ExplorationOptions& o, const py::object& search_space) {
 void def_map_core(MapClass& cls) {
   cls
       .def(py::init([](double resolution, double threshold, std::uint64_t seed, int threads, bool track_voids,
-                       const py::object& search_space) {
+                       const py::object& search_space, bool voids_fill_search_space) {
              ExplorationOptions o;
              set_search_space(o, search_space);
+             o.voids_fill_search_space = voids_fill_search_space;
              o.resolution = resolution;
              o.void_fit_threshold = threshold;
              o.seed = seed;
@@ -83,7 +84,9 @@ void def_map_core(MapClass& cls) {
            py::arg("resolution") = ExplorationOptions().resolution,
            py::arg("void_fit_threshold") = ExplorationOptions().void_fit_threshold, py::arg("seed") = 0,
            py::arg("threads") = 0, py::arg("track_voids") = true, py::arg("search_space") = py::none(),
-           "search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.")
+           py::arg("voids_fill_search_space") = ExplorationOptions().voids_fill_search_space,
+           "search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.\n"
+           "voids_fill_search_space: every unknown cell of S is a void cell (not only those inside the hull).")
       .def_static("from_file", [](const std::string& path, double threshold, std::uint64_t seed, std::uint64_t max_cells,
                                   const py::object& search_space) {
              ExplorationOptions o;

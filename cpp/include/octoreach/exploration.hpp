@@ -138,6 +138,11 @@ struct ExplorationOptions {
   /// The search space S of the paper (its boundary is known): void cells are only looked for
   /// inside this box. Default: unbounded.
   Eigen::Vector3d search_lo = Eigen::Vector3d::Constant(-1e9), search_hi = Eigen::Vector3d::Constant(1e9);
+  /// With a finite search space: once the map has an occupied cell, every unknown cell of the search space is a
+  /// void cell, not only those inside the hull. The paper's S is known and is to be explored whole (section III);
+  /// the hull (section IV-B) finds the voids of an unbounded space, and leaves out the unknown parts of S beyond
+  /// the outermost surfaces seen (outside the first views, above low objects). false: the paper's voids.
+  bool voids_fill_search_space = false;
   /// from_file rejects a .bt file whose leaves cover more finest-resolution cells than this (counted
   /// before anything is expanded: a damaged file cannot make the load run out of memory or time).
   std::uint64_t max_file_cells = std::uint64_t(1) << 24;

@@ -73,7 +73,7 @@ void update_voids(ExplorationState& s, const std::vector<CellChange>& changed, c
   for (const auto& c : changed)
     if (c.before == CellState::Unknown && (gw.get(c.key) & kVoidFlag)) clear_void(gw, s, c.key, st);
   if (have_hull) {
-    HullColumns nc = hull_columns(s.tree, hull, threads, options.search_lo, options.search_hi);
+    HullColumns nc = void_columns(s.tree, hull, threads, options);
     diff_columns(gw, s, s.columns, nc, st);
     s.columns = std::move(nc);
     s.hull = std::move(hull);

@@ -203,7 +203,8 @@ def _table_object(rng, s, lo_xy, hi_xy, z, kind):
 def table_tops(rng):
     """A table (0.5-0.75 x 0.6-1.0 m, 0.3-0.5 m high) with 4-7 objects on it: blocks, standing books, cups,
     bowls and small boxes with an opening; the interior is the layer of clutter above the top, the target
-    inside a container or behind a tall object."""
+    inside a container or behind a tall object. The search space is that layer (a "search_space" part): the
+    robot searches the table, not the floor under it."""
     s = Scene()
     add_floor(s)
     size = np.array([rng.uniform(0.5, 0.75), rng.uniform(0.6, 1.0)])
@@ -235,7 +236,9 @@ def table_tops(rng):
         _, lo, hi, _ = max(objects, key=lambda o: o[2][2]) if objects else ("", (*t_lo, ht), (*t_lo, ht), None)
         x = min(hi[0] + 0.005, t_hi[0] - edge)
         target = _cube_at((x, (lo[1] + hi[1]) / 2 - edge / 2), ht, edge)
-    return s, target, [(o[0], o[1], o[2]) for o in objects] + [("table", (*t_lo, 0.0), (*t_hi, ht))]
+    # the robot searches the table top: the layer above it, 5 cm around (scene_region's margin), not the floor under it
+    search = ("search_space", (*(t_lo - 0.05), ht - 0.03), (*(t_hi + 0.05), top + 0.05))
+    return s, target, [(o[0], o[1], o[2]) for o in objects] + [("table", (*t_lo, 0.0), (*t_hi, ht)), search]
 
 
 def _place_in(rng, size_xy, taken, lo, hi, gap: float = 0.03, tries: int = 100):

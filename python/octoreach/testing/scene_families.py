@@ -4,7 +4,8 @@ USAR-like rubble piles (family_containers, family_debris).
 
 Every instance stands in front (+x) of the explorer at the origin, inside its arm's reach, records its
 interiors (the regions an exploration should see: crate and box insides, cubbies, bores, wedges, the clutter
-layer of a table, a pile's box) and hides a small target: a cube that does not overlap any solid and that
+layer of a table, a pile's box), states the search space when it is not the scene's region (a table top)
+and hides a small target: a cube that does not overlap any solid and that
 the families' start view (START) does not see. `family_scene(family, seed)` draws everything from a
 generator seeded by the family's name and `seed`: the same (family, seed) gives the same scene, bit for
 bit, whatever else was drawn before.
@@ -19,6 +20,7 @@ import numpy as np
 from .._core import DepthCamera, Scene
 from ..exploration.camera import look_at
 from ..exploration.metrics import points_on
+from ..exploration.scenes import scene_region
 from . import family_containers, family_debris
 
 # The builders, by family name (each: rng -> (scene without its target, target (2, 3), parts)).
@@ -54,6 +56,15 @@ class FamilyScene:
     @property
     def name(self) -> str:
         return f"{self.family}_{self.seed}"
+
+    @property
+    def search_space(self) -> np.ndarray:
+        """The region the exploration searches ((2, 3) lo, hi): the family's "search_space" part when it has
+        one (a table top: the layer above the table), else scene_region(scene)."""
+        for name, lo, hi in self.parts:
+            if name == "search_space":
+                return np.array([lo, hi], float)
+        return scene_region(self.scene)
 
     def target_points(self, points, margin: float = 0.015) -> int:
         """How many of `points` (N, 3) lie on the target (metrics.points_on)."""
