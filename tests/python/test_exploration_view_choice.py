@@ -230,8 +230,9 @@ def test_rays_out_of_void_cells_find_eyes_through_a_boxs_opening_and_not_through
 
 
 def test_the_last_low_view_before_the_loop_would_stop_gets_the_rays_out_of_every_void_cell(monkeypatch):
-    """explore tells the strategy when a low view would end the loop (patience's last): with patience 3 and
-    every view low, the third choice is the last chance, the first two are not."""
+    """explore hands the choice its memory of low views in a row (the choice takes the last chance when a low
+    view would end the loop, patience's last): with patience 3 and every view low, the third choice is the
+    last chance, the first two are not."""
     from octoreach.exploration import loop
     from test_exploration_strategies import _small_run
 
@@ -239,7 +240,7 @@ def test_the_last_low_view_before_the_loop_would_stop_gets_the_rays_out_of_every
     choose = loop.choose_view
 
     def spy(*args, **kw):
-        seen.append(kw["last_chance"])
+        seen.append(kw["memory"].low_views + 1 >= 3)
         return choose(*args, **kw)
 
     monkeypatch.setattr(loop, "choose_view", spy)

@@ -140,4 +140,30 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
   return out;
 }
 
+std::vector<Pose> aim_along_sight(const ExplorationMap& map, const NbvOptions& opt, const AimRequest& req) {
+  const ExplorationState& S = state(map);
+  if (S.void_set.empty() || req.poses == 0) return {};
+  AimRequest draw = req;
+  draw.every_cell = false;
+  const std::vector<CellKey> from = origins(S, draw);
+  const double res = map.resolution();
+  std::vector<Pose> out;
+  const GridReader g(S.grid);
+  for (std::size_t i = 0; i < from.size() && out.size() < req.poses; ++i) {
+    Stream rng(mix(mix(req.seed, from[i]), 3));
+    Eigen::Vector3d d = rng.direction();
+    d.z() = std::abs(d.z());
+    const double s = req.distance.first + rng.uniform() * (req.distance.second - req.distance.first);
+    const Eigen::Vector3d c = S.center(from[i]), eye = c + s * d;
+    if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
+    bool clear = true;
+    walk_cells(res, c, d, s, [&](CellKey k) {
+      if (k != from[i] && (g.get(k) & kStateMask) == std::uint8_t(CellState::Occupied)) clear = false;
+      return clear;
+    });
+    if (clear) out.push_back(camera_pose(eye, c - eye, 0.0));
+  }
+  return out;
+}
+
 }  // namespace octoreach::detail

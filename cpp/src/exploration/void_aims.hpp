@@ -37,4 +37,13 @@ struct AimRequest {
 std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& checker, const NbvOptions& opt,
                                const AimRequest& req);
 
+// The second look's poses: up to req.poses, each looking at one of req.cells void cells (drawn as
+// aim_at_voids draws them) from an eye req.distance away in a random direction of the upper half sphere
+// (a camera does not look up from under the floor), above min_height, inside opt's workspace box and
+// sphere, with no occupied cell of the map on the segment past the cell's own (unknown cells may lie on
+// it: they may be seen through; else aims at the last slivers of an open crate look through its wall).
+// The eye's clearance and reach are left to the scoring. Deterministic for the seed; the caller holds
+// the map's lock.
+std::vector<Pose> aim_along_sight(const ExplorationMap& map, const NbvOptions& opt, const AimRequest& req);
+
 }  // namespace octoreach::detail

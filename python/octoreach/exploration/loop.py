@@ -242,11 +242,11 @@ class _Loop:
         self.opts, self.search, self.bases, self.sphere_of = opts, opts.search, bases, sphere_of
         self.physics, self.target, self.on_view = physics, target, on_view
         self.chain = opts.search.chain  # (the search holds a plain pointer to it)
-        self.workspace, self.failed = self.search.workspace, []  # the user's workspace; cameras of views not taken
+        self.memory = _core.ChoiceMemory()  # low views in a row, cameras of views not taken
 
     def run(self, pose) -> ExplorationResult:
         opts, emap, seed = self.opts, self.emap, self.search.seed
-        current, q, low = 0, None, 0
+        current, q = 0, None
         rows, poses, stop = [], [], "view budget"
         void_before = np.zeros((0, 3))
         t_all = time.perf_counter()
@@ -259,24 +259,15 @@ class _Loop:
             t_int = time.perf_counter() - t0
             if rows:
                 rows[-1].void_seen = _seen(emap, void_before) if valid else None
-            if view == 1 and emap.void_cell_count == 0:
-                rows.append(self._row(view, stats, clusters, Choice(pose=None), t_int, 0.0, pose, current, valid, pts))
-                self._report(rows[-1], Choice(pose=None))
-                stop = "nothing to explore"
-                break
             void_before = emap.centers(emap.void_keys())
             t0 = time.perf_counter()
             choice = choose_view(self.strategy, emap, self.camera, self.bases, current, self.sphere_of, opts,
-                                 seed + view, self.region, last_chance=low + 1 >= opts.patience)
+                                 seed + view, memory=self.memory)
             rows.append(self._row(view, stats, clusters, choice, t_int, time.perf_counter() - t0, pose, current,
                                   valid, pts))
             self._report(rows[-1], choice)
-            if choice.pose is None:
-                stop = "no valid view"
-                break
-            low = low + 1 if choice.utility <= opts.min_utility else 0
-            if low >= opts.patience or choice.utility <= 0:
-                stop = "utility 0" if choice.utility <= 0 else "utility below min_utility"
+            if choice.stop:
+                stop = choice.stop_reason
                 break
             pose, q, current = np.asarray(choice.pose, float), choice.q, choice.base
         return ExplorationResult(rows=rows, map=emap, poses=poses, total_s=time.perf_counter() - t_all,
@@ -286,8 +277,7 @@ class _Loop:
         """The cloud of a view taken (announced first: learn_misses) and its insert's statistics; a view not
         taken (its arm touches the scene) integrates nothing and keeps later views away from its camera."""
         if not valid:
-            self.failed.append(pose[:3, 3].copy())
-            self.search.workspace = away_from(self.failed, self.workspace, self.opts.failed_view_radius)
+            self.memory.failed_views = np.vstack([self.memory.failed_views, pose[:3, 3]])
             return None, {}
         pts = self.camera.capture(self.scene, pose)
         if self.opts.learn_misses and self.emap.void_cell_count:  # the cells it is expected to see (expect_view)
