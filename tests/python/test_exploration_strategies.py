@@ -196,7 +196,7 @@ def test_every_strategy_terminates_and_its_views_stay_in_observed_space(strategy
 
 
 def test_min_utility_stops_early_and_says_so():
-    r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9)
+    r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9, patience=1)
     assert len(r.rows) == 1 and r.stop_reason == "utility below min_utility"
     r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9, patience=2)  # the low view is taken once
     assert len(r.rows) == 2 and r.stop_reason == "utility below min_utility" and r.rows[0].void_seen is not None

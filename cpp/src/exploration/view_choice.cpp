@@ -145,9 +145,9 @@ void adopt(ViewChoice& best, ViewChoice&& a, bool harder) {
   best = std::move(a);
 }
 
-ViewChoice frontier_void_choice(const ChoiceContext& ctx, std::uint64_t seed, bool last_chance) {
+ViewChoice frontier_void_choice(const ChoiceContext& ctx, std::uint64_t seed, bool last_chance, double threshold) {
   const ExploreOptions& o = ctx.options;
-  const std::optional<double> widen = o.second_look ? std::optional<double>(o.min_utility) : std::nullopt;
+  const std::optional<double> widen = o.second_look ? std::optional<double>(threshold) : std::nullopt;
   ViewChoice best = searched_choice(ctx, seed, widen);
   if (!widen) return best;
   // the second look: by the ranking gain, or by expected void cells when the search's best is low
@@ -205,7 +205,8 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
     ++memory.choices;
     return c;
   }
-  c = strategy == ViewStrategy::FrontierVoid ? frontier_void_choice(ctx, seed, last_chance)
+  const double threshold = options.stop_threshold(camera, map.resolution());
+  c = strategy == ViewStrategy::FrontierVoid ? frontier_void_choice(ctx, seed, last_chance, threshold)
                                              : detail::sampled_choice(ctx, seed, strategy);
   ++memory.choices;
   if (!c.found) {
@@ -213,7 +214,7 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
     c.stop_reason = "no valid view";
     return c;
   }
-  memory.low_views = c.utility <= options.min_utility ? memory.low_views + 1 : 0;
+  memory.low_views = c.utility <= threshold ? memory.low_views + 1 : 0;
   if (memory.low_views >= options.patience || c.utility <= 0) {
     c.stop = true;
     c.stop_reason = c.utility <= 0 ? "utility 0" : "utility below min_utility";

@@ -20,9 +20,10 @@ from .strategies import Choice, check_strategy, choose_view
 # names read them for the callers that want one figure.
 VIEW_BUDGET = ExploreOptions().max_views  # views of one exploration unless told otherwise
 FAILED_VIEW_RADIUS = ExploreOptions().failed_view_radius  # m around the camera of a view not taken
-# The exploration benchmark's stated stopping rule (explore's own default is the paper's utility 0).
-STOP_UTILITY = ExploreOptions.benchmark().min_utility
-STOP_PATIENCE = ExploreOptions.benchmark().patience
+# The stopping rule of every entry point: min_utility None is ExploreOptions.stop_threshold(camera,
+# resolution), from the sensor and the cell size; ExploreOptions.paper_stop() is the paper's utility 0.
+STOP_UTILITY = ExploreOptions().min_utility
+STOP_PATIENCE = ExploreOptions().patience
 
 STOP_REASONS = ("utility 0", "utility below min_utility", "view budget", "nothing to explore", "no valid view")
 
@@ -195,9 +196,11 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, options: Optional[Exp
     sampled_poses; `score_size`: (width, height) of the score grid); None keeps the default.
     `strategy` picks the views (strategies.STRATEGIES): "frontier_void" (ours, next_best_view) or a
     baseline ("random", "frontiers", "unknown"); all use the same robot, camera, checks and stopping rule.
-    The loop stops (ExplorationResult.stop_reason, one of STOP_REASONS) when the map has no void after the
-    first view, when no valid view is left, when the chosen view's utility (its strategy's gain) is 0 or has
-    been <= min_utility for `patience` views in a row (the low views are taken), or after max_views views.
+    The loop stops (ExplorationResult.stop_reason, one of STOP_REASONS) when the map has no void cell, when no
+    valid view is left, when the chosen view's utility (its strategy's gain) is 0 or has been <= min_utility
+    for `patience` views in a row (the low views are taken), or after max_views views. By default it stops
+    by itself: min_utility None is ExploreOptions.stop_threshold (score rays x cell / sensor range expected
+    void cells) for 3 views; min_utility=0, patience=1 (ExploreOptions.paper_stop()) is the paper's rule.
     The camera is carried by `chain` (tip = camera frame, +z forward) whose base sits at `base_pose`
     (4x4 chain base -> world), or moves freely inside the search's workspace. `robot=True` uses
     urdf/explorer.urdf (standing at `base_pose`, the pose of its base_footprint); pass `robot=` with
