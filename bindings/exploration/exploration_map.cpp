@@ -152,6 +152,8 @@ void def_map_sets(MapClass& cls) {
              return out;
            }, "Frontier clusters as a list of (N, 3) cell centres.")
       .def_property_readonly("void_cell_count", &ExplorationMap::void_cell_count)
+      .def_property_readonly("sealed_void_cell_count", &ExplorationMap::sealed_void_cell_count,
+                             "void cells no view can reveal (their void component touches only occupied cells)")
       .def_property_readonly("frontier_cell_count", [](const ExplorationMap& self) { return self.frontier_cells().size(); })
       .def("void_clusters", &ExplorationMap::void_clusters, py::call_guard<py::gil_scoped_release>(), "Void clusters (ellipsoid region growing, deterministic for the map's seed).")
       .def("void_clusters_from_scratch", &ExplorationMap::void_clusters_from_scratch,

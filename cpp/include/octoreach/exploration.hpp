@@ -234,6 +234,10 @@ class ExplorationMap {
   /// \brief Void cells, sorted.
   std::vector<CellKey> void_cells() const;
   std::size_t void_cell_count() const;
+  /// \brief Void cells no view can reveal: their void component (6-connected) touches only occupied cells
+  /// (and the ground under the search space), so every ray into it meets a surface first (the inside of a
+  /// solid whose faces have been seen). They count with seeability 0 in every view score and utility.
+  std::size_t sealed_void_cell_count() const;
   /// \brief Void clusters (ellipsoidal region growing, deterministic for options().seed).
   std::vector<VoidCluster> void_clusters() const;
   /// \brief Frontier-voids: each void cluster with the frontier clusters touching it.

@@ -199,7 +199,7 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   const std::uint64_t seed = options.search.seed;
   const bool last_chance = memory.low_views + 1 >= options.patience;
   ViewChoice c;
-  if (map.void_cell_count() == 0) {
+  if (map.void_cell_count() == map.sealed_void_cell_count()) {  // no void cell a view could reveal
     c.stop = true;
     c.stop_reason = "nothing to explore";
     ++memory.choices;
