@@ -7,26 +7,6 @@ namespace {
 
 using MapClass = py::class_<ExplorationMap>;
 
-py::dict stats_dict(const InsertStats& s) {
-  py::dict d;
-  d["points"] = s.points;
-  d["dropped"] = s.dropped;
-  d["out_of_bounds"] = s.out_of_bounds;
-  d["free_cells"] = s.free_cells;
-  d["occupied_cells"] = s.occupied_cells;
-  d["changed_cells"] = s.changed_cells;
-  d["frontier_added"] = s.frontier_added;
-  d["frontier_removed"] = s.frontier_removed;
-  d["void_added"] = s.void_added;
-  d["void_removed"] = s.void_removed;
-  d["seconds_rays"] = s.seconds_rays;
-  d["seconds_tree"] = s.seconds_tree;
-  d["seconds_frontiers"] = s.seconds_frontiers;
-  d["seconds_hull"] = s.seconds_hull;
-  d["seconds_voids"] = s.seconds_voids;
-  d["seconds"] = s.seconds_total;
-  return d;
-}
 
 py::dict snapshot_dict(const ExplorationSnapshot& s) {
   py::dict d;

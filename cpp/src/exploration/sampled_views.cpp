@@ -1,4 +1,5 @@
 // The baselines' choice of a view: sampled reachable poses, scored (view_choice_parts.hpp).
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>

@@ -2,6 +2,7 @@
 // decision; the baselines' sampled poses are in sampled_views.cpp.
 #include "octoreach/view_choice.hpp"
 
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
