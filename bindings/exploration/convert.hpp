@@ -5,8 +5,16 @@
 
 #include "common.hpp"
 #include "octoreach/exploration.hpp"
+#include "octoreach/simulation.hpp"
 
 namespace octoreach::py_bindings {
+
+/// The intrinsics of a DepthCamera or CameraIntrinsics argument; TypeError naming its type otherwise.
+inline CameraIntrinsics intrinsics_from(const py::object& camera) {
+  if (py::isinstance<DepthCamera>(camera)) return camera.cast<const DepthCamera&>().intrinsics();
+  if (py::isinstance<CameraIntrinsics>(camera)) return camera.cast<CameraIntrinsics>();
+  throw py::type_error("camera must be a DepthCamera or CameraIntrinsics, got " + type_name(camera));
+}
 
 inline py::array_t<double> centers(const ExplorationMap& m, const std::vector<CellKey>& keys) {
   std::vector<Eigen::Vector3d> pts(keys.size());

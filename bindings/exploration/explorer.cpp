@@ -14,9 +14,7 @@ ExplorerSetup setup_from(const py::object& camera, const py::object& search_spac
                          double reach, const py::object& resolution, const py::object& void_fit_threshold,
                          const py::object& options, const std::string& strategy) {
   ExplorerSetup s;
-  if (py::isinstance<DepthCamera>(camera)) s.camera = camera.cast<const DepthCamera&>().intrinsics();
-  else if (py::isinstance<CameraIntrinsics>(camera)) s.camera = camera.cast<CameraIntrinsics>();
-  else throw py::type_error("camera must be a DepthCamera or CameraIntrinsics, got " + type_name(camera));
+  s.camera = intrinsics_from(camera);
   RowMatrixXd box = finite_matrix_from(search_space, 3, "search_space");
   if (box.rows() != 2) throw std::invalid_argument("search_space must have shape (2, 3): lo and hi rows");
   s.search_space = Aabb{box.row(0).transpose(), box.row(1).transpose()};

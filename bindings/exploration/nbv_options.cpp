@@ -1,5 +1,6 @@
 // Next-best-view options bound as classes: NbvOptions (its defaults and its exploration_loop preset from
 // the C++ struct; the Python keywords that are not plain fields) and ExploreOptions, the exploration loop's.
+#include "exploration/convert.hpp"
 #include "exploration/next_best_view.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/next_best_view.hpp"
@@ -141,9 +142,7 @@ void wrap_explore_options(py::module_& m) {
       .def_static("paper_stop", &E::paper_stop, "The paper's stop rule: the first chosen view with utility 0 (min_utility 0,\n"
                   "patience 1).")
       .def("stop_threshold", [](const E& o, const py::object& camera, double resolution) {
-             CameraIntrinsics c = py::isinstance<DepthCamera>(camera) ? camera.cast<const DepthCamera&>().intrinsics()
-                                                                      : camera.cast<CameraIntrinsics>();
-             return o.stop_threshold(c, resolution);
+             return o.stop_threshold(intrinsics_from(camera), resolution);
            }, py::arg("camera"), py::arg("resolution"),
            "min_utility, or when it is None the void cells a view must be expected to see to be worth taking:\n"
            "score_width x score_height x resolution / camera.max_range (the cells its score rays would meet if one\n"

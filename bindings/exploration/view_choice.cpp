@@ -1,19 +1,10 @@
 // The exploration loop's choice of a view: ChoiceMemory, ViewChoice and choose_view (view_choice.hpp).
+#include "exploration/convert.hpp"
 #include "exploration/next_best_view.hpp"
 #include "octoreach/simulation.hpp"
 #include "octoreach/view_choice.hpp"
 
 namespace octoreach::py_bindings {
-
-namespace {
-
-CameraIntrinsics camera_of(const py::object& camera) {
-  if (py::isinstance<DepthCamera>(camera)) return camera.cast<const DepthCamera&>().intrinsics();
-  if (py::isinstance<CameraIntrinsics>(camera)) return camera.cast<CameraIntrinsics>();
-  throw py::type_error("camera must be a DepthCamera or CameraIntrinsics, got " + type_name(camera));
-}
-
-}  // namespace
 
 void wrap_view_choice(py::module_& m) {
   py::class_<ChoiceMemory>(m, "ChoiceMemory",
@@ -42,7 +33,7 @@ void wrap_view_choice(py::module_& m) {
   m.def("choose_view", [](const ExplorationMap& map, const py::object& camera, const py::object& bases, int current,
                           const ExploreOptions& options, ChoiceMemory& memory, const std::string& strategy,
                           double reach) {
-          const CameraIntrinsics c = camera_of(camera);
+          const CameraIntrinsics c = intrinsics_from(camera);
           ViewSites sites;
           sites.bases = poses_from(bases, "bases");
           sites.reach = reach;
