@@ -284,5 +284,7 @@ void wrap_pose_sampler(py::module_& m);
 void wrap_simulation(py::module_& m);
 void wrap_exploration_map(py::module_& m);
 void wrap_next_best_view(py::module_& m);
+void wrap_view_choice(py::module_& m);
+void wrap_explorer(py::module_& m);
 
 }  // namespace octoreach::py_bindings

@@ -63,4 +63,6 @@ PYBIND11_MODULE(_core, m) {
   octoreach::py_bindings::wrap_simulation(m);
   octoreach::py_bindings::wrap_exploration_map(m);
   octoreach::py_bindings::wrap_next_best_view(m);
+  octoreach::py_bindings::wrap_view_choice(m);
+  octoreach::py_bindings::wrap_explorer(m);
 }

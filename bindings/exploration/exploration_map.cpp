@@ -7,26 +7,6 @@ namespace {
 
 using MapClass = py::class_<ExplorationMap>;
 
-py::dict stats_dict(const InsertStats& s) {
-  py::dict d;
-  d["points"] = s.points;
-  d["dropped"] = s.dropped;
-  d["out_of_bounds"] = s.out_of_bounds;
-  d["free_cells"] = s.free_cells;
-  d["occupied_cells"] = s.occupied_cells;
-  d["changed_cells"] = s.changed_cells;
-  d["frontier_added"] = s.frontier_added;
-  d["frontier_removed"] = s.frontier_removed;
-  d["void_added"] = s.void_added;
-  d["void_removed"] = s.void_removed;
-  d["seconds_rays"] = s.seconds_rays;
-  d["seconds_tree"] = s.seconds_tree;
-  d["seconds_frontiers"] = s.seconds_frontiers;
-  d["seconds_hull"] = s.seconds_hull;
-  d["seconds_voids"] = s.seconds_voids;
-  d["seconds"] = s.seconds_total;
-  return d;
-}
 
 py::dict snapshot_dict(const ExplorationSnapshot& s) {
   py::dict d;
@@ -70,9 +50,10 @@ void set_search_space(ExplorationOptions& o, const py::object& search_space) {
 void def_map_core(MapClass& cls) {
   cls
       .def(py::init([](double resolution, double threshold, std::uint64_t seed, int threads, bool track_voids,
-                       const py::object& search_space) {
+                       const py::object& search_space, bool voids_fill_search_space) {
              ExplorationOptions o;
              set_search_space(o, search_space);
+             o.voids_fill_search_space = voids_fill_search_space;
              o.resolution = resolution;
              o.void_fit_threshold = threshold;
              o.seed = seed;
@@ -83,7 +64,9 @@ void def_map_core(MapClass& cls) {
            py::arg("resolution") = ExplorationOptions().resolution,
            py::arg("void_fit_threshold") = ExplorationOptions().void_fit_threshold, py::arg("seed") = 0,
            py::arg("threads") = 0, py::arg("track_voids") = true, py::arg("search_space") = py::none(),
-           "search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.")
+           py::arg("voids_fill_search_space") = ExplorationOptions().voids_fill_search_space,
+           "search_space: (2, 3) box (lo, hi) of the paper's search space S; voids are only looked for inside it.\n"
+           "voids_fill_search_space: every unknown cell of S is a void cell (not only those inside the hull).")
       .def_static("from_file", [](const std::string& path, double threshold, std::uint64_t seed, std::uint64_t max_cells,
                                   const py::object& search_space) {
              ExplorationOptions o;
@@ -149,6 +132,8 @@ void def_map_sets(MapClass& cls) {
              return out;
            }, "Frontier clusters as a list of (N, 3) cell centres.")
       .def_property_readonly("void_cell_count", &ExplorationMap::void_cell_count)
+      .def_property_readonly("sealed_void_cell_count", &ExplorationMap::sealed_void_cell_count,
+                             "void cells no view can reveal (their void component touches only occupied cells)")
       .def_property_readonly("frontier_cell_count", [](const ExplorationMap& self) { return self.frontier_cells().size(); })
       .def("void_clusters", &ExplorationMap::void_clusters, py::call_guard<py::gil_scoped_release>(), "Void clusters (ellipsoid region growing, deterministic for the map's seed).")
       .def("void_clusters_from_scratch", &ExplorationMap::void_clusters_from_scratch,

@@ -1,5 +1,6 @@
 // Next-best-view options bound as classes: NbvOptions (its defaults and its exploration_loop preset from
 // the C++ struct; the Python keywords that are not plain fields) and ExploreOptions, the exploration loop's.
+#include "exploration/convert.hpp"
 #include "exploration/next_best_view.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/next_best_view.hpp"
@@ -137,14 +138,22 @@ void wrap_explore_options(py::module_& m) {
                 "says why each value): its search, budget and stopping rule, and how it chooses a view beyond the search.")
       .def(py::init<>())
       .def_static("benchmark", &E::benchmark,
-                  "The exploration benchmark's settings: its stated stopping rule (min_utility 10 expected void\n"
-                  "cells for patience 3 views in a row).")
+                  "The exploration benchmark's settings: the defaults (the stop rule of every entry point).")
+      .def_static("paper_stop", &E::paper_stop, "The paper's stop rule: the first chosen view with utility 0 (min_utility 0,\n"
+                  "patience 1).")
+      .def("stop_threshold", [](const E& o, const py::object& camera, double resolution) {
+             return o.stop_threshold(intrinsics_from(camera), resolution);
+           }, py::arg("camera"), py::arg("resolution"),
+           "min_utility, or when it is None the void cells a view must be expected to see to be worth taking:\n"
+           "score_width x score_height x resolution / camera.max_range (the cells its score rays would meet if one\n"
+           "cell in every max_range / resolution cells along them were void).")
       .def_readwrite("search", &E::search,
                      "NbvOptions of every view's search (default NbvOptions.exploration_loop()); its seed is the\n"
                      "run's: the map's, and view k searches with seed + k")
       .def_readwrite("max_views", &E::max_views, "view budget")
       .def_readwrite("min_utility", &E::min_utility,
-                     "stop when the chosen view's utility has been <= this for `patience` views in a row (0: the\n"
+                     "stop when the chosen view's utility has been <= this for `patience` views in a row (None, the\n"
+                     "default: stop_threshold(camera, resolution), from the sensor and the cell size; 0: the\n"
                      "paper's rule, utility 0)")
       .def_readwrite("patience", &E::patience, "chosen views in a row at or below min_utility before the loop stops")
       .def_readwrite("second_look", &E::second_look,

@@ -13,12 +13,6 @@ namespace octoreach::py_bindings {
 
 namespace {
 
-CameraIntrinsics intrinsics_from(const py::object& camera) {
-  if (py::isinstance<DepthCamera>(camera)) return camera.cast<const DepthCamera&>().intrinsics();
-  if (py::isinstance<CameraIntrinsics>(camera)) return camera.cast<CameraIntrinsics>();
-  throw py::type_error("camera must be a DepthCamera or CameraIntrinsics, got " + type_name(camera));
-}
-
 // (cell, value) pairs as their keys and an (N,) array of the values.
 std::pair<std::vector<CellKey>, py::array_t<double>> split_keyed(const std::vector<std::pair<CellKey, double>>& kv) {
   std::vector<CellKey> keys(kv.size());

@@ -20,15 +20,20 @@ def test_the_loop_reads_its_settings_from_the_cpp_preset():
     assert (paper.enclosure_power, paper.unexposed_weight, paper.min_distance) == (0.0, 1.0, 0.0)
     o = ExploreOptions()
     assert o.search.max_valid_poses == loop.max_valid_poses and o.search.enclosure_power == loop.enclosure_power
-    assert (o.min_utility, o.patience) == (0.0, 1)  # the paper's stopping rule
+    # the stop rule is on by default, its threshold from the sensor and the cell size, the same for the benchmark
+    assert (o.min_utility, o.patience) == (None, 3) == (ex.STOP_UTILITY, ex.STOP_PATIENCE)
+    assert o.stop_threshold(DepthCamera(64, 48, FOV, 4.0), 0.025) == pytest.approx(48 * 36 * 0.025 / 4.0)
     b = ExploreOptions.benchmark()
-    assert (b.min_utility, b.patience) == (ex.STOP_UTILITY, ex.STOP_PATIENCE) == (10.0, 3)
+    assert (b.min_utility, b.patience) == (o.min_utility, o.patience)
+    p = ExploreOptions.paper_stop()  # the paper's rule: utility 0
+    assert (p.min_utility, p.patience) == (0.0, 1) and p.stop_threshold(DepthCamera(64, 48, FOV, 4.0), 0.025) == 0.0
     assert ex.FAILED_VIEW_RADIUS == o.failed_view_radius
     assert not hasattr(ex, "LOOP_ENCLOSURE_POWER")
 
 
 def test_explore_keywords_map_onto_the_options():
     base = ExploreOptions.benchmark()
+    base.min_utility = 10.0
     o = explore_options(base, max_valid_poses=20, candidates=60, score_size=(24, 18), seed=4, min_utility=2.0,
                         workspace_box=None, second_look=False)
     assert (o.search.max_valid_poses, o.sampled_poses, o.search.score_width, o.search.score_height) == (20, 60, 24, 18)

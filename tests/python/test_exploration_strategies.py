@@ -196,7 +196,7 @@ def test_every_strategy_terminates_and_its_views_stay_in_observed_space(strategy
 
 
 def test_min_utility_stops_early_and_says_so():
-    r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9)
+    r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9, patience=1)
     assert len(r.rows) == 1 and r.stop_reason == "utility below min_utility"
     r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9, patience=2)  # the low view is taken once
     assert len(r.rows) == 2 and r.stop_reason == "utility below min_utility" and r.rows[0].void_seen is not None
@@ -377,18 +377,23 @@ def test_the_visibility_curve_learns_from_announced_views_what_rays_see():
 
 
 def test_views_near_a_failed_view_are_not_chosen_again():
-    """After a view whose arm would touch the true scene (not taken), the loop's workspace drops candidate
-    positions within FAILED_VIEW_RADIUS of its camera, keeps the others, and still asks the user's workspace."""
-    from octoreach.exploration.loop import away_from
+    """After a view that could not be taken (ChoiceMemory.failed_views), the choice keeps FAILED_VIEW_RADIUS
+    away from its camera."""
+    from octoreach import ExplorationMap, ExploreOptions
+    from octoreach._core import ChoiceMemory, choose_view
 
-    failed = []
-    user = lambda P: P[:, 2] > 0.0  # noqa: E731
-    keep = away_from(failed, user)
-    P = np.array([[0.5, 0.0, 0.2], [0.5, 0.05, 0.2], [0.8, 0.0, 0.2], [0.5, 0.0, -0.1]])
-    assert keep(P).tolist() == [True, True, True, False]
-    failed.append(np.array([0.5, 0.0, 0.2]))  # the loop appends as views fail
-    assert keep(P).tolist() == [False, ex.FAILED_VIEW_RADIUS <= 0.05, True, False]
-    assert away_from(failed)(P).tolist() == [False, ex.FAILED_VIEW_RADIUS <= 0.05, True, True]
+    scene = ex.closed_box_scene("+z", 0.16)
+    emap = ExplorationMap(resolution=0.05, search_space=ex.scene_region(scene))
+    cam = DepthCamera(64, 48, np.deg2rad(58.0), 3.0)
+    T = ex.look_at((0.3, -0.5, 0.9), (0.8, 0.0, 0.2))
+    emap.insert(cam.capture(scene, T), T[:3, 3], cam.max_range)
+    o = ExploreOptions()
+    o.search.workspace_sphere, o.search.max_valid_poses, o.aimed_poses = ((0.8, 0.0, 0.4), 1.0), 20, 60
+    first = choose_view(emap, cam, np.eye(4)[None], 0, o, ChoiceMemory())
+    memory = ChoiceMemory()
+    memory.failed_views = first.view.pose[:3, 3][None]
+    again = choose_view(emap, cam, np.eye(4)[None], 0, o, memory)
+    assert again.found and np.linalg.norm(again.view.pose[:3, 3] - first.view.pose[:3, 3]) > ex.FAILED_VIEW_RADIUS
 
 
 def test_ground_below_the_search_space_is_an_obstacle_for_the_arm_on_request():

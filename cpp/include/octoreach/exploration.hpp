@@ -138,6 +138,11 @@ struct ExplorationOptions {
   /// The search space S of the paper (its boundary is known): void cells are only looked for
   /// inside this box. Default: unbounded.
   Eigen::Vector3d search_lo = Eigen::Vector3d::Constant(-1e9), search_hi = Eigen::Vector3d::Constant(1e9);
+  /// With a finite search space: once the map has an occupied cell, every unknown cell of the search space is a
+  /// void cell, not only those inside the hull. The paper's S is known and is to be explored whole (section III);
+  /// the hull (section IV-B) finds the voids of an unbounded space, and leaves out the unknown parts of S beyond
+  /// the outermost surfaces seen (outside the first views, above low objects). false: the paper's voids.
+  bool voids_fill_search_space = false;
   /// from_file rejects a .bt file whose leaves cover more finest-resolution cells than this (counted
   /// before anything is expanded: a damaged file cannot make the load run out of memory or time).
   std::uint64_t max_file_cells = std::uint64_t(1) << 24;
@@ -229,6 +234,10 @@ class ExplorationMap {
   /// \brief Void cells, sorted.
   std::vector<CellKey> void_cells() const;
   std::size_t void_cell_count() const;
+  /// \brief Void cells no view can reveal: their void component (6-connected) touches only occupied cells
+  /// (and the ground under the search space), so every ray into it meets a surface first (the inside of a
+  /// solid whose faces have been seen). They count with seeability 0 in every view score and utility.
+  std::size_t sealed_void_cell_count() const;
   /// \brief Void clusters (ellipsoidal region growing, deterministic for options().seed).
   std::vector<VoidCluster> void_clusters() const;
   /// \brief Frontier-voids: each void cluster with the frontier clusters touching it.

@@ -336,9 +336,10 @@ struct ExploreOptions {
   NbvOptions search = NbvOptions::exploration_loop();
   int max_views = 10;  ///< view budget
   /// Stop when the chosen view's utility (its strategy's gain) has been <= min_utility for `patience`
-  /// views in a row, or is 0. The defaults are the paper's rule (utility 0); benchmark() states another.
-  double min_utility = 0.0;
-  int patience = 1;
+  /// views in a row, or is 0. Unset (the default): the threshold follows from the sensor and the cell size
+  /// (stop_threshold). 0 with patience 1 is the paper's rule (utility 0).
+  std::optional<double> min_utility;
+  int patience = 3;
   bool second_look = true;     ///< frontier_void: aimed poses are scored on every view too, the better view taken
   bool learn_misses = true;    ///< each view is announced before its insert (expect_view)
   bool physical_check = true;  ///< with a robot: a view whose arm touches the scene is not taken
@@ -353,14 +354,20 @@ struct ExploreOptions {
   int last_poses = 4000;            ///< last chance: poses kept from those rays
   std::pair<double, double> last_distance{0.15, 1.0};  ///< metres from a last-chance eye to its void cell
   int max_ray_cells = 4096;         ///< last chance: void cells the rays leave from (at most; drawn at random)
-  /// \brief The exploration benchmark's settings: its stated stopping rule, 10 expected void cells for 3
-  /// views in a row.
-  static ExploreOptions benchmark() {
+  /// \brief The exploration benchmark's settings: the defaults (the stop rule every entry point uses).
+  static ExploreOptions benchmark() { return ExploreOptions(); }
+  /// \brief The paper's rule: stop at the first chosen view with utility 0.
+  static ExploreOptions paper_stop() {
     ExploreOptions o;
-    o.min_utility = 10.0;
-    o.patience = 3;
+    o.min_utility = 0.0;
+    o.patience = 1;
     return o;
   }
+  /// \brief min_utility, or when unset the void cells a view must be expected to see to be worth taking:
+  /// score_width x score_height x resolution / max_range, the cells its score rays would meet if one cell in
+  /// every max_range / resolution cells along them were void (10.8 for the default 48 x 36 grid, 2.5 cm
+  /// cells and a 4 m sensor).
+  double stop_threshold(const CameraIntrinsics& camera, double resolution) const;
   /// \brief \throws std::invalid_argument naming the first bad setting (the search's are checked by the search).
   void validate() const;
 };

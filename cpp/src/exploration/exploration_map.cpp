@@ -90,6 +90,16 @@ ExplorationMap::ExplorationMap(const ExplorationOptions& options) : options_(opt
   if (!(options.void_fit_threshold >= 0) || !std::isfinite(options.void_fit_threshold))
     throw std::invalid_argument("void_fit_threshold must be a finite number >= 0, got " +
                                 std::to_string(options.void_fit_threshold));
+  if (options.voids_fill_search_space) {
+    const double cells = detail::hull_box_cells(options.search_lo, options.search_hi, options.resolution,
+                                                options.search_lo, options.search_hi);
+    if ((options.search_lo.array() < -1e8).any() || (options.search_hi.array() > 1e8).any() ||
+        cells > double(options.max_void_box_cells))
+      throw std::invalid_argument("voids_fill_search_space needs a finite search space of at most " +
+                                  std::to_string(options.max_void_box_cells) + " cells, got " +
+                                  detail::format_point(options.search_lo) + " to " +
+                                  detail::format_point(options.search_hi));
+  }
   resolution_ = options.resolution;
   state_ = std::make_unique<detail::ExplorationState>(resolution_);
 }
@@ -269,7 +279,7 @@ ExplorationSnapshot ExplorationMap::recompute_from_scratch() const {
   std::sort(s.frontier_cells.begin(), s.frontier_cells.end());
   s.frontier_clusters = detail::components26(s.frontier_cells);
   if (!S.hull.empty()) {
-    detail::HullColumns c = detail::hull_columns(S.tree, S.hull, options_.threads, options_.search_lo, options_.search_hi);
+    detail::HullColumns c = detail::void_columns(S.tree, S.hull, options_.threads, options_);
     for (int y = 0; y < c.ny; ++y)
       for (int x = 0; x < c.nx; ++x) {
         int l, h;
@@ -334,7 +344,7 @@ std::unique_ptr<ExplorationMap> ExplorationMap::from_file(const std::string& pat
   for (CellKey k : s.frontier_cells) S.grid.at(k) |= kFrontierFlag;
   detail::label_frontier_clusters(S, std::move(s.frontier_clusters));
   if (options.track_voids && detail::convex_hull(occupied, S.hull)) {
-    S.columns = detail::hull_columns(S.tree, S.hull, options.threads, options.search_lo, options.search_hi);
+    S.columns = detail::void_columns(S.tree, S.hull, options.threads, options);
     ExplorationSnapshot v = m->recompute_from_scratch();
     for (CellKey k : v.void_cells) {
       S.grid.at(k) |= kVoidFlag;

@@ -211,7 +211,10 @@ struct ExplorationState {
   std::vector<ExpectedCell> expected_by_view;
   std::optional<AnnouncedView> announced;  // set with expected_by_view by expect_view
   VisibilityCurve curve;  // learned from the announced views' cells (view_score.cpp)
+  // Void cells no ray can reach (update_sealed): seeability 0.
+  KeyTable<std::uint8_t> sealed;
   double seeability(CellKey k) const {
+    if (sealed.size() && sealed.find(k)) return 0.0;
     const float* h = hidden.find(k);
     return h ? 1.0 - double(*h) : 1.0;
   }

@@ -89,4 +89,29 @@ HullColumns hull_columns(const octomap::OcTree& tree, const Hull& hull, int thre
   }, 4);
   return c;
 }
+
+HullColumns void_columns(const octomap::OcTree& tree, const Hull& hull, int threads, const ExplorationOptions& o) {
+  if (!o.voids_fill_search_space || hull.planes.empty())
+    return hull_columns(tree, hull, threads, o.search_lo, o.search_hi);
+  HullColumns c;
+  octomap::OcTreeKey klo, khi;
+  if (!tree.coordToKeyChecked(octomap::point3d(float(o.search_lo.x()), float(o.search_lo.y()), float(o.search_lo.z())), klo) ||
+      !tree.coordToKeyChecked(octomap::point3d(float(o.search_hi.x()), float(o.search_hi.y()), float(o.search_hi.z())), khi))
+    return c;
+  // cells whose centre lies in the box, as hull_columns counts them
+  const double res = tree.getResolution(), half = 32768.0 - 0.5;
+  const auto first = [&](double v) { return std::int32_t(std::ceil(v / res + half - 1e-9)); };
+  const auto last = [&](double v) { return std::int32_t(std::floor(v / res + half + 1e-9)); };
+  const std::int32_t x0 = first(o.search_lo.x()), x1 = last(o.search_hi.x()), y0 = first(o.search_lo.y()),
+                     y1 = last(o.search_hi.y()), z0 = first(o.search_lo.z()), z1 = last(o.search_hi.z());
+  if (x0 > x1 || y0 > y1 || z0 > z1) return c;
+  c.x0 = x0;
+  c.y0 = y0;
+  c.nx = x1 - x0 + 1;
+  c.ny = y1 - y0 + 1;
+  c.lo.assign(std::size_t(c.nx) * c.ny, z0);
+  c.hi.assign(std::size_t(c.nx) * c.ny, z1);
+  return c;
+}
+
 }  // namespace octoreach::detail

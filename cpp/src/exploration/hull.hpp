@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "common/convex_hull.hpp"
+#include "octoreach/exploration.hpp"
 
 namespace octomap {
 class OcTree;
@@ -37,5 +38,9 @@ double hull_box_cells(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, doub
 // search space [search_lo, search_hi].
 HullColumns hull_columns(const octomap::OcTree& tree, const Hull& hull, int threads, const Eigen::Vector3d& search_lo,
                          const Eigen::Vector3d& search_hi);
+
+// The columns of the void cells: hull_columns, or with options.voids_fill_search_space the whole search space
+// (every column of its box, from its floor to its top).
+HullColumns void_columns(const octomap::OcTree& tree, const Hull& hull, int threads, const ExplorationOptions& options);
 
 }  // namespace octoreach::detail

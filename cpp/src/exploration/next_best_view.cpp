@@ -42,7 +42,7 @@ std::vector<UtilityVector> utility_vectors(const ExplorationMap& map, const deta
     // each cell weighted by its seeability (1 until views that expected it missed it, see expect_view)
     // and, with enclosure_power, by its enclosure
     double utility = fv.utility;
-    if (S.hidden.size() || weights) {
+    if (S.hidden.size() || S.sealed.size() || weights) {
       utility = 0;
       for (CellKey k : v.cells) utility += S.seeability(k) * weights.of(k) * cell;
     }

@@ -24,4 +24,10 @@ void label_frontier_clusters(ExplorationState& s, std::vector<std::vector<CellKe
 void update_voids(ExplorationState& s, const std::vector<CellChange>& changed, const std::vector<CellKey>& occupied,
                   const ExplorationOptions& options, int threads, InsertStats& stats);
 
+// The sealed void cells (ExplorationState::sealed): the void components (6-connected) whose every
+// 6-neighbour outside the component is occupied or lies under the search space's floor. A ray walks from
+// cell to face-adjacent cell and stops at the first occupied cell, so no view's ray can reach such a cell
+// (the inside of a solid whose faces have been seen): it is never worth a view. Recomputed after each insert.
+void update_sealed(ExplorationState& s, const ExplorationOptions& options);
+
 }  // namespace octoreach::detail

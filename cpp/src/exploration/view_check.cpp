@@ -200,8 +200,8 @@ void ExploreOptions::validate() const {
     throw std::invalid_argument(what + ", got " + got);
   };
   if (max_views < 1) bad("max_views must be an integer >= 1", std::to_string(max_views));
-  if (!(min_utility >= 0) || !std::isfinite(min_utility))
-    bad("min_utility must be a finite number >= 0", std::to_string(min_utility));
+  if (min_utility && (!(*min_utility >= 0) || !std::isfinite(*min_utility)))
+    bad("min_utility must be a finite number >= 0 (or None: derived from the sensor)", std::to_string(*min_utility));
   if (patience < 1) bad("patience must be an integer >= 1", std::to_string(patience));
   if (sampled_poses < 1) bad("sampled_poses (explore's candidates) must be an integer >= 1", std::to_string(sampled_poses));
   if (aimed_poses < 0 || low_aimed_poses < 0 || last_poses < 0 || last_directions < 1 || max_ray_cells < 1)
@@ -217,6 +217,11 @@ void ExploreOptions::validate() const {
   if (!(failed_view_radius >= 0) || !std::isfinite(failed_view_radius))
     bad("failed_view_radius must be a finite number of metres >= 0", std::to_string(failed_view_radius));
   if (!std::isfinite(min_camera_height)) bad("min_camera_height must be finite", std::to_string(min_camera_height));
+}
+
+double ExploreOptions::stop_threshold(const CameraIntrinsics& camera, double resolution) const {
+  if (min_utility) return *min_utility;
+  return double(search.score_width) * double(search.score_height) * resolution / camera.max_range;
 }
 
 const char* status_name(ViewStatus s) {

@@ -73,11 +73,16 @@ void update_voids(ExplorationState& s, const std::vector<CellChange>& changed, c
   for (const auto& c : changed)
     if (c.before == CellState::Unknown && (gw.get(c.key) & kVoidFlag)) clear_void(gw, s, c.key, st);
   if (have_hull) {
-    HullColumns nc = hull_columns(s.tree, hull, threads, options.search_lo, options.search_hi);
+    HullColumns nc = void_columns(s.tree, hull, threads, options);
     diff_columns(gw, s, s.columns, nc, st);
     s.columns = std::move(nc);
     s.hull = std::move(hull);
+  } else {
+    // no hull yet (fewer than 4 points, all coplanar: the first view of a flat face): keep the points, the
+    // next insert's hull is made from them too (else the faces of a solid, each seen flat, never made one)
+    s.hull.vertices = std::move(hull_in);
   }
+  update_sealed(s, options);
   std::lock_guard<std::mutex> lock(s.cache_mutex);
   s.voids_dirty = true;
   s.enclosure.reset();
@@ -97,6 +102,11 @@ std::vector<CellKey> ExplorationMap::void_cells() const {
 std::size_t ExplorationMap::void_cell_count() const {
   detail::MapGuard guard(*state_, false);
   return state_->void_set.size();
+}
+
+std::size_t ExplorationMap::sealed_void_cell_count() const {
+  detail::MapGuard guard(*state_, false);
+  return state_->sealed.size();
 }
 
 std::vector<Eigen::Vector3d> ExplorationMap::hull_vertices() const {

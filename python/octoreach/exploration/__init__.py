@@ -7,7 +7,9 @@ move, until the best view's utility is 0 or the view budget runs out.
 One concept per module: ``camera`` (look_at), ``scenes`` (paper scenes, the search space), ``robot``
 (the explorer robot, its arm and capability map, base poses), ``metrics`` (observed shares, run
 figures), ``physics`` (the simulator's check that an arm pose is clear of the scene), ``candidate_poses``
-(sampled and aimed camera poses), ``strategies`` (frontier-void and the baselines), ``loop`` (explore, its table and stop reason), ``plots`` (map
+(sampled and aimed camera poses), ``strategies`` (frontier-void and the baselines), ``explorer`` (Explorer:
+exploration in the user's own loop), ``loop`` (explore, a simulator driver over Explorer, its table and stop
+reason), ``plots`` (map
 pictures, coverage curves; matplotlib, loaded on first use), ``demo`` (run_demo, the command line).
 The oracle and the generated scenes of the tests and benchmarks are in ``octoreach.testing``.
 
@@ -21,6 +23,7 @@ from __future__ import annotations
 
 from .camera import look_at
 from .._core import ExploreOptions
+from .explorer import Explorer
 from .loop import FAILED_VIEW_RADIUS, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY, ExplorationResult, ViewRow, explore
 from .metrics import coverage_after, observed_share, points_on, region_points, seen_expected_ratios, views_to_reach
 from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot
@@ -41,7 +44,7 @@ def __getattr__(name):
 
 __all__ = [
     "FAILED_VIEW_RADIUS", "STOP_PATIENCE", "STOP_REASONS", "STOP_UTILITY", "STRATEGIES", "ExplorationResult",
-    "ExploreOptions", "ViewRow",
+    "ExploreOptions", "Explorer", "ViewRow",
     "arm_base_pose", "arm_reach", "base_ring", "closed_box_scene", "cluttered_scene", "coverage_after", "explore",
     "explorer_capability_map", "explorer_robot", "look_at", "main", "observed_share", "paper_scene",
     "plot_coverage", "plot_map", "points_on", "region_points", "run_demo", "scene_region", "seen_expected_ratios",

@@ -7,22 +7,21 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from .. import _core
 from .._core import DepthCamera, ExplorationMap, ExploreOptions, Scene
-from ._options import explore_options, given
+from .explorer import Explorer
 from .metrics import observed_share, points_on
 from .physics import PhysicalCheck
-from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot
 from .scenes import scene_region
-from .strategies import Choice, check_strategy, choose_view
+from .strategies import check_strategy
 
 # The loop's settings are ExploreOptions (C++; docs/design/next_best_view.md says why each value); these
 # names read them for the callers that want one figure.
 VIEW_BUDGET = ExploreOptions().max_views  # views of one exploration unless told otherwise
 FAILED_VIEW_RADIUS = ExploreOptions().failed_view_radius  # m around the camera of a view not taken
-# The exploration benchmark's stated stopping rule (explore's own default is the paper's utility 0).
-STOP_UTILITY = ExploreOptions.benchmark().min_utility
-STOP_PATIENCE = ExploreOptions.benchmark().patience
+# The stopping rule of every entry point: min_utility None is ExploreOptions.stop_threshold(camera,
+# resolution), from the sensor and the cell size; ExploreOptions.paper_stop() is the paper's utility 0.
+STOP_UTILITY = ExploreOptions().min_utility
+STOP_PATIENCE = ExploreOptions().patience
 
 STOP_REASONS = ("utility 0", "utility below min_utility", "view budget", "nothing to explore", "no valid view")
 
@@ -100,43 +99,6 @@ class ExplorationResult:
         return None
 
 
-def _carrier(robot, chain, base_pose):
-    """(robot, chain, base_pose) of the arm that carries the camera: `robot=True` is the explorer, another
-    robot needs `chain`; a chain without a base pose stands at the origin; robot None when not given."""
-    rob = None
-    if robot is True or (robot is not None and chain is None):
-        rob, chain = explorer_robot() if robot is True else (robot, None)
-        if chain is None:
-            raise ValueError("pass chain= with a robot other than the explorer")
-        base_pose = arm_base_pose(rob, chain, base_pose)
-    elif robot is not None:
-        rob = robot
-    if chain is not None and base_pose is None:
-        base_pose = np.eye(4)
-    return rob, chain, base_pose
-
-
-def _bases(chain, base_pose, base_moves) -> list:
-    """The chain base poses the search may use: the current one first, then `base_moves`."""
-    bases = [np.asarray(base_pose, float)] if chain is not None else [None]
-    if base_moves is not None:
-        if chain is None:
-            raise ValueError("base_moves needs a chain (or robot=True)")
-        bases += [np.asarray(b, float) for b in base_moves]
-        if any(b.shape != (4, 4) for b in bases):
-            raise ValueError("base_moves must be 4x4 poses (chain base -> world)")
-    return bases
-
-
-def _capability(capability_map, chain):
-    """`capability_map` itself, or the coarse explorer map for "auto"."""
-    if isinstance(capability_map, str):
-        if capability_map != "auto" or chain is None:
-            raise ValueError(f"capability_map must be a CapabilityMap, None or 'auto' (with a chain), got {capability_map!r}")
-        capability_map = explorer_capability_map(chain)
-    return capability_map
-
-
 def _check_args(strategy, start_pose, target) -> np.ndarray:
     """The start pose as a finite 4x4 array; ValueError for a bad strategy, start pose or target."""
     check_strategy(strategy)
@@ -163,19 +125,6 @@ def _row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, po
                    target_points=points_on(target, pts) if target is not None and pts is not None else 0)
 
 
-def away_from(failed, workspace=None, radius: float = FAILED_VIEW_RADIUS) -> Callable:
-    """A workspace callable ((N, 3) positions -> (N,) bools) that keeps what `workspace` keeps (all when
-    None) farther than `radius` from every position in `failed` (a list the loop appends to)."""
-    def keep(P):
-        P = np.asarray(P, float).reshape(-1, 3)
-        ok = np.ones(len(P), bool) if workspace is None else np.asarray(workspace(P), bool)
-        for f in failed:
-            ok &= np.sum((P - f) ** 2, axis=1) > radius ** 2
-        return ok
-
-    return keep
-
-
 def _seen(emap, void_before) -> int:
     """How many of the cells at `void_before` (centres) the map now knows."""
     return int(np.count_nonzero(emap.state(void_before) != 0)) if len(void_before) else 0
@@ -195,9 +144,11 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, options: Optional[Exp
     sampled_poses; `score_size`: (width, height) of the score grid); None keeps the default.
     `strategy` picks the views (strategies.STRATEGIES): "frontier_void" (ours, next_best_view) or a
     baseline ("random", "frontiers", "unknown"); all use the same robot, camera, checks and stopping rule.
-    The loop stops (ExplorationResult.stop_reason, one of STOP_REASONS) when the map has no void after the
-    first view, when no valid view is left, when the chosen view's utility (its strategy's gain) is 0 or has
-    been <= min_utility for `patience` views in a row (the low views are taken), or after max_views views.
+    The loop stops (ExplorationResult.stop_reason, one of STOP_REASONS) when the map has no void cell, when no
+    valid view is left, when the chosen view's utility (its strategy's gain) is 0 or has been <= min_utility
+    for `patience` views in a row (the low views are taken), or after max_views views. By default it stops
+    by itself: min_utility None is ExploreOptions.stop_threshold (score rays x cell / sensor range expected
+    void cells) for 3 views; min_utility=0, patience=1 (ExploreOptions.paper_stop()) is the paper's rule.
     The camera is carried by `chain` (tip = camera frame, +z forward) whose base sits at `base_pose`
     (4x4 chain base -> world), or moves freely inside the search's workspace. `robot=True` uses
     urdf/explorer.urdf (standing at `base_pose`, the pose of its base_footprint); pass `robot=` with
@@ -209,95 +160,58 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, options: Optional[Exp
     `target` ((2, 3) lo, hi): each row counts the points of its cloud on it (metrics.points_on).
     `on_view(row, emap, info)` is called after each view; `info` holds best_pose and the chosen view's
     gains (and next_best_view's fields for frontier_void)."""
-    opts = explore_options(options, **settings)
     pose = _check_args(strategy, start_pose, target)
-    rob, chain, base_pose = _carrier(robot, chain, base_pose)
-    bases = _bases(chain, base_pose, base_moves)
     region = scene_region(scene) if search_space is None else np.asarray(search_space, float)
-    search = opts.search
-    emap = ExplorationMap(seed=search.seed, search_space=region,
-                          **given(resolution=resolution, void_fit_threshold=void_fit_threshold))
-    search.chain, search.capability_map = chain, _capability(capability_map, chain)
-    loop = _Loop(scene, camera, emap, region, strategy, opts, bases, _sphere_of(chain, search),
-                 PhysicalCheck(rob, chain, scene, opts.physical_check), target, on_view)
-    return loop.run(pose)
-
-
-def _sphere_of(chain, search) -> Callable:
-    """base pose -> the workspace sphere of its search: with a chain and no workspace given, the arm's reach
-    around its base (a cheap first prune, estimated by sampling FK), else the search's own sphere."""
-    if chain is None or search.workspace_sphere is not None or search.workspace_box is not None \
-            or search.workspace is not None:
-        fixed = search.workspace_sphere
-        return lambda bp: fixed
-    reach = arm_reach(chain, search.seed)
-    return lambda bp: (bp[:3, 3].copy(), reach)
+    explorer = Explorer(camera, region, options, robot=robot, chain=chain, base_pose=base_pose,
+                        base_moves=base_moves, capability_map=capability_map, strategy=strategy,
+                        resolution=resolution, void_fit_threshold=void_fit_threshold, **settings)
+    physics = PhysicalCheck(explorer.robot, explorer.chain, scene, explorer.options.physical_check)
+    return _Loop(scene, camera, explorer, region, physics, target, on_view).run(pose)
 
 
 class _Loop:
-    """One run of explore(): the loop's state between views."""
+    """One run of explore(): the simulator around an Explorer (capture, physical check, the per-view table)."""
 
-    def __init__(self, scene, camera, emap, region, strategy, opts, bases, sphere_of, physics, target, on_view):
-        self.scene, self.camera, self.emap, self.region, self.strategy = scene, camera, emap, region, strategy
-        self.opts, self.search, self.bases, self.sphere_of = opts, opts.search, bases, sphere_of
-        self.physics, self.target, self.on_view = physics, target, on_view
-        self.chain = opts.search.chain  # (the search holds a plain pointer to it)
-        self.workspace, self.failed = self.search.workspace, []  # the user's workspace; cameras of views not taken
+    def __init__(self, scene, camera, explorer, region, physics, target, on_view):
+        self.scene, self.camera, self.explorer, self.region = scene, camera, explorer, region
+        self.emap, self.physics, self.target, self.on_view = explorer.map, physics, target, on_view
 
     def run(self, pose) -> ExplorationResult:
-        opts, emap, seed = self.opts, self.emap, self.search.seed
-        current, q, low = 0, None, 0
+        ex, emap = self.explorer, self.emap
+        current, q = 0, None
         rows, poses, stop = [], [], "view budget"
         void_before = np.zeros((0, 3))
         t_all = time.perf_counter()
-        for view in range(1, opts.max_views + 1):
+        while True:
             poses.append(pose)
-            valid = self.physics.valid(q, self.bases[current]) if view > 1 else True
+            view = len(poses)
+            valid = self.physics.valid(q, ex.bases[current]) if view > 1 else True
             t0 = time.perf_counter()
             pts, stats = self._sense(pose, valid)
             clusters = emap.void_clusters()
             t_int = time.perf_counter() - t0
             if rows:
                 rows[-1].void_seen = _seen(emap, void_before) if valid else None
-            if view == 1 and emap.void_cell_count == 0:
-                rows.append(self._row(view, stats, clusters, Choice(pose=None), t_int, 0.0, pose, current, valid, pts))
-                self._report(rows[-1], Choice(pose=None))
-                stop = "nothing to explore"
-                break
             void_before = emap.centers(emap.void_keys())
             t0 = time.perf_counter()
-            choice = choose_view(self.strategy, emap, self.camera, self.bases, current, self.sphere_of, opts,
-                                 seed + view, self.region, last_chance=low + 1 >= opts.patience)
-            rows.append(self._row(view, stats, clusters, choice, t_int, time.perf_counter() - t0, pose, current,
-                                  valid, pts))
-            self._report(rows[-1], choice)
-            if choice.pose is None:
-                stop = "no valid view"
+            nv = ex.next_view()
+            choice = ex.choice(nv)
+            rows.append(_row(view, emap, self.scene, self.region, stats, clusters, choice, t_int,
+                             time.perf_counter() - t0, pose, current, valid, self.target, pts))
+            if self.on_view is not None:
+                self.on_view(rows[-1], emap, choice.info())
+            if nv.stop:
+                stop = nv.stop_reason
                 break
-            low = low + 1 if choice.utility <= opts.min_utility else 0
-            if low >= opts.patience or choice.utility <= 0:
-                stop = "utility 0" if choice.utility <= 0 else "utility below min_utility"
-                break
-            pose, q, current = np.asarray(choice.pose, float), choice.q, choice.base
+            pose, q, current = np.asarray(nv.camera_pose, float), nv.q, nv.base
         return ExplorationResult(rows=rows, map=emap, poses=poses, total_s=time.perf_counter() - t_all,
-                                 strategy=self.strategy, stop_reason=stop)
+                                 strategy=ex.strategy, stop_reason=stop)
 
     def _sense(self, pose, valid):
-        """The cloud of a view taken (announced first: learn_misses) and its insert's statistics; a view not
+        """The cloud of a view taken and its insert's statistics (the Explorer announces it first); a view not
         taken (its arm touches the scene) integrates nothing and keeps later views away from its camera."""
         if not valid:
-            self.failed.append(pose[:3, 3].copy())
-            self.search.workspace = away_from(self.failed, self.workspace, self.opts.failed_view_radius)
+            self.explorer.view_failed()
             return None, {}
         pts = self.camera.capture(self.scene, pose)
-        if self.opts.learn_misses and self.emap.void_cell_count:  # the cells it is expected to see (expect_view)
-            _core.expect_view(self.emap, self.camera, pose, self.search)
-        return pts, self.emap.insert(pts, pose[:3, 3], self.camera.max_range)
-
-    def _row(self, view, stats, clusters, choice, t_int, t_search, pose, base, valid, pts) -> ViewRow:
-        return _row(view, self.emap, self.scene, self.region, stats, clusters, choice, t_int, t_search, pose, base,
-                    valid, self.target, pts)
-
-    def _report(self, row, choice) -> None:
-        if self.on_view is not None:
-            self.on_view(row, self.emap, choice.info())
+        return pts, self.explorer.integrate(pts, pose)

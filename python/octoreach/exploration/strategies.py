@@ -8,30 +8,21 @@ same harness (same robot, camera, reach checks, safe-view rule, budget and stopp
 
 The baselines sample camera poses uniformly in the arm's reach sphere (or the workspace box) above
 the floor, each looking at a uniform random point of the search space, and score them all with
-score_views (IK, arm collisions, camera clearance and the safe-view rule of next_best_view). The
-scores and their order are the C++ ones (ViewCandidate.expected_gain, ranks_before: best_by); this
-module chooses among the candidate sets, with the settings of ExploreOptions.
+score_views (IK, arm collisions, camera clearance and the safe-view rule of next_best_view). The whole
+choice (search, second looks, last chance, stop decision) is C++ (_core.choose_view, view_choice.hpp);
+this module maps it onto the loop's Choice, with the settings of ExploreOptions.
 """
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 from typing import Optional
 
 import numpy as np
 
 from .. import _core
-from .candidate_poses import aimed_poses, capability_test, sample_poses
 
 STRATEGIES = ("frontier_void", "random", "frontiers", "unknown")
-# The field each strategy's stopping rule looks at ("random" ranks by nothing, it stops on the void gain).
-GAIN_OF = {"frontier_void": "expected_void", "random": "expected_void", "frontiers": "expected_frontier",
-           "unknown": "expected_unknown"}
-# The NbvOptions gain each strategy scores with: with "frontier_void" the rays end at the box of the void
-# cells (NbvOptions::gain), so the frontiers / unknown baselines score with their own gain, whole rays.
-SCORE_GAIN = {"frontier_void": "frontier_void", "random": "frontier_void", "frontiers": "frontiers",
-              "unknown": "unknown"}
-# The baselines count every void cell alike: NbvOptions' defaults (the paper's count), not the loop's weights.
-_PLAIN = _core.NbvOptions()
 
 
 def check_strategy(strategy) -> str:
@@ -59,6 +50,8 @@ class Choice:
     details: dict = field(default_factory=dict)  # how it was found: aimed, harder (frontier_void), status_counts
     rank_gain: float = 0.0  # frontier_void: the gain views are ranked by (expected_gain: enclosure-weighted void cells)
     search: Optional[_core.NbvResult] = None  # frontier_void: next_best_view's answer from the chosen base
+    stop: bool = False  # the loop ends here (choose_view's stop decision)
+    stop_reason: str = ""
 
     def info(self) -> dict:
         """What on_view gets: best_pose plus the figures above (and next_best_view's fields for frontier_void)."""
@@ -69,146 +62,44 @@ class Choice:
         return d
 
 
-def _choice_of(view, base: int, utility: float, utility_dm3: float, candidates: int, valid: int, **kw) -> Choice:
-    """The Choice of a scored view (ViewCandidate or ScoredView) from base index `base`."""
-    return Choice(pose=np.asarray(view.pose), void_cells=int(view.void_cells), expected_void=view.expected_void,
-                  expected_unknown=view.expected_unknown, expected_frontier=view.expected_frontier, utility=utility,
-                  utility_dm3=utility_dm3, q=view.q, base=base, candidates=candidates, valid=valid,
-                  rank_gain=view.expected_gain, **kw)
+def _choice_of(c) -> Choice:
+    """The Choice of a C++ ViewChoice."""
+    details = {"aimed": True} if c.aimed else {}
+    if c.harder:
+        details["harder"] = True
+    if not c.found:
+        return Choice(pose=None, base=c.base, candidates=int(c.candidates), details=details,
+                      search=c.search if c.search.poses_scored else None, stop=c.stop, stop_reason=c.stop_reason)
+    v = c.view
+    return Choice(pose=np.asarray(v.pose), void_cells=int(v.void_cells), expected_void=v.expected_void,
+                  expected_unknown=v.expected_unknown, expected_frontier=v.expected_frontier, utility=c.utility,
+                  utility_dm3=v.utility_dm3, q=v.q, base=int(c.base), candidates=int(c.candidates), valid=int(c.valid),
+                  rank_gain=v.expected_gain, details=details, search=c.search if c.search.poses_scored else None,
+                  stop=c.stop, stop_reason=c.stop_reason)
 
 
-def _base_order(bases, current) -> list:
-    """Indices of `bases`, the current one first (so ties keep it)."""
-    return [current] + [j for j in range(len(bases)) if j != current]
-
-
-def _score(emap, camera, poses, search, base, sphere, seed, gain, **extra):
-    """score_views of `poses` with the NbvOptions `search` from chain base `base` (its sphere), gains of the
-    valid poses only; None when there are no poses."""
-    if len(poses) == 0:
-        return None
-    return _core.score_views(emap, camera, poses, search, score_invalid=False, chain_base=base,
-                             workspace_sphere=sphere, seed=seed, gain=gain,
-                             capability_base=None if search.capability_map is None else base, **extra)
-
-
-def _aimed_choice(emap, camera, base, i, sphere, settings, seed, n: int, by: str, unexposed_share: float,
-                  distance, directions: int = 1, search_space=None, every_cell: bool = False) -> Optional[Choice]:
-    """The best valid of `n` poses aimed at void cells (aimed_poses with `directions`; frontier_void's gain)
-    by `by` ("expected_gain", the ranking gain, or "expected_void"), or None."""
-    rng = np.random.default_rng(seed)
-    search = settings.search
-    poses = aimed_poses(rng, emap, sphere=sphere, box=search.workspace_box, n=n, floor=settings.min_camera_height,
-                        distance=distance, unexposed_share=unexposed_share, directions=directions,
-                        reachable=capability_test(search, base) if directions > 1 else None,
-                        search_space=search_space, every_cell=every_cell, clearance=search.unknown_margin,
-                        max_cells=settings.max_ray_cells)
-    views = _score(emap, camera, poses, search, base, sphere, seed, "frontier_void")
-    v = None if views is None else views.best_by(by)
-    if v is None:
-        return None
-    return _choice_of(v, i, v.expected_void, v.utility_dm3, len(poses), int(np.count_nonzero(views.valid)),
-                      details={"aimed": True})
-
-
-def _nbv_choice(emap, camera, bases, current, sphere_of, settings, seed, region, last_chance: bool) -> Choice:
-    """next_best_view over all bases (the current one first, so ties keep it); with settings.second_look,
-    every view gets a second look (aimed_poses poses per base) and the better view is taken: by the ranking
-    gain, or by expected void cells when the search's best expects at most min_utility of them; when the
-    better still expects at most min_utility, low_aimed_poses more aimed poses per base (any void cell),
-    and with `last_chance` (the low view would end the loop) last_poses poses whose eyes lie along rays out
-    of every void cell (aimed_poses' `directions`)."""
-    widen_below = settings.min_utility if settings.second_look else None
-    best = None
-    for i in _base_order(bases, current):
-        bp = bases[i]
-        search = settings.search
-        r = _core.next_best_view(emap, camera, search, seed=seed, workspace_sphere=sphere_of(bp), chain_base=bp,
-                                 capability_base=None if search.capability_map is None else bp, gain="frontier_void")
-        top = r.best
-        if widen_below is not None and top is not None and top.expected_void <= widen_below:
-            # the best by the ranking gain is a low view: a view is low only when none on offer expects more
-            top = r.best_by("expected_void")
-        if top is None:
-            c = Choice(pose=None, base=i, candidates=r.poses_scored, search=r)
-        else:  # (utility_dm3: of the search's best by its ranking)
-            c = _choice_of(top, i, top.expected_void, r.utility_dm3, r.poses_scored, len(r.ranked), search=r)
-        if best is None or c.utility > best.utility:
-            best = c
-    if widen_below is None:
-        return best
-    # the second look; when the search's best is low, the better view is the one the stopping rule would
-    # take (more expected void cells), else the one the search would rank first (its ranking gain)
-    low = best.utility <= widen_below
-    most = best  # the view on offer with the most expected void cells
-    for i in _base_order(bases, current):
-        a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), settings, seed, settings.aimed_poses,
-                          "expected_void" if low else "expected_gain", settings.unexposed_share,
-                          settings.aimed_distance)
-        if a is not None and (a.utility > best.utility if low else a.rank_gain > best.rank_gain):
-            a.search, a.details = best.search, dict(best.details, aimed=True)
-            best = a
-        most = best if best.utility > most.utility else most
-    if best.utility > widen_below:
-        return best
-    best = most
-    # about to take a low view: low_aimed_poses more aimed at any void cell, by expected void cells; when
-    # it would end the loop, also last_poses from eyes found along rays out of every void cell
-    looks = [(1, settings.low_aimed_poses, settings.aimed_distance)]
-    if last_chance:
-        looks.append((settings.last_directions, settings.last_poses, settings.last_distance))
-    for i in _base_order(bases, current):
-        for k, n, distance in looks:  # (a random stream per look)
-            a = _aimed_choice(emap, camera, bases[i], i, sphere_of(bases[i]), settings, seed + 7919 + k, n,
-                              "expected_void", 1.0, distance, directions=k, search_space=region, every_cell=k > 1)
-            if a is not None and a.utility > best.utility:
-                a.search, a.details = best.search, dict(best.details, aimed=True, harder=True)
-                best = a
-    return best
-
-
-def _sampled_choice(strategy, emap, camera, bases, current, sphere_of, settings, seed, region) -> Choice:
-    """The baselines: sample poses per base, score them, take the best valid (random: the first valid)."""
-    rng = np.random.default_rng(seed)
-    search = settings.search
-    best, statuses, pooled, valid, most_void = None, {}, 0, 0, 0.0
-    for i in _base_order(bases, current):
-        bp = bases[i]
-        sphere = sphere_of(bp)
-        poses = sample_poses(rng, region, sphere=sphere, box=search.workspace_box, n=settings.sampled_poses,
-                             floor=settings.min_camera_height)
-        views = _score(emap, camera, poses, search, bp, sphere, seed, SCORE_GAIN[strategy],
-                       enclosure_power=_PLAIN.enclosure_power, unexposed_weight=_PLAIN.unexposed_weight)
-        if views is None:
-            continue
-        pooled += len(views)
-        for s in views.status:
-            statuses[s] = statuses.get(s, 0) + 1
-        ok = np.flatnonzero(views.valid)
-        valid += len(ok)
-        if len(ok) == 0:
-            continue
-        if strategy == "random":  # the first valid view; it stops on the best void gain on offer
-            most_void = max(most_void, float(np.max(views.expected_void[ok])))
-            best = best or (i, views[int(ok[0])])
-            continue
-        v = views.best_by("expected_gain")
-        if best is None or _core.ranks_before(v, best[1]):
-            best = (i, v)
-    if best is None:
-        return Choice(pose=None, candidates=pooled, details={"status_counts": statuses})
-    i, v = best
-    utility = most_void if strategy == "random" else float(getattr(v, GAIN_OF[strategy]))
-    return _choice_of(v, i, utility, v.utility_dm3, pooled, valid, details={"status_counts": statuses})
-
-
-def choose_view(strategy, emap, camera, bases, current, sphere_of, settings, seed, region,
-                last_chance: bool = False) -> Choice:
-    """The next view of `strategy` (see the module) from any of `bases` (chain base poses; the current
-    one first). `sphere_of(base)` is the reach sphere around a base (or the fixed workspace sphere),
-    `settings` the ExploreOptions (its search: next_best_view's options; seed, chain_base and the
-    workspace sphere are set per base), `seed` this view's."""
+def choose_view(strategy, emap, camera, bases, current, sphere_of, settings, seed, region=None,
+                last_chance: bool = False, memory: Optional[_core.ChoiceMemory] = None) -> Choice:
+    """The next view of `strategy` (see the module) from any of `bases` (chain base poses, or [None] for a
+    free camera; the current one first): _core.choose_view, the C++ choice (search, second looks, last chance,
+    stop decision) with `settings` (ExploreOptions) and this view's `seed`. `sphere_of(base)` is the reach
+    sphere around a base (its radius bounds the camera around every base) or the fixed workspace sphere.
+    `memory` (a ChoiceMemory, updated) carries the low views and failed views between choices; without one,
+    `last_chance` says whether a low view would end the loop. The search space is the map's (`region` is
+    not used: the map holds it)."""
     check_strategy(strategy)
-    if strategy == "frontier_void":
-        return _nbv_choice(emap, camera, bases, current, sphere_of, settings, seed, region, last_chance)
-    return _sampled_choice(strategy, emap, camera, bases, current, sphere_of, settings, seed, region)
+    o = copy.copy(settings)
+    o.search.seed = int(seed)
+    chain = o.search.chain is not None and bases[current] is not None
+    sphere = sphere_of(bases[current]) if sphere_of is not None else None
+    reach = 0.0
+    if sphere is not None and o.search.workspace_sphere is None:
+        if chain and np.allclose(np.asarray(sphere[0], float), np.asarray(bases[current], float)[:3, 3]):
+            reach = float(sphere[1])
+        else:
+            o.search.workspace_sphere = sphere
+    if memory is None:
+        memory = _core.ChoiceMemory()
+        memory.low_views = max(o.patience - 1, 0) if last_chance else 0
+    poses = np.array([np.eye(4) if b is None else np.asarray(b, float) for b in bases])
+    return _choice_of(_core.choose_view(emap, camera, poses, int(current), o, memory, strategy, reach))

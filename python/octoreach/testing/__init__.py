@@ -1,12 +1,15 @@
 """Test and benchmark utilities, not the planner's API: the exploration oracle (the observable interior by brute
-force), seeded generated scenes with a hidden target, and brute-force references of the maps.
+force), seeded generated scenes with a hidden target (USAR-like scenes and the scene families), and brute-force
+references of the maps.
 
-    from octoreach.testing import observable_cells, usar_scene, direct_reachability
+    from octoreach.testing import observable_cells, usar_scene, family_scene, direct_reachability
 """
 from __future__ import annotations
 
 from .brute_force import direct_reachability
 from .oracle import Observable, observable_cells
+from .scene_families import FAMILIES, FamilyScene, family_instances, family_scene
 from .usar_scenes import UsarScene, usar_scene
 
-__all__ = ["Observable", "UsarScene", "direct_reachability", "observable_cells", "usar_scene"]
+__all__ = ["FAMILIES", "FamilyScene", "Observable", "UsarScene", "direct_reachability", "family_instances",
+           "family_scene", "observable_cells", "usar_scene"]

@@ -9,8 +9,10 @@ The oracle samples camera poses densely in two ways and keeps the collision-free
   point without meeting a surface give an eye position 0.15-0.7 m away looking back at the point;
   IK (approach mode, obstacles = the true scene, self-collision checked) decides whether the arm gets the camera there.
 
-Each kept pose's capture (noiseless, low resolution) is integrated into one map at the exploration's
-resolution; the observable cells are the interior sample points that map knows. The same sample
+With `clearance` > 0 (the safe-view rule of the exploration: its camera keeps min_distance from every
+surface) only the poses whose camera keeps that distance (Chebyshev, as the search's cube of cells) from every
+solid box of the scene are kept. Each kept pose's capture (noiseless, low resolution) is integrated into one
+map at the exploration's resolution; the observable cells are the interior sample points that map knows. The same sample
 points (metrics.region_points) measure what an exploration saw, so `Observable.share(emap)` is the
 share of the observable interior an exploration map knows.
 """
@@ -21,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._core import DepthCamera, ExplorationMap, Scene
-from ..exploration.metrics import region_points
+from ..exploration.metrics import points_on, region_points
 from ..exploration.physics import robot_root
 from ..exploration.robot import arm_base_pose, arm_reach, explorer_robot
 
@@ -65,6 +67,25 @@ class Observable:
         known = emap.state(self.points[self.observable]) != 0
         return float(np.count_nonzero(known)) / self.count
 
+    def sees_target(self, scene, target, width: int = 320, height: int = 240, min_points: int = 5) -> bool:
+        """True when a kept pose's noiseless `width` x `height` capture (the exploration's image) has at least
+        `min_points` points on `target` ((2, 3) lo, hi; metrics.points_on), the criterion of
+        ExplorationResult.target_seen_view. Only poses with the target's centre in their field of view are
+        captured."""
+        target = np.asarray(target, float)
+        if len(self.poses) == 0:
+            return False
+        c = target.mean(axis=0)
+        cam = DepthCamera(width, height, self.fov, self.max_range, noise=0.0, seed=0)
+        half = np.tan(self.fov / 2)
+        for T in self.poses:
+            p = np.linalg.inv(T) @ np.append(c, 1.0)
+            if p[2] <= 0 or abs(p[0] / p[2]) > half or abs(p[1] / p[2]) > half * height / width:
+                continue
+            if points_on(target, cam.capture(scene, T)) >= min_points:
+                return True
+        return False
+
     def seen_unobservable(self, emap: ExplorationMap) -> int:
         """Sample points `emap` knows that the oracle calls unobservable (a check of its density: should be ~0)."""
         rest = self.points[~self.observable]
@@ -80,6 +101,18 @@ def _known_after(scene, poses, points, resolution, fov, max_range, width, height
         if len(pts):
             emap.insert(pts, T[:3, 3], max_range)
     return emap.state(points) != 0 if len(points) else np.zeros(0, bool)
+
+
+def _clear_of_boxes(scene, points, clearance) -> np.ndarray:
+    """(N,) bools: each of `points` (N, 3) is farther than `clearance` (Chebyshev) from every solid box of `scene`."""
+    points = np.asarray(points, float).reshape(-1, 3)
+    boxes = np.array([(lo, hi) for lo, hi in scene.boxes], float).reshape(-1, 2, 3)
+    near = np.zeros(len(points), bool)
+    for i in range(0, len(boxes), 256):  # bounded memory: (N, 256, 3) at a time
+        b = boxes[i:i + 256]
+        inside = (points[:, None, :] > b[None, :, 0] - clearance) & (points[:, None, :] < b[None, :, 1] + clearance)
+        near |= inside.all(axis=2).any(axis=1)
+    return ~near
 
 
 def _joint_poses(robot, chain, chain_base, root, obstacles, links, n, rng):
@@ -132,14 +165,17 @@ def _aimed_poses(scene, robot, chain, chain_base, root, obstacles, links, points
 def observable_cells(scene: Scene, chain=None, base_pose=None, robot=None, regions=None, resolution: float = 0.025,
                      fov: float = np.deg2rad(58.0), max_range: float = 4.0, width: int = 64, height: int = 48,
                      joint_samples: int = 2000, aimed_samples: int = 2000, ik_attempts: int = 4,
-                     seed: int = 0) -> Observable:
+                     seed: int = 0, clearance: float = 0.0) -> Observable:
     """The observable part of `regions` ((lo, hi) pairs; default the scene's interiors) for the arm
     `chain` of `robot` whose base link sits at `base_pose` (4x4, world). `robot=None` (or True) with
     `chain=None` uses the explorer standing at the origin. Captures are `width` x `height`, noiseless,
     with `fov` and `max_range` of the exploration's camera; the map has the exploration's `resolution`.
-    `joint_samples` random configurations and `aimed_samples` aimed poses are tried (see the module)."""
+    `joint_samples` random configurations and `aimed_samples` aimed poses are tried (see the module);
+    `clearance` (m) keeps only the poses whose camera is that far from every solid box (the safe-view rule)."""
     if resolution <= 0 or not np.isfinite(resolution):
         raise ValueError(f"resolution must be a positive number of metres, got {resolution!r}")
+    if not np.isfinite(clearance) or clearance < 0:
+        raise ValueError(f"clearance must be a number of metres >= 0, got {clearance!r}")
     if min(joint_samples, aimed_samples) < 0 or joint_samples + aimed_samples == 0:
         raise ValueError("joint_samples and aimed_samples must be >= 0, and not both 0")
     if chain is None:
@@ -159,6 +195,9 @@ def observable_cells(scene: Scene, chain=None, base_pose=None, robot=None, regio
     poses = _joint_poses(robot, chain, chain_base, root, obstacles, links, joint_samples, rng)
     poses += _aimed_poses(scene, robot, chain, chain_base, root, obstacles, links, points, aimed_samples, rng, reach,
                           ik_attempts)
+    if clearance > 0:
+        keep = _clear_of_boxes(scene, [T[:3, 3] for T in poses], clearance)
+        poses = [T for T, k in zip(poses, keep) if k]
     seen = _known_after(scene, poses, points, resolution, fov, max_range, width, height, seed)
     return Observable(points=points, observable=seen, resolution=resolution,
                       poses_sampled=joint_samples + aimed_samples, poses_valid=len(poses),

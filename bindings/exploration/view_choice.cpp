@@ -1,0 +1,53 @@
+// The exploration loop's choice of a view: ChoiceMemory, ViewChoice and choose_view (view_choice.hpp).
+#include "exploration/convert.hpp"
+#include "exploration/next_best_view.hpp"
+#include "octoreach/simulation.hpp"
+#include "octoreach/view_choice.hpp"
+
+namespace octoreach::py_bindings {
+
+void wrap_view_choice(py::module_& m) {
+  py::class_<ChoiceMemory>(m, "ChoiceMemory",
+                           "What the exploration loop remembers between choices of a view (plain data, copyable).")
+      .def(py::init<>())
+      .def_readwrite("choices", &ChoiceMemory::choices, "views chosen so far")
+      .def_readwrite("low_views", &ChoiceMemory::low_views, "chosen views in a row with utility <= min_utility")
+      .def_property("failed_views", [](const ChoiceMemory& c) { return to_points(c.failed_views); },
+                    [](ChoiceMemory& c, const py::object& p) { c.failed_views = points_from(p, "failed_views"); },
+                    "(N, 3) cameras of views chosen and not taken: no view is chosen near them again")
+      .def("__copy__", [](const ChoiceMemory& c) { return ChoiceMemory(c); });
+  py::class_<ViewChoice>(m, "ViewChoice", "choose_view's answer: the view, its utility and the stop decision.")
+      .def_readonly("found", &ViewChoice::found, "a valid view was found")
+      .def_property_readonly("view", [](const ViewChoice& c) -> py::object {
+        return c.found ? py::cast(c.view) : py::object(py::none());
+      }, "the view (ViewCandidate: pose, q, gains) or None")
+      .def_readonly("base", &ViewChoice::base, "index of the base the view is taken from")
+      .def_readonly("utility", &ViewChoice::utility, "the gain the stop rule looks at")
+      .def_readonly("candidates", &ViewChoice::candidates, "poses scored")
+      .def_readonly("valid", &ViewChoice::valid, "of them valid")
+      .def_readonly("aimed", &ViewChoice::aimed, "found by a look aimed at void cells")
+      .def_readonly("harder", &ViewChoice::harder, "found by the looks before a low view")
+      .def_readonly("stop", &ViewChoice::stop, "the loop ends here")
+      .def_readonly("stop_reason", &ViewChoice::stop_reason, "why it ends ('' when it goes on)")
+      .def_readonly("search", &ViewChoice::search, "frontier_void: next_best_view's answer from the chosen base");
+  m.def("choose_view", [](const ExplorationMap& map, const py::object& camera, const py::object& bases, int current,
+                          const ExploreOptions& options, ChoiceMemory& memory, const std::string& strategy,
+                          double reach) {
+          const CameraIntrinsics c = intrinsics_from(camera);
+          ViewSites sites;
+          sites.bases = poses_from(bases, "bases");
+          sites.reach = reach;
+          const ViewStrategy s = strategy_from_name(strategy);
+          ExploreOptions o = options;
+          o.search.ik.seed = o.search.seed;
+          py::gil_scoped_release release;
+          return choose_view(map, c, sites, current, o, memory, s);
+        }, py::arg("map"), py::arg("camera"), py::arg("bases"), py::arg("current"), py::arg("options"),
+        py::arg("memory"), py::arg("strategy") = "frontier_void", py::arg("reach") = 0.0,
+        "The exploration loop's whole choice of the next view from any of `bases` ((N, 4, 4) chain base -> map;\n"
+        "the current one first): the search, the second looks, the last chance and the stop decision, with\n"
+        "options (ExploreOptions; its search's chain carries the camera). `reach` (m, with a chain and no\n"
+        "workspace): the camera stays that near each base. Updates `memory` (ChoiceMemory). Returns ViewChoice.");
+}
+
+}  // namespace octoreach::py_bindings

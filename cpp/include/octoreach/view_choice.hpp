@@ -1,0 +1,72 @@
+#pragma once
+/// \file view_choice.hpp
+/// \brief The exploration loop's whole choice of the next view: the search (next_best_view or a baseline's
+/// sampled poses), the second looks aimed at void cells, the last-chance look along rays out of every void
+/// cell, and the stop decision. explore() and the Explorer call it once per view; what it must remember
+/// between views (low views in a row, cameras of views not taken) is a ChoiceMemory the caller keeps.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "octoreach/next_best_view.hpp"
+
+namespace octoreach {
+
+/// \brief How views are picked: frontier-void (ours) or one of the baselines, in the same harness.
+enum class ViewStrategy {
+  FrontierVoid,  ///< next_best_view ranked by expected void cells, with the second looks
+  Random,        ///< the first valid of sampled reachable poses (stops on the best void gain on offer)
+  Frontiers,     ///< the valid sampled pose with the most expected frontier cells
+  Unknown,       ///< the valid sampled pose with the most expected unknown cells (nbvplanner's gain)
+};
+/// \brief "frontier_void", "random", "frontiers" or "unknown".
+const char* strategy_name(ViewStrategy s);
+/// \brief The strategy of a name; \throws std::invalid_argument naming the four choices.
+ViewStrategy strategy_from_name(const std::string& name);
+
+/// \brief Where the camera's carrier may stand: chain base poses (chain base -> map; the camera's chain is
+/// ExploreOptions::search.chain) and, with a chain and no workspace in the search, the reach (m) around
+/// each base's origin that bounds the camera positions (0: no bound). Without a chain: one identity base.
+struct ViewSites {
+  std::vector<Pose> bases{Pose::Identity()};
+  double reach = 0.0;
+};
+
+/// \brief What the loop remembers between choices (plain data, copyable).
+struct ChoiceMemory {
+  int choices = 0;    ///< views chosen so far
+  int low_views = 0;  ///< chosen views in a row whose utility was <= min_utility
+  /// Cameras of views that were chosen and not taken (a motion that failed): no view is chosen within
+  /// ExploreOptions::failed_view_radius of them again.
+  std::vector<Eigen::Vector3d> failed_views;
+};
+
+/// \brief The answer of choose_view: the view (when found), its utility and whether the loop stops.
+struct ViewChoice {
+  bool found = false;     ///< a valid view was found (view, base are set)
+  ViewCandidate view;     ///< camera pose, joints q, gains
+  int base = 0;           ///< index of the base in ViewSites::bases the view is taken from
+  double utility = 0.0;   ///< the gain the stop rule looks at (the strategy's: expected void cells for ours)
+  std::size_t candidates = 0, valid = 0;  ///< poses scored and of them valid
+  bool aimed = false;     ///< found by a look aimed at void cells, not by the search
+  bool harder = false;    ///< found by the looks before a low view (more aims, the last chance)
+  bool stop = false;      ///< the loop ends here (the view, when found, is a low view that need not be taken)
+  std::string stop_reason;  ///< "nothing to explore", "no valid view", "utility 0", "utility below min_utility"
+  NbvResult search;       ///< frontier_void: next_best_view's answer from the chosen base
+};
+
+/// \brief The next view of `strategy` from any of the sites' bases (the current one first, so ties keep it),
+/// with options.search (its seed: this choice's; the loop's view k searches with the run's seed + k). Updates memory
+/// (choices, low_views) and decides the stop: no void cell ("nothing to explore"), no valid view, a utility
+/// of 0, or a utility <= min_utility for `patience` choices in a row. Frontier-void: next_best_view, then
+/// (second_look) aimed_poses poses aimed at void cells; when the better still expects <= min_utility,
+/// low_aimed_poses more and, when that low view would end the loop, last_poses found along rays out of
+/// every void cell. \throws std::invalid_argument for bad options, sites or a current index out of range.
+ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites,
+                       int current, const ExploreOptions& options, ChoiceMemory& memory,
+                       ViewStrategy strategy = ViewStrategy::FrontierVoid);
+
+}  // namespace octoreach

@@ -1,0 +1,226 @@
+// The exploration loop's choice of a view (view_choice.hpp): frontier-void's search and looks, the stop
+// decision; the baselines' sampled poses are in sampled_views.cpp.
+#include "octoreach/view_choice.hpp"
+
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+
+#include "exploration/exploration_state.hpp"
+#include "exploration/view_choice_parts.hpp"
+#include "exploration/view_score.hpp"
+#include "exploration/void_aims.hpp"
+
+namespace octoreach {
+
+const char* strategy_name(ViewStrategy s) {
+  switch (s) {
+    case ViewStrategy::FrontierVoid: return "frontier_void";
+    case ViewStrategy::Random: return "random";
+    case ViewStrategy::Frontiers: return "frontiers";
+    case ViewStrategy::Unknown: return "unknown";
+  }
+  return "?";
+}
+
+ViewStrategy strategy_from_name(const std::string& name) {
+  for (ViewStrategy s : {ViewStrategy::FrontierVoid, ViewStrategy::Random, ViewStrategy::Frontiers, ViewStrategy::Unknown})
+    if (name == strategy_name(s)) return s;
+  throw std::invalid_argument("unknown strategy '" + name + "'; choose one of frontier_void, random, frontiers, unknown");
+}
+
+namespace detail {
+
+std::vector<int> ChoiceContext::order() const {
+  std::vector<int> out{current};
+  for (int j = 0; j < int(sites.bases.size()); ++j)
+    if (j != current) out.push_back(j);
+  return out;
+}
+
+NbvOptions ChoiceContext::at(int i, std::uint64_t s) const {
+  NbvOptions o = options.search;
+  const Pose& bp = sites.bases[std::size_t(i)];
+  o.chain_base = bp;
+  if (o.capability_map) o.capability_base = bp;
+  if (reach_sphere) {
+    o.workspace.sphere_center = bp.translation();
+    o.workspace.sphere_radius = sites.reach;
+  }
+  if (!memory.failed_views.empty()) {  // no view near the camera of a view not taken
+    auto user = o.workspace.filter;
+    const std::vector<Eigen::Vector3d> failed = memory.failed_views;
+    const double r2 = options.failed_view_radius * options.failed_view_radius;
+    o.workspace.filter = [user, failed, r2](const std::vector<Eigen::Vector3d>& P) {
+      std::vector<bool> ok = user ? user(P) : std::vector<bool>(P.size(), true);
+      for (std::size_t i = 0; i < P.size() && i < ok.size(); ++i)
+        for (const auto& f : failed)
+          if ((P[i] - f).squaredNorm() <= r2) ok[i] = false;
+      return ok;
+    };
+  }
+  o.seed = s;
+  o.ik.seed = s;
+  return o;
+}
+
+ViewChoice ChoiceContext::best_of(const ScoredViews& views, std::size_t scored, int base, RankKey key,
+                                  bool aimed) const {
+  ViewChoice c;
+  c.base = base;
+  c.candidates = scored;
+  for (const auto& v : views.views) c.valid += v.valid() ? 1 : 0;
+  if (const ScoredView* v = views.best(key)) {
+    c.found = true;
+    c.view = *v;
+    c.utility = v->expected_void;
+    c.aimed = aimed;
+  }
+  return c;
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::ChoiceContext;
+
+enum class Look { Sight, Rays };
+
+// The best valid of the poses one look aims at void cells (frontier_void's gain), by `key`.
+ViewChoice aimed_choice(const ChoiceContext& ctx, int i, std::uint64_t seed, Look look, std::size_t n, RankKey key,
+                        double unexposed_share, std::pair<double, double> distance) {
+  NbvOptions opt = ctx.at(i, seed);
+  opt.gain = NbvGain::FrontierVoid;
+  detail::AimRequest req;
+  req.poses = n;
+  req.cells = 4 * n;
+  req.unexposed_share = unexposed_share;
+  req.distance = distance;
+  req.min_height = ctx.options.min_camera_height;
+  req.seed = seed;
+  std::vector<Pose> poses;
+  {
+    auto guard = detail::read_guard(ctx.map);
+    if (look == Look::Sight) {
+      poses = detail::aim_along_sight(ctx.map, opt, req);
+    } else {
+      req.every_cell = true;
+      req.max_cells = std::size_t(ctx.options.max_ray_cells);
+      req.directions = ctx.options.last_directions;
+      const detail::ViewChecker checker(ctx.map, opt);
+      poses = detail::aim_at_voids(ctx.map, checker, opt, req);
+    }
+  }
+  if (poses.empty()) return ViewChoice{};
+  return ctx.best_of(score_views(ctx.map, ctx.camera, poses, opt, false), poses.size(), i, key, true);
+}
+
+// next_best_view from every base; the best by utility (the current base first: ties keep it).
+ViewChoice searched_choice(const ChoiceContext& ctx, std::uint64_t seed, std::optional<double> widen_below) {
+  std::optional<ViewChoice> best;
+  for (int i : ctx.order()) {
+    NbvOptions opt = ctx.at(i, seed);
+    opt.gain = NbvGain::FrontierVoid;
+    ViewChoice c;
+    c.search = next_best_view(ctx.map, ctx.camera, opt);
+    c.base = i;
+    c.candidates = c.search.poses_scored;
+    c.valid = c.search.ranked.size();
+    const ViewCandidate* top = c.search.best(RankKey::Gain);
+    // a view is low only when none on offer expects more: then the one expecting the most
+    if (widen_below && top && top->expected_void <= *widen_below) top = c.search.best(RankKey::ExpectedVoid);
+    if (top) {
+      c.found = true;
+      c.view = *top;
+      c.utility = top->expected_void;
+    }
+    if (!best || c.utility > best->utility) best = std::move(c);
+  }
+  return std::move(*best);
+}
+
+void adopt(ViewChoice& best, ViewChoice&& a, bool harder) {
+  a.search = std::move(best.search);
+  a.harder = harder;
+  best = std::move(a);
+}
+
+ViewChoice frontier_void_choice(const ChoiceContext& ctx, std::uint64_t seed, bool last_chance, double threshold) {
+  const ExploreOptions& o = ctx.options;
+  const std::optional<double> widen = o.second_look ? std::optional<double>(threshold) : std::nullopt;
+  ViewChoice best = searched_choice(ctx, seed, widen);
+  if (!widen) return best;
+  // the second look: by the ranking gain, or by expected void cells when the search's best is low
+  const bool low = best.utility <= *widen;
+  ViewChoice most = best;  // the view on offer with the most expected void cells
+  for (int i : ctx.order()) {
+    ViewChoice a = aimed_choice(ctx, i, seed, Look::Sight, std::size_t(o.aimed_poses),
+                                low ? RankKey::ExpectedVoid : RankKey::Gain, o.unexposed_share, o.aimed_distance);
+    const double best_rank = best.found ? best.view.expected_gain : 0.0;
+    if (a.found && (low ? a.utility > best.utility : a.view.expected_gain > best_rank)) adopt(best, std::move(a), false);
+    if (best.utility > most.utility) most = best;
+  }
+  if (best.utility > *widen) return best;
+  if (most.utility > best.utility) best = std::move(most);
+  // about to take a low view: more aims at any void cell; when it would end the loop, the last chance
+  for (int i : ctx.order()) {
+    ViewChoice a = aimed_choice(ctx, i, seed + 7919 + 1, Look::Sight, std::size_t(o.low_aimed_poses),
+                                RankKey::ExpectedVoid, 1.0, o.aimed_distance);
+    if (a.found && a.utility > best.utility) adopt(best, std::move(a), true);
+    if (!last_chance) continue;
+    a = aimed_choice(ctx, i, seed + 7919 + std::uint64_t(o.last_directions), Look::Rays, std::size_t(o.last_poses),
+                     RankKey::ExpectedVoid, 1.0, o.last_distance);
+    if (a.found && a.utility > best.utility) adopt(best, std::move(a), true);
+  }
+  return best;
+}
+
+void check_sites(const ViewSites& sites, int current, const ExploreOptions& options) {
+  options.validate();
+  if (sites.bases.empty()) throw std::invalid_argument("choose_view needs at least one base pose");
+  if (current < 0 || current >= int(sites.bases.size()))
+    throw std::invalid_argument("current base index " + std::to_string(current) + " is out of range (0 to " +
+                                std::to_string(sites.bases.size() - 1) + ")");
+  for (std::size_t i = 0; i < sites.bases.size(); ++i)
+    if (!sites.bases[i].matrix().allFinite())
+      throw std::invalid_argument("base pose " + std::to_string(i) + " is not finite");
+  if (!(sites.reach >= 0) || !std::isfinite(sites.reach))
+    throw std::invalid_argument("reach must be a finite number of metres >= 0, got " + std::to_string(sites.reach));
+}
+
+}  // namespace
+
+ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites, int current,
+                       const ExploreOptions& options, ChoiceMemory& memory, ViewStrategy strategy) {
+  check_sites(sites, current, options);
+  const SensorWorkspace& ws = options.search.workspace;
+  const ChoiceContext ctx{map, camera, sites, current, options, memory,
+                          options.search.chain && sites.reach > 0 && !ws.box && !ws.sphere_center && !ws.filter};
+  const std::uint64_t seed = options.search.seed;
+  const bool last_chance = memory.low_views + 1 >= options.patience;
+  ViewChoice c;
+  if (map.void_cell_count() == map.sealed_void_cell_count()) {  // no void cell a view could reveal
+    c.stop = true;
+    c.stop_reason = "nothing to explore";
+    ++memory.choices;
+    return c;
+  }
+  const double threshold = options.stop_threshold(camera, map.resolution());
+  c = strategy == ViewStrategy::FrontierVoid ? frontier_void_choice(ctx, seed, last_chance, threshold)
+                                             : detail::sampled_choice(ctx, seed, strategy);
+  ++memory.choices;
+  if (!c.found) {
+    c.stop = true;
+    c.stop_reason = "no valid view";
+    return c;
+  }
+  memory.low_views = c.utility <= threshold ? memory.low_views + 1 : 0;
+  if (memory.low_views >= options.patience || c.utility <= 0) {
+    c.stop = true;
+    c.stop_reason = c.utility <= 0 ? "utility 0" : "utility below min_utility";
+  }
+  return c;
+}
+
+}  // namespace octoreach
