@@ -264,7 +264,7 @@ class Robot : public std::enable_shared_from_this<Robot> {
                                                    const std::vector<std::pair<int, int>>& pairs,
                                                    std::size_t limit = 8) const;
   /// \brief SRDF text of the model: its groups, end effectors, group states and every allowed pair
-  /// as <disable_collisions> with MoveIt's reason words ("Adjacent", "Never", "Always", "Default", "User";
+  /// as `<disable_collisions>` with MoveIt's reason words ("Adjacent", "Never", "Always", "Default", "User";
   /// "Allowed" for the pairs read from an SRDF).
   std::string srdf_text() const;
   /// \brief srdf_text() written atomically to `path`.

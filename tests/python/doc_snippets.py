@@ -1,0 +1,199 @@
+"""The code blocks of the README and the documentation pages, and a runner that executes them page by page.
+
+Every fenced block runs unless an HTML comment on the line just above it says otherwise:
+
+- ``python`` blocks run in one namespace per page, in page order (a page reads as one script);
+- ``sh`` / ``bash`` / ``console`` blocks run in bash (``set -euo pipefail``) in the page's working folder, with
+  the interpreter's bin folder first on PATH (the ``octoreach`` command);
+- ``json`` / ``yaml`` blocks are parsed;
+- ``<!-- snippet: file NAME -->``: the block is written to NAME in the working folder (a room file, a URDF),
+  then parsed when it is JSON or YAML, and later blocks use it;
+- ``<!-- snippet: in PATH -->``: every non-blank line of the block appears, in order, in the repository file
+  PATH (C++ and CMake that ctest compiles there);
+- ``<!-- snippet: skip REASON -->``: not run (``pip install``, a server, a long benchmark); the reason is
+  required and the tests count these.
+
+Any other block (``cpp``, ``text``, ...) without a marker is an error. A failure names the page and line:
+``docs/guides/room.md:42: ...``.
+
+Run one page by hand: ``python tests/python/doc_snippets.py docs/getting_started.md``.
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import traceback
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+FENCE = re.compile(r"^(?P<indent> {0,3})(?P<fence>`{3,}|~{3,})(?P<info>[^`]*)$")
+MARKER = re.compile(r"^\s*<!--\s*snippet:\s*(?P<kind>skip|file|in)\b\s*(?P<arg>.*?)\s*-->\s*$")
+RUN_LANGS = {"python": "python", "py": "python", "sh": "sh", "bash": "sh", "console": "sh", "shell": "sh",
+             "json": "json", "yaml": "yaml", "yml": "yaml"}
+
+
+@dataclass
+class Block:
+    page: str          # path relative to the repository
+    line: int          # line of the block's first code line (1-based)
+    lang: str
+    code: str
+    marker: str = ""   # "", "skip", "file" or "in"
+    arg: str = ""
+
+    @property
+    def where(self) -> str:
+        return f"{self.page}:{self.line}"
+
+
+def pages() -> list[Path]:
+    """README.md and every Markdown page of the site."""
+    return [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+
+
+def blocks(path: Path) -> list[Block]:
+    """The fenced code blocks of a Markdown page, with the snippet marker above each."""
+    lines = path.read_text(encoding="utf-8").splitlines()
+    rel = str(path.relative_to(ROOT))
+    out, i = [], 0
+    while i < len(lines):
+        m = FENCE.match(lines[i])
+        if not m:
+            i += 1
+            continue
+        fence, info = m["fence"], m["info"].strip()
+        j = i + 1
+        while j < len(lines) and not lines[j].strip().startswith(fence):
+            j += 1
+        if j == len(lines):
+            raise ValueError(f"{rel}:{i + 1}: a code block that never ends")
+        lang = info.split()[0].lower() if info else ""
+        if not lang.startswith("{"):  # MyST directives ({toctree}, {eval-rst}, ...) are not code
+            code = "\n".join(l[len(m["indent"]):] for l in lines[i + 1:j]) + "\n"
+            block = Block(rel, i + 2, lang, code)
+            above = MARKER.match(lines[i - 1]) if i > 0 else None
+            if above:
+                block.marker, block.arg = above["kind"], above["arg"]
+            out.append(block)
+        i = j + 1
+    return out
+
+
+def problem(block: Block) -> str | None:
+    """Why a block can be neither run nor checked, or None."""
+    if block.marker in ("skip", "file", "in") and not block.arg:
+        return f"{block.where}: the snippet marker '{block.marker}' needs an argument"
+    if block.marker == "in" and not (ROOT / block.arg).is_file():
+        return f"{block.where}: snippet marker 'in {block.arg}': no such file"
+    if not block.marker and block.lang not in RUN_LANGS:
+        return (f"{block.where}: a '{block.lang or 'plain'}' block neither runs nor carries a marker "
+                "(<!-- snippet: skip REASON -->, <!-- snippet: in PATH --> or <!-- snippet: file NAME -->)")
+    return None
+
+
+def check_lines_in(block: Block) -> None:
+    """Every non-blank line of the block appears in the file, in order."""
+    text = [l.strip() for l in (ROOT / block.arg).read_text(encoding="utf-8").splitlines()]
+    at = 0
+    for k, line in enumerate(block.code.splitlines()):
+        if not line.strip():
+            continue
+        try:
+            at = text.index(line.strip(), at) + 1
+        except ValueError:
+            raise AssertionError(f"{block.page}:{block.line + k}: this line is not in {block.arg} (in this order): "
+                                 f"{line.strip()!r}") from None
+
+
+def parse(block: Block, lang: str) -> None:
+    try:
+        if lang == "json":
+            json.loads(block.code)
+        else:
+            import yaml
+
+            yaml.safe_load(block.code)
+    except Exception as e:  # noqa: BLE001 (any parse error is the page's fault)
+        raise AssertionError(f"{block.where}: the {lang} block does not parse: {e}") from None
+
+
+def run_shell(block: Block, cwd: Path) -> None:
+    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}")
+    done = subprocess.run(["bash", "-euo", "pipefail", "-c", block.code], cwd=cwd, env=env,
+                          capture_output=True, text=True)
+    sys.stdout.write(done.stdout)
+    if done.returncode != 0:
+        raise AssertionError(f"{block.where}: the shell block failed with status {done.returncode}:\n"
+                             f"{block.code}{done.stderr[-3000:]}")
+
+
+def run_python(block: Block, namespace: dict) -> None:
+    # Padding with blank lines makes tracebacks give the line of the page itself.
+    code = compile("\n" * (block.line - 1) + block.code, block.page, "exec")
+    try:
+        exec(code, namespace)
+    except Exception:  # noqa: BLE001
+        tb = traceback.format_exc(limit=-4)
+        raise AssertionError(f"{block.where}: the python block raised:\n{tb}") from None
+
+
+def run_page(path: Path, workdir: Path) -> dict[str, int]:
+    """Runs every block of one page in order; returns the counts (ran, checked, skipped)."""
+    counts = {"ran": 0, "checked": 0, "skipped": 0}
+    namespace: dict = {"__name__": "__main__"}
+    for block in blocks(path):
+        why = problem(block)
+        if why:
+            raise AssertionError(why)
+        lang = RUN_LANGS.get(block.lang, "")
+        if block.marker == "skip":
+            counts["skipped"] += 1
+        elif block.marker == "in":
+            check_lines_in(block)
+            counts["checked"] += 1
+        elif block.marker == "file":
+            (workdir / block.arg).parent.mkdir(parents=True, exist_ok=True)
+            (workdir / block.arg).write_text(block.code, encoding="utf-8")
+            if lang in ("json", "yaml"):
+                parse(block, lang)
+            counts["checked"] += 1
+        elif lang in ("json", "yaml"):
+            parse(block, lang)
+            counts["checked"] += 1
+        elif lang == "sh":
+            run_shell(block, workdir)
+            counts["ran"] += 1
+        else:
+            run_python(block, namespace)
+            counts["ran"] += 1
+    return counts
+
+
+def main(argv: list[str]) -> int:
+    """Runs the pages given (paths), each in a fresh working folder; prints the counts as JSON."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    results = {}
+    for arg in argv:
+        path = Path(arg).resolve()
+        with tempfile.TemporaryDirectory(prefix="octoreach-snippets-") as tmp:
+            os.chdir(tmp)
+            try:
+                results[arg] = run_page(path, Path(tmp))
+            except AssertionError as e:
+                print(str(e), file=sys.stderr)
+                return 1
+            finally:
+                os.chdir(ROOT)
+    print(json.dumps(results))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
