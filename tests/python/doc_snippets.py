@@ -6,8 +6,9 @@ Every fenced block runs unless an HTML comment on the line just above it says ot
 - ``sh`` / ``bash`` / ``console`` blocks run in bash (``set -euo pipefail``) in the page's working folder, with
   the interpreter's bin folder first on PATH (the ``octoreach`` command);
 - ``json`` / ``yaml`` blocks are parsed;
-- ``<!-- snippet: file NAME -->``: the block is written to NAME in the working folder (a room file, a URDF),
-  then parsed when it is JSON or YAML, and later blocks use it;
+- ``<!-- snippet: file NAME -->``: the block is written to NAME in the working folder (a room file, a URDF)
+  before any block of the page runs (a page may list a long file at its end), and parsed when it is JSON or
+  YAML;
 - ``<!-- snippet: in PATH -->``: every non-blank line of the block appears, in order, in the repository file
   PATH (C++ and CMake that ctest compiles there);
 - ``<!-- snippet: skip REASON -->``: not run (``pip install``, a server, a long benchmark); the reason is
@@ -146,21 +147,25 @@ def run_page(path: Path, workdir: Path) -> dict[str, int]:
     """Runs every block of one page in order; returns the counts (ran, checked, skipped)."""
     counts = {"ran": 0, "checked": 0, "skipped": 0}
     namespace: dict = {"__name__": "__main__"}
-    for block in blocks(path):
+    page = blocks(path)
+    for block in page:
         why = problem(block)
         if why:
             raise AssertionError(why)
+        if block.marker == "file":
+            (workdir / block.arg).parent.mkdir(parents=True, exist_ok=True)
+            (workdir / block.arg).write_text(block.code, encoding="utf-8")
+            if RUN_LANGS.get(block.lang) in ("json", "yaml"):
+                parse(block, RUN_LANGS[block.lang])
+            counts["checked"] += 1
+    for block in page:
         lang = RUN_LANGS.get(block.lang, "")
+        if block.marker == "file":
+            continue
         if block.marker == "skip":
             counts["skipped"] += 1
         elif block.marker == "in":
             check_lines_in(block)
-            counts["checked"] += 1
-        elif block.marker == "file":
-            (workdir / block.arg).parent.mkdir(parents=True, exist_ok=True)
-            (workdir / block.arg).write_text(block.code, encoding="utf-8")
-            if lang in ("json", "yaml"):
-                parse(block, lang)
             counts["checked"] += 1
         elif lang in ("json", "yaml"):
             parse(block, lang)
