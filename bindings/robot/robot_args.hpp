@@ -44,8 +44,10 @@ inline Arm arm_from(const Robot& robot, const py::handle& arm, const py::object&
                          std::string(py::str(py::type::handle_of(approach_axis).attr("__name__"))));
   }
   // An arm given by its links takes the axis as given: its own may not be inferable (a tip with no gripper).
-  if ((py::isinstance<py::tuple>(arm) || py::isinstance<py::list>(arm)) && py::len(arm) == 2)
-    return arm_from(robot, py::make_tuple(arm[0], arm[1], axis));
+  if ((py::isinstance<py::tuple>(arm) || py::isinstance<py::list>(arm)) && py::len(arm) == 2) {
+    py::sequence s = py::reinterpret_borrow<py::sequence>(arm);
+    return arm_from(robot, py::make_tuple(s[0], s[1], axis));
+  }
   return arm_from(robot, arm).with_approach_axis(axis);
 }
 

@@ -14,7 +14,8 @@ Every fenced block runs unless an HTML comment on the line just above it says ot
 - ``<!-- snippet: skip REASON -->``: not run (``pip install``, a server, a long benchmark); the reason is
   required and the tests count these.
 
-Any other block (``cpp``, ``text``, ...) without a marker is an error. A failure names the page and line:
+``text`` blocks are pictures in characters (a folder tree, a diagram), not code: they are neither run nor
+counted. Any other block (``cpp``, ``cmake``, ...) without a marker is an error. A failure names the page and line:
 ``docs/guides/room.md:42: ...``.
 
 Run one page by hand: ``python tests/python/doc_snippets.py docs/getting_started.md``.
@@ -74,7 +75,7 @@ def blocks(path: Path) -> list[Block]:
         if j == len(lines):
             raise ValueError(f"{rel}:{i + 1}: a code block that never ends")
         lang = info.split()[0].lower() if info else ""
-        if not lang.startswith("{"):  # MyST directives ({toctree}, {eval-rst}, ...) are not code
+        if not lang.startswith("{") and lang != "text":  # MyST directives ({toctree}, ...) and pictures are not code
             code = "\n".join(l[len(m["indent"]):] for l in lines[i + 1:j]) + "\n"
             block = Block(rel, i + 2, lang, code)
             above = MARKER.match(lines[i - 1]) if i > 0 else None
