@@ -11,6 +11,10 @@ Every fenced block runs unless an HTML comment on the line just above it says ot
   YAML;
 - ``<!-- snippet: in PATH -->``: every non-blank line of the block appears, in order, in the repository file
   PATH (C++ and CMake that ctest compiles there);
+- ``<!-- snippet: commands -->`` (sh blocks that take minutes: benchmarks, installs, a cluster): the commands
+  are checked, not run: every ``python SCRIPT`` / ``python -m MODULE`` / ``octoreach ...`` line's options appear in
+  its ``--help``, every ``make TARGET`` is a Makefile target and every ``bash FILE`` exists; other programs
+  (``pip``, ``cmake``, ``ray``) are left as they are;
 - ``<!-- snippet: skip REASON -->``: not run (``pip install``, a server, a long benchmark); the reason is
   required and the tests count these.
 
@@ -34,7 +38,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 FENCE = re.compile(r"^(?P<indent> {0,3})(?P<fence>`{3,}|~{3,})(?P<info>[^`]*)$")
-MARKER = re.compile(r"^\s*<!--\s*snippet:\s*(?P<kind>skip|file|in)\b\s*(?P<arg>.*?)\s*-->\s*$")
+MARKER = re.compile(r"^\s*<!--\s*snippet:\s*(?P<kind>skip|file|in|commands)\b\s*(?P<arg>.*?)\s*-->\s*$")
 RUN_LANGS = {"python": "python", "py": "python", "sh": "sh", "bash": "sh", "console": "sh", "shell": "sh",
              "json": "json", "yaml": "yaml", "yml": "yaml"}
 
@@ -45,7 +49,7 @@ class Block:
     line: int          # line of the block's first code line (1-based)
     lang: str
     code: str
-    marker: str = ""   # "", "skip", "file" or "in"
+    marker: str = ""   # "", "skip", "file", "in" or "commands"
     arg: str = ""
 
     @property
@@ -90,6 +94,8 @@ def problem(block: Block) -> str | None:
     """Why a block can be neither run nor checked, or None."""
     if block.marker in ("skip", "file", "in") and not block.arg:
         return f"{block.where}: the snippet marker '{block.marker}' needs an argument"
+    if block.marker == "commands" and RUN_LANGS.get(block.lang) != "sh":
+        return f"{block.where}: the snippet marker 'commands' is for sh blocks"
     if block.marker == "in" and not (ROOT / block.arg).is_file():
         return f"{block.where}: snippet marker 'in {block.arg}': no such file"
     if not block.marker and block.lang not in RUN_LANGS:
@@ -110,6 +116,51 @@ def check_lines_in(block: Block) -> None:
         except ValueError:
             raise AssertionError(f"{block.page}:{block.line + k}: this line is not in {block.arg} (in this order): "
                                  f"{line.strip()!r}") from None
+
+
+def _help_of(program: list[str], cache: dict) -> str:
+    key = tuple(program)
+    if key not in cache:
+        done = subprocess.run(program + ["--help"], cwd=ROOT, capture_output=True, text=True, timeout=120,
+                              env=dict(os.environ, MPLBACKEND="Agg"))
+        cache[key] = done.stdout if done.returncode == 0 else ""
+    return cache[key]
+
+
+def check_commands(block: Block, cache: dict) -> None:
+    """The block's commands exist and take the options it gives them (see the module docstring)."""
+    import shlex
+
+    targets = set(re.findall(r"^([\w\-]+):", (ROOT / "Makefile").read_text(encoding="utf-8"), re.M))
+    for k, line in enumerate(block.code.splitlines()):
+        where = f"{block.page}:{block.line + k}"
+        words = shlex.split(line, comments=True)
+        words = words[:next((i for i, w in enumerate(words) if w in (">", "|", "&&", ";")), len(words))]
+        if not words:
+            continue
+        head, rest = words[0], words[1:]
+        if head == "make":
+            missing = [t for t in rest if not t.startswith("-") and "=" not in t and t not in targets]
+            assert not missing, f"{where}: no Makefile target {missing}"
+            continue
+        if head == "bash":
+            assert (ROOT / rest[0]).is_file(), f"{where}: no such file {rest[0]}"
+            continue
+        if head in ("python", "python3") and rest[:1] == ["-m"]:
+            program, rest = [sys.executable, "-m", rest[1]], rest[2:]
+        elif head in ("python", "python3"):
+            assert (ROOT / rest[0]).is_file(), f"{where}: no such script {rest[0]}"
+            program, rest = [sys.executable, str(ROOT / rest[0])], rest[1:]
+        elif head == "octoreach":
+            program = [str(Path(sys.executable).parent / "octoreach")]
+            while rest and re.fullmatch(r"[a-z][a-z\-]*", rest[0]):   # subcommands
+                program.append(rest.pop(0))
+        else:
+            continue
+        text = _help_of(program, cache)
+        assert text, f"{where}: '{' '.join(words[:3])} --help' failed"
+        unknown = [w.split("=")[0] for w in rest if w.startswith("--") and w.split("=")[0] not in text]
+        assert not unknown, f"{where}: {' '.join(words[:3])} does not take {unknown}"
 
 
 def parse(block: Block, lang: str) -> None:
@@ -148,6 +199,7 @@ def run_page(path: Path, workdir: Path) -> dict[str, int]:
     """Runs every block of one page in order; returns the counts (ran, checked, skipped)."""
     counts = {"ran": 0, "checked": 0, "skipped": 0}
     namespace: dict = {"__name__": "__main__"}
+    helps: dict = {}
     page = blocks(path)
     for block in page:
         why = problem(block)
@@ -167,6 +219,9 @@ def run_page(path: Path, workdir: Path) -> dict[str, int]:
             counts["skipped"] += 1
         elif block.marker == "in":
             check_lines_in(block)
+            counts["checked"] += 1
+        elif block.marker == "commands":
+            check_commands(block, helps)
             counts["checked"] += 1
         elif lang in ("json", "yaml"):
             parse(block, lang)

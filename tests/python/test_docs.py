@@ -26,7 +26,7 @@ def _rel(path: Path) -> str:
 
 def _pages_with_code() -> list[str]:
     return [_rel(p) for p in pages() if any(not b.marker for b in blocks(p))
-            or any(b.marker in ("file", "in") for b in blocks(p))]
+            or any(b.marker in ("file", "in", "commands") for b in blocks(p))]
 
 
 @pytest.fixture(scope="session")
