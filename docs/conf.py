@@ -6,6 +6,7 @@ docs/_ext/octoreach_reference.py fails the build when a public class or function
 """
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -31,7 +32,7 @@ extensions = [
 
 source_suffix = {".md": "markdown"}
 root_doc = "index"
-exclude_patterns = ["_build", "_ext", "Doxyfile", "benchmarks"]
+exclude_patterns = ["_build", "_ext", "Doxyfile"]
 
 myst_enable_extensions = ["colon_fence", "deflist", "dollarmath"]
 myst_heading_anchors = 3
@@ -67,3 +68,29 @@ breathe_projects = {"octoreach": str(ROOT / "build" / "docs" / "doxygen" / "xml"
 breathe_default_project = "octoreach"
 breathe_domain_by_extension = {"hpp": "cpp"}
 breathe_default_members = ("members",)
+
+
+# The index's toctrees list the pages in reading order. A page added later that no toctree lists joins the
+# toctree of its folder (guides/, concepts/ and design/ under Concepts, the rest under Reference) at its end,
+# so a new guide appears in the menu without an edit here.
+_FOLDER_TOCTREE = {"guides": ":caption: Guides", "concepts": ":caption: Concepts", "design": ":caption: Concepts"}
+
+
+def _pages_not_listed(app, docname, source):
+    if docname != root_doc:
+        return
+    text = source[0]
+    docs = Path(app.srcdir)
+    for page in sorted(docs.rglob("*.md")):
+        name = page.relative_to(docs).with_suffix("").as_posix()
+        if name == root_doc or name.startswith("api/") or re.search(rf"^{re.escape(name)}$", text, re.M):
+            continue
+        caption = _FOLDER_TOCTREE.get(name.split("/")[0], ":caption: Reference")
+        start = text.index(caption)
+        end = text.index("```", start)
+        text = text[:end] + name + "\n" + text[end:]
+    source[0] = text
+
+
+def setup(app):
+    app.connect("source-read", _pages_not_listed)
