@@ -22,13 +22,15 @@ Every fenced block runs unless an HTML comment on the line just above it says ot
 counted. Any other block (``cpp``, ``cmake``, ...) without a marker is an error. A failure names the page and line:
 ``docs/guides/room.md:42: ...``.
 
-Run one page by hand: ``python tests/python/doc_snippets.py docs/getting_started.md``.
+Every page's working folder starts with a copy of ``docs/examples/`` (files several pages share: the robot of
+the guides, ``rover.urdf``). Run one page by hand: ``python tests/python/doc_snippets.py docs/getting_started.md``.
 """
 from __future__ import annotations
 
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -244,6 +246,8 @@ def main(argv: list[str]) -> int:
     for arg in argv:
         path = Path(arg).resolve()
         with tempfile.TemporaryDirectory(prefix="octoreach-snippets-") as tmp:
+            for example in (ROOT / "docs" / "examples").glob("*"):  # the pages' shared files (rover.urdf)
+                shutil.copy(example, tmp)
             os.chdir(tmp)
             try:
                 results[arg] = run_page(path, Path(tmp))
