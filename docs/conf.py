@@ -54,8 +54,8 @@ nitpick_ignore_regex = [
     (r"py:.*", r"(m|n|\d+|\[.*|.*\])"),
     # The C++ reference: standard library and Eigen types, which breathe cannot link.
     (r"cpp:.*", r"(std|Eigen|fcl|octomap|size_t|uint\w*|int\w*)(::.*)?"),
-    # The namespace (declared by no directive), Eigen's Identity() of Pose, internals named in declarations.
-    (r"cpp:.*", r"(octoreach|Pose::Identity|detail(::.*)?)"),
+    # The namespaces (declared by no directive: octoreach, octoreach::limits), Eigen's Identity() of Pose, internals named in declarations.
+    (r"cpp:.*", r"(octoreach|octoreach::limits|limits|Pose::Identity|detail(::.*)?)"),
 ]
 
 autodoc_default_options = {"members": True, "undoc-members": True, "show-inheritance": True}

@@ -80,15 +80,20 @@ def header_directives(header: str) -> list[str]:
             continue
         kind = "struct" if cid.startswith("struct") else "class"
         lines += [f".. doxygen{kind}:: {name}", "   :members:", "   :undoc-members:", ""]
-    namespace = ET.parse(XML / "namespaceoctoreach.xml").getroot()
     directive = {"enum": "doxygenenum", "typedef": "doxygentypedef", "function": "doxygenfunction",
                  "variable": "doxygenvariable"}
-    members = [m for m in namespace.iter("memberdef") if m.get("kind") in directive
-               and Path(m.find("location").get("file")).name == header]
-    overloaded = {n for n in (m.findtext("name") for m in members)
-                  if sum(1 for x in members if x.findtext("name") == n) > 1}
-    for m in members:
-        target = f"octoreach::{m.findtext('name')}"
+    members = []  # (namespace, memberdef) of octoreach and its public nested namespaces (octoreach::limits)
+    for path in sorted(XML.glob("namespaceoctoreach*.xml")):
+        namespace = ET.parse(path).getroot()
+        name = namespace.findtext("compounddef/compoundname")
+        if "detail" in name.split("::"):
+            continue
+        members += [(name, m) for m in namespace.iter("memberdef") if m.get("kind") in directive
+                    and Path(m.find("location").get("file")).name == header]
+    overloaded = {n for n in (m.findtext("name") for _, m in members)
+                  if sum(1 for _, x in members if x.findtext("name") == n) > 1}
+    for space, m in members:
+        target = f"{space}::{m.findtext('name')}"
         if m.get("kind") == "function" and m.findtext("name") in overloaded:
             types = ["".join(p.find("type").itertext()).strip() for p in m.findall("param")]
             target += "(" + ", ".join(types) + ")"
