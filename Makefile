@@ -26,7 +26,7 @@ SOURCES := $(shell find cpp bindings python tests/cpp cmake urdf benchmarks/refe
            CMakeLists.txt pyproject.toml scripts/build_wheel.sh
 
 .PHONY: all demo demo-exploration stubs test test-cpp test-python test-packaging install sysdeps venv benchmarks \
-        clean fuzz test-sanitize wheel test-wheel sdist test-sdist check-sizes check-layers
+        clean fuzz test-sanitize wheel test-wheel sdist test-sdist check-sizes check-layers docs
 
 all: install
 
@@ -111,7 +111,7 @@ test-sanitize: install
 	cmake --build build/tsan -j $(JOBS) --target octoreach_thread_tests
 	TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 build/tsan/tests/cpp/octoreach_thread_tests
 
-test: check-sizes check-layers test-cpp test-packaging test-python
+test: check-sizes check-layers test-cpp test-packaging test-python docs
 
 # Size limits of the code: prints the largest file and function, names every one over its limit, fails if any.
 check-sizes:
@@ -135,6 +135,17 @@ test-sdist: sdist
 	rm -rf build/sdist-venv && $(PYTHON) -m venv build/sdist-venv
 	build/sdist-venv/bin/python -m pip install -q "$$(ls -t $(DIST)/octoreach-*.tar.gz | head -1)"
 	cd build && sdist-venv/bin/python -c "import octoreach, sys; r = octoreach.robots.from_urdf(octoreach.robots.project_urdf('test_arm')); print('octoreach', octoreach.__version__, 'from the sdist:', r.dof, 'joints')"
+
+# The documentation site into build/docs/html (MyST pages, the Python reference from the installed package, the
+# C++ reference from Doxygen XML of the public headers); any warning fails it. Its tools are pyproject.toml's
+# `docs` extra and Debian's doxygen. The pages' code blocks run in tests/python/test_docs.py.
+$(VENV)/.docs-deps: $(VENV)/.created pyproject.toml
+	$(PIP) install -q $$($(PY) -c 'import tomllib; print(" ".join(tomllib.load(open("pyproject.toml", "rb"))["project"]["optional-dependencies"]["docs"]))')
+	@touch $@
+
+docs: install $(VENV)/.docs-deps
+	$(VENV)/bin/sphinx-build -b html -E -W --keep-going -n -q -d build/docs/doctrees docs build/docs/html
+	@echo "octoreach: the documentation is in build/docs/html/index.html"
 
 demo: install
 	$(PY) -m octoreach.demo --out demo_out

@@ -9,8 +9,8 @@ BUILD=(
   libfcl-dev libccd-dev libqhull-dev libassimp-dev zlib1g-dev
 )
 # Development: the C++ tests (GoogleTest), the benchmark references (KDL), viewer screenshots (Chromium),
-# the bare-root wheel test (debootstrap).
-DEVELOP=(git python3 python3-pip liborocos-kdl-dev libgtest-dev chromium chromium-driver debootstrap)
+# the bare-root wheel test (debootstrap), the documentation's C++ reference (Doxygen).
+DEVELOP=(git python3 python3-pip liborocos-kdl-dev libgtest-dev chromium chromium-driver debootstrap doxygen)
 case "${1:-}" in
   --build) PACKAGES=("${BUILD[@]}") ;;
   "") PACKAGES=("${BUILD[@]}" "${DEVELOP[@]}") ;;

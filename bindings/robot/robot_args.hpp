@@ -35,14 +35,20 @@ inline Arm arm_from(const Robot& robot, const py::handle& arm) {
 
 /// arm_from with an optional approach-axis override (None keeps the arm's).
 inline Arm arm_from(const Robot& robot, const py::handle& arm, const py::object& approach_axis) {
-  Arm a = arm_from(robot, arm);
-  if (approach_axis.is_none()) return a;
+  if (approach_axis.is_none()) return arm_from(robot, arm);
+  Eigen::Vector3d axis;
   try {
-    return a.with_approach_axis(approach_axis.cast<Eigen::Vector3d>());
+    axis = approach_axis.cast<Eigen::Vector3d>();
   } catch (const py::cast_error&) {
     throw py::type_error("approach_axis must be 3 numbers (x, y, z), got " +
                          std::string(py::str(py::type::handle_of(approach_axis).attr("__name__"))));
   }
+  // An arm given by its links takes the axis as given: its own may not be inferable (a tip with no gripper).
+  if ((py::isinstance<py::tuple>(arm) || py::isinstance<py::list>(arm)) && py::len(arm) == 2) {
+    py::sequence s = py::reinterpret_borrow<py::sequence>(arm);
+    return arm_from(robot, py::make_tuple(s[0], s[1], axis));
+  }
+  return arm_from(robot, arm).with_approach_axis(axis);
 }
 
 }  // namespace octoreach::py_bindings

@@ -260,7 +260,7 @@ def build_capability_split(robot, arm, cluster: str | None = "local", block_size
                            progress=True, task_cpus: int = 1, robot_spec: dict | None = None, report=None,
                            **options):
     """One capability map built as blocks of voxels on the cluster's workers and merged: the same bytes as
-    CapabilityMap.build_for_arm(robot, arm, block_size=block_size, **options) in one process (see
+    ``CapabilityMap.build_for_arm(robot, arm, block_size=block_size, **options)`` in one process (see
     CapabilityBlocks). robot_spec tells workers how to load the robot ({"name": ...} by default, from
     robot.name); the model hash is checked on every worker. `report` (a BuildReport) collects per-task figures."""
     from ._core import Arm

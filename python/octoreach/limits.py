@@ -19,7 +19,7 @@ MAX_YAML_BYTES = 1 << 20
 #: billions, which every later walk (checks, messages, the cache key) would pay for.
 MAX_DATA_NODES = 2_000_000
 
-#: YAML aliases (*name) in one file: repeated entries in a hand-written file are a few dozen.
+#: YAML aliases (``*name``) in one file: repeated entries in a hand-written file are a few dozen.
 MAX_DATA_ALIASES = 10_000
 
 #: Nesting of lists and mappings in one file. A room file nests 7 deep (room, surfaces, entry, boxes, box,

@@ -1,5 +1,6 @@
-// A consumer of the installed octoreach package: loads a URDF, solves IK, and builds the README's
-// capability map and surface map. Prints what it found; exits non-zero when something is off.
+// A consumer of the installed octoreach package: loads a URDF, solves IK, and builds the capability map and
+// surface map of the README's and the C++ guide's quick-start (the docs' test checks that their lines are
+// these). Prints what it found; exits non-zero when something is off.
 #include <iostream>
 
 #include <octoreach/capability_map.hpp>
@@ -12,7 +13,7 @@ int main(int argc, char** argv) {
     std::cerr << "usage: consumer ROBOT.urdf\n";
     return 2;
   }
-  auto robot = octoreach::Robot::from_urdf(argv[1]);
+  auto robot = octoreach::Robot::from_urdf(argv[1]);              // a URDF path (package dirs: 2nd argument)
   octoreach::Chain arm = robot->chain("base_link", "tool0");
   Eigen::VectorXd q = Eigen::VectorXd::Constant(arm.dof(), 0.3);
   octoreach::Pose target = arm.fk(q);
@@ -24,15 +25,15 @@ int main(int argc, char** argv) {
   double error = (arm.fk(*solution).translation() - target.translation()).norm();
 
   octoreach::CapabilityMapOptions o;
-  o.resolution = 0.15;
+  o.resolution = 0.15;                                            // coarse and quick; 0.05 for real use
   o.directions = 24;
   auto cap = octoreach::CapabilityMap::build(arm, o);
-  auto table = octoreach::Surface::rectangle(0.6, 0.4, 0.4, 0.55);
-  octoreach::SurfaceMapOptions so;
-  so.z_min = so.z_max = 0.0;
+  auto table = octoreach::Surface::rectangle(0.6, 0.4, 0.4, 0.55);  // 0.6 x 0.4 m, top at 0.4 m, centre x = 0.55
+  octoreach::SurfaceMapOptions so;                                // defaults: the robot stands on the floor
   auto smap = octoreach::SurfaceMap::build(*robot, cap, table, so);
+  double rs = smap.reachability(0.0, 0.0, 0.0, 0.0);               // R_S of base pose (x, y, z, theta)
   std::cout << "octoreach " << octoreach::version() << ": " << robot->name() << ", " << arm.dof()
             << " dof, IK position error " << error << " m, capability map " << cap.voxel_count()
-            << " voxels, surface map best R_S " << smap.map().max_value() << "\n";
+            << " voxels, surface map best R_S " << smap.map().max_value() << ", R_S at the origin " << rs << "\n";
   return error < 1e-3 && cap.voxel_count() > 0 && smap.map().max_value() > 0 ? 0 : 1;
 }

@@ -92,6 +92,9 @@ def test_approach_axis_override_and_errors():
         <limit lower="0" upper="0.2" effort="1" velocity="1"/></joint></robot>"""
     with pytest.raises(ValueError, match=r"cannot infer the approach axis of 'l2'.*approach_axis=\(x, y, z\).*--approach-axis X Y Z"):
         Arm.from_links(Robot.from_urdf(slider), "base", "l2")
+    # ... and the axis the message asks for is taken, as a keyword too (nothing is inferred first).
+    given = Arm.resolve(Robot.from_urdf(slider), ("base", "l2"), approach_axis=(1, 0, 0))
+    assert given.reason == "given" and tuple(given.approach_axis) == (1, 0, 0)
 
 
 def test_arm_name_error_lists_the_arms():

@@ -12,7 +12,7 @@ a robot by name and a URDF with STL and DAE meshes (assimp, urdfdom, tinyxml, co
 every map kind (zlib), an OctoMap .bt written and read (OctoMap), an exploration insert with voids (Qhull)
 and next_best_view, `octoreach --help` and `octoreach view --html`. Last, without example-robot-data:
 `import octoreach` works and robots.load says to install the robots extra, whose advice then works.
---extras-line also installs the README's line (every extra) into a second environment. Prints the times
+--extras-line also installs the install page's line (docs/install.md: every extra) into a second environment. Prints the times
 as JSON on the last line; exits non-zero on any failure.
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 #pragma once
 /// \file limits.hpp
 /// \brief Every numeric limit octoreach checks its inputs against, in one place (Python:
-/// `octoreach._core.limits`, a read-only mapping of the same values; the README's limits table).
+/// `octoreach._core.limits`, a read-only mapping of the same values; the limits tables of docs/guides/limits.md).
 ///
 /// A limit is checked before any work or allocation it bounds, at full width (a count is compared
 /// as a 64-bit or wider number before it is narrowed), and an input beyond it raises

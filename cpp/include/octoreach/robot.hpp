@@ -38,7 +38,7 @@ struct Joint {
   double mimic_offset = 0.0;
 };
 
-/// \brief One URDF <visual> element: what a viewer draws of a link.
+/// \brief One URDF `<visual>` element: what a viewer draws of a link.
 struct Visual {
   /// The shape in the link frame, without collision geometry (drawn, never checked); a mesh's file is resolved
   /// as a collision mesh's is, and mesh_path is "" when it could not be found (mesh_uri says which it was).
@@ -100,7 +100,7 @@ struct AllowedCollisionOptions {
 /// came from (Robot::allowed_sources()).
 enum class AllowedSource {
   kAdjacent,        ///< a link and its nearest ancestor with geometry
-  kSrdf,            ///< a <disable_collisions> entry of the SRDF
+  kSrdf,            ///< a `<disable_collisions>` entry of the SRDF
   kNever,           ///< sampled: never in collision over the random configurations
   kAlways,          ///< sampled: always in collision over them
   kDefaultPosture,  ///< sampled: in collision at home()
@@ -264,7 +264,7 @@ class Robot : public std::enable_shared_from_this<Robot> {
                                                    const std::vector<std::pair<int, int>>& pairs,
                                                    std::size_t limit = 8) const;
   /// \brief SRDF text of the model: its groups, end effectors, group states and every allowed pair
-  /// as <disable_collisions> with MoveIt's reason words ("Adjacent", "Never", "Always", "Default", "User";
+  /// as `<disable_collisions>` with MoveIt's reason words ("Adjacent", "Never", "Always", "Default", "User";
   /// "Allowed" for the pairs read from an SRDF).
   std::string srdf_text() const;
   /// \brief srdf_text() written atomically to `path`.

@@ -132,6 +132,10 @@ Pose look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target, double r
 /// Threads: capture() may run from many threads at once (each call takes the next noise stream).
 class DepthCamera {
  public:
+  /// \param width, height image size in pixels
+  /// \param fov horizontal field of view (radians)
+  /// \param max_range metres: no return from farther surfaces
+  /// \param seed seed of the depth noise (each capture draws the next stream of it)
   /// \param noise standard deviation of the depth at 1 m (metres); at depth z it is noise * z^2
   /// (as for structured-light sensors). 0 for exact depths.
   /// \param max_incidence radians: a pixel whose ray meets the surface at a larger angle to its normal

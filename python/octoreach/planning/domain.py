@@ -190,7 +190,7 @@ _ACTION_NAMES = {"move_robot": "move-robot", "inspect_surface": "inspect-surface
 
 @dataclass
 class Solution:
-    """A plan (list of (action, *arguments) tuples with the task's names; None when none was found) and the
+    """A plan (list of ``(action, *arguments)`` tuples with the task's names; None when none was found) and the
     seconds the call took (problem writing, translation and search)."""
 
     plan: list | None
