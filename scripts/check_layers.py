@@ -19,7 +19,7 @@ HEADER_LAYER = {
     "orientation_set": "maps", "capability_map": "maps", "capability_blocks": "maps", "certified_lookup": "maps", "voxel_octree": "maps",
     "point_map": "maps", "pose_map": "maps", "surface": "maps", "surface_map": "maps", "pose_sampler": "maps",
     "map_files": "maps", "map_provenance": "maps", "map_room": "maps", "map_warnings": "maps", "exploration": "exploration",
-    "next_best_view": "exploration",
+    "next_best_view": "exploration", "explorer": "exploration", "view_choice": "exploration",
 }
 # Where a column of the architecture table looks for the names it lists.
 COLUMN_ROOTS = {1: "cpp/include/octoreach", 2: "cpp/src", 3: "bindings", 4: "python/octoreach"}
