@@ -15,9 +15,6 @@ ExplorerSetup setup_from(const py::object& camera, const py::object& search_spac
                          const py::object& options, const std::string& strategy) {
   ExplorerSetup s;
   s.camera = intrinsics_from(camera);
-  RowMatrixXd box = finite_matrix_from(search_space, 3, "search_space");
-  if (box.rows() != 2) throw std::invalid_argument("search_space must have shape (2, 3): lo and hi rows");
-  s.search_space = Aabb{box.row(0).transpose(), box.row(1).transpose()};
   if (!bases.is_none()) s.bases = poses_from(bases, "bases");
   s.reach = reach;
   if (!resolution.is_none()) s.resolution = cast_arg<double>(resolution, "resolution", "a number of metres");
@@ -29,6 +26,10 @@ ExplorerSetup setup_from(const py::object& camera, const py::object& search_spac
     s.options = options.cast<ExploreOptions>();
   }
   s.strategy = strategy_from_name(strategy);
+  // The search space last: every other argument's wrong type is named before a shape is checked.
+  RowMatrixXd box = finite_matrix_from(search_space, 3, "search_space");
+  if (box.rows() != 2) throw std::invalid_argument("search_space must have shape (2, 3): lo and hi rows");
+  s.search_space = Aabb{box.row(0).transpose(), box.row(1).transpose()};
   return s;
 }
 
