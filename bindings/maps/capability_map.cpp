@@ -98,8 +98,8 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
              return cm.solution(vec3_from(point, "point"), orientation);
            }, py::arg("point"), py::arg("orientation"),
            "Stored joint solution of a reachable cell, or None.")
-      .def("quality", [](const CapabilityMap& cm, const Eigen::Vector3d& p, int o) -> py::object {
-             auto q = cm.quality(p, o);
+      .def("quality", [](const CapabilityMap& cm, const py::object& point, int o) -> py::object {
+             auto q = cm.quality(vec3_from(point, "point"), o);
              if (!q) return py::none();
              return py::make_tuple(q->manipulability, q->penalty);
            }, py::arg("point"), py::arg("orientation"),
@@ -116,8 +116,8 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
            "Per voxel of voxels() (D > 0): the mean or the largest quality (manipulability x penalty) of its reachable\n"
            "cells; relative=True divides by the map's best cell (values in [0, 1]). ValueError (saying how to rebuild)\n"
            "for a map without quality.")
-      .def("mixed_cell", [](const CapabilityMap& cm, const Eigen::Vector3d& p, int o) {
-             const std::int64_t r = cm.record_at(p);
+      .def("mixed_cell", [](const CapabilityMap& cm, const py::object& point, int o) {
+             const std::int64_t r = cm.record_at(vec3_from(point, "point"));
              if (o < 0 || o >= cm.orientations().size()) throw std::invalid_argument("orientation index out of range");
              return r >= 0 && cm.record_mixed(static_cast<std::uint32_t>(r), o);
            }, py::arg("point"), py::arg("orientation"),
