@@ -111,6 +111,7 @@ class MapFile:
     header: dict
     raw_size: int
     compressed: bytes
+    sections: bytes = b""  # what follows the payload: a version 2 file's section count and sections, as read
 
     def payload(self) -> bytes:
         return zlib.decompress(self.compressed)
@@ -131,7 +132,7 @@ def read_map(path) -> MapFile:
     raw, size, _crc = struct.unpack_from("<QQI", data, pos)
     pos += 20
     header = dict(line.split("=", 1) for line in text.splitlines() if line)
-    return MapFile(version, kind, header, raw, data[pos:pos + size])
+    return MapFile(version, kind, header, raw, data[pos:pos + size], data[pos + size:])
 
 
 def write_map(path, m: MapFile, payload: bytes | None = None) -> None:
@@ -148,6 +149,7 @@ def write_map(path, m: MapFile, payload: bytes | None = None) -> None:
         f.write(text)
         f.write(struct.pack("<QQI", raw, len(comp), crc & 0xFFFFFFFF))
         f.write(comp)
+        f.write(m.sections)
 
 
 def forge(src, dst, **changes) -> None:
