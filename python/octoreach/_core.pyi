@@ -7,7 +7,7 @@ import numpy
 import numpy.typing
 import types
 import typing
-__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'ArmReport', 'CameraIntrinsics', 'CameraLink', 'Cancelled', 'CapabilityBlocks', 'CapabilityLookup', 'CapabilityMap', 'CapabilityMapOptions', 'Chain', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'HeldJoint', 'InversePointMap', 'MapProvenance', 'MapRoom', 'MapWarning', 'NbvOptions', 'NbvResult', 'Obstacles', 'OrientationSet', 'PairHits', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'SelfCollisionOptions', 'SelfCollisionReport', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'arm_report', 'base_pose', 'camera_link', 'default_reference', 'expect_view', 'exposed_cells', 'find_arms', 'find_camera_link', 'grasp_orientations', 'infer_approach_axis', 'limits', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'missed_cells', 'next_best_view', 'ranks_before', 'score_views', 'self_collision_report', 'set_progress_factory', 'view_gains', 'view_utility', 'visibility_curve', 'void_enclosure']
+__all__: list[str] = ['AllowedCollisionOptions', 'Arm', 'ArmReport', 'CameraIntrinsics', 'CameraLink', 'Cancelled', 'CapabilityBlocks', 'CapabilityLookup', 'CapabilityMap', 'CapabilityMapOptions', 'CertifiedLookup', 'CertifiedLookupOptions', 'Chain', 'ChoiceMemory', 'CostMap', 'DepthCamera', 'ExplorationMap', 'ExploreOptions', 'ExplorerCore', 'HeldJoint', 'InversePointMap', 'MapProvenance', 'MapRoom', 'MapWarning', 'NbvOptions', 'NbvResult', 'NextView', 'Obstacles', 'OrientationSet', 'PairHits', 'PointMapOptions', 'PoseSampler', 'Robot', 'RobotSource', 'Scene', 'ScoredView', 'ScoredViews', 'SelfCollisionOptions', 'SelfCollisionReport', 'Shape', 'Surface', 'SurfaceMap', 'SurfaceMapOptions', 'ViewCandidate', 'ViewChoice', 'ViewGains', 'ViewGainsResult', 'Visual', 'VoidCluster', 'accumulate_utility', 'arm_names', 'arm_report', 'base_pose', 'camera_link', 'choose_view', 'default_reference', 'expect_view', 'exposed_cells', 'find_arms', 'find_camera_link', 'grasp_orientations', 'infer_approach_axis', 'limits', 'link_roles', 'load_any', 'look_at', 'map_format_version', 'map_kind', 'map_kinds', 'missed_cells', 'next_best_view', 'ranks_before', 'score_views', 'self_collision_report', 'set_progress_factory', 'view_gains', 'view_utility', 'visibility_curve', 'void_enclosure']
 class Cancelled(KeyboardInterrupt):
     pass
 class Shape:
@@ -258,6 +258,21 @@ class Chain:
     def upper(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         Upper joint limits (+inf for continuous joints).
+        """
+    @property
+    def jacobian_rank(self) -> int:
+        """
+        Generic rank of the 6 x dof Jacobian (6 for six or more independent joints).
+        """
+    def joint_limit_penalty(self, q: typing.Any) -> float:
+        """
+        Joint-limit penalty of q in [0, 1] (Tsai; Vahrenkamp et al.): 1 - exp(-4^n prod (q - l)(u - q) / (u - l)^2)
+        over the n bounded joints; 1 - 1/e in the middle of every range, 0 at a limit.
+        """
+    def manipulability(self, q: typing.Any, rank: typing.Any = None) -> float:
+        """
+        Yoshikawa's manipulability of q: sqrt(det(J J^T)), the product of the Jacobian's singular values; for a chain
+        of Jacobian rank r < 6 (rank None: jacobian_rank) the product of its r largest.
         """
 class AllowedCollisionOptions:
     """
@@ -930,6 +945,48 @@ class CapabilityMap:
         One line when the map looks suspicious (its best voxel reaches few approach directions:
         something blocks the wrist), with what to try; '' otherwise. Builds emit it as a MapWarning.
         """
+    @property
+    def has_cell_data(self) -> bool:
+        """
+        True when the map marks its mixed cells (format 2; CertifiedLookup needs it).
+        """
+    @property
+    def has_quality(self) -> bool:
+        """
+        True when the map keeps a quality per reachable cell (built with solutions).
+        """
+    @property
+    def jacobian_rank(self) -> int:
+        """
+        Jacobian rank the manipulability was computed with (0: unknown).
+        """
+    @property
+    def max_quality(self) -> float:
+        """
+        Largest cell quality of the map (0: none).
+        """
+    @property
+    def reference(self) -> typing.Any:
+        """
+        Robot configuration the map was built at (None for older files).
+        """
+    def mixed_cell(self, point: typing.Any, orientation: typing.SupportsInt | typing.SupportsIndex) -> bool:
+        """
+        True when cell (point, orientation) is mixed: IK at its centre fails but a configuration reaches a pose
+        inside it.
+        """
+    def quality(self, point: typing.Any, orientation: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
+        """
+        (manipulability, joint-limit penalty) of the stored solution of reachable cell (point, orientation), or
+        None when the cell is not reachable; their product is the cell's quality. ValueError (saying how to
+        rebuild) for a map without quality.
+        """
+    def voxel_quality(self, how: str = 'mean', relative: bool = False) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Per voxel of voxels() (D > 0): the mean or the largest quality (manipulability x penalty) of its reachable
+        cells; relative=True divides by the map's best cell (values in [0, 1]). ValueError (saying how to rebuild)
+        for a map without quality.
+        """
 class CapabilityBlocks:
     """
     The block build of a capability map (block_size voxels per block edge, default 16): one FK sampling
@@ -1066,6 +1123,15 @@ class PointMapOptions:
     @z_range.setter
     def z_range(self, arg1: typing.Any) -> None:
         ...
+    @property
+    def quality_weight(self) -> bool:
+        """
+        R_P weights each reachable grasp by its cell's quality relative to the capability map's best
+        cell (needs a map with quality); False: the paper's R_P, each grasp counts 1.
+        """
+    @quality_weight.setter
+    def quality_weight(self, arg0: bool) -> None:
+        ...
 class InversePointMap:
     """
     Inverse point map: R_P of base poses (x, y, z, theta) of a reference frame around a target at the origin.
@@ -1167,6 +1233,11 @@ class InversePointMap:
     @property
     def voxel_count(self) -> int:
         ...
+    @property
+    def weight(self) -> str:
+        """
+        'quality' when R_P weights grasps by their cells' quality, else ''.
+        """
 class Surface:
     """
     A flat working surface: a planar polygon (3D vertices, world frame, convex or not, any height and tilt)
@@ -1326,6 +1397,16 @@ class SurfaceMapOptions:
     @z_range.setter
     def z_range(self, arg1: typing.Any) -> None:
         ...
+    @property
+    def quality_weight(self) -> bool:
+        """
+        R_P weights each valid grasp by its cell's quality relative to the capability map's best cell, so
+        R_S and the sampler prefer base poses reached away from joint limits and singularities (needs a
+        map with quality); False: the paper's R_S, each grasp counts 1.
+        """
+    @quality_weight.setter
+    def quality_weight(self, arg0: bool) -> None:
+        ...
 class SurfaceMap:
     """
     Surface inverse reachability map: R_S of base poses (x, y, z, theta) of the reference frame, world frame.
@@ -1441,6 +1522,11 @@ class SurfaceMap:
         """
         One line when the build looks suspicious (the surface at the edge of the arm's reach), with
         what to try; '' otherwise and for a loaded map. Builds emit it as a MapWarning.
+        """
+    @property
+    def weight(self) -> str:
+        """
+        'quality' when R_P weights grasps by their cells' quality, else ''.
         """
 class CostMap:
     """
@@ -1795,6 +1881,11 @@ class ExplorationMap:
     def void_pass_probability(self) -> float:
         """
         p of the visibility model for void cells (prior: pass_probability).
+        """
+    @property
+    def sealed_void_cell_count(self) -> int:
+        """
+        void cells no view can reveal (their void component touches only occupied cells)
         """
 class NbvOptions:
     """
@@ -2190,6 +2281,18 @@ class ExploreOptions:
     @unexposed_share.setter
     def unexposed_share(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+    @staticmethod
+    def paper_stop() -> ExploreOptions:
+        """
+        The paper's stop rule: the first chosen view with utility 0 (min_utility 0,
+        patience 1).
+        """
+    def stop_threshold(self, camera: typing.Any, resolution: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        min_utility, or when it is None the void cells a view must be expected to see to be worth taking:
+        score_width x score_height x resolution / camera.max_range (the cells its score rays would meet if one
+        cell in every max_range / resolution cells along them were void).
+        """
 class ViewGains:
     """
     What a camera pose is expected to see (the visibility model of next_best_view).
@@ -2831,4 +2934,167 @@ def self_collision_report(robot: Robot, options: typing.Any = None, progress: ty
     """
     How often configurations drawn uniformly inside the joint limits are free of self-collision, and how often
     each checked pair collides; keywords set SelfCollisionOptions fields (samples, seed, joints, reference).
+    """
+class ChoiceMemory:
+    """
+    What the exploration loop remembers between choices of a view (plain data, copyable).
+    """
+    def __copy__(self) -> ChoiceMemory:
+        ...
+    def __init__(self) -> None:
+        ...
+    @property
+    def choices(self) -> int:
+        """
+        views chosen so far
+        """
+    @choices.setter
+    def choices(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def failed_views(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (N, 3) cameras of views chosen and not taken: no view is chosen near them again
+        """
+    @failed_views.setter
+    def failed_views(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def low_views(self) -> int:
+        """
+        chosen views in a row with utility <= min_utility
+        """
+    @low_views.setter
+    def low_views(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class ViewChoice:
+    """
+    choose_view's answer: the view, its utility and the stop decision.
+    """
+    @property
+    def aimed(self) -> bool:
+        """
+        found by a look aimed at void cells
+        """
+    @property
+    def base(self) -> int:
+        """
+        index of the base the view is taken from
+        """
+    @property
+    def candidates(self) -> int:
+        """
+        poses scored
+        """
+    @property
+    def found(self) -> bool:
+        """
+        a valid view was found
+        """
+    @property
+    def harder(self) -> bool:
+        """
+        found by the looks before a low view
+        """
+    @property
+    def search(self) -> NbvResult:
+        """
+        frontier_void: next_best_view's answer from the chosen base
+        """
+    @property
+    def stop(self) -> bool:
+        """
+        the loop ends here
+        """
+    @property
+    def stop_reason(self) -> str:
+        """
+        why it ends ('' when it goes on)
+        """
+    @property
+    def utility(self) -> float:
+        """
+        the gain the stop rule looks at
+        """
+    @property
+    def valid(self) -> int:
+        """
+        of them valid
+        """
+    @property
+    def view(self) -> typing.Any:
+        """
+        the view (ViewCandidate: pose, q, gains) or None
+        """
+class NextView:
+    """
+    Explorer.next_view()'s answer: the view to take next, or why to stop.
+    """
+    @property
+    def base(self) -> int:
+        """
+        index of the base pose to drive to
+        """
+    @property
+    def base_pose(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def camera_pose(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        4x4 camera -> map
+        """
+    @property
+    def choice(self) -> ViewChoice:
+        """
+        choose_view's whole answer (ViewChoice)
+        """
+    @property
+    def expected_gain(self) -> float:
+        """
+        what the stop rule looks at (expected void cells)
+        """
+    @property
+    def q(self) -> typing.Any:
+        """
+        chain joints, or None
+        """
+    @property
+    def stop(self) -> bool:
+        ...
+    @property
+    def stop_reason(self) -> str:
+        ...
+class ExplorerCore:
+    """
+    An exploration session (octoreach.exploration.Explorer wraps it): the map, the loop's memory,
+    integrate clouds or depth images, ask for the next view.
+    """
+    def __init__(self, camera: typing.Any, search_space: typing.Any, bases: typing.Any = None, reach: typing.SupportsFloat | typing.SupportsIndex = 0.0, resolution: typing.Any = None, void_fit_threshold: typing.Any = None, options: typing.Any = None, strategy: str = 'frontier_void') -> None:
+        ...
+    def integrate(self, points: typing.Any, camera_pose: typing.Any) -> dict:
+        ...
+    def integrate_depth(self, depth: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], camera_pose: typing.Any) -> dict:
+        ...
+    def next_view(self) -> NextView:
+        ...
+    def view_failed(self) -> None:
+        ...
+    @property
+    def current_base(self) -> int:
+        ...
+    @property
+    def map(self) -> ExplorationMap:
+        ...
+    @property
+    def memory(self) -> ChoiceMemory:
+        ...
+    @property
+    def views(self) -> int:
+        ...
+def choose_view(map: ExplorationMap, camera: typing.Any, bases: typing.Any, current: typing.SupportsInt | typing.SupportsIndex, options: ExploreOptions, memory: ChoiceMemory, strategy: str = 'frontier_void', reach: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> ViewChoice:
+    """
+    The exploration loop's whole choice of the next view from any of `bases` ((N, 4, 4) chain base -> map;
+    the current one first): the search, the second looks, the last chance and the stop decision, with
+    options (ExploreOptions; its search's chain carries the camera). `reach` (m, with a chain and no
+    workspace): the camera stays that near each base. Updates `memory` (ChoiceMemory). Returns ViewChoice.
     """

@@ -29,7 +29,8 @@ def _contents(data: bytes) -> tuple:
     text = data[at + 4:at + 4 + text_len]
     at += 4 + text_len
     header = [line for line in text.split(b"\n") if not line.startswith(b"octoreach_version=")]
-    return kind, header, data[at:at + 16], data[at + 20:]
+    compressed = struct.unpack_from("<Q", data, at + 8)[0]  # a format-2 file's sections follow the payload
+    return kind, header, data[at:at + 16], data[at + 20:at + 20 + compressed]
 
 
 @pytest.fixture(scope="module")

@@ -63,7 +63,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
         raise ValueError("nothing to view: give a map file (.orsm, .orcm), a .bt file, a map object, a robot or a room")
     v = Viewer(port=port, host=host, verbose=verbose)
     try:
-        _show(v, loaded, robot, q, joints, samples, seed, steps, surface, room)
+        _show(v, loaded, robot, q, joints, samples, seed, steps, surface, room, colour_by)
         if html:
             print(f"octoreach: wrote {v.save_html(html)}", flush=True)
         if png:
@@ -76,7 +76,7 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
     return v
 
 
-def _show(v: Viewer, loaded, robot, q, joints, samples, seed, steps, surface, room) -> None:
+def _show(v: Viewer, loaded, robot, q, joints, samples, seed, steps, surface, room, colour_by) -> None:
     for kind, obj in loaded:
         if kind == "surface_map":
             v.add_surface_map(obj, robot=robot, samples=samples, seed=seed, q=q, surface=surface, room=room)
