@@ -121,10 +121,11 @@ def test_ctrl_c_stops_depth_capture():
 scene = o.Scene()
 scene.add_box([2, -3, 0], [2.2, 3, 2])
 cam = o.DepthCamera({side}, {side}, 1.5, 4.0)
-pose = o._core.look_at([0, 0, 1], [2, 0, 1])
+away = o._core.look_at([0, 0, 1], [-2, 0, 1])  # every ray misses: the calls return nothing, so the time
+pose = o._core.look_at([0, 0, 1], [2, 0, 1])   # between them (where Python itself would take the signal) is nil
 """, """
 while True:
-    cam.capture(scene, pose)
+    cam.capture(scene, away)
 """, """
 assert len(o.DepthCamera(32, 24, 1.0, 4.0).capture(scene, pose)) > 0
 assert cam.width == 4096
