@@ -90,7 +90,7 @@ class Explorer:
             return self._core.integrate_depth(depth, camera_pose)
         return self._core.integrate(points, camera_pose)
 
-    def next_view(self) -> _core.NextView:
+    def next_view(self):
         """The next view to take, or why to stop (NextView)."""
         return self._core.next_view()
 
@@ -99,7 +99,7 @@ class Explorer:
         self._core.view_failed()
 
     @staticmethod
-    def choice(view: _core.NextView) -> Choice:
+    def choice(view) -> Choice:
         """The loop's Choice of a NextView (its gains; stop and stop_reason the NextView's)."""
         c = _choice_of(view.choice)
         c.stop, c.stop_reason = view.stop, view.stop_reason
