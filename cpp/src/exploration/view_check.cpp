@@ -220,6 +220,8 @@ void ExploreOptions::validate() const {
 }
 
 double ExploreOptions::stop_threshold(const CameraIntrinsics& camera, double resolution) const {
+  if (!(resolution > 0) || !std::isfinite(resolution))
+    throw std::invalid_argument("resolution must be a positive finite number of metres, got " + std::to_string(resolution));
   if (min_utility) return *min_utility;
   return double(search.score_width) * double(search.score_height) * resolution / camera.max_range;
 }
