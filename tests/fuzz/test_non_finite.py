@@ -30,6 +30,10 @@ VALID = {
     ("CostMap.__init__", "origin"): np.array([0.0, 0.0]),
     ("Scene.add_closed_box", "face"): "-x",
     ("Chain.ik", "seed"): "zeros",
+    ("choose_view", "bases"): np.eye(4)[None],
+    ("choose_view", "current"): 0,
+    ("choose_view", "options"): o.ExploreOptions(),
+    ("choose_view", "memory"): _core.ChoiceMemory(),
 }
 
 
