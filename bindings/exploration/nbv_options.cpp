@@ -111,6 +111,14 @@ void wrap_search_options(py::module_& m) {
               throw std::invalid_argument("unknown_pass_probability must be in [0, 1] or None, got " + std::to_string(v));
             o.unknown_pass_probability = v;
           }, "p of the visibility model (chance that an unknown cell lets a ray through); None: learned by the map")
+      .def_property("aiming", [](const NbvOptions& o) { return std::string(aiming_name(o.aiming)); },
+                    [](NbvOptions& o, const std::string& a) { o.aiming = aiming_from_name(a); },
+                    "how a chain's camera is placed: 'auto' (the default: 'look_at' for a chain of fewer than 5\n"
+                    "joints, such as a pan/tilt head, else 'pose'), 'pose' (IK of each candidate's position and\n"
+                    "optical axis) or 'look_at' (the chain aims the optical axis at void or frontier cells; the\n"
+                    "position follows)")
+      .def_readwrite("look_at_tolerance", &NbvOptions::look_at_tolerance,
+                     "aiming 'look_at': radians an aimed optical axis may miss its target by")
       .def_readwrite("unknown_is_obstacle", &NbvOptions::unknown_is_obstacle,
                      "safe views: unknown cells of the map's search space are obstacles for the arm and the camera")
       .def_readwrite("unknown_margin", &NbvOptions::unknown_margin,

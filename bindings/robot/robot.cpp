@@ -24,19 +24,35 @@ std::vector<std::string> link_names(const Robot& r, const std::vector<int>& link
   return out;
 }
 
+// A path (str or os.PathLike such as pathlib.Path) or XML text; TypeError naming `what` otherwise.
+std::string path_or_text(const py::object& o, const char* what) {
+  if (py::isinstance<py::str>(o)) return o.cast<std::string>();
+  if (py::hasattr(o, "__fspath__")) {
+    const py::object p = o.attr("__fspath__")();
+    if (py::isinstance<py::str>(p)) return p.cast<std::string>();
+  }
+  throw py::type_error(std::string(what) + " must be a path (str or os.PathLike) or an XML string, got " + type_name(o));
+}
+
 // Model queries: names, limits, configurations, chains, link poses.
 void wrap_robot_model(py::class_<Robot, std::shared_ptr<Robot>>& c) {
-  c.def_static("from_urdf", [](const std::string& urdf, const std::vector<std::string>& package_dirs,
+  c.def_static("from_urdf", [](const py::object& urdf_arg, const py::object& package_dir_args,
                                const py::object& srdf, const py::object& srdf_mismatch) {
-          const std::string text = srdf.is_none() ? "" : cast_arg<std::string>(srdf, "srdf", "a path or XML string (str)");
+          const std::string urdf = path_or_text(urdf_arg, "urdf");
+          std::vector<std::string> package_dirs;
+          if (py::isinstance<py::str>(package_dir_args) || !py::isinstance<py::iterable>(package_dir_args))
+            throw py::type_error("package_dirs must be a list of paths, got " + type_name(package_dir_args));
+          for (const py::handle d : package_dir_args)
+            package_dirs.push_back(path_or_text(py::reinterpret_borrow<py::object>(d), "package_dirs entry"));
+          const std::string text = srdf.is_none() ? "" : path_or_text(srdf, "srdf");
           if (srdf_mismatch.is_none()) return Robot::from_urdf(urdf, package_dirs, text);  // the C++ default
           const auto m = cast_arg<std::string>(srdf_mismatch, "srdf_mismatch", "'error' or 'leave_out'");
           if (m != "error" && m != "leave_out")
             throw py::value_error("srdf_mismatch must be 'error' or 'leave_out', got '" + m + "'");
           return Robot::from_urdf(urdf, package_dirs, text, m == "error" ? SrdfMismatch::kError : SrdfMismatch::kLeaveOut);
-        }, py::arg("urdf"), py::arg("package_dirs") = std::vector<std::string>{}, py::arg("srdf") = py::none(),
+        }, py::arg("urdf"), py::arg("package_dirs") = py::tuple(), py::arg("srdf") = py::none(),
         py::arg("srdf_mismatch") = py::none(),
-        "Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through\n"
+        "Robot from a URDF file path (str or os.PathLike) or XML string. package:// and file:// mesh URIs are resolved through\n"
         "package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs. srdf_mismatch: SRDF\n"
         "groups and end effectors that name links, joints or groups the URDF lacks are an error ('error', the\n"
         "default) or left out ('leave_out', as MoveIt does; srdf_left_out says which).")

@@ -13,11 +13,12 @@ def _link(name: str, geometry: str = "", xyz=(0, 0, 0), rpy=(0, 0, 0)) -> str:
     return f'  <link name="{name}"><collision>{origin}<geometry>{geometry}</geometry></collision></link>\n'
 
 
-def _joint(name: str, kind: str, parent: str, child: str, xyz=(0, 0, 0), axis=(0, 0, 1), limits=(-3.0, 3.0)) -> str:
+def _joint(name: str, kind: str, parent: str, child: str, xyz=(0, 0, 0), axis=(0, 0, 1), limits=(-3.0, 3.0),
+           rpy=(0, 0, 0)) -> str:
     lim = f'<limit lower="{limits[0]}" upper="{limits[1]}" effort="10" velocity="1"/>' if kind != "fixed" else ""
     ax = f'<axis xyz="{" ".join(map(str, axis))}"/>' if kind != "fixed" else ""
     return (f'  <joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
-            f'<origin xyz="{" ".join(map(str, xyz))}"/>{ax}{lim}</joint>\n')
+            f'<origin xyz="{" ".join(map(str, xyz))}" rpy="{" ".join(map(str, rpy))}"/>{ax}{lim}</joint>\n')
 
 
 def cyl(radius: float, length: float) -> str:
@@ -31,9 +32,14 @@ def box(x: float, y: float, z: float) -> str:
 X = (0, 1.5708, 0)  # a cylinder along x
 
 
+# A ROS optical frame: +z forward (along the camera link's +x), +x right, +y down.
+OPTICAL_RPY = (-1.5708, 0, -1.5708)
+
+
 def urdf(name: str = "own_robot", bad_elbow: bool = False, head: bool = True, camera: bool = True,
-         extra_cameras: bool = False) -> str:
-    """The robot's URDF text (see the module docstring)."""
+         extra_cameras: bool = False, optical: bool = False) -> str:
+    """The robot's URDF text (see the module docstring); `optical`: camera_optical_frame is turned as a ROS
+    optical frame (+z along the camera's view), else it is camera_link's frame."""
     parts = [_link("base_footprint"), _link("base_link", box(0.5, 0.5, 0.3), (0, 0, 0.15)),
              _joint("base_joint", "fixed", "base_footprint", "base_link"),
              _link("torso_link", box(0.16, 0.16, 0.5), (0, 0, 0.25)),
@@ -74,7 +80,8 @@ def urdf(name: str = "own_robot", bad_elbow: bool = False, head: bool = True, ca
         if camera:
             parts += [_link("camera_link"), _joint("camera_fixed", "fixed", "head_tilt_link", "camera_link", (0.07, 0, 0.02)),
                       _link("camera_optical_frame"),
-                      _joint("camera_optical_fixed", "fixed", "camera_link", "camera_optical_frame")]
+                      _joint("camera_optical_fixed", "fixed", "camera_link", "camera_optical_frame",
+                             rpy=OPTICAL_RPY if optical else (0, 0, 0))]
     if extra_cameras:  # a rear camera on the base and one on the gripper: two bodies, neither on a head
         parts += [_link("rear_camera_link"), _joint("rear_camera_fixed", "fixed", "base_link", "rear_camera_link", (-0.25, 0, 0.2)),
                   _link("wrist_camera_link"), _joint("wrist_camera_fixed", "fixed", "gripper_link", "wrist_camera_link", (0, 0, 0.03))]

@@ -63,6 +63,17 @@ const char* gain_name(NbvGain g);
 /// \brief The gain of a name; \throws std::invalid_argument naming the three choices.
 NbvGain gain_from_name(const std::string& name);
 
+/// \brief How the search places a camera its chain carries.
+enum class CameraAiming {
+  Auto,    ///< LookAt for a chain of fewer than 5 joints (a camera position and optical axis are 5 constraints), else Pose
+  Pose,    ///< IK of each candidate pose's position and optical axis (any roll): the camera goes where the search says
+  LookAt,  ///< the chain aims the optical axis (+z) at target points (void or frontier cells); the position follows
+};
+/// \brief "auto", "pose" or "look_at".
+const char* aiming_name(CameraAiming a);
+/// \brief The aiming of a name; \throws std::invalid_argument naming the three choices.
+CameraAiming aiming_from_name(const std::string& name);
+
 /// \brief Where the sensor can be (map frame). Empty: everywhere.
 struct SensorWorkspace {
   std::optional<Aabb> box;                                  ///< sensor positions inside this box
@@ -119,6 +130,12 @@ struct NbvOptions {
   /// does not move are not tested against the map: they do not move with the view, and a base standing on
   /// the floor touches the floor's cells in every configuration.
   bool arm_collisions = true;
+  /// How views of a chain's camera are found: Auto (the default) aims a chain of fewer than 5 joints (a pan/tilt
+  /// head, a torso lift under it) at target points and places the camera of any other by IK (looks_at).
+  CameraAiming aiming = CameraAiming::Auto;
+  /// LookAt: radians an aimed optical axis may miss its target by (a head at a joint limit still sees a target
+  /// this near the image centre; the aim solver's own tolerance is 1 mrad).
+  double look_at_tolerance = 0.1;
   /// Capability map of the arm carrying the camera (positions in its base link frame): candidate
   /// cells whose voxel has reachability index D <= min_reachability are pruned before any IK.
   const CapabilityMap* capability_map = nullptr;
@@ -162,6 +179,10 @@ struct NbvOptions {
   /// computer tower is exposed). 1: no such weight (the paper's count).
   double unexposed_weight = 1.0;
 };
+
+/// \brief True when the search aims options.chain at target points (CameraAiming::LookAt, or Auto and a chain of
+/// fewer than 5 joints); false without a chain.
+bool looks_at(const NbvOptions& options);
 
 /// \brief What one camera pose sees under the visibility model (see the file comment).
 struct ViewGains {

@@ -12,6 +12,7 @@
 #include "common/thread_pool.hpp"
 #include "exploration/exploration_state.hpp"
 #include "exploration/grid_ray.hpp"
+#include "exploration/look_at_views.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/robot.hpp"
@@ -350,6 +351,7 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   auto t0 = Clock::now();
   detail::validate_options(cam, opt);
   auto guard = detail::read_guard(map);
+  if (looks_at(opt)) return detail::look_at_search(map, cam, opt);  // the chain aims its camera at targets
   NbvResult r;
   r.gain = opt.gain;
   const detail::ScoreModel model = detail::score_model(map, opt);

@@ -4,7 +4,10 @@
 #include <random>
 #include <stdexcept>
 
+#include "exploration/exploration_state.hpp"
+#include "exploration/look_at_views.hpp"
 #include "exploration/view_choice_parts.hpp"
+#include "exploration/view_score.hpp"
 #include "octoreach/simulation.hpp"
 
 namespace octoreach::detail {
@@ -47,6 +50,16 @@ std::vector<Pose> sample_poses(std::mt19937_64& rng, const NbvOptions& opt, cons
   return out;
 }
 
+// `n` uniform random points of the search space (a look-at camera's targets).
+std::vector<Eigen::Vector3d> sample_targets(std::mt19937_64& rng, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                            int n) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Eigen::Vector3d> out(std::size_t(std::max(n, 0)));
+  for (auto& p : out)
+    for (int k = 0; k < 3; ++k) p[k] = lo[k] + u(rng) * (hi[k] - lo[k]);
+  return out;
+}
+
 NbvGain score_gain(ViewStrategy s) {
   return s == ViewStrategy::Frontiers ? NbvGain::Frontiers
          : s == ViewStrategy::Unknown ? NbvGain::Unknown
@@ -69,11 +82,20 @@ ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStra
     opt.gain = score_gain(strategy);
     opt.enclosure_power = plain.enclosure_power;
     opt.unexposed_weight = plain.unexposed_weight;
-    const std::vector<Pose> poses = sample_poses(rng, opt, s_lo, s_hi, ctx.options.sampled_poses,
-                                                 ctx.options.min_camera_height);
-    if (poses.empty()) continue;
-    const ScoredViews views = score_views(ctx.map, ctx.camera, poses, opt, false);
-    scored += poses.size();
+    ScoredViews views;
+    if (looks_at(opt)) {  // the chain aims its camera at uniform random points of the search space
+      const std::vector<Eigen::Vector3d> targets = sample_targets(rng, s_lo, s_hi, ctx.options.sampled_poses);
+      auto guard = read_guard(ctx.map);
+      const ViewChecker checker(ctx.map, opt);
+      views = look_at_views(ctx.map, ctx.camera, targets, opt, checker, score_model(ctx.map, opt), targets.size()).scored;
+      scored += targets.size();
+    } else {
+      const std::vector<Pose> poses = sample_poses(rng, opt, s_lo, s_hi, ctx.options.sampled_poses,
+                                                   ctx.options.min_camera_height);
+      if (poses.empty()) continue;
+      views = score_views(ctx.map, ctx.camera, poses, opt, false);
+      scored += poses.size();
+    }
     const ScoredView* first = nullptr;
     for (const ScoredView& v : views.views)
       if (v.valid()) {

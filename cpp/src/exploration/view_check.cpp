@@ -74,6 +74,9 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
     throw std::invalid_argument("ik_position_tolerance and ik_orientation_tolerance must be positive finite numbers, "
                                 "got " + std::to_string(opt.ik.position_tolerance) + " and " +
                                 std::to_string(opt.ik.orientation_tolerance));
+  if (!(opt.look_at_tolerance > 0 && opt.look_at_tolerance < kPi))
+    throw std::invalid_argument("look_at_tolerance must be a number of radians in (0, pi), got " +
+                                std::to_string(opt.look_at_tolerance));
   if (opt.score_width <= 0 || opt.score_height <= 0)
     throw std::invalid_argument("score_width and score_height must be positive");
   if (std::uint64_t(opt.score_width) * std::uint64_t(opt.score_height) > limits::kImagePixels)
@@ -179,21 +182,48 @@ ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t se
   o.seed = ik_.seed + seed_offset;
   auto q = opt_.chain->ik(base_inv_ * pose, o);
   if (!q) return ViewStatus::NoIk;
+  const ViewStatus st = arm_clear(*q);
+  if (st != ViewStatus::Valid) return st;
+  q_out = *q;
+  pose = opt_.chain_base * opt_.chain->fk(*q);  // the roll the arm actually reaches
+  return ViewStatus::Valid;
+}
+
+ViewStatus ViewChecker::arm_clear(const Eigen::VectorXd& q) const {
   // The links the arm moves against the map's occupied (and, safe views, unknown) cells; the robot against itself.
   if (obstacles_ || ground_) {
-    const Eigen::VectorXd q_robot = opt_.chain->to_robot_configuration(*q, reference_);
+    const Eigen::VectorXd q_robot = opt_.chain->to_robot_configuration(q, reference_);
     if (obstacles_ &&
         opt_.chain->robot().in_collision(q_robot, *obstacles_, robot_root_, /*check_self=*/true, &moved_links_))
       return ViewStatus::ArmCollision;
     if (ground_ && opt_.chain->robot().in_collision(q_robot, *ground_, robot_root_, false, &moved_links_))
       return ViewStatus::ArmCollision;
   }
-  q_out = *q;
-  pose = opt_.chain_base * opt_.chain->fk(*q);  // the roll the arm actually reaches
   return ViewStatus::Valid;
 }
 
 }  // namespace detail
+
+const char* aiming_name(CameraAiming a) {
+  switch (a) {
+    case CameraAiming::Auto: return "auto";
+    case CameraAiming::Pose: return "pose";
+    case CameraAiming::LookAt: return "look_at";
+  }
+  return "?";
+}
+
+CameraAiming aiming_from_name(const std::string& name) {
+  for (CameraAiming a : {CameraAiming::Auto, CameraAiming::Pose, CameraAiming::LookAt})
+    if (name == aiming_name(a)) return a;
+  throw std::invalid_argument("unknown aiming '" + name + "'; choose one of auto, pose, look_at");
+}
+
+bool looks_at(const NbvOptions& o) {
+  if (!o.chain) return false;
+  // 3 position and 2 axis constraints place a camera (any roll): fewer joints can only aim it
+  return o.aiming == CameraAiming::LookAt || (o.aiming == CameraAiming::Auto && o.chain->dof() < 5);
+}
 
 void ExploreOptions::validate() const {
   const auto bad = [](const std::string& what, const std::string& got) {

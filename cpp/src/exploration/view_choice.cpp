@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "exploration/exploration_state.hpp"
+#include "exploration/look_at_views.hpp"
 #include "exploration/view_choice_parts.hpp"
 #include "exploration/view_score.hpp"
 #include "exploration/void_aims.hpp"
@@ -99,6 +100,17 @@ ViewChoice aimed_choice(const ChoiceContext& ctx, int i, std::uint64_t seed, Loo
   req.distance = distance;
   req.min_height = ctx.options.min_camera_height;
   req.seed = seed;
+  if (looks_at(opt)) {  // the chain aims its camera at the void cells themselves
+    auto guard = detail::read_guard(ctx.map);
+    const std::size_t cells = look == Look::Sight ? n : std::min(n, std::size_t(ctx.options.max_ray_cells));
+    const auto targets = detail::look_at_targets(ctx.map, NbvGain::FrontierVoid, cells, unexposed_share, seed);
+    if (targets.empty()) return ViewChoice{};
+    const detail::ScoreModel model = detail::score_model(ctx.map, opt);
+    const detail::ViewChecker checker(ctx.map, opt);
+    const detail::LookAtViews found =
+        detail::look_at_views(ctx.map, ctx.camera, targets, opt, checker, model, targets.size());
+    return ctx.best_of(found.scored, targets.size(), i, key, true);
+  }
   std::vector<Pose> poses;
   {
     auto guard = detail::read_guard(ctx.map);

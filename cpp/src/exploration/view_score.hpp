@@ -83,6 +83,9 @@ class ViewChecker {
   // IK (seed ik.seed + seed_offset) and the arm's collision check; on success the pose becomes the
   // one the arm reaches and q is set. Needs a chain.
   ViewStatus reach(Pose& pose, Eigen::VectorXd& q, std::size_t seed_offset) const;
+  // The arm's collision check of joints q (the links it moves against the map, the robot against itself).
+  // Needs a chain.
+  ViewStatus arm_clear(const Eigen::VectorXd& q) const;
   // Unknown cells of the search space turned into obstacles (0 without unknown_is_obstacle).
   std::size_t unknown_obstacle_cells() const { return unknown_cells_; }
 

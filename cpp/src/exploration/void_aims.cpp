@@ -35,8 +35,9 @@ struct Stream {
 
 std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return Stream(a * 0x2545F4914F6CDD1DULL ^ b).next(); }
 
-// The void cells the rays leave from (see AimRequest), in a deterministic order.
-std::vector<CellKey> origins(const ExplorationState& S, const AimRequest& req) {
+}  // namespace
+
+std::vector<CellKey> draw_void_cells(const ExplorationState& S, const AimRequest& req) {
   std::vector<CellKey> all(S.void_set.begin(), S.void_set.end());
   std::sort(all.begin(), all.end());
   Stream rng(mix(req.seed, 1));
@@ -64,6 +65,8 @@ std::vector<CellKey> origins(const ExplorationState& S, const AimRequest& req) {
   return out;
 }
 
+namespace {
+
 struct Eye {
   Eigen::Vector3d at;
   CellKey cell;
@@ -75,7 +78,7 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
                                const AimRequest& req) {
   const ExplorationState& S = state(map);
   if (S.void_set.empty() || req.poses == 0 || req.directions <= 0) return {};
-  const std::vector<CellKey> from = origins(S, req);
+  const std::vector<CellKey> from = draw_void_cells(S, req);
   const double res = map.resolution();
   const Eigen::Vector3d s_lo = map.options().search_lo, s_hi = map.options().search_hi;
   const Pose cap_inv = opt.capability_base.inverse();
@@ -145,7 +148,7 @@ std::vector<Pose> aim_along_sight(const ExplorationMap& map, const NbvOptions& o
   if (S.void_set.empty() || req.poses == 0) return {};
   AimRequest draw = req;
   draw.every_cell = false;
-  const std::vector<CellKey> from = origins(S, draw);
+  const std::vector<CellKey> from = draw_void_cells(S, draw);
   const double res = map.resolution();
   std::vector<Pose> out;
   const GridReader g(S.grid);

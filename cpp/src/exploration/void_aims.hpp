@@ -10,6 +10,7 @@
 namespace octoreach::detail {
 
 class ViewChecker;
+struct ExplorationState;
 
 // Which void cells to aim at and how many rays to walk out of each.
 struct AimRequest {
@@ -26,6 +27,10 @@ struct AimRequest {
   double min_height = 0.05;                      // eyes stay above this height (map frame z)
   std::uint64_t seed = 0;
 };
+
+// The void cells a request aims at (req.cells of them, exposed ones first, or every cell with
+// req.every_cell, at most req.max_cells), in a deterministic order for req.seed.
+std::vector<CellKey> draw_void_cells(const ExplorationState& S, const AimRequest& req);
 
 // Poses (camera -> map) looking from an eye at a void cell. The eye is found along a ray out of the cell:
 // the ray crosses unknown cells, then observed-free ones (unknown cells outside the search space count as

@@ -1,0 +1,101 @@
+"""Exploration with a pan/tilt head: a robot written here (own_robot.py: mobile base, torso lift, 6-DOF arm,
+pan/tilt head whose camera_optical_frame is a ROS optical frame, no SRDF) explores a table with two open boxes
+with its head camera. The head (torso lift + pan + tilt: 3 joints) cannot place its camera, so the search aims it
+at void cells (look-at); the exploration stops by itself. Coarse map, small images."""
+import os
+import sys
+
+import numpy as np
+import pytest
+
+from octoreach import DepthCamera, Robot, Scene
+from octoreach import exploration as ex
+from octoreach.testing.oracle import observable_cells
+
+sys.path.insert(0, os.path.dirname(__file__))
+from own_robot import urdf  # noqa: E402
+
+RESOLUTION = 0.04
+SETTINGS = dict(max_valid_poses=30, max_candidate_cells=200, aimed_poses=120, low_aimed_poses=120, last_poses=300,
+                score_size=(24, 18), max_views=25, resolution=RESOLUTION, seed=0)
+
+
+def _camera() -> DepthCamera:
+    return DepthCamera(64, 48, np.deg2rad(58.0), 3.0, seed=1)
+
+
+def _table_scene() -> Scene:
+    """A table (top 0.45 m high) 0.45-1.15 m in front of the robot with two open boxes on it."""
+    s = Scene()
+    s.add_box((-2, -2, -0.05), (2, 2, 0.0))
+    s.add_box((0.45, -0.5, 0.41), (1.15, 0.5, 0.45))  # table top
+    for x, y in ((0.47, -0.48), (1.09, -0.48), (0.47, 0.44), (1.09, 0.44)):
+        s.add_box((x, y, 0.0), (x + 0.04, y + 0.04, 0.41))  # legs
+    s.add_crate((0.55, -0.42, 0.45), (0.85, -0.12, 0.65), 0.02)
+    s.add_crate((0.65, 0.1, 0.45), (1.0, 0.4, 0.62), 0.02)
+    return s
+
+
+@pytest.fixture(scope="module")
+def head(tmp_path_factory):
+    path = tmp_path_factory.mktemp("own") / "own_robot.urdf"
+    path.write_text(urdf(optical=True))
+    robot = Robot.from_urdf(path)  # a pathlib.Path, as a user passes it
+    return robot, robot.chain("base_footprint", "camera_optical_frame")
+
+
+def test_urdf_paths_may_be_pathlib_paths(head, tmp_path):
+    robot, _ = head
+    path = tmp_path / "own.urdf"
+    path.write_text(urdf(optical=True))
+    assert Robot.from_urdf(path).urdf_hash == Robot.from_urdf(str(path)).urdf_hash == robot.urdf_hash
+    with pytest.raises(TypeError, match="urdf must be a path"):
+        Robot.from_urdf(3)
+
+
+def test_the_head_aims_its_optical_axis(head):
+    _, chain = head
+    assert chain.dof == 3  # torso lift, pan, tilt
+    target = np.array([0.8, -0.2, 0.5])
+    q = chain.aim(target)
+    assert q is not None and chain.aim_error(q, target) < 1e-3
+    T = chain.fk(q)
+    ray = target - T[:3, 3]
+    assert np.linalg.norm(np.cross(T[:3, 2], ray / np.linalg.norm(ray))) < 1e-3
+    assert chain.aim(np.array([0.0, 0.0, 0.3])) is None  # straight down: beyond the tilt's limit
+
+
+def test_head_camera_explores_the_boxes_and_stops_by_itself(head):
+    robot, chain = head
+    scene = _table_scene()
+    region = ex.scene_region(scene)
+    q0 = chain.aim(np.array([0.8, 0.0, 0.45]))  # the head looks at the table first
+    start = chain.fk(q0)
+    r = ex.explore(scene, _camera(), start, robot=robot, chain=chain, base_pose=np.eye(4), search_space=region,
+                   **SETTINGS)
+    assert r.stop_reason in ("utility below min_utility", "utility 0", "nothing to explore"), r.table()
+    assert len(r.rows) < SETTINGS["max_views"]
+    assert all(row.physically_valid for row in r.rows)
+    oracle = observable_cells(scene, chain=chain, base_pose=np.eye(4), robot=robot, resolution=RESOLUTION,
+                              max_range=3.0, joint_samples=800, aimed_samples=0, seed=0)
+    assert oracle.count > 100
+    share = oracle.share(r.map)
+    print(f"head camera: {share:.1%} of the observable interior, {len(r.rows)} views, stop: {r.stop_reason}")
+    assert share >= 0.8, r.table()
+
+
+def test_the_explorer_takes_a_head_and_can_be_told_to_place_the_camera(head):
+    robot, chain = head
+    scene = _table_scene()
+    e = ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4), **SETTINGS)
+    start = chain.fk(chain.aim(np.array([0.8, 0.0, 0.45])))
+    e.integrate(_camera().capture(scene, start), start)
+    view = e.next_view()
+    assert not view.stop and view.q is not None and len(view.q) == 3
+    assert np.allclose(view.camera_pose, chain.fk(view.q), atol=1e-9)  # the pose the head reaches
+    forced = ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4),
+                         aiming="pose", **SETTINGS)
+    forced.integrate(_camera().capture(scene, start), start)
+    assert forced.next_view().stop_reason == "no valid view"  # 6D poses the head cannot reach
+    with pytest.raises(ValueError, match="aiming"):
+        ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, aiming="aim")
