@@ -188,6 +188,10 @@ ViewChoice frontier_void_choice(const ChoiceContext& ctx, std::uint64_t seed, bo
   return best;
 }
 
+bool finite_search_space(const ExplorationMap& map) {
+  return (map.options().search_lo.array() > -1e8).all() && (map.options().search_hi.array() < 1e8).all();
+}
+
 void check_sites(const ViewSites& sites, int current, const ExploreOptions& options) {
   options.validate();
   if (sites.bases.empty()) throw std::invalid_argument("choose_view needs at least one base pose");
@@ -213,6 +217,15 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   const bool last_chance = memory.low_views + 1 >= options.patience;
   ViewChoice c;
   if (map.void_cell_count() == map.sealed_void_cell_count()) {  // no void cell a view could reveal
+    if (map.void_cell_count() == 0 && map.frontier_cells().empty() && finite_search_space(map)) {
+      // nothing of the search space seen yet (the first view looked past it): the view expected to see the most
+      // of its unknown cells; none expected (all of it known) is nothing to explore
+      c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
+      ++memory.choices;
+      if (c.found && c.utility > 0) return c;
+      --memory.choices;
+      c = ViewChoice{};
+    }
     c.stop = true;
     c.stop_reason = "nothing to explore";
     ++memory.choices;
