@@ -1,20 +1,25 @@
-"""Seconds per choice of a view (the exploration loop's whole choice: search, second looks, last chance)
-on the paper scenes and one instance of every scene family; prints JSON.
+"""Seconds per choice of a view: Explorer.next_view() against the loop's choice as explore() made it before it
+became a driver over the Explorer (strategies.choose_view, the Python wrapper over _core.choose_view), both on
+the same map at every view of the same runs; prints JSON.
 
-Runs explore(strategy="frontier_void") with the explorer robot, its coarse capability map and the
-benchmark's stop rule (ExploreOptions.benchmark()) for --views views, and times each call of the loop's
-choose_view: wall seconds and CPU seconds of the process (all threads: on a shared machine the CPU time
-is the figure that does not depend on the other jobs). With --families-from DIR (a checkout's
-python/octoreach/testing), the families are loaded from there, so an older build without them can be
-timed on the same scenes in the same run.
+Runs explore(strategy="frontier_void") with the explorer robot, its coarse capability map and the benchmark's
+stop rule (ExploreOptions.benchmark()) for --views views on the paper scenes and one instance of every scene
+family. At each view both choices are made on the map as it stands, in alternating order (the first of the two
+fills the map's caches), the loop's with a copy of the Explorer's memory and the seed next_view uses; the
+Explorer's answer drives the run. Wall seconds and CPU seconds of the process (all threads: on a shared machine
+the CPU time is the figure that does not depend on the other jobs) per call, and how often the two chose the
+same camera pose. With --families-from DIR (a checkout's python/octoreach/testing), the families are loaded from
+there, so an older build can be timed on the same scenes.
 
 Run: .venv/bin/python benchmarks/view_choice_times.py [--views 12] [--families-from DIR] > times.json
 """
 from __future__ import annotations
 
 import argparse
+import copy
 import importlib.util
 import json
+import os
 import sys
 import time
 
@@ -22,8 +27,9 @@ import numpy as np
 
 from octoreach import DepthCamera
 from octoreach import exploration as ex
-from octoreach.exploration import loop
+from octoreach.exploration import strategies
 from octoreach.exploration.camera import look_at
+from octoreach.exploration.explorer import Explorer
 
 
 def _families(src):
@@ -41,19 +47,47 @@ def _families(src):
     return sys.modules["octoreach.testing.scene_families"]
 
 
-def _timed(times):
-    choose = loop.choose_view
+def _clock(fn):
+    """(fn(), wall seconds, CPU seconds of the process)."""
+    w, c = time.perf_counter(), time.process_time()
+    out = fn()
+    return out, time.perf_counter() - w, time.process_time() - c
 
-    def wrapped(*args, **kw):
-        w, c = time.perf_counter(), time.process_time()
-        out = choose(*args, **kw)
-        times.append((time.perf_counter() - w, time.process_time() - c))
-        return out
-    return wrapped
+
+def _timed(calls: list):
+    """Explorer.next_view, also making the loop's choice on the same map first or second (alternately)."""
+    next_view = Explorer.next_view
+
+    def timed(self):
+        o = self.options
+        seed = o.search.seed + self.views  # next_view's seed for this view
+        sphere_of = (lambda b: (np.asarray(b, float)[:3, 3], self.reach)) if self.reach > 0 else None
+        memory = copy.copy(self._core.memory)
+        loop = lambda: strategies.choose_view(self.strategy, self.map, self._keep[0], self.bases,  # noqa: E731
+                                              self.current_base, sphere_of, o, seed, memory=memory)
+        first_loop = len(calls) % 2 == 0
+        if first_loop:
+            choice, lw, lc = _clock(loop)
+        view, nw, nc = _clock(lambda: next_view(self))
+        if not first_loop:
+            choice, lw, lc = _clock(loop)
+        same = (choice.pose is None and not view.choice.found) or (
+            choice.pose is not None and view.choice.found and np.allclose(choice.pose, view.camera_pose, atol=1e-9))
+        calls.append({"next_view": (nw, nc), "loop": (lw, lc), "same": bool(same)})
+        return view
+    return timed
 
 
 def _stats(xs) -> dict:
-    return {"median": float(np.median(xs)), "p90": float(np.percentile(xs, 90)), "max": float(np.max(xs))} if xs else {}
+    return {"median": float(np.median(xs)), "mean": float(np.mean(xs)), "p90": float(np.percentile(xs, 90)),
+            "max": float(np.max(xs))} if xs else {}
+
+
+def _summary(calls: list) -> dict:
+    out = {"choices": len(calls), "same_view": sum(c["same"] for c in calls)}
+    for key in ("next_view", "loop"):
+        out[key] = {"wall": _stats([c[key][0] for c in calls]), "cpu": _stats([c[key][1] for c in calls])}
+    return out
 
 
 def main(argv=None) -> int:
@@ -71,21 +105,20 @@ def main(argv=None) -> int:
     for fam in fams.FAMILIES:
         inst = fams.family_scene(fam, 0)
         scenes.append((inst.name, inst.scene, fams.start_pose(), inst.search_space))
-    out = {"views": a.views, "scenes": {}}
-    all_w, all_c = [], []
+    out = {"views": a.views, "cores": os.cpu_count(), "load_average": list(os.getloadavg()), "scenes": {}}
+    every = []
+    Explorer.next_view = _timed(every)
     for name, scene, start, space in scenes:
-        times = []
-        loop.choose_view = _timed(times)
+        first = len(every)
         cam = DepthCamera(160, 120, np.deg2rad(58.0), 4.0, seed=a.seed)
         r = ex.explore(scene, cam, start, robot=True, capability_map=cmap, search_space=space, max_views=a.views,
                        seed=a.seed, min_utility=bench.min_utility, patience=bench.patience)
-        w, c = [t[0] for t in times], [t[1] for t in times]
-        all_w += w
-        all_c += c
-        out["scenes"][name] = {"wall": _stats(w), "cpu": _stats(c), "choices": len(times), "stop": r.stop_reason,
-                               "interior": r.interior_share}
-        print(f"# {name}: {len(times)} choices, cpu median {np.median(c):.3f} max {np.max(c):.3f}", file=sys.stderr)
-    out["all"] = {"wall": _stats(all_w), "cpu": _stats(all_c), "choices": len(all_w)}
+        s = _summary(every[first:])
+        out["scenes"][name] = dict(s, stop=r.stop_reason, interior=r.interior_share)
+        print(f"# {name}: {s['choices']} choices, cpu median next_view {s['next_view']['cpu']['median']:.3f} "
+              f"loop {s['loop']['cpu']['median']:.3f}", file=sys.stderr)
+    out["all"] = _summary(every)
+    out["load_average_after"] = list(os.getloadavg())
     print(json.dumps(out, indent=1))
     return 0
 

@@ -15,7 +15,7 @@ RANK = {"common": 0, "collision": 1, "simulation": 2, "robot": 2, "kinematics": 
 HEADER_LAYER = {
     "types": "common", "limits": "common", "shape": "collision", "collision": "collision",
     "simulation": "simulation", "robot": "robot", "self_collision_report": "robot", "camera_link": "robot",
-    "arm_discovery": "kinematics", "chain": "kinematics", "manipulability": "kinematics", "arm": "maps", "arm_report": "maps",
+    "arm_discovery": "kinematics", "chain": "kinematics", "manipulability": "kinematics", "aim": "kinematics", "arm": "maps", "arm_report": "maps",
     "orientation_set": "maps", "capability_map": "maps", "capability_blocks": "maps", "certified_lookup": "maps", "voxel_octree": "maps",
     "point_map": "maps", "pose_map": "maps", "surface": "maps", "surface_map": "maps", "pose_sampler": "maps",
     "map_files": "maps", "map_provenance": "maps", "map_room": "maps", "map_warnings": "maps", "exploration": "exploration",

@@ -91,11 +91,44 @@ void def_description(py::class_<Chain>& cls) {
                              "Fixed transform (4x4) from the last joint's frame to the tip link.");
 }
 
+// Look-at IK: aim and aim_error (aim.hpp).
+void def_aim(py::class_<Chain>& cls) {
+  cls
+      .def("aim", [](const Chain& c, const py::object& target, const Eigen::Vector3d& axis, double tolerance,
+                     int attempts, int iters, std::uint64_t rng_seed, const py::object& seed) -> py::object {
+             AimOptions o;
+             o.axis = axis;
+             o.tolerance = tolerance;
+             o.attempts = attempts;
+             o.max_iterations = iters;
+             o.seed = rng_seed;
+             const Eigen::Vector3d t = vec3_from(target, "target");
+             Eigen::VectorXd s;
+             if (!seed.is_none()) s = q_from(c, seed, "seed");
+             AimResult r;
+             {
+               py::gil_scoped_release release;
+               r = aim(c, t, o, seed.is_none() ? nullptr : &s);
+             }
+             return r.reached ? py::cast(r.q) : py::object(py::none());
+           }, py::arg("target"), py::arg("axis") = AimOptions().axis, py::arg("tolerance") = AimOptions().tolerance,
+           py::arg("attempts") = AimOptions().attempts, py::arg("max_iterations") = AimOptions().max_iterations,
+           py::arg("rng_seed") = AimOptions().seed, py::arg("seed") = py::none(),
+           "Joints (inside the limits) that point the tip's `axis` (a camera's optical axis) at `target` (a point,\n"
+           "base link frame) within `tolerance` radians, the tip's position following from the chain (look-at IK for\n"
+           "a pan/tilt head); None when the chain cannot aim there (aim_error tells by how much it misses).")
+      .def("aim_error", [](const Chain& c, const py::object& q, const py::object& target, const Eigen::Vector3d& axis) {
+             return aim_error(c, q_from(c, q, "q"), vec3_from(target, "target"), axis);
+           }, py::arg("q"), py::arg("target"), py::arg("axis") = AimOptions().axis,
+           "Radians between the tip's `axis` at joints q and the ray from the tip's origin to `target` (base link frame).");
+}
+
 }  // namespace
 
 void wrap_chain(py::module_& m) {
   py::class_<Chain> cls(m, "Chain", "Serial chain between two links: FK, Jacobian and IK (poses in the base link frame).");
   def_description(cls);
+  def_aim(cls);
   cls
       .def_property_readonly("base_link", &Chain::base_link)
       .def_property_readonly("tip_link", &Chain::tip_link)
@@ -208,33 +241,6 @@ void wrap_chain(py::module_& m) {
            }, py::arg("Ts"), py::arg("seeds") = py::none(), IK_ARGS, py::arg("threads") = 0,
            "IK of poses Ts (N, 4, 4) on every core. Returns (Q of shape (N, dof) with NaN rows where it failed,\n"
            "success mask (N,)). Item i uses a random stream derived from rng_seed and i.")
-      .def("aim", [](const Chain& c, const py::object& target, const Eigen::Vector3d& axis, double tolerance,
-                     int attempts, int iters, std::uint64_t rng_seed, const py::object& seed) -> py::object {
-             AimOptions o;
-             o.axis = axis;
-             o.tolerance = tolerance;
-             o.attempts = attempts;
-             o.max_iterations = iters;
-             o.seed = rng_seed;
-             const Eigen::Vector3d t = vec3_from(target, "target");
-             Eigen::VectorXd s;
-             if (!seed.is_none()) s = q_from(c, seed, "seed");
-             AimResult r;
-             {
-               py::gil_scoped_release release;
-               r = aim(c, t, o, seed.is_none() ? nullptr : &s);
-             }
-             return r.reached ? py::cast(r.q) : py::object(py::none());
-           }, py::arg("target"), py::arg("axis") = AimOptions().axis, py::arg("tolerance") = AimOptions().tolerance,
-           py::arg("attempts") = AimOptions().attempts, py::arg("max_iterations") = AimOptions().max_iterations,
-           py::arg("rng_seed") = AimOptions().seed, py::arg("seed") = py::none(),
-           "Joints (inside the limits) that point the tip's `axis` (a camera's optical axis) at `target` (a point,\n"
-           "base link frame) within `tolerance` radians, the tip's position following from the chain (look-at IK for\n"
-           "a pan/tilt head); None when the chain cannot aim there (aim_error tells by how much it misses).")
-      .def("aim_error", [](const Chain& c, const py::object& q, const py::object& target, const Eigen::Vector3d& axis) {
-             return aim_error(c, q_from(c, q, "q"), vec3_from(target, "target"), axis);
-           }, py::arg("q"), py::arg("target"), py::arg("axis") = AimOptions().axis,
-           "Radians between the tip's `axis` at joints q and the ray from the tip's origin to `target` (base link frame).")
       .def("__repr__", [](const Chain& c) {
         return "<octoreach.Chain '" + c.base_link() + "' -> '" + c.tip_link() + "', " + std::to_string(c.dof()) + " dof>";
       });

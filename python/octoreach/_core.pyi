@@ -151,6 +151,16 @@ class Chain:
     """
     def __repr__(self) -> str:
         ...
+    def aim(self, target: typing.Any, axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ..., tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, attempts: typing.SupportsInt | typing.SupportsIndex = 6, max_iterations: typing.SupportsInt | typing.SupportsIndex = 60, rng_seed: typing.SupportsInt | typing.SupportsIndex = 0, seed: typing.Any = None) -> typing.Any:
+        """
+        Joints (inside the limits) that point the tip's `axis` (a camera's optical axis) at `target` (a point,
+        base link frame) within `tolerance` radians, the tip's position following from the chain (look-at IK for
+        a pan/tilt head); None when the chain cannot aim there (aim_error tells by how much it misses).
+        """
+    def aim_error(self, q: typing.Any, target: typing.Any, axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ...) -> float:
+        """
+        Radians between the tip's `axis` at joints q and the ray from the tip's origin to `target` (base link frame).
+        """
     def fk(self, q: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
         """
         Pose (4x4) of the tip link in the base link frame.
@@ -323,9 +333,9 @@ class Robot:
     Robot model from a URDF: links, joints, collision shapes. Never changes once built.
     """
     @staticmethod
-    def from_urdf(urdf: str, package_dirs: collections.abc.Sequence[str] = [], srdf: typing.Any = None, srdf_mismatch: typing.Any = None) -> Robot:
+    def from_urdf(urdf: typing.Any, package_dirs: typing.Any = (), srdf: typing.Any = None, srdf_mismatch: typing.Any = None) -> Robot:
         """
-        Robot from a URDF file path or XML string. package:// and file:// mesh URIs are resolved through
+        Robot from a URDF file path (str or os.PathLike) or XML string. package:// and file:// mesh URIs are resolved through
         package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs. srdf_mismatch: SRDF
         groups and end effectors that name links, joints or groups the URDF lacks are an error ('error', the
         default) or left out ('leave_out', as MoveIt does; srdf_left_out says which).
@@ -1963,6 +1973,17 @@ class NbvOptions:
     def gain(self, arg1: str) -> None:
         ...
     @property
+    def aiming(self) -> str:
+        """
+        how a chain's camera is placed: 'auto' (the default: 'look_at' for a chain of fewer than 5
+        joints, such as a pan/tilt head, else 'pose'), 'pose' (IK of each candidate's position and
+        optical axis) or 'look_at' (the chain aims the optical axis at void or frontier cells; the
+        position follows)
+        """
+    @aiming.setter
+    def aiming(self, arg1: str) -> None:
+        ...
+    @property
     def ground_is_obstacle(self) -> bool:
         """
         with a chain: the ground below the map's search space is an obstacle for the links the chain
@@ -1970,6 +1991,14 @@ class NbvOptions:
         """
     @ground_is_obstacle.setter
     def ground_is_obstacle(self, arg0: bool) -> None:
+        ...
+    @property
+    def look_at_tolerance(self) -> float:
+        """
+        aiming 'look_at': radians an aimed optical axis may miss its target by
+        """
+    @look_at_tolerance.setter
+    def look_at_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def ik_attempts(self) -> int:

@@ -89,6 +89,8 @@ void AimOptions::validate() const {
 double aim_error(const Chain& chain, const Eigen::VectorXd& q, const Eigen::Vector3d& target,
                  const Eigen::Vector3d& axis) {
   detail::check_joint_vector(chain, q);
+  if (!target.allFinite()) throw std::invalid_argument("aim target must be finite");
+  if (!axis.allFinite() || axis.norm() < 1e-9) throw std::invalid_argument("aim axis must be a finite non-zero vector");
   return state_at(chain.fk(q), target, axis.normalized()).angle();
 }
 

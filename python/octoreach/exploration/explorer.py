@@ -54,10 +54,13 @@ class Explorer:
     """An exploration session (see the module).
 
     `camera`: a DepthCamera or CameraIntrinsics. `search_space` ((2, 3) lo, hi): the region to explore. The camera
-    is carried by `chain` (tip = camera frame, +z its optical axis) of `robot` (robot=True: urdf/explorer.urdf),
-    whose base stands at `base_pose` (4x4 chain base -> map; with robot=True the pose of its base_footprint) and
-    may drive to any of `base_moves`; without a chain it moves freely in the search's workspace. Every other
-    keyword is an ExploreOptions field or one of its search's (as explore()'s); the stop rule is on by default.
+    is carried by `chain` (tip = camera frame, +z its optical axis) of `robot` (robot=True: urdf/explorer.urdf;
+    any Robot, e.g. Robot.from_urdf(path)), whose base stands at `base_pose` (4x4 chain base -> map; with robot=True
+    the pose of its base_footprint) and may drive to any of `base_moves`; without a chain it moves freely in the
+    search's workspace. A chain of fewer than 5 joints (a pan/tilt head, a torso lift under it) cannot place its
+    camera, so its views aim the optical axis at void cells (look-at; `aiming="pose"` or `"look_at"` decides
+    for any chain). Every other keyword is an ExploreOptions field or one of its search's (as explore()'s); the
+    stop rule is on by default.
 
     `integrate(points, camera_pose)` ((N, 3) map-frame points) or `integrate(depth=image, camera_pose=...)`
     ((height, width) metres along the optical axis, 0: no return); `next_view()` -> NextView (camera_pose, q,
@@ -77,7 +80,7 @@ class Explorer:
         free = search.workspace_sphere is None and search.workspace_box is None and search.workspace is None
         reach = arm_reach(self.chain, search.seed) if self.chain is not None and free else 0.0
         bases = np.array([np.eye(4) if b is None else b for b in self.bases])
-        self.options, self.strategy = opts, strategy
+        self.options, self.strategy, self.reach = opts, strategy, reach
         self._core = _core.ExplorerCore(camera, np.asarray(search_space, float), bases, reach, resolution,
                                         void_fit_threshold, opts, strategy)
         self._keep = (camera, search.chain, search.capability_map)  # the core holds plain pointers to them
