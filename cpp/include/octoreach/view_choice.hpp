@@ -60,9 +60,9 @@ struct ViewChoice {
 
 /// \brief The next view of `strategy` from any of the sites' bases (the current one first, so ties keep it),
 /// with options.search (its seed: this choice's; the loop's view k searches with the run's seed + k). Updates memory
-/// (choices, low_views) and decides the stop: no void cell ("nothing to explore"; but while the map holds no void
-/// and no frontier cell, nothing of a finite search space seen yet, the sampled view expected to see the most of its
-/// unknown cells comes first, as the unknown baseline picks it), no valid view, a utility
+/// (choices, low_views) and decides the stop: no void cell ("nothing to explore"; but while no cell of a finite search
+/// space is known, the sampled view expected to see the most of its unknown cells comes first, as the unknown
+/// baseline picks it), no valid view, a utility
 /// of 0, or a utility <= min_utility for `patience` choices in a row. Frontier-void: next_best_view, then
 /// (second_look) aimed_poses poses aimed at void cells; when the better still expects <= min_utility,
 /// low_aimed_poses more and, when that low view would end the loop, last_poses found along rays out of

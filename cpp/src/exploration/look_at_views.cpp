@@ -65,7 +65,7 @@ LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam
     AimOptions o;
     o.tolerance = opt.look_at_tolerance;
     o.seed = opt.seed + i;
-    std::mt19937_64 rng(o.seed);
+    std::mt19937_64 rng(~o.seed);  // not aim()'s restart stream: the start is not its first restart
     const Eigen::VectorXd start = chain.random_configuration(rng);
     aims[i] = aim(chain, base_inv * targets[i], o, &start);
   }, 4);

@@ -188,8 +188,14 @@ ViewChoice frontier_void_choice(const ChoiceContext& ctx, std::uint64_t seed, bo
   return best;
 }
 
-bool finite_search_space(const ExplorationMap& map) {
-  return (map.options().search_lo.array() > -1e8).all() && (map.options().search_hi.array() < 1e8).all();
+// True when the map's search space is finite and holds no known cell (no view has seen any of it).
+bool search_space_unseen(const ExplorationMap& map) {
+  const Eigen::Vector3d lo = map.options().search_lo, hi = map.options().search_hi;
+  if ((lo.array() < -1e8).any() || (hi.array() > 1e8).any()) return false;
+  auto guard = detail::read_guard(map);
+  const detail::MapTree& tree = detail::state(map).tree;
+  return tree.begin_leafs_bbx(octomap::point3d(float(lo.x()), float(lo.y()), float(lo.z())),
+                              octomap::point3d(float(hi.x()), float(hi.y()), float(hi.z()))) == tree.end_leafs_bbx();
 }
 
 void check_sites(const ViewSites& sites, int current, const ExploreOptions& options) {
@@ -217,9 +223,9 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   const bool last_chance = memory.low_views + 1 >= options.patience;
   ViewChoice c;
   if (map.void_cell_count() == map.sealed_void_cell_count()) {  // no void cell a view could reveal
-    if (map.void_cell_count() == 0 && map.frontier_cells().empty() && finite_search_space(map)) {
-      // nothing of the search space seen yet (the first view looked past it): the view expected to see the most
-      // of its unknown cells; none expected (all of it known) is nothing to explore
+    if (map.void_cell_count() == 0 && search_space_unseen(map)) {
+      // no cell of the search space known yet (the views so far looked past it): the view expected to see the
+      // most of its unknown cells
       c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
       ++memory.choices;
       if (c.found && c.utility > 0) return c;
