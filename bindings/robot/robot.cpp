@@ -40,17 +40,19 @@ void wrap_robot_model(py::class_<Robot, std::shared_ptr<Robot>>& c) {
                                const py::object& srdf, const py::object& srdf_mismatch) {
           const std::string urdf = path_or_text(urdf_arg, "urdf");
           std::vector<std::string> package_dirs;
-          if (py::isinstance<py::str>(package_dir_args) || !py::isinstance<py::iterable>(package_dir_args))
-            throw py::type_error("package_dirs must be a list of paths, got " + type_name(package_dir_args));
-          for (const py::handle d : package_dir_args)
-            package_dirs.push_back(path_or_text(py::reinterpret_borrow<py::object>(d), "package_dirs entry"));
+          if (!package_dir_args.is_none()) {
+            if (!py::isinstance<py::list>(package_dir_args) && !py::isinstance<py::tuple>(package_dir_args))
+              throw py::type_error("package_dirs must be a list of paths or None, got " + type_name(package_dir_args));
+            for (const py::handle d : package_dir_args)
+              package_dirs.push_back(path_or_text(py::reinterpret_borrow<py::object>(d), "package_dirs entry"));
+          }
           const std::string text = srdf.is_none() ? "" : path_or_text(srdf, "srdf");
           if (srdf_mismatch.is_none()) return Robot::from_urdf(urdf, package_dirs, text);  // the C++ default
           const auto m = cast_arg<std::string>(srdf_mismatch, "srdf_mismatch", "'error' or 'leave_out'");
           if (m != "error" && m != "leave_out")
             throw py::value_error("srdf_mismatch must be 'error' or 'leave_out', got '" + m + "'");
           return Robot::from_urdf(urdf, package_dirs, text, m == "error" ? SrdfMismatch::kError : SrdfMismatch::kLeaveOut);
-        }, py::arg("urdf"), py::arg("package_dirs") = py::tuple(), py::arg("srdf") = py::none(),
+        }, py::arg("urdf"), py::arg("package_dirs") = py::none(), py::arg("srdf") = py::none(),
         py::arg("srdf_mismatch") = py::none(),
         "Robot from a URDF file path (str or os.PathLike) or XML string. package:// and file:// mesh URIs are resolved through\n"
         "package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs. srdf_mismatch: SRDF\n"

@@ -333,7 +333,7 @@ class Robot:
     Robot model from a URDF: links, joints, collision shapes. Never changes once built.
     """
     @staticmethod
-    def from_urdf(urdf: typing.Any, package_dirs: typing.Any = (), srdf: typing.Any = None, srdf_mismatch: typing.Any = None) -> Robot:
+    def from_urdf(urdf: typing.Any, package_dirs: typing.Any = None, srdf: typing.Any = None, srdf_mismatch: typing.Any = None) -> Robot:
         """
         Robot from a URDF file path (str or os.PathLike) or XML string. package:// and file:// mesh URIs are resolved through
         package_dirs. srdf (path or XML) adds chain groups and disabled collision pairs. srdf_mismatch: SRDF

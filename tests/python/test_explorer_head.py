@@ -49,6 +49,7 @@ def test_urdf_paths_may_be_pathlib_paths(head, tmp_path):
     path = tmp_path / "own.urdf"
     path.write_text(urdf(optical=True))
     assert Robot.from_urdf(path).urdf_hash == Robot.from_urdf(str(path)).urdf_hash == robot.urdf_hash
+    assert Robot.from_urdf(path, package_dirs=[tmp_path]).urdf_hash == robot.urdf_hash
     with pytest.raises(TypeError, match="urdf must be a path"):
         Robot.from_urdf(3)
 
