@@ -355,7 +355,8 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& camer
 struct ExploreOptions {
   /// The search of every view; its seed is the run's (the map's; view k searches with seed + k).
   NbvOptions search = NbvOptions::exploration_loop();
-  int max_views = 10;  ///< view budget
+  /// View budget: a safety net; the stop rule ends a run (the longest benchmark runs end after about 65 views).
+  int max_views = 100;
   /// Stop when the chosen view's utility (its strategy's gain) has been <= min_utility for `patience`
   /// views in a row, or is 0. Unset (the default): the threshold follows from the sensor and the cell size
   /// (stop_threshold). 0 with patience 1 is the paper's rule (utility 0).
