@@ -23,7 +23,7 @@ WHEEL  := $(BUILD)/wheel.txt
 EXTRAS := robots,test,viewer,cluster,planning
 
 SOURCES := $(shell find cpp bindings python tests/cpp cmake urdf benchmarks/reference -type f 2>/dev/null) \
-           CMakeLists.txt pyproject.toml scripts/build_wheel.sh
+           CMakeLists.txt pyproject.toml scripts/build_wheel.sh scripts/recompress_wheel.py
 
 .PHONY: all demo demo-exploration stubs test test-cpp test-python test-packaging install sysdeps venv benchmarks \
         clean fuzz test-sanitize wheel test-wheel sdist test-sdist check-sizes check-layers docs

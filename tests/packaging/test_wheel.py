@@ -63,10 +63,10 @@ def test_the_wheel_holds_the_code_once_and_no_benchmark_module():
     assert "octoreach/py.typed" in names and "octoreach/urdf/test_arm.urdf" in names
 
 
-# What a user downloads: the wheel file, octoreach's code and every vendored library, compressed. A guard against
-# growth: the wheel is about 8.1 MB, 4.6 MB of it Debian's assimp with every importer and draco; an assimp built
-# with the STL, DAE and OBJ importers only is what takes it under 8 MB.
-WHEEL_BUDGET_BYTES = 8_500_000
+# What a user downloads: the wheel file, octoreach's code and every vendored library, compressed. The budget is
+# 8 MB; the wheel is about 7.8 MB, 4.4 MB of it Debian's assimp with every importer and draco, which the mesh
+# loading needs as Debian builds it (docs/install.md has the table per library and the command that makes it).
+WHEEL_BUDGET_BYTES = 8_000_000
 
 
 @needs_wheel
