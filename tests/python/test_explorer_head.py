@@ -105,6 +105,35 @@ def test_the_explorer_takes_a_head_and_can_be_told_to_place_the_camera(head):
     forced = ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4),
                          aiming="pose", **SETTINGS)
     forced.integrate(_camera().capture(scene, start), start)
-    assert forced.next_view().stop_reason == "no valid view"  # 6D poses the head cannot reach
+    refused = forced.next_view()
+    assert refused.stop_reason == "no valid view"  # 6D poses the head cannot reach
+    assert "no_ik" in forced.stop_message(refused), forced.stop_message(refused)
     with pytest.raises(ValueError, match="aiming"):
         ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, aiming="aim")
+
+
+def test_a_search_space_around_the_robot_stops_with_the_rejection_counts(head):
+    """A search space that holds the head and the arm the lift carries: its unknown cells count as obstacles for
+    the camera and the links the chain moves, so no view is valid, and the stop says which checks refused them."""
+    robot, chain = head
+    scene = _table_scene()
+    region = ex.scene_region(scene)
+    region[0, 0], region[1, 2] = -0.5, 1.3  # back past the robot, up past its camera (0.89 m)
+    start = chain.fk(chain.aim(np.array([0.8, 0.0, 0.45])))
+    e = ex.Explorer(_camera(), region, robot=robot, chain=chain, base_pose=np.eye(4), **SETTINGS)
+    e.integrate(_camera().capture(scene, start), start)
+    view = e.next_view()
+    assert view.stop and view.stop_reason == "no valid view"
+    message = e.stop_message(view)
+    r = view.choice.search
+    assert message.startswith(f"no valid view ({r.candidate_cells} candidate cells; rejected: ")
+    for name, n in (("arm_collision", r.arm_collisions), ("camera_not_clear", r.camera_not_clear)):
+        assert n > 0 and f"{n} {name}" in message, message
+    result = ex.explore(scene, _camera(), start, robot=robot, chain=chain, base_pose=np.eye(4), search_space=region,
+                        **SETTINGS)
+    assert result.stop_reason == "no valid view" and len(result.rows) == 1
+    assert result.stop_message.startswith("no valid view (") and "arm_collision" in result.stop_message
+    assert result.table().endswith(f"stopped: {result.stop_message} (frontier_void)")
+    going = ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4), **SETTINGS)
+    going.integrate(_camera().capture(scene, start), start)
+    assert ex.stop_message(going.next_view()) == ""

@@ -28,7 +28,7 @@ from .loop import FAILED_VIEW_RADIUS, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY,
 from .metrics import coverage_after, observed_share, points_on, region_points, seen_expected_ratios, views_to_reach
 from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot
 from .scenes import closed_box_scene, cluttered_scene, paper_scene, scene_region
-from .strategies import STRATEGIES
+from .strategies import STRATEGIES, stop_message
 
 _LAZY = {"plot_coverage": "plots", "plot_map": "plots", "run_demo": "demo", "main": "demo"}
 
@@ -48,5 +48,6 @@ __all__ = [
     "arm_base_pose", "arm_reach", "base_ring", "closed_box_scene", "cluttered_scene", "coverage_after", "explore",
     "explorer_capability_map", "explorer_robot", "look_at", "main", "observed_share", "paper_scene",
     "plot_coverage", "plot_map", "points_on", "region_points", "run_demo", "scene_region", "seen_expected_ratios",
+    "stop_message",
     "views_to_reach",
 ]

@@ -10,7 +10,7 @@ import numpy as np
 from .. import _core
 from ._options import explore_options
 from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot
-from .strategies import Choice, _choice_of, check_strategy
+from .strategies import Choice, _choice_of, check_strategy, stop_message
 
 
 def carrier(robot, chain, base_pose):
@@ -64,7 +64,8 @@ class Explorer:
 
     `integrate(points, camera_pose)` ((N, 3) map-frame points) or `integrate(depth=image, camera_pose=...)`
     ((height, width) metres along the optical axis, 0: no return); `next_view()` -> NextView (camera_pose, q,
-    base, base_pose, expected_gain, stop, stop_reason); `view_failed()` when the proposed view could not be
+    base, base_pose, expected_gain, stop, stop_reason; `Explorer.stop_message(view)` says why no view was valid);
+    `view_failed()` when the proposed view could not be
     taken. Bad input (NaN/inf points, a pose that is not rigid, a depth image of the wrong size) raises
     ValueError naming it and leaves the explorer unchanged."""
 
@@ -107,6 +108,12 @@ class Explorer:
         c = _choice_of(view.choice)
         c.stop, c.stop_reason = view.stop, view.stop_reason
         return c
+
+    @staticmethod
+    def stop_message(view) -> str:
+        """Why a NextView stops, with the search's counts per rejection status for "no valid view" ("" when it
+        goes on): strategies.stop_message."""
+        return stop_message(view)
 
     @property
     def map(self) -> _core.ExplorationMap:

@@ -12,7 +12,7 @@ from .explorer import Explorer
 from .metrics import observed_share, points_on
 from .physics import PhysicalCheck
 from .scenes import scene_region
-from .strategies import check_strategy
+from .strategies import check_strategy, stop_message
 
 # The loop's settings are ExploreOptions (C++; docs/design/next_best_view.md says why each value); these
 # names read them for the callers that want one figure.
@@ -59,7 +59,8 @@ class ViewRow:
 @dataclass
 class ExplorationResult:
     """What explore() returns: the per-view rows, the final map, the camera poses, the wall time, the
-    strategy and why the loop stopped (one of STOP_REASONS)."""
+    strategy and why the loop stopped: stop_reason, one of STOP_REASONS; stop_message, the same with the
+    search's counts per rejection status for "no valid view" (strategies.stop_message)."""
 
     rows: list
     map: ExplorationMap
@@ -67,6 +68,7 @@ class ExplorationResult:
     total_s: float
     strategy: str = "frontier_void"
     stop_reason: str = ""
+    stop_message: str = ""
 
     def table(self) -> str:
         """The table as text (paper's columns plus coverage and the seen void cells)."""
@@ -77,7 +79,7 @@ class ExplorationResult:
             seen = "-" if r.void_seen is None else str(r.void_seen)
             lines.append(f"{r.view:>4} {r.integration_s:>9.3f} {r.search_s:>9.3f} {r.expected_void:>10.1f} {seen:>9} "
                          f"{r.utility_dm3:>11.2f} {r.observed_share:>8.1%} {r.interior_share:>9.1%}")
-        lines.append(f"stopped: {self.stop_reason} ({self.strategy})")
+        lines.append(f"stopped: {self.stop_message or self.stop_reason} ({self.strategy})")
         return "\n".join(lines)
 
     def to_dicts(self) -> list:
@@ -179,7 +181,7 @@ class _Loop:
     def run(self, pose) -> ExplorationResult:
         ex, emap = self.explorer, self.emap
         current, q = 0, None
-        rows, poses, stop = [], [], "view budget"
+        rows, poses, stop, message = [], [], "view budget", ""
         void_before = np.zeros((0, 3))
         t_all = time.perf_counter()
         while True:
@@ -201,11 +203,11 @@ class _Loop:
             if self.on_view is not None:
                 self.on_view(rows[-1], emap, choice.info())
             if nv.stop:
-                stop = nv.stop_reason
+                stop, message = nv.stop_reason, stop_message(nv)
                 break
             pose, q, current = np.asarray(nv.camera_pose, float), nv.q, nv.base
         return ExplorationResult(rows=rows, map=emap, poses=poses, total_s=time.perf_counter() - t_all,
-                                 strategy=ex.strategy, stop_reason=stop)
+                                 strategy=ex.strategy, stop_reason=stop, stop_message=message)
 
     def _sense(self, pose, valid):
         """The cloud of a view taken and its insert's statistics (the Explorer announces it first); a view not

@@ -62,6 +62,35 @@ class Choice:
         return d
 
 
+# The search's rejection counts (NbvResult field) by the status name of score_views, with what each means.
+REJECTIONS = (
+    ("not_reachable", "capability_rejected", "the capability map rules the pose out"),
+    ("camera_not_clear", "camera_not_clear",
+     "the camera stands in or next to an occupied cell or an unknown cell of the search space"),
+    ("no_ik", "ik_failures", "no joint solution reaches (or aims at) the pose"),
+    ("arm_collision", "arm_collisions",
+     "a link the chain moves touches an occupied cell or an unknown cell of the search space"),
+)
+
+
+def stop_message(view) -> str:
+    """The stop reason of a NextView (or ViewChoice) with, for "no valid view", the search's counts per
+    rejection status and what the largest one means, e.g. "no valid view (412 candidate cells; rejected:
+    300 camera_not_clear, 112 no_ik: ...)"; "" when the view does not stop."""
+    c = getattr(view, "choice", view)
+    if not view.stop:
+        return ""
+    if view.stop_reason != "no valid view":
+        return view.stop_reason
+    r = c.search
+    counts = [(name, int(getattr(r, field)), why) for name, field, why in REJECTIONS if getattr(r, field)]
+    if not counts:
+        return f"no valid view ({int(c.candidates)} poses scored, none valid)"
+    counts.sort(key=lambda t: -t[1])
+    listed = ", ".join(f"{n} {name}" for name, n, _ in counts)
+    return f"no valid view ({int(r.candidate_cells)} candidate cells; rejected: {listed}; {counts[0][0]}: {counts[0][2]})"
+
+
 def _choice_of(c) -> Choice:
     """The Choice of a C++ ViewChoice."""
     details = {"aimed": True} if c.aimed else {}
