@@ -65,9 +65,8 @@ class Explorer:
     `integrate(points, camera_pose)` ((N, 3) map-frame points) or `integrate(depth=image, camera_pose=...)`
     ((height, width) metres along the optical axis, 0: no return); `next_view()` -> NextView (camera_pose, q,
     base, base_pose, expected_gain, stop, stop_reason; `Explorer.stop_message(view)` says why no view was valid);
-    `view_failed()` when the proposed view could not be
-    taken. Bad input (NaN/inf points, a pose that is not rigid, a depth image of the wrong size) raises
-    ValueError naming it and leaves the explorer unchanged."""
+    `view_failed()` when the proposed view could not be taken. Bad input (NaN/inf points, a pose that is not
+    rigid, a depth image of the wrong size) raises ValueError naming it and leaves the explorer unchanged."""
 
     def __init__(self, camera, search_space, options: Optional[_core.ExploreOptions] = None, *, robot=None,
                  chain=None, base_pose=None, base_moves=None, capability_map=None, strategy: str = "frontier_void",

@@ -88,7 +88,8 @@ def stop_message(view) -> str:
         return f"no valid view ({int(c.candidates)} poses scored, none valid)"
     counts.sort(key=lambda t: -t[1])
     listed = ", ".join(f"{n} {name}" for name, n, _ in counts)
-    return f"no valid view ({int(r.candidate_cells)} candidate cells; rejected: {listed}; {counts[0][0]}: {counts[0][2]})"
+    top, _, why = counts[0]
+    return f"no valid view ({int(r.candidate_cells)} candidate cells; rejected: {listed}; {top}: {why})"
 
 
 def _choice_of(c) -> Choice:
