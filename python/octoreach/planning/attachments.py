@@ -6,7 +6,10 @@
 * **grounding** (``ground(surface, k)`` -> (k, 4)): new base poses for the planning state, drawn from the
   surface map by ``octoreach.PoseSampler``, each discounted (eq. 3) against every pose drawn for that surface
   so far, across calls (one sampler per surface lives as long as the attachments; ``reset()`` starts a new
-  task).
+  task). A drawn pose keeps the robot's body clear of the room: by default the body the surface map recorded
+  (``SurfaceMap.room``: the links off the arm at the map's reference posture, the posture the map rated the
+  pose with; the arm is checked at its grasps by the map and by the reachability attachment); with a
+  ``reference`` posture, the whole robot, arm included, at that posture.
 * **reachability** (``reach(pose, point, surface)`` -> {arm: R_P}): can an arm grasp an object at `point`
   from `pose`? For each arm the share of grasps that inverse kinematics reaches free of collision with the
   surface and the room (``octoreach.surface_maps.GraspCheck``, the brute-force check the map tests use, with
@@ -44,7 +47,13 @@ class Attachments:
     """Condition, grounding and reachability attachments over the surfaces of one room.
 
     robot, room (``octoreach.rooms.Room``), caps {arm: CapabilityMap with solutions}, maps {surface: combined
-    SurfaceMap (either arm)}. ``Attachments.build`` makes the maps. Counters: ``ik_calls`` (IK targets solved
+    SurfaceMap (either arm)}. ``Attachments.build`` makes the maps. reference: the robot's posture (a full
+    configuration, ``robot.configuration({...})``) or None. Given, it is the posture of the joints off the arm
+    (torso, head, other arm) for the maps (``SurfaceMap.build(reference=...)``), the reachability check and the
+    camera, and the whole robot, arm included, is checked against the room in it when poses are sampled (the
+    posture the robot drives in, e.g. its arm tucked). None: ``octoreach.default_reference`` of the first arm,
+    and sampled poses are checked with the body the surface map recorded (its links off the arm, at the map's
+    reference posture), so the sampler accepts the poses the map rated. Counters: ``ik_calls`` (IK targets solved
     by the reachability attachment), ``condition_calls``, ``pruned`` (reachability questions answered by the
     condition alone)."""
 
@@ -55,6 +64,7 @@ class Attachments:
     seed: int = 0
     attempts: int = 8  # IK restarts per grasp of the reachability check (the map tests use 20)
     candidates: int | None = None  # PoseSampler candidates per sample (None: its default, the paper's 40)
+    reference: object = None  # the robot's posture (see above); None: the default reference, the map's body
     _samplers: dict = field(default_factory=dict, repr=False)
     _checks: dict = field(default_factory=dict, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
@@ -63,10 +73,16 @@ class Attachments:
 
     @classmethod
     def build(cls, robot: Robot, room, resolution: float = 0.1, directions: int | None = None, caps: dict = None,
-              seed: int = 0, progress: bool = False, **kwargs) -> "Attachments":
+              seed: int = 0, progress: bool = False, reference=None, **kwargs) -> "Attachments":
         """Capability maps of every arm of the robot (unless `caps` gives them; `directions` None: the
         CapabilityMapOptions default) and one combined surface map per surface of `room`, each built with the
-        room's other obstacles (``Room.surface_maps``)."""
+        room's other obstacles (``Room.surface_maps``) and the posture `reference` (a full robot configuration;
+        None: the default reference; see the class)."""
+        if reference is not None:
+            reference = robot.configuration(reference) if isinstance(reference, dict) else np.asarray(reference, float)
+            if reference.shape != (robot.dof,):
+                raise ValueError(f"reference must be a robot configuration of {robot.dof} values, got shape "
+                                 f"{reference.shape}")
         if caps is None:
             extra = {} if directions is None else {"directions": directions}
             caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, seed=seed, progress=progress,
@@ -74,9 +90,16 @@ class Attachments:
         if not caps:
             raise ValueError("the robot has no arm to grasp with")
         per_arm = [room.surface_maps(robot, cap, progress=progress, resolution=resolution, z_range=(0, 0),
-                                     grasp_height=OBJECT_HEIGHT) for cap in caps.values()]
+                                     grasp_height=OBJECT_HEIGHT, reference=reference) for cap in caps.values()]
         maps = {name: SurfaceMap.combine([m[name] for m in per_arm], "max") for name in room.surfaces}
-        return cls(robot=robot, room=room, caps=dict(caps), maps=maps, seed=seed, **kwargs)
+        return cls(robot=robot, room=room, caps=dict(caps), maps=maps, seed=seed, reference=reference, **kwargs)
+
+    def posture(self, arm: str | None = None) -> np.ndarray:
+        """The robot configuration the attachments use off `arm` (None: the first arm): `reference`, or the
+        default reference of that arm."""
+        if self.reference is not None:
+            return np.asarray(self.reference, float)
+        return _arms.default_reference(self.robot, arm if arm is not None else next(iter(self.caps)))
 
     # ------------------------------------------------------------------ condition
     def condition(self, pose, surface: str) -> float:
@@ -94,12 +117,13 @@ class Attachments:
     def sampler(self, surface: str) -> PoseSampler:
         """The surface's PoseSampler (made on first use, kept: its history is every pose drawn so far)."""
         if surface not in self._samplers:
-            arm = next(iter(self.caps))
-            reference = _arms.default_reference(self.robot, arm)
+            smap = self._map(surface)
             index = list(self.maps).index(surface) if surface in self.maps else 0
             extra = {} if self.candidates is None else {"candidates": self.candidates}
-            self._samplers[surface] = PoseSampler(self._map(surface), seed=self.seed * 1009 + index,
-                                                  in_collision=(self.robot, self.room.obstacles(), reference), **extra)
+            if self.reference is not None or smap.room.empty or not smap.room.body:
+                # the whole robot at the posture (a map without a recorded body: the default reference)
+                extra["in_collision"] = (self.robot, self.room.obstacles(), self.posture())
+            self._samplers[surface] = PoseSampler(smap, seed=self.seed * 1009 + index, **extra)
         return self._samplers[surface]
 
     def ground(self, surface: str, k: int = 1) -> np.ndarray:
@@ -174,7 +198,7 @@ class Attachments:
     def _check(self, arm: str, surface: str) -> GraspCheck:
         if (arm, surface) not in self._checks:
             self._checks[(arm, surface)] = GraspCheck(self.robot, self.caps[arm], self.room.surfaces[surface],
-                                                      attempts=self.attempts, seed=self.seed,
+                                                      reference=self.reference, attempts=self.attempts, seed=self.seed,
                                                       obstacles=self.room.obstacles(without=surface),
                                                       tool_checks_slab=True)
         return self._checks[(arm, surface)]

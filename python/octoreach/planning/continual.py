@@ -25,10 +25,12 @@ __all__ = ["RunRecord", "check_objects", "run_task"]
 @dataclass
 class RunRecord:
     """One run. Times in seconds: T = execution + t_p (t_p: wall time of the attachments and planner calls on
-    this machine). solved: every object found, inspected and put back and every surface searched; message: why not.
-    replans: plans made after a surprise; calls: planner calls (grounding retries and calls that found no plan
-    included); sampled: poses the grounding attachment added; missed: objects never seen; unreachable {object:
-    reason}: objects no pose reaches (the others were done); unsearched {surface: reason}: surfaces no pose sees."""
+    this machine). solved: the whole task is done: every object found and done (inspected and put back, as the
+    goal asks) and every surface of the goal searched; False as soon as anything was left out, even when the rest
+    was done; message: why not. done: the objects that were done; unreachable {object: reason}: objects no pose
+    reaches (left out, the rest was still done); unsearched {surface: reason}: surfaces no pose sees; searched:
+    the surfaces searched; missed: objects never seen. replans: plans made after a surprise; calls: planner calls
+    (grounding retries and calls that found no plan included); sampled: poses the grounding attachment added."""
 
     strategy: str
     objects: int
@@ -47,6 +49,8 @@ class RunRecord:
     missed: int
     unreachable: dict = field(default_factory=dict)
     unsearched: dict = field(default_factory=dict)
+    done: list = field(default_factory=list)
+    searched: list = field(default_factory=list)
     call_seconds: list = field(default_factory=list)
     log: list = field(default_factory=list, repr=False)
 
@@ -69,16 +73,17 @@ def check_objects(scene: Scene, attachments: Attachments, objects: dict) -> None
 
 
 def _task(scene: Scene, attachments: Attachments, strategy, goal: Goal | None) -> tuple[Task, dict]:
-    """The task at the start (the predefined poses of the strategy, the surfaces some pose reaches) and
+    """The task at the start (the predefined poses of the strategy, the scene's searched surfaces some pose
+    reaches: ``Scene.searched_surfaces``, by default its object surfaces) and
     {surface: reason} of the surfaces no base pose reaches (left out of the task)."""
     poses = {"start": np.asarray(scene.start, float)}
     if strategy != "sampling":
         for s, rows in scene.predefined.items():
             for i, pose in enumerate(rows[:strategy]):
                 poses[f"{s}/pose_{i + 1}"] = pose
-    surfaces = [s for s in scene.room.surfaces if attachments.maps[s].max_reachability > 0.0]
-    unreached = {s: "no base pose reaches it (its surface map is empty)" for s in scene.room.surfaces
-                 if s not in surfaces}
+    wanted = scene.searched_surfaces()
+    surfaces = [s for s in wanted if attachments.maps[s].max_reachability > 0.0]
+    unreached = {s: "no base pose reaches it (its surface map is empty)" for s in wanted if s not in surfaces}
     arms = list(attachments.caps)
     task = Task(poses=poses, at="start", surfaces=surfaces, arms=arms, held={a: None for a in arms},
                 goal=goal if goal is not None else Goal())
@@ -91,8 +96,11 @@ def run_task(scene: Scene, attachments: Attachments, objects: dict, strategy="sa
     naming an object whose surface the room lacks or whose point is not on it); `strategy` 'sampling' (no poses
     given, the grounding attachment adds them) or k in 1..4 (the first k predefined poses of each surface, nothing
     sampled); `camera_link` the robot's camera (None: ``octoreach.find_camera_link``); `goal` what the task must
-    achieve (None: ``Goal()``, every surface searched, every item inspected and put back). An object no pose
-    reaches, or a surface no pose sees, is left out and the rest is done: the record lists them with the reason."""
+    achieve (None: ``Goal()``, every surface of the scene's task searched, ``Scene.searched_surfaces``: its object
+    surfaces unless ``Scene.search`` says otherwise; every item inspected and put back). An object no pose
+    reaches, or a surface no pose sees, is left out and the rest is done: the record lists them with the reason
+    (``RunRecord.unreachable``, ``unsearched``) beside the objects done (``RunRecord.done``), and ``solved`` is
+    False."""
     if strategy != "sampling" and strategy not in (1, 2, 3, 4):
         raise ValueError(f"strategy must be 'sampling' or 1-4 predefined poses, got {strategy!r}")
     check_objects(scene, attachments, objects)
@@ -156,8 +164,12 @@ def _record(strategy, objects: dict, seed: int, task: Task, sim: Simulation, n: 
     solved = not message and task.done()
     moves = sum(1 for e in sim.log if e.action[0] == "move-robot")
     label = "sampling" if strategy == "sampling" else f"{strategy} predefined"
+    held = set(task.held.values())
+    done = [o for o in task.goal_items() if (not task.goal.inspect or o in task.inspected)
+            and (not task.goal.put_back or o not in held)]
     return RunRecord(strategy=label, objects=len(objects), seed=seed, solved=solved, message=message,
                      T=sim.clock + n.t_p, t_p=n.t_p, execution=sim.clock, replans=n.replans, calls=n.calls, moves=moves,
                      other=len(sim.log) - moves, sampled=n.sampled, failures=sim.failures, missed=missed,
-                     unreachable=dict(task.unreachable), unsearched=unsearched, call_seconds=n.call_seconds,
+                     unreachable=dict(task.unreachable), unsearched=unsearched, done=done,
+                     searched=[s for s in task.surfaces if s in task.searched], call_seconds=n.call_seconds,
                      log=sim.log)

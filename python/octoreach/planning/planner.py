@@ -157,16 +157,24 @@ class Planner:
                 figures = PlanResult([], time.perf_counter() - t0, calls, sampled, call_seconds)
                 raise self._why(task, need, unreached, figures)
 
+    def _tried(self, task: Task, surface: str) -> str:
+        """How many poses were tried for `surface`: those of the task with R_S > 0 there, and how many of them
+        the grounding attachment sampled for it (the budget counts per surface)."""
+        usable = sum(1 for p in task.poses if (p, surface) in task.usable)
+        text = f"{usable} pose{'' if usable == 1 else 's'} with R_S > 0 at {surface}"
+        if self.sampling:
+            text += f", {self.used.get(surface, 0)} of them sampled for it (budget {self.budget} per surface)"
+        return text
+
     def _why(self, task: Task, need: list, unreached: dict, figures: PlanResult) -> Unsolvable:
-        tried = len(task.poses) - 1
         if unreached:
-            o = next(iter(unreached.values()))
-            reason = f"out of reach from every pose with R_S > 0 ({tried} poses tried)"
+            s, o = next(iter(unreached.items()))
+            reason = f"out of reach from every pose with R_S > 0 ({self._tried(task, s)})"
             return Unsolvable(f"unsolvable: object {o} is {reason}", item=o, reason=reason, figures=figures)
         blind = [s for s in need if s not in task.searched]
         if blind:
-            reason = f"cannot be searched from any pose with R_S > 0 ({tried} poses tried)"
+            reason = f"cannot be searched from any pose with R_S > 0 ({self._tried(task, blind[0])})"
             return Unsolvable(f"unsolvable: surface {blind[0]} {reason}", surface=blind[0], reason=reason,
                               figures=figures)
-        return Unsolvable(f"unsolvable: no plan for the surfaces {', '.join(need)} ({tried} poses tried)",
-                          figures=figures)
+        tried = "; ".join(self._tried(task, s) for s in need)
+        return Unsolvable(f"unsolvable: no plan for the surfaces {', '.join(need)} ({tried})", figures=figures)

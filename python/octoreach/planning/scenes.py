@@ -44,7 +44,8 @@ OBJECT_SPACING = 0.12  # and this far from each other
 class Scene:
     """A room, where the robot starts (x, y, z, theta), the surfaces objects go on (with an optional filter of
     allowed object positions per surface) and the predefined poses {surface: (k, 4)} in the order a person
-    would use them."""
+    would use them. The task searches `search` (None: the object surfaces); the room's other surfaces are only
+    obstacles. The built-in scenes search every surface of their room, including those no object is put on."""
 
     name: str
     room: Room
@@ -53,6 +54,17 @@ class Scene:
     predefined: dict
     allowed: dict = field(default_factory=dict)  # surface -> callable(point (3,)) -> bool
     description: str = ""
+    search: list | None = None  # the surfaces the task searches; None: object_surfaces
+
+    def searched_surfaces(self) -> list:
+        """The surfaces a task in this scene searches (``search``, else ``object_surfaces``); ValueError naming one
+        the room lacks."""
+        names = list(self.object_surfaces if self.search is None else self.search)
+        for name in names:
+            if name not in self.room.surfaces:
+                raise ValueError(f"scene {self.name!r}: no surface {name!r} in its room (surfaces: "
+                                 f"{', '.join(self.room.surfaces)})")
+        return names
 
 
 def _pose_free(obstacles: Obstacles, pose) -> bool:
@@ -168,7 +180,7 @@ def _make(name, build, start, surfaces, clutter=None, allowed=None, description=
     predefined = {s: predefined_poses(room, s, start) for s in room.surfaces}
     if clutter is not None:
         clutter(room)
-    return Scene(name, room, start, list(surfaces), predefined, allowed or {}, description)
+    return Scene(name, room, start, list(surfaces), predefined, allowed or {}, description, list(room.surfaces))
 
 
 def _scene_paper():

@@ -16,7 +16,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import arms as _arms
 from .attachments import Attachments
 from .task import Task
 from .durations import duration, grasp_failure_probability, move_duration
@@ -58,8 +57,7 @@ class Simulation:
     def __post_init__(self):
         self.rng = np.random.default_rng([self.seed, 7])
         robot = self.attachments.robot
-        reference = _arms.default_reference(robot, next(iter(self.attachments.caps)))
-        self.camera = HeadCamera(robot, reference, self.camera_link)
+        self.camera = HeadCamera(robot, self.attachments.posture(), self.camera_link)
         self.obstacles = self.scene.room.obstacles()
         self.points, self.seen = {}, {}
         for name, surface in self.scene.room.surfaces.items():
