@@ -11,7 +11,7 @@ import pytest
 pytest.importorskip("unified_planning")
 pytest.importorskip("up_fast_downward")
 
-from octoreach import arms, robots  # noqa: E402
+from octoreach import arms, base_pose, robots  # noqa: E402
 from octoreach.planning import (Attachments, Goal, Planner, Scene, Task, predefined_poses, run_task,  # noqa: E402
                                 scenes, solve)
 from octoreach.rooms import Room  # noqa: E402
@@ -44,6 +44,9 @@ def test_run_task_does_the_reachable_object_and_reports_the_other(own_world):
     rec = run_task(scene, att, objects, "sampling", seed=1, budget=3)
     assert not rec.solved and list(rec.unreachable) == ["far"], rec.message
     assert "out of reach from every pose" in rec.unreachable["far"] and "far" in rec.message
+    # the poses counted are those of its surface, the sampled ones against the per-surface budget
+    assert "at wide" in rec.unreachable["far"] and "budget 3 per surface" in rec.unreachable["far"]
+    assert rec.done == ["cup"] and rec.searched == ["table", "wide"]
     done = [e.action for e in rec.log if e.outcome == "ok"]
     assert ("inspect-object", "cup") in [a[:2] for a in done]
     assert any(a[0] == "putdown-object" and a[2] == "cup" for a in done)
@@ -130,3 +133,36 @@ def test_no_predefined_pose_behind_a_wall():
     assert np.allclose(poses[0, :2], (0.0, -scenes.STANDOFF))
     room.add_box("pillar", (0.1, 0.1, 2.5), (0.0, -0.2, 1.25))  # between the front pose and the counter
     assert all(abs(p[0]) > 0.1 for p in predefined_poses(room, "counter", (0.0, -2.0, 0.0, 0.0)))
+
+
+def test_a_scene_searches_its_object_surfaces_unless_told_otherwise(own_world):
+    att, scene = own_world
+    only_table = Scene("own", scene.room, scene.start, ["table"], scene.predefined)
+    assert only_table.searched_surfaces() == ["table"]
+    rec = run_task(only_table, att, {"cup": ("table", (0.1, -0.2, H))}, 2, seed=0)
+    assert rec.solved and rec.searched == ["table"] and rec.done == ["cup"] and not rec.unsearched, rec.message
+    assert not any(e.action[0] == "inspect-surface" and e.action[2] == "wide" for e in rec.log)
+    wider = Scene("own", scene.room, scene.start, ["table"], scene.predefined, search=["table", "wide"])
+    assert wider.searched_surfaces() == ["table", "wide"]
+    with pytest.raises(ValueError, match="no surface 'shelf'"):
+        Scene("own", scene.room, scene.start, ["table"], scene.predefined, search=["shelf"]).searched_surfaces()
+    assert set(scenes.scene("chairs").searched_surfaces()) == {"table_1", "table_2"}  # built-in: the whole room
+
+
+def test_sampled_poses_keep_the_robot_clear_in_its_posture(own_world):
+    """By default the body the surface map recorded (its posture off the arm) is checked; with a reference
+    posture the whole robot, arm included, in that posture."""
+    att, _ = own_world
+    robot, obstacles = att.robot, att.room.obstacles()
+    assert np.allclose(att.posture(), arms.default_reference(robot, next(iter(att.caps))))
+    default = Attachments(robot, att.room, att.caps, att.maps, seed=3)
+    poses = default.ground("table", 4)
+    assert len(poses) == 4 and not att.maps["table"].room.body_collides(poses).any()
+    home = robot.home()  # the own robot's arm at 0 stands out of its base
+    posed = Attachments(robot, att.room, att.caps, att.maps, seed=3, reference=home)
+    assert np.array_equal(posed.posture(), home)
+    poses = posed.ground("table", 4)
+    assert len(poses) == 4
+    assert not any(robot.in_collision(home, obstacles, base_pose=base_pose(p)) for p in poses)
+    with pytest.raises(ValueError, match="reference must be a robot configuration"):
+        Attachments.build(robot, att.room, caps=att.caps, reference=[0.0, 1.0])
