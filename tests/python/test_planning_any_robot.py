@@ -166,3 +166,5 @@ def test_sampled_poses_keep_the_robot_clear_in_its_posture(own_world):
     assert not any(robot.in_collision(home, obstacles, base_pose=base_pose(p)) for p in poses)
     with pytest.raises(ValueError, match="reference must be a robot configuration"):
         Attachments.build(robot, att.room, caps=att.caps, reference=[0.0, 1.0])
+    lifted = Attachments(robot, att.room, att.caps, att.maps, reference={"torso_lift_joint": 0.1})
+    assert lifted.posture()[robot.joint_names.index("torso_lift_joint")] == 0.1

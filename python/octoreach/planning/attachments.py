@@ -42,6 +42,18 @@ OBJECT_HEIGHT = 0.05  # grasp point above the surface (the surface maps' grasp_h
 ON_SURFACE = OBJECT_HEIGHT / 2
 
 
+def _configuration(robot: Robot, reference):
+    """`reference` as a full configuration (None stays None; a {joint: value} dict fills in from home);
+    ValueError unless it has one finite value per joint."""
+    if reference is None:
+        return None
+    q = robot.configuration(reference) if isinstance(reference, dict) else np.asarray(reference, float)
+    if q.shape != (robot.dof,) or not np.all(np.isfinite(q)):
+        raise ValueError(f"reference must be a robot configuration of {robot.dof} finite values, got "
+                         f"{np.round(q, 3).tolist()}")
+    return q
+
+
 @dataclass
 class Attachments:
     """Condition, grounding and reachability attachments over the surfaces of one room.
@@ -64,12 +76,15 @@ class Attachments:
     seed: int = 0
     attempts: int = 8  # IK restarts per grasp of the reachability check (the map tests use 20)
     candidates: int | None = None  # PoseSampler candidates per sample (None: its default, the paper's 40)
-    reference: object = None  # the robot's posture (see above); None: the default reference, the map's body
+    reference: object = None  # the robot's posture (see above; a {joint: value} dict fills in from home)
     _samplers: dict = field(default_factory=dict, repr=False)
     _checks: dict = field(default_factory=dict, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
     condition_calls: int = 0
     pruned: int = 0
+
+    def __post_init__(self):
+        self.reference = _configuration(self.robot, self.reference)
 
     @classmethod
     def build(cls, robot: Robot, room, resolution: float = 0.1, directions: int | None = None, caps: dict = None,
@@ -78,11 +93,7 @@ class Attachments:
         CapabilityMapOptions default) and one combined surface map per surface of `room`, each built with the
         room's other obstacles (``Room.surface_maps``) and the posture `reference` (a full robot configuration;
         None: the default reference; see the class)."""
-        if reference is not None:
-            reference = robot.configuration(reference) if isinstance(reference, dict) else np.asarray(reference, float)
-            if reference.shape != (robot.dof,):
-                raise ValueError(f"reference must be a robot configuration of {robot.dof} values, got shape "
-                                 f"{reference.shape}")
+        reference = _configuration(robot, reference)
         if caps is None:
             extra = {} if directions is None else {"directions": directions}
             caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, seed=seed, progress=progress,
