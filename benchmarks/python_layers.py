@@ -1,5 +1,6 @@
 """CPU time of the Python layers on valid input: room, polygon and job files read and checked, the rest of a room
-built per surface, and a map cache hit with its key check (octoreach.cache_check). Medians of process CPU
+built per surface, and a map cache hit with its key check (octoreach.cache_check) and its digest check (the
+SHA-256 of the entry's bytes against its note). Medians of process CPU
 seconds (not wall time: the machine is shared), printed as JSON in milliseconds.
 
     python benchmarks/python_layers.py
@@ -16,7 +17,7 @@ import numpy as np
 
 import octoreach as o
 from octoreach import arms, jobs, rooms
-from octoreach.cache import MapCache, capability_key_fields, capability_options
+from octoreach.cache import MapCache, capability_key_fields, capability_options, key_of
 
 
 def cpu_ms(fn, n: int) -> float:
@@ -50,6 +51,22 @@ def files(d: Path) -> dict:
             "room_obstacles_per_surface_all": cpu_ms(lambda: [room.obstacles(without=n) for n in room.surfaces], 5)}
 
 
+def digest_check(cache: MapCache, fields: dict) -> None:
+    """What a hit adds for the digest: the entry's bytes hashed through its descriptor, its note read and compared."""
+    import os
+
+    from octoreach.cache_files import fd_digest, note_disagrees, read_note
+
+    key = key_of(fields)
+    path = cache.path("capability", key)
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        found, _ = fd_digest(fd)
+    finally:
+        os.close(fd)
+    assert note_disagrees(read_note(path.with_suffix(".json"), "capability", key), found) is None
+
+
 def cache_hits() -> dict:
     from octoreach import cache_check
 
@@ -63,8 +80,9 @@ def cache_hits() -> dict:
         cache = MapCache(tempfile.mkdtemp())
         m = arms.capability_map(robot, arm, cache=cache, progress=False, **kw)
         fields = capability_key_fields(robot, o.Arm.resolve(robot, arm), capability_options(None, **kw))
-        out[name] = {"voxels": m.voxel_count,
+        out[name] = {"voxels": m.voxel_count, "entry_bytes": cache.path("capability", key_of(fields)).stat().st_size,
                      "key_check_ms": cpu_ms(lambda: cache_check.capability_mismatch(m, fields, robot), 300),
+                     "digest_check_ms": cpu_ms(lambda: digest_check(cache, fields), 300),
                      "hit_ms": cpu_ms(lambda: arms.capability_map(robot, arm, cache=cache, progress=False, **kw), 20)}
     return out
 

@@ -13,11 +13,17 @@ lock on ``<key>.lock`` (others wait, then load its entry; the builder removes th
 every file is written to a temporary file created exclusively and renamed into place, so a reader sees a
 whole entry or none and a name planted in the folder cannot redirect a write.
 
-An entry is used only when it is a regular file (not a symbolic link), loads (map files carry a CRC-32)
-and agrees with its key: the map's header names the key's robot model, arm and every build option it
-records, and a capability map's stored joint solutions reach their voxels (``octoreach.cache_check``). Any
-other entry is reported, deleted and rebuilt, never used. A directory that cannot be written, or an entry
-that cannot be stored (a full disk): maps are built anyway and returned, with a warning.
+An entry is used only when it is a regular file (not a symbolic link), loads (map files carry a CRC-32),
+holds the very bytes its note records (the note names the entry's kind and key and holds the SHA-256 of its
+bytes; it is written before the entry, so a reader never meets an entry before its note) and agrees with its
+key: the map's header names the key's robot model, arm and every build option it records, and a capability
+map's stored joint solutions reach their voxels (``octoreach.cache_check``). Any other entry is reported,
+deleted and rebuilt, never used. The digest catches what a header cannot: an entry copied from another key
+whose header reads the same (a surface map built with other obstacles around its surface, a capability map
+of options its header does not record) and any byte changed in a header or payload. What no check here
+catches is a writer of the folder who plants a self-consistent map and rewrites its note to match: a shared
+cache is as trustworthy as everyone who can write to its folder. A directory that cannot be written, or an
+entry that cannot be stored (a full disk): maps are built anyway and returned, with a warning.
 ``clear()`` deletes only what the cache wrote: files with its own names in a folder that has its marker.
 """
 from __future__ import annotations
@@ -37,7 +43,7 @@ from pathlib import Path
 import numpy as np
 
 from . import cache_check, map_files
-from .cache_files import acquire, read_note, regular, save_entry
+from .cache_files import acquire, digest, entry_bytes, fd_digest, note_disagrees, read_note, regular
 from ._core import Arm, CapabilityMap, CapabilityMapOptions, Robot, __version__, map_format_version
 from .atomic_write import check_target, write_atomically
 
@@ -181,8 +187,9 @@ class MapCache:
             path.unlink()
 
     def _load(self, kind: str, key: str, verify=None, with_bytes: bool = False):
-        """The entry's map (and its bytes), None when absent. An entry that is not a regular file, does not load
-        or disagrees with its key (verify(map) -> None or the disagreement) is reported, deleted and counted."""
+        """The entry's map (and its bytes), None when absent. An entry that is not a regular file, does not load,
+        differs from the digest its note records or disagrees with its key (verify(map) -> None or the
+        disagreement) is reported, deleted and counted."""
         path = self.path(kind, key)
         try:
             fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | getattr(os, "O_CLOEXEC", 0))
@@ -208,6 +215,11 @@ class MapCache:
             except OSError as e:
                 self._discard(path, f"is damaged ({str(e).replace(via, path.name)})", "rebuilt_damaged")
                 return None
+            found, data = fd_digest(fd, keep=with_bytes)  # the bytes just loaded, through the same descriptor
+            problem = note_disagrees(read_note(self.directory / f"{kind}-{key}.json", kind, key), found)
+            if problem:
+                self._discard(path, problem, "rebuilt_mismatched")
+                return None
             try:
                 problem = verify(m) if verify is not None else None
             except (ValueError, TypeError, RuntimeError, LookupError) as e:  # a header the checks cannot even use
@@ -215,10 +227,7 @@ class MapCache:
             if problem:
                 self._discard(path, f"does not match its key ({problem})", "rebuilt_mismatched")
                 return None
-            if not with_bytes:
-                return m
-            size = os.fstat(fd).st_size
-            return m, os.pread(fd, size, 0)
+            return (m, data) if with_bytes else m
         finally:
             os.close(fd)
 
@@ -238,36 +247,40 @@ class MapCache:
         self.hits += 1
         return found[1]
 
-    def _note(self, kind: str, key: str, fields: dict) -> None:
-        note = {"kind": kind, "key": key, "fields": _plain(fields), "octoreach": __version__,
-                "format": map_format_version(), "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
-        write_atomically(self.directory / f"{kind}-{key}.json", json.dumps(note, indent=1), "cache note")
+    def _note(self, kind: str, key: str, fields: dict, data: bytes) -> Path:
+        note = {"kind": kind, "key": key, "fields": _plain(fields), "sha256": digest(data), "bytes": len(data),
+                "octoreach": __version__, "format": map_format_version(),
+                "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+        return write_atomically(self.directory / f"{kind}-{key}.json", json.dumps(note, indent=1), "cache note")
 
-    def _stored(self, kind: str, key: str, fields: dict, write) -> bool:
-        """write(path) the entry, then its note; False with a warning when either cannot be written (a full disk)."""
+    def _stored(self, kind: str, key: str, fields: dict, make) -> bool:
+        """The entry's bytes from make(), its note (with their digest), then the entry; False with a warning when
+        they cannot be made or written (a full disk)."""
         path = self.path(kind, key)
+        note = path.with_suffix(".json")
         try:
             check_target(path, "map cache entry")
-            write(path)
-            self._note(kind, key, fields)
+            data = make()
+            self._note(kind, key, fields, data)
+            write_atomically(path, data, "map cache entry")
             return True
         except OSError as e:
             warnings.warn(f"map cache {str(self.directory)!r}: cannot store {path.name} ({e}): the map is built and "
                           "used without the cache", RuntimeWarning, stacklevel=4)
             with contextlib.suppress(OSError):
-                if os.path.isfile(path) and not os.path.islink(path):
-                    path.unlink()  # an entry without its note is never read back half-described
+                if not os.path.lexists(path) and os.path.isfile(note) and not os.path.islink(note):
+                    note.unlink()  # a note without its entry describes nothing
             return False
 
     def store_bytes(self, kind: str, fields: dict, data: bytes) -> bool:
         """Stores a map file's bytes under its key (atomic rename); False when it cannot be stored (warned)."""
         if not self.writable():
             return False
-        return self._stored(kind, key_of(fields), fields, lambda path: write_atomically(path, data, "map cache entry"))
+        return self._stored(kind, key_of(fields), fields, lambda: data)
 
-    def get_or_build(self, kind: str, fields: dict, build, save, verify=None):
+    def get_or_build(self, kind: str, fields: dict, build, to_bytes=entry_bytes, verify=None):
         """The cached map of these key fields (checked by verify(map) -> None or a disagreement), else build()
-        saved with save(map, path) and stored; a map that cannot be stored is returned all the same. One
+        stored as the file bytes to_bytes(map); a map that cannot be stored is returned all the same. One
         process builds a key at a time; the others wait for it and load its entry."""
         m = self.lookup(kind, fields, verify)
         if m is not None:
@@ -283,7 +296,7 @@ class MapCache:
                 return m
             m = build()
             self.builds += 1
-            self._stored(kind, key, fields, lambda path: save(m, str(path)))
+            self._stored(kind, key, fields, lambda: to_bytes(m))
         return m
 
     # ------------------------------------------------------------------ maps
@@ -296,7 +309,7 @@ class MapCache:
         fields = capability_key_fields(robot, a, o)
         return self.get_or_build("capability", fields,
                                  lambda: CapabilityMap.build_for_arm(robot, a, o, progress=progress),
-                                 save_entry,
+                                 entry_bytes,
                                  lambda m: cache_check.capability_mismatch(m, fields, robot))
 
     # ------------------------------------------------------------------ listing

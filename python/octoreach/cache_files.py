@@ -1,10 +1,11 @@
 """The files of a map cache folder, below the cache's logic (octoreach.cache): a map's bytes made in a private
-folder, entries written through the one Python writer, notes read within bounds, and the per-key lock file
-(flock; a lock file its holder removed while others waited is given up for a fresh one, never followed as a
-link).
+folder, the SHA-256 digest of an open entry (read in chunks: memory stays bounded whatever its size), notes
+read within bounds, and the per-key lock file (flock; a lock file its holder removed while others waited is
+given up for a fresh one, never followed as a link).
 """
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import stat
@@ -12,9 +13,9 @@ import tempfile
 from pathlib import Path
 
 from ._core import CapabilityMap
-from .atomic_write import write_atomically
 
 _NOTE_BYTES = 1 << 20  # a note is a few hundred bytes; a larger one is not the cache's
+_CHUNK = 1 << 20
 
 
 def map_bytes(m, with_solutions: bool = False) -> bytes:
@@ -30,10 +31,32 @@ def map_bytes(m, with_solutions: bool = False) -> bytes:
             return f.read()
 
 
-def save_entry(m, path: str) -> None:
-    """A map saved as a cache entry: its bytes made in a private folder, then the one Python writer (an exclusive
-    temporary file in the cache folder, renamed), so that no name planted in a shared folder redirects it."""
-    write_atomically(path, map_bytes(m, with_solutions=getattr(m, "has_solutions", False)), "map cache entry")
+def entry_bytes(m) -> bytes:
+    """The bytes of a map as a cache entry (with its joint solutions when it has them), made in a private folder:
+    the cache writes them through the one Python writer, so no name planted in a shared folder redirects it."""
+    return map_bytes(m, with_solutions=getattr(m, "has_solutions", False))
+
+
+def digest(data: bytes) -> str:
+    """The digest a note records of its entry's bytes: SHA-256, hexadecimal."""
+    return hashlib.sha256(data).hexdigest()
+
+
+def fd_digest(fd: int, keep: bool = False) -> tuple[str, bytes | None]:
+    """(digest, bytes or None) of the whole file open at `fd`, read from its start in 1 MiB chunks; its bytes are
+    kept only when asked for (what is hashed is what the caller gets)."""
+    h = hashlib.sha256()
+    parts = []
+    pos = 0
+    while True:
+        chunk = os.pread(fd, _CHUNK, pos)
+        if not chunk:
+            break
+        h.update(chunk)
+        pos += len(chunk)
+        if keep:
+            parts.append(chunk)
+    return h.hexdigest(), b"".join(parts) if keep else None
 
 
 def regular(path: Path) -> bool:
@@ -57,6 +80,17 @@ def read_note(path: Path, kind: str, key: str) -> dict | None:
             not isinstance(note.get("fields"), dict):
         return None
     return note
+
+
+def note_disagrees(note: dict | None, found: str) -> str | None:
+    """None when a note (read_note) records the digest `found` of its entry's bytes, else what is wrong."""
+    if note is None:
+        return "has no note of its key"
+    if "sha256" not in note:
+        return "has a note without its digest"
+    if note["sha256"] != found:
+        return "is not the entry its note records (its SHA-256 differs: another key's entry or altered bytes)"
+    return None
 
 
 def acquire(path: Path) -> int | None:

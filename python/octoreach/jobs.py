@@ -11,7 +11,7 @@ A job file is YAML (or JSON)::
       - {room: kitchen.yaml}      # every surface of a room file, each with the room's other obstacles
     surface: {theta_bins: 16}     # SurfaceMapOptions fields (not obstacles, z range, resolution, threads)
     base_heights: [0.0]           # z of the robot's reference frame (m): one surface map per height
-    out: maps                     # output folder (relative to the job file; --out overrides)
+    out: maps                     # output folder (relative to the job file; --out overrides it, both are checked)
 
 Each (robot, arm, resolution) is one capability map, each (capability map, surface, base height) one
 surface map. ``read_job`` checks the whole file before any work starts: it loads every robot, resolves
@@ -91,6 +91,15 @@ class Job:
 
 def _err(where: str, message: str) -> JobError:
     return JobError(f"{where}: {message}")
+
+
+def _out_folder(value, where: str, base: Path) -> Path:
+    """The output folder a job file's `out` or the `out` argument names (relative to `base`): a non-empty path
+    without NUL; JobError naming `where` otherwise."""
+    text = os.fspath(value) if isinstance(value, os.PathLike) else value
+    if not isinstance(text, str) or not text or "\x00" in text:
+        raise _err(where, f"must be a folder path (a non-empty string), got {shown(value)}")
+    return base / text
 
 
 def _numbers(value, where: str, positive: bool) -> list[float]:
@@ -280,10 +289,12 @@ def read_job(job, out: str | os.PathLike | None = None) -> Job:
     cap_options = _options(data, "capability", where, _cache.capability_options, {"resolution", "threads", "approach_axis"})
     surf_options = _options(data, "surface", where, SurfaceMapOptions, _SURFACE_OPTION_EXCLUDED)
     surfaces = _surfaces(data, where, base)
-    out_value = data.get("out", "build_many_out")
-    if out is None and (not isinstance(out_value, str) or not out_value or "\x00" in out_value):
-        raise _err(f"{where}: out", f"must be a folder path, got {shown(out_value)}")
-    out_dir = Path(out) if out is not None else base / out_value
+    # The file's out is checked even when the argument replaces it: a bad value in a file is a bad input.
+    out_value = _out_folder(data.get("out", "build_many_out"), f"{where}: out", base)
+    out_dir = _out_folder(out, "out (--out)", Path(".")) if out is not None else out_value
+    if out_dir.exists() and not out_dir.is_dir():
+        raise _err("out (--out)" if out is not None else f"{where}: out",
+                   f"{str(out_dir)!r} exists and is not a folder")
     result = Job(out=out_dir)
     specs = _robot_specs(data, where, base)
     arm_count = sum(max(1, len(a)) for _, a, _ in specs)

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "maps/map_io.hpp"
 #include "octoreach/map_files.hpp"
 
 using namespace octoreach;
@@ -96,4 +97,19 @@ TEST(MapFiles, ForeignFilesAreFileErrorsNamingTheFile) {
   }
   std::remove(path.c_str());
   EXPECT_THROW(load_any(temp_path("missing.orsm")), FileNotFound);
+}
+
+// A voxel record with no reachable cell reads an empty list of solutions: zero bytes into an empty vector,
+// whose data() is null. The reader copies nothing then (a null memcpy is undefined behaviour, which the
+// UndefinedBehaviorSanitizer build of `make test-sanitize` reports).
+TEST(MapFiles, ZeroByteReadsCopyNothing) {
+  const std::vector<char> data = {1, 2, 3, 4};
+  detail::ByteReader r(data, "test bytes");
+  std::vector<float> none;
+  r.get_bytes(none.data(), 0);
+  EXPECT_EQ(r.remaining(), 4u);
+  EXPECT_EQ(r.get<std::uint32_t>(), 0x04030201u);
+  r.get_bytes(nullptr, 0);  // at the end too
+  EXPECT_TRUE(r.done());
+  EXPECT_THROW(r.get_bytes(none.data(), 1), FileError);
 }

@@ -1,5 +1,6 @@
 """Helpers of the robustness tests: run code in a child process (with a memory cap and a timeout, so a
-crash or a hang fails the test instead of killing the run), forge octoreach map files, make .bt files."""
+crash or a hang fails the test instead of killing the run), forge octoreach map files (and reseal the notes of
+map cache entries), make .bt files."""
 from __future__ import annotations
 
 import os
@@ -160,6 +161,22 @@ def forge(src, dst, **changes) -> None:
 
 
 # ---- OctoMap .bt files ----
+
+def reseal(entry) -> None:
+    """The note beside a map cache entry rewritten to record the entry's present bytes (SHA-256), its kind and
+    the key its file name says: what a writer of a shared cache folder can do after forging an entry, which
+    leaves only the header and content checks to catch it."""
+    import hashlib
+    import json
+    from pathlib import Path
+
+    entry = Path(entry)
+    note_path = entry.with_suffix(".json")
+    note = json.loads(note_path.read_text()) if note_path.exists() else {"fields": {}}
+    kind, key = entry.stem.split("-", 1)
+    note.update(kind=kind, key=key, sha256=hashlib.sha256(entry.read_bytes()).hexdigest(), bytes=entry.stat().st_size)
+    note_path.write_text(json.dumps(note))
+
 
 def bt_file(children: list[bytes], size: int, res: float = 0.1) -> bytes:
     """An OctoMap binary file: header and the node bit fields (2 bytes per inner node, depth first)."""

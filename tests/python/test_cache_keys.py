@@ -1,10 +1,12 @@
-"""A map cache that can be shared: an entry is used only when it is a regular file that agrees with its key
-(copied bytes, another robot's map, forged headers with a recomputed checksum are reported, deleted and
-rebuilt, also by build-many), planted links redirect nothing, a full disk loses no build, and
-`cache clear` deletes only what the cache wrote."""
+"""A map cache that can be shared: an entry is used only when it is a regular file holding the bytes its note
+records and agreeing with its key (copied bytes, another robot's map, an entry swapped with one whose header
+reads the same, altered payloads, forged headers with a recomputed checksum and a rewritten note are
+reported, deleted and rebuilt, also by build-many), planted links redirect nothing, a full disk loses no
+build, and `cache clear` deletes only what the cache wrote."""
 from __future__ import annotations
 
 import errno
+import json
 import os
 import shutil
 import subprocess
@@ -17,7 +19,7 @@ import pytest
 import octoreach
 from octoreach import arms, robots
 from octoreach.cache import MARKER, MapCache, capability_key_fields, capability_options, key_of
-from robust_util import forge, read_map, run_python
+from robust_util import forge, read_map, reseal, run_python, write_map
 
 KW = dict(directions=16, seed=1, progress=False)
 KW_OPTS = {k: v for k, v in KW.items() if k != "progress"}  # the key's options
@@ -58,15 +60,19 @@ def test_an_honest_entry_is_a_hit_whatever_its_options(robot, tmp_path, options)
     assert again.orientations.directions.shape == first.orientations.directions.shape
 
 
-def test_copied_bytes_of_another_resolution_are_rebuilt(robot, tmp_path):
+@pytest.mark.parametrize("resealed", [False, True])
+def test_copied_bytes_of_another_resolution_are_rebuilt(robot, tmp_path, resealed):
     cache = MapCache(tmp_path)
     cached(cache, robot, resolution=0.1)
     cached(cache, robot, resolution=0.2)
-    shutil.copy(entry_of(cache, robot, ARM, resolution=0.1, **KW_OPTS),
-                entry_of(cache, robot, ARM, resolution=0.2, **KW_OPTS))
+    dst = entry_of(cache, robot, ARM, resolution=0.2, **KW_OPTS)
+    shutil.copy(entry_of(cache, robot, ARM, resolution=0.1, **KW_OPTS), dst)
+    if resealed:  # the note rewritten to match the copy: the header check catches it
+        reseal(dst)
     m, said = cached(cache, robot, resolution=0.2)
     assert m.resolution == 0.2 and cache.rebuilt_mismatched == 1
-    assert any("does not match its key" in s and "resolution" in s for s in said), said
+    expected = ("does not match its key", "resolution") if resealed else ("SHA-256 differs",)
+    assert any(all(e in s for e in expected) for s in said), said
     m, said = cached(cache, robot, resolution=0.2)  # rebuilt and stored: a plain hit now
     assert m.resolution == 0.2 and not said and m.stats["ik_calls"] == 0
 
@@ -77,6 +83,7 @@ def test_another_robots_map_under_the_key_is_rebuilt(robot, pr2, tmp_path):
     mine, _ = cached(cache, robot, resolution=0.2)
     shutil.copy(entry_of(cache, pr2, "right_arm", resolution=0.2, **KW_OPTS),
                 entry_of(cache, robot, ARM, resolution=0.2, **KW_OPTS))
+    reseal(entry_of(cache, robot, ARM, resolution=0.2, **KW_OPTS))
     m, said = cached(cache, robot, resolution=0.2)
     assert m.robot_name == robot.name and m.model_hash == robot.model_hash and m.voxel_count == mine.voxel_count
     assert any("model_hash" in s for s in said), said
@@ -89,6 +96,7 @@ def test_a_forged_resolution_with_a_recomputed_checksum_is_caught_by_its_content
     src = entry_of(cache, robot, ARM, resolution=0.2, **KW_OPTS)
     dst = entry_of(cache, robot, ARM, resolution=0.1, **KW_OPTS)
     forge(src, dst, resolution="0.10000000000000001")  # header says 0.1, the checksum is right
+    reseal(dst)  # and the note records the forged bytes
     assert octoreach.CapabilityMap.load(str(dst)).resolution == 0.1  # it loads: only the content betrays it
     m, said = cached(cache, robot, resolution=0.1)
     assert any("stored joint solution" in s for s in said), said
@@ -103,6 +111,7 @@ def test_the_right_arm_relabelled_as_the_left_is_caught(pr2, tmp_path):
     dst = entry_of(cache, pr2, "left_arm", resolution=0.2, **KW_OPTS)
     forge(entry_of(cache, pr2, "right_arm", resolution=0.2, **KW_OPTS), dst, base_link=left.base_link,
           tip_link=left.tip_link)
+    reseal(dst)
     m, said = cached(cache, pr2, "left_arm", resolution=0.2)
     assert any("stored joint solution" in s for s in said), said
     fresh = octoreach.CapabilityMap.build_for_arm(pr2, "left_arm", resolution=0.2, **KW)
@@ -118,6 +127,7 @@ def test_every_key_input_in_the_header_is_checked(robot, tmp_path, field, value)
     cached(cache, robot, resolution=0.2)
     path = entry_of(cache, robot, ARM, resolution=0.2, **KW_OPTS)
     forge(path, path, **{field: value})
+    reseal(path)
     _, said = cached(cache, robot, resolution=0.2)
     assert any("does not match its key" in s and field in s for s in said), said
 
@@ -137,13 +147,87 @@ def test_build_many_never_copies_a_swapped_entry_into_its_outputs(tmp_path):
     surfaces = {e["fields"]["surface"]: Path(e["file"]) for e in cache.entries() if e["kind"] == "surface"}
     t1, t2 = surfaces["t1"], surfaces["t2"]
     t1_bytes = t1.read_bytes()
-    shutil.copy(t2, t1)  # t2's map under t1's key
-    with pytest.warns(RuntimeWarning, match="does not match its key .*polygon"):
-        report = cluster.build_many(JOB, cluster="none", out=tmp_path / "b", cache=cache, progress=False)
-    assert report.cache_hits == 2  # the capability map and t2; t1 was rebuilt
-    out = Path(report.files["test_arm/tool0/0.2/t1"])
-    assert out.read_bytes() == t1_bytes == Path(first.files["test_arm/tool0/0.2/t1"]).read_bytes()
-    assert read_map(out).header["polygon"] != read_map(t2).header["polygon"]
+    for resealed, problem in ((False, "SHA-256 differs"), (True, "does not match its key .*polygon")):
+        shutil.copy(t2, t1)  # t2's map under t1's key
+        if resealed:
+            reseal(t1)
+        with pytest.warns(RuntimeWarning, match=problem):
+            report = cluster.build_many(JOB, cluster="none", out=tmp_path / f"b{resealed}", cache=cache,
+                                        progress=False)
+        assert report.cache_hits == 2  # the capability map and t2; t1 was rebuilt
+        out = Path(report.files["test_arm/tool0/0.2/t1"])
+        assert out.read_bytes() == t1_bytes == Path(first.files["test_arm/tool0/0.2/t1"]).read_bytes()
+        assert read_map(out).header["polygon"] != read_map(t2).header["polygon"]
+
+
+def room_job(tmp_path, name, boxes):
+    """A job of one table in a room of its own (with `boxes` beside the table)."""
+    folder = tmp_path / name
+    folder.mkdir()
+    (folder / "room.json").write_text(json.dumps({"surfaces": [JOB["surfaces"][0]], "boxes": boxes}))
+    return {**JOB, "surfaces": [{"room": str(folder / "room.json")}]}
+
+
+def test_a_swapped_surface_entry_whose_header_reads_the_same_is_rebuilt(tmp_path):
+    # The same table in two rooms: one with a wall beside it, one without. Their surface maps' headers agree on
+    # everything the header check reads (robot, arm, polygon, height, options); only the room differs, and with
+    # it the map. The entry of the room without the wall under the key of the room with it, alone or with its
+    # note: caught by the digest the key's note records, rebuilt, and the output is the honest map.
+    from octoreach import cluster, cache_check
+
+    cache = MapCache(tmp_path / "cache")
+    walled = room_job(tmp_path, "walled", [{"name": "wall", "size": [0.1, 1.0, 1.0], "xyz": [0.2, 0.0, 0.5]}])
+    open_ = room_job(tmp_path, "open", [])
+    honest = cluster.build_many(walled, cluster="none", out=tmp_path / "w", cache=cache, progress=False)
+    other = cluster.build_many(open_, cluster="none", out=tmp_path / "o", cache=cache, progress=False)
+    name = "test_arm/tool0/0.2/t1"
+    honest_bytes, other_bytes = (Path(r.files[name]).read_bytes() for r in (honest, other))
+    assert honest_bytes != other_bytes
+    entries = {json_room(e): Path(e["file"]) for e in cache.entries() if e["kind"] == "surface"}
+    mine, theirs = entries["walled"], entries["open"]
+    plan = octoreach.jobs.read_job(walled)
+    assert cache_check.surface_mismatch(octoreach.map_files.load(theirs), plan.surfaces[0].fields,
+                                        plan.surfaces[0].polygon) is None  # the header check alone lets it in
+    for with_note in (False, True):
+        shutil.copy(theirs, mine)
+        if with_note:
+            shutil.copy(theirs.with_suffix(".json"), mine.with_suffix(".json"))
+        with pytest.warns(RuntimeWarning, match="SHA-256 differs" if not with_note else "has no note of its key"):
+            report = cluster.build_many(walled, cluster="none", out=tmp_path / f"again{with_note}", cache=cache,
+                                        progress=False)
+        assert Path(report.files[name]).read_bytes() == honest_bytes and report.cache_hits == 1
+        assert mine.read_bytes() == honest_bytes  # rebuilt and stored again
+
+
+def json_room(entry) -> str:
+    """'walled' or 'open': which room a surface entry's note says it was built in."""
+    return "walled" if entry["fields"]["room"].get("boxes") else "open"
+
+
+def test_an_altered_payload_with_a_recomputed_checksum_is_rebuilt(robot, tmp_path):
+    # A capability map without joint solutions has no content check: a changed reachability value, with the
+    # map's checksum recomputed, loads and reads like the honest map. Its note's digest catches it.
+    cache = MapCache(tmp_path)
+    honest, _ = cached(cache, robot, resolution=0.2, keep_solutions=False)
+    path = entry_of(cache, robot, ARM, resolution=0.2, keep_solutions=False, **KW_OPTS)
+    good = path.read_bytes()
+    m = read_map(path)
+    _, values = honest.voxels()
+    for i in range(len(m.payload()) // 2, len(m.payload())):  # the first one-bit change past the middle that loads
+        payload = bytearray(m.payload())
+        payload[i] ^= 1
+        write_map(path, m, bytes(payload))
+        try:
+            forged = octoreach.CapabilityMap.load(str(path))
+        except OSError:
+            continue
+        if list(forged.voxels()[1]) != list(values):
+            break
+    else:
+        pytest.fail("no loadable one-bit change of the payload")
+    again, said = cached(cache, robot, resolution=0.2, keep_solutions=False)
+    assert any("SHA-256 differs" in s for s in said), said
+    assert path.read_bytes() == good and cache.rebuilt_mismatched == 1 and cache.builds == 2
 
 
 # ---------------------------------------------------------------------------------------------- planted files
@@ -194,8 +278,8 @@ def test_lock_files_are_removed_after_a_build(robot, tmp_path):
 def test_an_entry_that_cannot_be_written_still_returns_the_build(robot, tmp_path):
     cache = MapCache(tmp_path)
 
-    def full_disk(m, path):
-        raise OSError(errno.ENOSPC, f"cannot write map file '{path}': No space left on device")
+    def full_disk(m):
+        raise OSError(errno.ENOSPC, "cannot write map file: No space left on device")
 
     fields = capability_key_fields(robot, octoreach.Arm.resolve(robot, ARM), capability_options(None, resolution=0.2))
     with pytest.warns(RuntimeWarning, match="cannot store .*No space left"):

@@ -202,6 +202,35 @@ def test_wrong_types_in_a_job_file_are_one_line(tmp_path, robot, fragment):
     one_line_error(cli("build-many", path, "--cluster", "none", "--no-cache"), fragment)
 
 
+@pytest.mark.parametrize("out", [5, "", "a\x00b", ["maps"], {"x": 1}, None, True])
+def test_a_bad_out_in_a_job_file_is_refused_even_when_the_command_line_replaces_it(tmp_path, out):
+    path = tmp_path / "job.json"
+    path.write_text(json.dumps({"robots": [{"name": "test_arm", "arms": [["base_link", "tool0"]]}],
+                                "surfaces": [TABLE], "out": out}))
+    for given in (None, tmp_path / "maps"):
+        with pytest.raises(JobError, match=r"job file .*job\.json'?: out: must be a folder path"):
+            read_job(path, out=given)
+    r = cli("build-many", path, "--out", tmp_path / "maps", "--cluster", "none", "--no-cache", "--quiet")
+    one_line_error(r, "job.json", "out: must be a folder path")
+    assert not (tmp_path / "maps").exists()
+
+
+def test_a_bad_out_argument_is_refused_before_any_work(tmp_path):
+    job = {"robots": [{"name": "test_arm", "arms": [["base_link", "tool0"]]}], "surfaces": [TABLE], "out": "maps"}
+    (tmp_path / "a_file").write_text("mine")
+    for out, fragment in (("", "must be a folder path"), ("a\x00b", "must be a folder path"), (b"maps", "got b'maps'"),
+                          (tmp_path / "a_file", "exists and is not a folder")):
+        with pytest.raises(JobError, match=f"out \\(--out\\): .*{fragment}"):
+            read_job(job, out=out)
+    (tmp_path / "file_out").write_text("mine")
+    with pytest.raises(JobError, match="job: out: .* exists and is not a folder"):
+        read_job({**job, "out": str(tmp_path / "file_out")})
+    path = tmp_path / "job.json"
+    path.write_text(json.dumps(job))
+    one_line_error(cli("build-many", path, "--out", "", "--cluster", "none", "--no-cache"), "out (--out)")
+    assert (tmp_path / "a_file").read_text() == "mine" and not (tmp_path / "maps").exists()
+
+
 def test_huge_integers_in_a_job_are_refused(tmp_path):
     for key in ("resolutions", "base_heights"):
         with pytest.raises(JobError, match="finite"):

@@ -61,8 +61,10 @@ class ByteReader {
     pos_ += sizeof(T);
     return v;
   }
+  // n == 0 copies nothing: `out` may then be the null data() of an empty vector, which memcpy must never get.
   void get_bytes(void* out, std::size_t n) {
     need(n);
+    if (n == 0) return;
     std::memcpy(out, data_.data() + pos_, n);
     pos_ += n;
   }
