@@ -60,6 +60,18 @@ def test_polygon_file(maps, tmp_path):
     assert r.returncode == 0, r.stderr
 
 
+def test_surface_resolution_defaults_to_the_capability_maps(maps, tmp_path):
+    from octoreach import SurfaceMap
+
+    _, cap, _ = maps
+    out = tmp_path / "coarse.orsm"
+    r = run("surface", "--urdf", URDF, "--arms", cap, "--table", 0.6, 0.4, 0.4, "--table-x", 0.55, "--quiet",
+            "--out", out)
+    assert r.returncode == 0, r.stderr
+    assert SurfaceMap.load(str(out)).resolution == pytest.approx(0.2)  # the .orcm's, as SurfaceMap.build
+    assert "capability map's" in run("surface", "--help").stdout
+
+
 @pytest.mark.parametrize("args, message", [
     (("info", "/nonexistent/map.orsm"), "cannot open"),
     (("sample", "/nonexistent/map.orsm"), "cannot open"),

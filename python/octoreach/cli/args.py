@@ -69,7 +69,11 @@ def robot_args(sp):
 
 
 def arm_args(sp, many=False):
-    """Which arm(s) and the capability-map build options; defaults from CapabilityMapOptions (C++)."""
+    """Which arm(s) and the build options; defaults from CapabilityMapOptions and SurfaceMapOptions (C++).
+
+    many=True is the surface command: --resolution then defaults to SurfaceMapOptions().resolution (None: the
+    capability map's, as SurfaceMap.build), and a capability map built from an arm name uses the capability
+    default."""
     from .._core import CapabilityMapOptions
 
     defaults = CapabilityMapOptions()  # the build defaults, defined once in C++
@@ -84,8 +88,13 @@ def arm_args(sp, many=False):
         sp.add_argument("--tip", help="chain tip (tool) link (instead of --arm)")
     sp.add_argument("--approach-axis", type=float, nargs=3, metavar=("X", "Y", "Z"),
                     help="tool axis that approaches the object, tip frame (default: inferred from the gripper)")
-    sp.add_argument("--resolution", type=float, default=defaults.resolution,
-                    help=f"voxel edge in m (default {defaults.resolution})")
+    if many:
+        sp.add_argument("--resolution", type=float, default=None,
+                        help="grid of base positions and surface points in m (default: the capability map's; a map "
+                             f"built from an arm name uses {defaults.resolution})")
+    else:
+        sp.add_argument("--resolution", type=float, default=defaults.resolution,
+                        help=f"voxel edge in m (default {defaults.resolution})")
     sp.add_argument("--directions", type=int, default=defaults.directions,
                     help=f"approach directions (default {defaults.directions})")
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")

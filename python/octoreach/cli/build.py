@@ -84,18 +84,20 @@ def _cmd_surface(args) -> int:
         if isinstance(source, CapabilityMap) and not source.has_solutions:
             raise ValueError(f"{arm}: the capability map was saved without joint solutions (--with-solutions)")
         sources.append(source)
+    # no --resolution: the capability map's (SurfaceMap.build's default; CapabilityMapOptions' for an arm name)
+    grid = {} if args.resolution is None else {"resolution": args.resolution}
     if args.scene:  # one map per surface: build each arm's capability map once
         from .. import arms
 
         sources = [s if isinstance(s, CapabilityMap) else
-                   arms.capability_map(robot, s, resolution=args.resolution, directions=args.directions, seed=args.seed,
-                                       progress=not args.quiet) for s in sources]
+                   arms.capability_map(robot, s, directions=args.directions, seed=args.seed, progress=not args.quiet,
+                                       **grid) for s in sources]
         for folder in (args.out, args.plot, args.octovis):
             if folder:
                 os.makedirs(folder, exist_ok=True)
     for name, stem, surface, obstacles_of in surfaces:
         obstacles = obstacles_of()
-        maps = [SurfaceMap.build(robot, source, surface, resolution=args.resolution, theta_bins=args.theta_bins,
+        maps = [SurfaceMap.build(robot, source, surface, theta_bins=args.theta_bins, **grid,
                                  z_range=(args.z, args.z), obstacles=obstacles, directions=args.directions,
                                  seed=args.seed, progress=not args.quiet) for source in sources]
         del obstacles
