@@ -60,6 +60,7 @@ class Room:
         self._base = Path(base_dir)
         self._description: dict = {}
         self._surfaces: dict[str, Surface] = {}
+        self._part_names: dict[str, list[str]] = {}  # surface -> names of its boxes (legs first), as in the file
         self._objects = Obstacles()  # boxes, meshes, OctoMaps and shelf panels: everything but the surfaces
         self._owner: dict[str, str] = {}  # name -> kind, to refuse duplicates
         self._obstacle_count = 0  # every obstacle entry, a surface's legs and boxes, shelf panels
@@ -157,10 +158,12 @@ class Room:
             raise KeyError(f"no surface {without!r} in the room (surfaces: {', '.join(self._surfaces) or 'none'})")
         out = Obstacles()
         for name, surface in self._surfaces.items():
-            if name != without:  # each piece named after its surface: "counter", "counter/box" (legs, boxes)
-                own = surface.obstacles()
+            if name != without:  # each piece named after its surface: "counter", "counter/leg_1", "counter/drawers"
+                own = surface.obstacles()  # the slab, then its boxes (legs first) in the order they were added
+                parts = iter(self._part_names.get(name, []))
                 for shape, part in zip(own.shapes, own.names):
-                    out.add_shape(shape, name if part == "surface" else f"{name}/{part.removeprefix('surface_')}")
+                    piece = part.removeprefix("surface_") if part != "surface_box" else next(parts, "box")
+                    out.add_shape(shape, name if part == "surface" else f"{name}/{piece}")
         out.add(self._objects)
         return out
 
@@ -221,7 +224,8 @@ class Room:
     def _path(self, entry: dict, where: str) -> str:
         return _regular_path(entry, where, self._base)
 
-    def _surface_from(self, entry: dict, where: str) -> Surface:
+    def _surface_from(self, entry: dict, where: str, parts: list | None = None) -> Surface:
+        """The Surface of a room entry; `parts` (if given) receives the names of its boxes, legs first."""
         if ("rectangle" in entry) == ("vertices" in entry):
             raise ValueError(f"{where}: give exactly one of 'rectangle' and 'vertices'")
         thickness = _number(entry, "thickness", where, 0.03)
@@ -241,25 +245,29 @@ class Room:
         boxes = _list(entry.get("boxes"), "boxes", where)
         meshes = _list(entry.get("meshes"), "meshes", where)
         self._grow(where, surfaces=1, obstacles=len(boxes) + len(meshes) + 4 * ("legs" in entry))
+        names = [] if parts is None else parts
         if "legs" in entry:
             surface.add_legs(_number(entry, "legs", where))
+            names += [f"leg_{k}" for k in range(1, 5)]
         for i, box in enumerate(boxes):
             bw = f"{where}.boxes[{i}]"
             _check_keys(box, _BOX_KEYS, bw)
-            _name(box, bw, "box")  # not a file name, but checked as every name of the room is
+            names.append(_name(box, bw, "box"))  # not a file name, but checked as every name of the room is
             surface.add_box(_vector(box, "size", bw, 3), _pose(box, bw))
         return surface
 
     def _add_surface(self, entry: dict) -> Surface:
         where, name = self._entry("surfaces", entry, _SURFACE_KEYS, "surface")
         where += f" ({name!r})"
-        surface = self._surface_from(entry, where)
+        parts: list[str] = []
+        surface = self._surface_from(entry, where, parts)
         meshes = Obstacles()  # a surface's meshes (a sink, a lamp) are room obstacles
         for i, mesh in enumerate(_list(entry.get("meshes"), "meshes", where)):
             mw = f"{where}.meshes[{i}]"
             meshes.add_shape(_shape("meshes", mesh, mw, self._path), _name(mesh, mw, f"{name}/mesh_{i}"))
         self._claim(name, where)
         self._surfaces[name] = surface
+        self._part_names[name] = parts
         self._objects.add(meshes)
         self._record("surfaces", entry)
         return surface

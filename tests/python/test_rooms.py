@@ -339,3 +339,15 @@ def test_cli_angles_are_radians_or_say_deg(arm_room, tmp_path, capsys):
         helps = " ".join(a.help or "" for a in sub._actions)
         assert "rad" in helps
         assert "degrees" not in helps.replace("degrees as", "")  # no bare degrees anywhere
+
+
+def test_a_surfaces_boxes_and_legs_keep_their_names():
+    room = rooms.Room({"surfaces": [
+        {"name": "bench", "vertices": [[1.2, -1.0, 0.85], [1.8, -1.0, 0.85], [1.8, 1.0, 0.85], [1.2, 1.0, 0.85]],
+         "boxes": [{"name": "drawers", "size": [0.5, 1.8, 0.8], "xyz": [1.5, 0.0, 0.4]},
+                   {"size": [0.2, 0.2, 0.2], "xyz": [1.5, 0.5, 0.95]}]},
+        {"name": "island", "rectangle": {"size": [1.0, 0.6], "height": 0.8, "x": -0.3, "y": 1.5}, "legs": 0.05}]})
+    names = room.obstacles(without="island").names
+    assert "bench/drawers" in names and "bench/box" in names and "surface_box" not in names
+    assert [n for n in room.obstacles(without="bench").names if n.startswith("island/")] == \
+        [f"island/leg_{k}" for k in range(1, 5)]
