@@ -2,6 +2,7 @@
 the robot and the map, a real mouse click on a cell reports the cell's R_S (checked against reachability())."""
 from __future__ import annotations
 
+import re
 import socket
 import subprocess
 import sys
@@ -302,8 +303,31 @@ def test_package_view_with_joints(arm_map):
         assert np.allclose(v.robot_layer.links["upper_arm_link"].position, T[:3, 3], atol=1e-6)
     finally:
         v.close()
-    with pytest.raises(ValueError, match="unknown joint"):
-        octoreach.view(sm, joints={"nope": 1.0}, samples=0, block=False, port=_free_port(), verbose=False)
+    with pytest.raises(ValueError, match=f"no moving joint named 'elbw'; did you mean {robot.joint_names[2]}"):
+        octoreach.view(sm, joints={"elbw": 1.0}, samples=0, block=False, port=_free_port(), verbose=False)
+    with pytest.raises(ValueError, match="outside its limits"):
+        octoreach.view(sm, joints={name: 99.0}, samples=0, block=False, port=_free_port(), verbose=False)
+
+
+ROVER = str(Path(__file__).resolve().parents[2] / "docs" / "examples" / "rover.urdf")
+
+
+@pytest.mark.parametrize("joint, message", [("lift_joint=0.2", "no moving joint named 'lift_joint'"),
+                                            ("elbow=5", "'elbow' value 5.0+ is outside its limits \\[-2.6")])
+def test_cli_bad_joint_is_an_error_before_the_viewer_starts(joint, message):
+    r = subprocess.run([sys.executable, "-m", "octoreach.cli", "view", "--urdf", ROVER, "--joint", joint,
+                        "--port", str(_free_port())], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2 and re.search(message, r.stderr), r.stderr
+    assert "viewer at" not in r.stdout and "Server stopped" not in r.stdout
+
+
+def test_cli_no_serve_writes_the_page_quietly(tmp_path):
+    page = tmp_path / "rover.html"
+    r = subprocess.run([sys.executable, "-m", "octoreach.cli", "view", "--urdf", ROVER, "--joint", "elbow=1.2",
+                        "--no-serve", "--html", str(page), "--port", str(_free_port())],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert page.is_file() and r.stdout.strip() == f"octoreach: wrote {page}"
 
 
 def test_empty_surface_map_warns(arm_map, viewer, capsys):

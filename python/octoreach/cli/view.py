@@ -27,8 +27,8 @@ def _cmd_view(args) -> int:
     if not args.files and robot is None and args.scene is None:
         raise ValueError("nothing to view: give map files, --urdf FILE (or --robot NAME) or --scene ROOM")
     view(*args.files, robot=robot, joints=joints, samples=args.samples, seed=args.seed, port=args.port,
-         host=args.host, html=args.html, png=args.png, block=not args.no_serve, room=args.scene,
-         colour_by=args.colour_by)
+         host=args.host, html=args.html, png=args.png, room=args.scene, colour_by=args.colour_by,
+         serve=not args.no_serve)
     return 0
 
 

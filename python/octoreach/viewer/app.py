@@ -36,7 +36,8 @@ def _import_viser():
 class Viewer:
     """A running viewer. Layers are added with the add_* methods; `selected` holds the last clicked cell."""
 
-    def __init__(self, port: int = 8080, host: str = "127.0.0.1", verbose: bool = True):
+    def __init__(self, port: int = 8080, host: str = "127.0.0.1", verbose: bool = True, announce: bool = True):
+        """verbose: print notes (and, with announce, the address as soon as the server runs)."""
         viser = _import_viser()
         with contextlib.redirect_stdout(io.StringIO()):  # viser's banner: the URL is printed below
             self.server = viser.ViserServer(host=host, port=port, verbose=False)
@@ -44,8 +45,8 @@ class Viewer:
         self.scene = self.server.scene
         self.url = f"http://{host}:{self.server.get_port()}"
         self.verbose = verbose
-        if verbose:
-            print(f"octoreach: viewer at {self.url}", flush=True)
+        if verbose and announce:
+            self.announce()
         self.notes: list[str] = []
         self.robot_layer = None
         self.room_layer = None
@@ -317,5 +318,10 @@ class Viewer:
         finally:
             self.close()
 
+    def announce(self) -> None:
+        """Prints the viewer's address."""
+        print(f"octoreach: viewer at {self.url}", flush=True)
+
     def close(self) -> None:
-        self.server.stop()
+        with contextlib.redirect_stdout(io.StringIO()):  # viser's "Server stopped"
+            self.server.stop()

@@ -1,6 +1,7 @@
 """What the viewer can open: map files, .bt occupancy files, map objects, robots by name."""
 from __future__ import annotations
 
+import difflib
 import os
 
 import numpy as np
@@ -72,11 +73,16 @@ def reference_posture(robot, smap) -> np.ndarray:
 
 
 def with_joints(robot, q, joints: dict) -> np.ndarray:
-    """q with the named joints set (ValueError naming an unknown joint)."""
+    """q with the named joints set; ValueError for an unknown joint (with the nearest names) or a value outside
+    the joint's limits (Robot.configuration checks both)."""
     q = np.array(q, dtype=float)
     names = list(robot.joint_names)
-    for name, value in joints.items():
-        if name not in names:
-            raise ValueError(f"unknown joint {name!r} of {robot.name}")
-        q[names.index(name)] = float(value)
+    for name in joints:
+        if name not in names:  # the moving joints nearest the name, else all of them
+            near = difflib.get_close_matches(name, names, n=3, cutoff=0.5) or names
+            raise ValueError(f"robot {robot.name!r} has no moving joint named {name!r}; "
+                             f"{'did you mean' if near is not names else 'its joints:'} {', '.join(near)}")
+    checked = robot.configuration({name: float(value) for name, value in joints.items()})
+    for name in joints:
+        q[names.index(name)] = checked[names.index(name)]
     return q

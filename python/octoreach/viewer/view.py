@@ -46,7 +46,8 @@ def check_arguments(port=8080, host: str = "127.0.0.1", samples: int = 5, html=N
 
 def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 5, seed: int = 1, port: int = 8080,
          host: str = "127.0.0.1", block: bool = True, html: str | None = None, png: str | None = None,
-         steps=None, surface=None, room=None, verbose: bool = True, colour_by: str = "reachability") -> Viewer:
+         steps=None, surface=None, room=None, verbose: bool = True, colour_by: str = "reachability",
+         serve: bool = True) -> Viewer:
     """Shows maps, explorations, a robot and a room in the browser: each item is a file path (.orsm, .orcm, .bt), a
     SurfaceMap, CapabilityMap, ExplorationMap or an explore() result. `robot`: a Robot (any: from a URDF file,
     example-robot-data, ...) or a name; it defaults to the one a surface map records; its configuration is `q`,
@@ -56,12 +57,15 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
     result (the map after each view on the view slider). `surface`: the Surface a surface map was built on (its
     slab and boxes are drawn). `colour_by`: a capability map's voxels by "reachability" (D) or "quality" (of their
     cells' stored solutions). `html`/`png` also write the scene as a static page / a screenshot. With no item,
-    the robot and the room alone. block=True serves until Ctrl-C; otherwise the running Viewer is returned."""
+    the robot and the room alone. block=True serves until Ctrl-C; otherwise the running Viewer is returned.
+    serve=False writes `html`/`png` and stops the server (its address is not printed); the Viewer is returned
+    closed. Bad items and `joints` (an unknown name, a value outside the joint's limits) raise ValueError before
+    the address is printed."""
     check_arguments(port, host, samples, html, png)
     loaded = [files.load(item) for item in items]
     if not loaded and robot is None and room is None:
         raise ValueError("nothing to view: give a map file (.orsm, .orcm), a .bt file, a map object, a robot or a room")
-    v = Viewer(port=port, host=host, verbose=verbose)
+    v = Viewer(port=port, host=host, verbose=verbose, announce=False)  # the address once the scene is up
     try:
         _show(v, loaded, robot, q, joints, samples, seed, steps, surface, room, colour_by)
         if html:
@@ -71,6 +75,11 @@ def view(*items, robot=None, q=None, joints: dict | None = None, samples: int = 
     except BaseException:
         v.close()
         raise
+    if not serve:
+        v.close()
+        return v
+    if verbose:
+        v.announce()
     if block:
         v.wait()
     return v
