@@ -39,7 +39,13 @@ def test_build_info_query_sample_export(maps):
     assert (d / "table.ot").read_bytes().startswith(b"# Octomap OcTree file")
     info = run("info", smap)
     assert info.returncode == 0 and "octoreach_test_arm" in info.stdout and "surface_points: 6" in info.stdout
-    assert "capability" not in run("info", cap).stderr
+    info = run("info", cap)
+    assert "capability" not in info.stderr
+    from octoreach import CapabilityMap
+
+    m = CapabilityMap.load(str(cap))  # records (reachable or mixed cells) vs voxels with D > 0, labelled apart
+    assert f"voxels: {m.voxel_count} (voxel records: a reachable or a mixed cell)" in info.stdout
+    assert f"over {m.stats['voxels']} voxels with D > 0" in info.stdout
     sample = run("sample", smap, "--count", 3)
     assert sample.returncode == 0 and len(sample.stdout.strip().splitlines()) == 3
     rs = [float(line.split("R_S=")[1]) for line in sample.stdout.splitlines()]

@@ -161,7 +161,7 @@ def test_a_room_with_a_shelf_of_three_boards_and_a_wall(arm_room, tmp_path):
     assert np.all(maps["table"].reachability(poses) <= alone.reachability(poses) + 1e-6)
 
 
-def test_the_cli_writes_one_map_per_surface(arm_room, tmp_path):
+def _cli_scene_maps(arm_room, tmp_path):
     from octoreach import cli
 
     cap = arm_room[1]
@@ -179,6 +179,24 @@ def test_the_cli_writes_one_map_per_surface(arm_room, tmp_path):
     others = len(rooms.Room(SCENE).obstacles(without="table"))
     assert table.voxel_count > 0 and f"room: {others} obstacles" in table.parameters["checks"]
     assert not plots_dir.exists()
+    return table, out / "table.orsm", others
+
+
+def test_the_cli_writes_one_map_per_surface(arm_room, tmp_path):
+    _cli_scene_maps(arm_room, tmp_path)
+
+
+def test_info_tells_the_rooms_counts_apart(arm_room, tmp_path, capsys):
+    from octoreach import cli
+
+    table, path, others = _cli_scene_maps(arm_room, tmp_path)
+    capsys.readouterr()
+    assert cli.main(["info", str(path)]) == 0
+    out = capsys.readouterr().out
+    own = table.room.surface_count
+    assert f"room: {others + own} obstacles: {own} of the surface (slab, legs, boxes) and {others} others" in out
+    assert f"(room: {others} obstacles) (obstacles besides the surface's own" in out
+    assert f"over {table.voxel_count} voxels x 8 headings" in out
 
 
 def test_scene_file_round_trip(tmp_path):

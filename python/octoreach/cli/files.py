@@ -14,22 +14,40 @@ def _cmd_info(args) -> int:
 
     m = map_files.load(args.map)
     print(repr(m))
+    capability = m.kind == "capability"
     for k, v in sorted(m.parameters.items()):
-        print(f"  {k}: {v}")
-    centres, values = m.voxels()
-    values = np.asarray(values)
-    if values.size:
-        print(f"  values: min {values[values > 0].min():.4f}, max {values.max():.4f}, voxels {len(centres)}")
+        note = ""
+        if capability and k == "voxels":  # records; the drawn voxels (D > 0) are counted on the values line
+            note = " (voxel records: a reachable or a mixed cell)"
+        elif k == "checks" and "(room: " in str(v):
+            note = " (obstacles besides the surface's own; see room below)"
+        print(f"  {k}: {v}{note}")
+    print(_values_line(*m.voxels()))
     lo, hi = m.bounds
     print(f"  bounds: {np.round(lo, 3).tolist()} .. {np.round(hi, 3).tolist()}")
     room = getattr(m, "room", None)
     if room is not None:
         others = list(dict.fromkeys(list(room.obstacles.names)[room.surface_count:]))  # each name once
+        count = len(room.obstacles)
         print("  room: none recorded (a file written before maps recorded their room)" if room.empty else
-              f"  room: {len(room.obstacles)} obstacles ({room.surface_count} of the surface; "
-              f"{', '.join(others[:8]) or 'no others'}{' ...' if len(others) > 8 else ''}), "
-              f"body of {len(room.body)} shapes on {len(set(room.body_links))} links")
+              f"  room: {count} obstacles: {room.surface_count} of the surface (slab, legs, boxes) and "
+              f"{count - room.surface_count} others ({', '.join(others[:8]) or 'none'}"
+              f"{' ...' if len(others) > 8 else ''}); body of {len(room.body)} shapes on {len(set(room.body_links))} "
+              "links")
     return 0
+
+
+def _values_line(centres, values) -> str:
+    """min and max of a map's values and what they are counted over: voxels (capability: D > 0) or voxels x
+    headings (surface and point maps)."""
+    values = np.asarray(values)
+    if not values.size:
+        return "  values: none (no voxel holds a value > 0)"
+    span = f"  values: min {values[values > 0].min():.4f}, max {values.max():.4f}"
+    if values.ndim == 1:
+        return f"{span} over {len(centres)} voxels with D > 0 (a reachable cell)"
+    return (f"{span} over {len(centres)} voxels x {values.shape[1]} headings "
+            f"({np.count_nonzero(values):,} poses with a value > 0)")
 
 
 def _cmd_export(args) -> int:
