@@ -76,6 +76,11 @@ def test_surface_resolution_defaults_to_the_capability_maps(maps, tmp_path):
     assert r.returncode == 0, r.stderr
     assert SurfaceMap.load(str(out)).resolution == pytest.approx(0.2)  # the .orcm's, as SurfaceMap.build
     assert "capability map's" in run("surface", "--help").stdout
+    both = tmp_path / "both.orsm"  # a saved map and an arm by name: the name's map is built on the same grid
+    r = run("surface", "--urdf", URDF, "--arms", cap, "arm", "--directions", 24, "--table", 0.6, 0.4, 0.4,
+            "--table-x", 0.55, "--quiet", "--out", both)
+    assert r.returncode == 0, r.stderr
+    assert SurfaceMap.load(str(both)).resolution == pytest.approx(0.2)
 
 
 @pytest.mark.parametrize("args, message", [

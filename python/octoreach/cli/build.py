@@ -84,8 +84,11 @@ def _cmd_surface(args) -> int:
         if isinstance(source, CapabilityMap) and not source.has_solutions:
             raise ValueError(f"{arm}: the capability map was saved without joint solutions (--with-solutions)")
         sources.append(source)
-    # no --resolution: the capability map's (SurfaceMap.build's default; CapabilityMapOptions' for an arm name)
-    grid = {} if args.resolution is None else {"resolution": args.resolution}
+    # No --resolution: the (first) capability map's, SurfaceMap.build's default, so the maps of several arms
+    # share one grid; with arm names only, CapabilityMapOptions' resolution.
+    first = next((s for s in sources if isinstance(s, CapabilityMap)), None)
+    resolution = first.resolution if args.resolution is None and first is not None else args.resolution
+    grid = {} if resolution is None else {"resolution": resolution}
     if args.scene:  # one map per surface: build each arm's capability map once
         from .. import arms
 
