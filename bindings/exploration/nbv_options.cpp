@@ -96,6 +96,16 @@ void wrap_search_options(py::module_& m) {
       .def_readwrite("seed", &NbvOptions::seed, "seeds the orientation samples and the IK restarts")
       .def_readwrite("threads", &NbvOptions::threads)
       .def_readwrite("arm_collisions", &NbvOptions::arm_collisions)
+      .def_property("reference",
+                    [](const NbvOptions& o) -> py::object {
+                      return o.ik.reference.size() ? py::cast(o.ik.reference) : py::none();
+                    },
+                    [](NbvOptions& o, const py::object& q) {
+                      o.ik.reference = q.is_none() ? Eigen::VectorXd()
+                                                   : cast_arg<Eigen::VectorXd>(q, "reference", "a vector of joint values or None");
+                    },
+                    "The robot's configuration for the joints off the chain (robot.dof values, e.g.\n"
+                    "robot.configuration({...})) in the arm's collision checks; None: home.")
       .def_readwrite("min_reachability", &NbvOptions::min_reachability)
       .def_readwrite("capability_orientations", &NbvOptions::capability_orientations)
       .def_property("gain", [](const NbvOptions& o) { return std::string(gain_name(o.gain)); },

@@ -1946,6 +1946,15 @@ class NbvOptions:
     def chain_base(self, arg1: typing.Any) -> None:
         ...
     @property
+    def reference(self) -> typing.Any:
+        """
+        The robot's configuration for the joints off the chain (robot.dof values, e.g.
+        robot.configuration({...})) in the arm's collision checks; None: home.
+        """
+    @reference.setter
+    def reference(self, arg1: typing.Any) -> None:
+        ...
+    @property
     def enclosure_power(self) -> float:
         """
         gain 'frontier_void': each void cell also counts with e^power in the ranking and the voids'

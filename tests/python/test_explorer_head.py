@@ -137,3 +137,26 @@ def test_a_search_space_around_the_robot_stops_with_the_rejection_counts(head):
     going = ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4), **SETTINGS)
     going.integrate(_camera().capture(scene, start), start)
     assert ex.stop_message(going.next_view()) == ""
+
+
+def test_the_joints_off_the_chain_stand_at_the_given_reference(head):
+    """The head's chain starts at the base, so the torso lift carries the arm, which sticks forward at home into
+    a search space that reaches up to 1.3 m: the exploration runs out of valid views. With the arm folded up
+    (reference=, the joints off the chain) the same exploration goes on until its stop rule ends it."""
+    robot, chain = head
+    scene = _table_scene()
+    region = ex.scene_region(scene)
+    region[1, 2] = 1.3
+    start = chain.fk(chain.aim(np.array([0.8, 0.0, 0.45])))
+    runs = {}
+    for name, reference in (("home", None), ("folded", robot.configuration({"shoulder_lift_joint": -1.5}))):
+        runs[name] = ex.explore(scene, _camera(), start, robot=robot, chain=chain, base_pose=np.eye(4),
+                                search_space=region, reference=reference, **SETTINGS)
+    assert runs["home"].stop_reason == "no valid view" and "arm_collision" in runs["home"].stop_message
+    assert runs["folded"].stop_reason not in ("no valid view", "view budget"), runs["folded"].table()
+    assert len(runs["folded"].rows) > len(runs["home"].rows)
+    e = ex.Explorer(_camera(), region, robot=robot, chain=chain, base_pose=np.eye(4), reference=np.zeros(3),
+                    **SETTINGS)
+    e.integrate(_camera().capture(scene, start), start)
+    with pytest.raises(ValueError, match="reference must hold the robot's"):
+        e.next_view()

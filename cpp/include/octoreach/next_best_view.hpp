@@ -124,7 +124,7 @@ struct NbvOptions {
   /// ik.seed + the pose's index).
   IkOptions ik = default_ik();
   /// With a chain: reject IK solutions where a link the chain moves (its collision shapes; the rest of
-  /// the robot at home, the robot placed so the chain base sits at chain_base) touches an occupied cell
+  /// the robot at ik.reference, else at home, the robot placed so the chain base sits at chain_base) touches an occupied cell
   /// of the map (and, with unknown_is_obstacle, an unknown cell of the search space), or any link touches
   /// another link of the robot (self-collision, the robot's allowed pairs excepted). The links the chain
   /// does not move are not tested against the map: they do not move with the view, and a base standing on

@@ -99,7 +99,11 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   if (!opt.chain || !opt.arm_collisions) return;
   const Robot& robot = opt.chain->robot();
   obstacles_.emplace();  // with no cell known yet, the arm is still checked against itself
-  reference_ = robot.home();
+  // the joints off the chain stand where its IK checks self-collision: ik.reference, else home
+  reference_ = opt.ik.reference.size() ? opt.ik.reference : robot.home();
+  if (reference_.size() != robot.dof())
+    throw std::invalid_argument("reference must hold the robot's " + std::to_string(robot.dof()) +
+                                " joint values, got " + std::to_string(reference_.size()));
   robot_root_ = opt.chain_base * robot.link_poses(reference_)[robot.link_index(opt.chain->base_link())].inverse();
   // Only the links the chain moves are tested against the map (as the loop's physical check and the oracle
   // do): the others do not move with the view, and a base standing on the floor touches the floor's

@@ -167,7 +167,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, options: Optional[Exp
     explorer = Explorer(camera, region, options, robot=robot, chain=chain, base_pose=base_pose,
                         base_moves=base_moves, capability_map=capability_map, strategy=strategy,
                         resolution=resolution, void_fit_threshold=void_fit_threshold, **settings)
-    physics = PhysicalCheck(explorer.robot, explorer.chain, scene, explorer.options.physical_check)
+    physics = PhysicalCheck(explorer.robot, explorer.chain, scene, explorer.options.physical_check,
+                            explorer.options.search.reference)
     return _Loop(scene, camera, explorer, region, physics, target, on_view).run(pose)
 
 
