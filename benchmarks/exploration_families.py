@@ -41,7 +41,7 @@ from octoreach import testing
 from octoreach.testing import scene_families
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exploration_strategies import _code_version  # noqa: E402  (the sibling script: one definition)
+from exploration_strategies import _code_version, write_record  # noqa: E402  (the sibling script: one definition)
 
 LEVEL = 0.9  # the coverage the views are counted to
 
@@ -148,16 +148,8 @@ def _markdown(summary, strategies) -> str:
 
 
 def _finish(out, a) -> int:
-    strategies = out["setup"]["strategies"]
-    out["goals"] = _goals(out["summary"], out["runs"], strategies)
-    if a.plot:
-        ex.plot_coverage({fam: {s: [r["coverage"] for r in runs] for s, runs in per.items()}
-                          for fam, per in out["runs"].items()}, a.plot)
-    if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(_markdown(out["summary"], strategies) + "\n")
-    print(json.dumps(out, indent=1, default=float))
-    return 0
+    out["goals"] = _goals(out["summary"], out["runs"], out["setup"]["strategies"])
+    return write_record(out, a, _markdown)
 
 
 def _combine(a) -> int:

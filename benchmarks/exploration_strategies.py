@@ -240,6 +240,20 @@ def _baselines_part(path, parts):
                                "min_utility": old["setup"].get("min_utility")}}
 
 
+def write_record(out, a, markdown) -> int:
+    """The end of a record run (also the families benchmark's): the coverage plot (--plot), the table
+    (--markdown, markdown(summary, strategies)) and the JSON on stdout."""
+    strategies = out["setup"]["strategies"]
+    if a.plot:
+        ex.plot_coverage({k: {s: [r["coverage"] for r in runs] for s, runs in per.items()}
+                          for k, per in out["runs"].items()}, a.plot)
+    if a.markdown:
+        with open(a.markdown, "w") as f:
+            f.write(markdown(out["summary"], strategies) + "\n")
+    print(json.dumps(out, indent=1, default=float))
+    return 0
+
+
 def _combine(a) -> int:
     """One output from several: their scenes and strategies side by side, and the runs of one (scene,
     strategy) from parts with other seeds (--first-seed) pooled, by seed (a later file's run of a seed
@@ -276,17 +290,9 @@ def _combine(a) -> int:
     out["setup"]["strategies"] = [s for s in ex.STRATEGIES if s in names]
     for k in ("oracle", "summary", "runs"):  # paper scenes first, then usar_0, usar_1, ...
         out[k] = dict(sorted(out[k].items(), key=lambda kv: (not kv[0].startswith("paper"), kv[0])))
-    strategies = out["setup"]["strategies"]
-    out["goals"] = _goals(out["summary"], strategies)
+    out["goals"] = _goals(out["summary"], out["setup"]["strategies"])
     out["total_s"] = sum(p["total_s"] for p in parts)
-    if a.plot:
-        ex.plot_coverage({k: {s: [r["coverage"] for r in runs] for s, runs in per.items()}
-                          for k, per in out["runs"].items()}, a.plot)
-    if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(_markdown(out["summary"], strategies) + "\n")
-    print(json.dumps(out, indent=1, default=float))
-    return 0
+    return write_record(out, a, _markdown)
 
 
 def main(argv=None) -> int:
@@ -343,7 +349,6 @@ def main(argv=None) -> int:
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy",
                      "code": _code_version()},
            "oracle": {}, "summary": {}, "runs": {}}
-    curves = {}
     for name, scene, target in _scenes(a.generated):
         if a.scenes and name not in a.scenes:
             continue
@@ -353,23 +358,16 @@ def main(argv=None) -> int:
         out["oracle"][name] = {"seconds": time.perf_counter() - t0, "poses_valid": oracle.poses_valid,
                                "interior_points": len(oracle.points), "observable_points": oracle.count,
                                "observable_fraction": oracle.fraction, "has_target": target is not None}
-        out["summary"][name], out["runs"][name], curves[name] = {}, {}, {}
+        out["summary"][name], out["runs"][name] = {}, {}
         for s in a.strategies:
             runs = [_run(a, scene, target, s, seed, oracle, cmap, chain)
                     for seed in range(a.first_seed, a.first_seed + a.seeds)]
             out["runs"][name][s] = runs
             out["summary"][name][s] = _summary(runs, a.views, target is not None)
-            curves[name][s] = [r["coverage"] for r in runs]
             print(f"# {name} {s}: {json.dumps(out['summary'][name][s])}", flush=True, file=__import__('sys').stderr)
     out["goals"] = _goals(out["summary"], a.strategies)
     out["total_s"] = time.perf_counter() - t_all
-    if a.plot:
-        ex.plot_coverage(curves, a.plot)
-    if a.markdown:
-        with open(a.markdown, "w") as f:
-            f.write(_markdown(out["summary"], a.strategies) + "\n")
-    print(json.dumps(out, indent=1, default=float))
-    return 0
+    return write_record(out, a, _markdown)
 
 
 if __name__ == "__main__":
