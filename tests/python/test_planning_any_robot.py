@@ -168,3 +168,18 @@ def test_sampled_poses_keep_the_robot_clear_in_its_posture(own_world):
         Attachments.build(robot, att.room, caps=att.caps, reference=[0.0, 1.0])
     lifted = Attachments(robot, att.room, att.caps, att.maps, reference={"torso_lift_joint": 0.1})
     assert lifted.posture()[robot.joint_names.index("torso_lift_joint")] == 0.1
+
+
+def test_built_attachments_rate_every_map_in_their_posture(tmp_path):
+    """Attachments.build with a reference posture builds the arms' capability maps in it too, so the cells
+    the maps rate are the ones the sampler checks."""
+    path = tmp_path / "own_robot.urdf"
+    path.write_text(urdf())
+    robot = robots.from_urdf(path)
+    room = Room()
+    room.add_table("table", 0.6, 0.4, H, x=0.0, y=0.0)
+    posture = robot.configuration({"torso_lift_joint": 0.1})
+    att = Attachments.build(robot, room, resolution=0.2, directions=20, reference=posture)
+    assert np.array_equal(att.posture(), posture)
+    for cap in att.caps.values():
+        assert np.array_equal(cap.reference, posture)

@@ -90,12 +90,14 @@ class Attachments:
     def build(cls, robot: Robot, room, resolution: float = 0.1, directions: int | None = None, caps: dict = None,
               seed: int = 0, progress: bool = False, reference=None, **kwargs) -> "Attachments":
         """Capability maps of every arm of the robot (unless `caps` gives them; `directions` None: the
-        CapabilityMapOptions default) and one combined surface map per surface of `room`, each built with the
-        room's other obstacles (``Room.surface_maps``) and the posture `reference` (a full robot configuration;
-        None: the default reference; see the class)."""
+        CapabilityMapOptions default) and one combined surface map per surface of `room`, the capability and the
+        surface maps built in the posture `reference` (a full robot configuration; None: the default reference;
+        see the class), the surface maps with the room's other obstacles (``Room.surface_maps``)."""
         reference = _configuration(robot, reference)
         if caps is None:
             extra = {} if directions is None else {"directions": directions}
+            if reference is not None:
+                extra["reference"] = reference  # the arms' maps rate their cells in the same posture
             caps = {arm.name: _arms.capability_map(robot, arm.name, resolution=resolution, seed=seed, progress=progress,
                                                    **extra) for arm in _arms.find_arms(robot)}
         if not caps:
