@@ -249,6 +249,12 @@ struct ExplorationState {
   // What view scoring reads per cell, flat (score_cells.hpp), made at score_cells_generation.
   mutable std::shared_ptr<const ScoreCells> score_cells;
   mutable std::uint64_t score_cells_generation = 0;
+  // The unknown cells of the search space as an octree (the safe views' obstacles, view_check.cpp), their
+  // count and key box, made at unknown_tree_generation.
+  mutable std::shared_ptr<octomap::OcTree> unknown_tree;
+  mutable std::size_t unknown_tree_cells = 0;
+  mutable std::uint32_t unknown_tree_box[6] = {};
+  mutable std::uint64_t unknown_tree_generation = ~std::uint64_t(0);
 
   CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }
   Eigen::Vector3d center(CellKey k) const {

@@ -36,10 +36,8 @@ class ScoreCells {
   class Reader {
    public:
     explicit Reader(const ScoreCells& c) : c_(c) {}
-    std::uint8_t flags(CellKey k) const {
-      const Entry& e = at(k);
-      return e.grid ? (*e.grid)[StateGrid::offset(k)] : 0;
-    }
+    // The cell cache's block of block key b (null: all its cells unknown, no flag).
+    const StateGrid::Block* block(CellKey b) const { return c_.entry(b).grid; }
     // ExplorationState::seeability(k), and the enclosure byte (with kEnclosed; 0: not in the table).
     double seeability(CellKey k, std::uint8_t& mark) const {
       const Entry& e = at(k);

@@ -93,28 +93,29 @@ class MetCells {
     }
   }
   ~MetCells() {
-    if (!dense_) return;
-    for (const Touched& t : touched_) dense_cells_[t.index] = 0;
+    if (dense_)
+      for (const Touched& t : touched_) dense_cells_[t.index] = 0;
+    touched_.clear();
   }
   MetCells(const MetCells&) = delete;
   MetCells& operator=(const MetCells&) = delete;
-  // Cell k (its flags f) met with weight w at unknown depth `depth`.
-  void touch(CellKey k, std::uint8_t f, double w, int depth) {
+  // Cell (kx, ky, kz) (its flags f) met with weight w at unknown depth `depth`.
+  void touch(int kx, int ky, int kz, std::uint8_t f, double w, int depth) {
     // w * 65534 + 0.5 rounded down: lround for w in [0, 1], without its library call
     const std::uint32_t wq = 1 + std::uint32_t(std::min(std::max(w, 0.0), 1.0) * 65534.0 + 0.5);
     const V q = kDepth ? V((wq << 16) | std::uint32_t(65535 - std::min(depth, 65535))) : V(wq);
     if (!dense_) {
+      const CellKey k = pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz));
       V& v = table_.at(k);
       if (!v) touched_.push_back({0, k, f});
       v = std::max(v, q);
       return;
     }
-    const std::int64_t x = std::int64_t(key_x(k)) - klo_[0], y = std::int64_t(key_y(k)) - klo_[1],
-                       z = std::int64_t(key_z(k)) - klo_[2];
+    const std::int64_t x = kx - klo_[0], y = ky - klo_[1], z = kz - klo_[2];
     if (x < 0 || y < 0 || z < 0 || x >= n_[0] || y >= n_[1] || z >= n_[2]) return;  // cannot happen
     const std::size_t idx = std::size_t((z * n_[1] + y) * n_[0] + x);
     V& v = dense_cells_[idx];
-    if (!v) touched_.push_back({idx, k, f});
+    if (!v) touched_.push_back({idx, pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)), f});
     v = std::max(v, q);
   }
   // f(key, flags, weight, depth) once per cell met.
@@ -142,7 +143,11 @@ class MetCells {
     CellKey key;
     std::uint8_t flags;
   };
-  std::vector<Touched> touched_;
+  static std::vector<Touched>& touched_list() {  // kept per thread: a view's list grows to its size once
+    thread_local std::vector<Touched> t;
+    return t;
+  }
+  std::vector<Touched>& touched_ = touched_list();
   KeyTable<V> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
 };
 
@@ -186,10 +191,9 @@ namespace {
 
 // The cell reads of a view score straight from the map's tables (an announcement, and its check after the insert).
 struct MapCells {
-  GridReader g;
   const ExplorationState& S;
   const VoidWeights* weights;
-  std::uint8_t flags(CellKey k) const { return g.get(k); }
+  const StateGrid::Block* block(CellKey b) const { return S.grid.find_block(b); }
   double seeability(CellKey k, std::uint8_t&) const { return S.seeability(k); }
   double void_weight(CellKey k, std::uint8_t) const { return weights->of(k); }
 };
@@ -198,7 +202,7 @@ struct MapCells {
 struct FlatCells {
   ScoreCells::Reader r;
   const VoidWeights* weights;
-  std::uint8_t flags(CellKey k) const { return r.flags(k); }
+  const StateGrid::Block* block(CellKey b) const { return r.block(b); }
   double seeability(CellKey k, std::uint8_t& mark) const { return r.seeability(k, mark); }
   double void_weight(CellKey, std::uint8_t mark) const { return weights->of_mark(mark); }
 };
@@ -264,20 +268,27 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     if (rays.lengths[r] < 0) continue;  // misses the clip box
     double w = 1.0;  // the geometric weight: the product of the pass probabilities so far
     int depth = 0;   // unknown cells crossed so far
-    walk_cells(res, o, rays.dirs[r], rays.lengths[r], [&](CellKey k) {
-      const std::uint8_t f = cells.flags(k);
+    // walk_cells' walk, reading the cell cache block by block (a new block only where the ray crosses into one)
+    GridRay g;
+    if (!key_unit_ray(res, o, rays.dirs[r], rays.lengths[r], g)) continue;
+    const StateGrid::Block* block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+    for (;;) {
+      const std::uint8_t f = block ? (*block)[(g.key[0] & 15) | ((g.key[1] & 15) << 4) | ((g.key[2] & 15) << 8)] : 0;
       const std::uint8_t s = f & kStateMask;
-      if (s == std::uint8_t(CellState::Occupied)) return false;
+      if (s == std::uint8_t(CellState::Occupied)) break;
       if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
-        met.touch(k, f, curve ? curve->weight(v, depth, w) : w, depth);
+        met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(v, depth, w) : w, depth);
         w *= v ? p_void : p;
         ++depth;
       } else if (f & kFrontierFlag) {
-        met.touch(k, f, curve ? curve->weight(0, depth, w) : w, depth);
+        met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(0, depth, w) : w, depth);
       }
-      return true;
-    });
+      const int dim = g.axis();
+      if (g.t[dim] > g.length || !g.advance(dim)) break;
+      if ((g.key[dim] >> 4) != ((g.key[dim] - g.step[dim]) >> 4))
+        block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+    }
   }
   // A ray of the coarse grid stands for the pixels of its grid cell: at distance t its beam covers
   // t^2 du dv / res^2 cells across (at least 1), the cells the camera's pixels see there.
@@ -327,13 +338,13 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   // depths only for an announcement
   if (unknown_met)
     return count_view<MetCells<std::uint32_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
-                                               MapCells{GridReader(S.grid), S, void_weights}, weighted, unknown_met);
+                                               MapCells{S, void_weights}, weighted, unknown_met);
   if (score_cells && (!weighted || score_cells->enclosure() == void_weights->table().get()))
     return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
                                                FlatCells{ScoreCells::Reader(*score_cells), void_weights}, weighted,
                                                nullptr);
   return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
-                                             MapCells{GridReader(S.grid), S, void_weights}, weighted, nullptr);
+                                             MapCells{S, void_weights}, weighted, nullptr);
 }
 
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt) {
