@@ -293,6 +293,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
   // A ray of the coarse grid stands for the pixels of its grid cell: at distance t its beam covers
   // t^2 du dv / res^2 cells across (at least 1), the cells the camera's pixels see there.
   const double beam = (double(cam.width) / sw / cam.focal()) * (double(cam.height) / sh / cam.focal()) / (res * res);
+  // with the learned curve, the beam's cells are calibrated too (per class: outside the voids, void)
+  const double scales[2] = {curve ? curve->beam_scale(0) : 1.0, curve ? curve->beam_scale(1) : 1.0};
   ViewGains v;
   met.for_each([&](CellKey k, std::uint8_t f, double w, int depth) {
     const bool unknown = (f & kStateMask) == std::uint8_t(CellState::Unknown);
@@ -300,9 +302,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     if (unknown && unknown_met)
       unknown_met->push_back({k, float(w), float(n), std::uint16_t(std::min(depth, 65535)),
                               std::uint8_t((f & kVoidFlag) ? 1 : 0)});
-    // unknown cells count with their seeability (lowered by views that expected them and missed); with
-    // the learned curve, the beam's cells are calibrated too
-    const double scale = curve ? curve->beam_scale((f & kVoidFlag) ? 1 : 0) : 1.0;
+    // unknown cells count with their seeability (lowered by views that expected them and missed)
+    const double scale = scales[(f & kVoidFlag) ? 1 : 0];
     std::uint8_t mark = 0;
     const double e = w * (unknown ? cells.seeability(k, mark) : 1.0) * n * scale;
     if (unknown) {
