@@ -22,6 +22,8 @@
 
 namespace octoreach::detail {
 
+class ScoreCells;
+
 // OcTree with access to its root, so batched updates can create it like updateNode does.
 class MapTree : public octomap::OcTree {
  public:
@@ -65,6 +67,11 @@ class StateGrid {
   const Block* find_block(CellKey block) const {
     auto it = blocks_.find(block);
     return it == blocks_.end() ? nullptr : it->second.get();
+  }
+  // f(block key, block) for every block, in no particular order.
+  template <class F>
+  void for_each_block(F&& f) const {
+    for (const auto& [k, b] : blocks_) f(k, *b);
   }
 
  private:
@@ -237,6 +244,17 @@ struct ExplorationState {
   mutable std::shared_ptr<const KeyTable<std::uint8_t>> enclosure;
   mutable double enclosure_range = -1;
   mutable bool enclosure_exposure = false;  // the table carries the exposed bit (void_enclosure.hpp)
+  // Bumped by every write guard (MapGuard): a cache made at one generation is stale at the next.
+  mutable std::uint64_t generation = 0;
+  // What view scoring reads per cell, flat (score_cells.hpp), made at score_cells_generation.
+  mutable std::shared_ptr<const ScoreCells> score_cells;
+  mutable std::uint64_t score_cells_generation = 0;
+  // The unknown cells of the search space as an octree (the safe views' obstacles, view_check.cpp), their
+  // count and key box, made at unknown_tree_generation.
+  mutable std::shared_ptr<octomap::OcTree> unknown_tree;
+  mutable std::size_t unknown_tree_cells = 0;
+  mutable std::uint32_t unknown_tree_box[6] = {};
+  mutable std::uint64_t unknown_tree_generation = ~std::uint64_t(0);
 
   CellState state(CellKey k) const { return CellState(grid.get(k) & kStateMask); }
   Eigen::Vector3d center(CellKey k) const {
@@ -253,10 +271,12 @@ class MapGuard {
   MapGuard(const ExplorationState& s, bool write) {
     auto& h = held();
     if (std::find(h.begin(), h.end(), &s) != h.end()) return;
-    if (write)
+    if (write) {
       s.rw.lock();
-    else
+      ++s.generation;
+    } else {
       s.rw.lock_shared();
+    }
     s_ = &s;
     write_ = write;
     h.push_back(&s);
@@ -265,10 +285,12 @@ class MapGuard {
     if (!s_) return;
     auto& h = held();
     h.erase(std::find(h.begin(), h.end(), s_));
-    if (write_)
+    if (write_) {
+      ++s_->generation;  // (and after: nothing cached while writing outlives the write)
       s_->rw.unlock();
-    else
+    } else {
       s_->rw.unlock_shared();
+    }
   }
   MapGuard(const MapGuard&) = delete;
   MapGuard& operator=(const MapGuard&) = delete;

@@ -24,8 +24,12 @@
 
 namespace octoreach::detail {
 
-// computeRayKeys' choice: t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2).
-inline int next_axis(const double t[3]) { return t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2); }
+// computeRayKeys' choice: t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2), without branches (the
+// axis of a ray's next step is what a branch predictor cannot guess).
+inline int next_axis(const double t[3]) {
+  const bool a = t[0] < t[1], b = t[0] < t[2], c = t[1] < t[2];
+  return 2 - 2 * int(a & b) - int(!a & c);
+}
 
 // One ray through the key grid: the current cell, the step along each axis, the ray parameter t at
 // which it crosses the next cell border on each axis and the increment of t per cell.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -36,6 +37,37 @@ bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, std:
     hi[a] = s.tree.coordToKey(h);
   }
   return true;
+}
+
+// The unknown cells of the key box lo..hi as an octree, and their count: made once per map version (every
+// search of a choice checks its arm against the same cells).
+std::pair<std::shared_ptr<octomap::OcTree>, std::size_t> unknown_cells_tree(const ExplorationState& S, double res,
+                                                                            const std::uint32_t lo[3],
+                                                                            const std::uint32_t hi[3]) {
+  std::lock_guard<std::mutex> lock(S.cache_mutex);
+  const std::uint32_t box[6] = {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
+  if (S.unknown_tree_generation == S.generation && std::equal(box, box + 6, S.unknown_tree_box))
+    return {S.unknown_tree, S.unknown_tree_cells};
+  auto tree = std::make_shared<octomap::OcTree>(res);
+  std::size_t cells = 0;
+  GridReader g(S.grid);
+  for (std::uint32_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::uint32_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::uint32_t x = lo[0]; x <= hi[0]; ++x)
+        if ((g.get(pack_key(x, y, z)) & kStateMask) == std::uint8_t(CellState::Unknown)) {
+          tree->updateNode(octomap::OcTreeKey(octomap::key_type(x), octomap::key_type(y), octomap::key_type(z)), true,
+                           true);
+          ++cells;
+        }
+  if (cells) {
+    tree->updateInnerOccupancy();
+    tree->prune();
+  }
+  S.unknown_tree = tree;
+  S.unknown_tree_cells = cells;
+  std::copy(box, box + 6, S.unknown_tree_box);
+  S.unknown_tree_generation = S.generation;
+  return {tree, cells};
 }
 
 }  // namespace
@@ -124,21 +156,8 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   // The map's occupied cells (the tree is not copied: the map outlives the search).
   obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
   if (opt.unknown_is_obstacle && search_lo_[0] <= search_hi_[0]) {
-    unknown_tree_ = std::make_shared<octomap::OcTree>(map.resolution());
-    GridReader g(S.grid);
-    for (std::uint32_t z = search_lo_[2]; z <= search_hi_[2]; ++z)
-      for (std::uint32_t y = search_lo_[1]; y <= search_hi_[1]; ++y)
-        for (std::uint32_t x = search_lo_[0]; x <= search_hi_[0]; ++x)
-          if ((g.get(pack_key(x, y, z)) & kStateMask) == std::uint8_t(CellState::Unknown)) {
-            unknown_tree_->updateNode(octomap::OcTreeKey(octomap::key_type(x), octomap::key_type(y), octomap::key_type(z)),
-                                      true, true);
-            ++unknown_cells_;
-          }
-    if (unknown_cells_) {
-      unknown_tree_->updateInnerOccupancy();
-      unknown_tree_->prune();
-      obstacles_->add_octree(unknown_tree_);
-    }
+    std::tie(unknown_tree_, unknown_cells_) = unknown_cells_tree(S, map.resolution(), search_lo_, search_hi_);
+    if (unknown_cells_) obstacles_->add_octree(unknown_tree_);
   }
 }
 

@@ -11,6 +11,8 @@
 #include "exploration/cell_sets.hpp"
 #include "exploration/exploration_state.hpp"
 #include "exploration/grid_ray.hpp"
+#include "exploration/met_cells.hpp"
+#include "exploration/score_cells.hpp"
 
 namespace octoreach {
 
@@ -71,74 +73,6 @@ namespace detail {
 
 namespace {
 
-// The cells (unknown or frontier) the rays of one view met, each with its largest weight and that
-// ray's unknown depth: a dense array over the frustum's key box (thread-local, reset through the list
-// of touched cells, so a view costs what its rays walk) or, for a box of more than kMaxDense cells, a
-// hash table. With V = uint32_t a value is (1 + w * 65534) << 16 | (65535 - depth) (0: not met): the
-// largest is the largest weight, on ties the smallest depth; with V = uint16_t (scoring, which needs no
-// depth: half the memory traffic) it is 1 + w * 65534.
-template <class V>
-class MetCells {
-  static constexpr bool kDepth = sizeof(V) == 4;
-
- public:
-  static constexpr std::int64_t kMaxDense = std::int64_t(1) << (kDepth ? 24 : 25);  // 64 MB per thread
-  MetCells(const std::int64_t klo[3], const std::int64_t n[3]) : dense_(n[0] * n[1] * n[2] <= kMaxDense) {
-    for (int a = 0; a < 3; ++a) klo_[a] = klo[a], n_[a] = n[a];
-    if (dense_) {
-      auto& b = buffer();
-      if (b.size() < std::size_t(n[0] * n[1] * n[2])) b.assign(std::size_t(n[0] * n[1] * n[2]), 0);
-      dense_cells_ = b.data();  // once: the thread-local lookup costs a call per touch in a shared library
-    }
-  }
-  ~MetCells() {
-    if (!dense_) return;
-    for (const auto& t : touched_) dense_cells_[t.first] = 0;
-  }
-  MetCells(const MetCells&) = delete;
-  MetCells& operator=(const MetCells&) = delete;
-  void touch(CellKey k, double w, int depth) {
-    // w * 65534 + 0.5 rounded down: lround for w in [0, 1], without its library call
-    const std::uint32_t wq = 1 + std::uint32_t(std::min(std::max(w, 0.0), 1.0) * 65534.0 + 0.5);
-    const V q = kDepth ? V((wq << 16) | std::uint32_t(65535 - std::min(depth, 65535))) : V(wq);
-    if (!dense_) {
-      V& v = table_.at(k);
-      if (!v) touched_.emplace_back(0, k);
-      v = std::max(v, q);
-      return;
-    }
-    const std::int64_t x = std::int64_t(key_x(k)) - klo_[0], y = std::int64_t(key_y(k)) - klo_[1],
-                       z = std::int64_t(key_z(k)) - klo_[2];
-    if (x < 0 || y < 0 || z < 0 || x >= n_[0] || y >= n_[1] || z >= n_[2]) return;  // cannot happen
-    const std::size_t idx = std::size_t((z * n_[1] + y) * n_[0] + x);
-    V& v = dense_cells_[idx];
-    if (!v) touched_.emplace_back(idx, k);
-    v = std::max(v, q);
-  }
-  // f(key, weight, depth) once per cell met.
-  template <class F>
-  void for_each(F&& f) const {
-    for (const auto& t : touched_) {
-      const std::uint32_t v = dense_ ? dense_cells_[t.first] : *table_.find(t.second);
-      if (kDepth)
-        f(t.second, double((v >> 16) - 1) / 65534.0, int(65535 - (v & 0xffffu)));
-      else
-        f(t.second, double(v - 1) / 65534.0, 0);
-    }
-  }
-
- private:
-  static std::vector<V>& buffer() {
-    thread_local std::vector<V> b;
-    return b;
-  }
-  bool dense_;
-  V* dense_cells_ = nullptr;
-  std::int64_t klo_[3], n_[3];
-  std::vector<std::pair<std::size_t, CellKey>> touched_;
-  KeyTable<V> table_{dense_ ? std::size_t(0) : std::size_t(1) << 16};
-};
-
 // The part of the ray o + t dir (dir unit), t in [0, range], that can meet a cell of `clip`: its length up to
 // the exit (plus half a cell, so the exit cell is walked), or -1 when it misses the box.
 double clipped_length(const RayClip& clip, double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
@@ -175,81 +109,132 @@ RayClip void_box(const ExplorationMap& map) {
   return c;
 }
 
-ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
-                              double p, double p_void, bool learned, std::vector<ExpectedCell>* unknown_met,
-                              const VoidWeights* void_weights, const RayClip* clip) {
-  const ExplorationState& S = state(map);
-  if (clip && clip->empty()) return {};  // no void cell: nothing counts
-  // (a curve no announced view taught is the geometric weight itself: skip it)
-  const VisibilityCurve* curve = learned && S.curve.taught ? &S.curve : nullptr;
-  GridReader g(S.grid);
+namespace {
+
+// The cell reads of a view score straight from the map's tables (an announcement, and its check after the insert).
+struct MapCells {
+  const ExplorationState& S;
+  const VoidWeights* weights;
+  const StateGrid::Block* block(CellKey b) const { return S.grid.find_block(b); }
+  double seeability(CellKey k, std::uint8_t&) const { return S.seeability(k); }
+  double void_weight(CellKey k, std::uint8_t) const { return weights->of(k); }
+};
+
+// The same reads through a search's ScoreCells (the same values: the map's tables, flat).
+struct FlatCells {
+  ScoreCells::Reader r;
+  const VoidWeights* weights;
+  const StateGrid::Block* block(CellKey b) const { return r.block(b); }
+  double seeability(CellKey k, std::uint8_t& mark) const { return r.seeability(k, mark); }
+  double void_weight(CellKey, std::uint8_t mark) const { return weights->of_mark(mark); }
+};
+
+// The score grid's ray directions in the camera frame (cam.ray at the grid cells' centres), kept per thread
+// for the last camera and grid: a search scores every view with one.
+const std::vector<Eigen::Vector3d>& grid_rays(const CameraIntrinsics& cam, int sw, int sh) {
+  struct Grid {
+    int width = -1, height = -1, sw = -1, sh = -1;
+    double fov = -1;
+    std::vector<Eigen::Vector3d> rays;
+  };
+  thread_local Grid g;
+  if (g.width != cam.width || g.height != cam.height || g.fov != cam.fov || g.sw != sw || g.sh != sh) {
+    g.rays.resize(std::size_t(sw) * sh);
+    for (int j = 0; j < sh; ++j)
+      for (int i = 0; i < sw; ++i)
+        g.rays[std::size_t(j) * sw + i] = cam.ray((i + 0.5) * cam.width / sw, (j + 0.5) * cam.height / sh);
+    g.width = cam.width, g.height = cam.height, g.fov = cam.fov, g.sw = sw, g.sh = sh;
+  }
+  return g.rays;
+}
+
+// One view's rays: directions (map frame), lengths (-1: the ray misses the clip box) and the frustum's key box.
+struct ViewRays {
+  std::vector<Eigen::Vector3d> dirs;
+  std::vector<double> lengths;
+  std::int64_t klo[3], n[3];
+};
+
+void view_rays(const CameraIntrinsics& cam, const Pose& pose, int sw, int sh, double res, const RayClip* clip,
+               ViewRays& v) {
   const Eigen::Matrix3d R = pose.linear();
   const Eigen::Vector3d o = pose.translation();
-  const double res = map.resolution();
-  std::vector<Eigen::Vector3d> dirs(std::size_t(sw) * sh);
-  std::vector<double> lengths(dirs.size(), cam.max_range);
+  const std::vector<Eigen::Vector3d>& rays = grid_rays(cam, sw, sh);
+  v.dirs.resize(rays.size());
+  v.lengths.assign(rays.size(), cam.max_range);
   // key box of the frustum (every walked cell lies within a cell of a ray's end points)
   Eigen::Vector3d lo = o, hi = o;
-  for (int j = 0; j < sh; ++j)
-    for (int i = 0; i < sw; ++i) {
-      const std::size_t r = std::size_t(j) * sw + i;
-      Eigen::Vector3d d = R * cam.ray((i + 0.5) * cam.width / sw, (j + 0.5) * cam.height / sh);
-      dirs[r] = d;
-      if (clip) lengths[r] = clipped_length(*clip, res, o, d.normalized(), cam.max_range);
-      if (lengths[r] < 0) continue;
-      Eigen::Vector3d e = o + d.normalized() * lengths[r];
-      lo = lo.cwiseMin(e);
-      hi = hi.cwiseMax(e);
-    }
-  std::int64_t klo[3], n[3];
-  for (int a = 0; a < 3; ++a) {
-    klo[a] = std::int64_t(std::floor(lo[a] / res + 32768.0)) - 2;
-    n[a] = std::int64_t(std::floor(hi[a] / res + 32768.0)) + 2 - klo[a] + 1;
+  for (std::size_t r = 0; r < rays.size(); ++r) {
+    const Eigen::Vector3d d = R * rays[r];
+    v.dirs[r] = d;
+    if (clip) v.lengths[r] = clipped_length(*clip, res, o, d.normalized(), cam.max_range);
+    if (v.lengths[r] < 0) continue;
+    Eigen::Vector3d e = o + d.normalized() * v.lengths[r];
+    lo = lo.cwiseMin(e);
+    hi = hi.cwiseMax(e);
   }
-  // the rays' walk and the count, over either kind of MetCells (depths only for an announcement)
-  const auto count = [&](auto& met) {
-  for (std::size_t r = 0; r < dirs.size(); ++r) {
+  for (int a = 0; a < 3; ++a) {
+    v.klo[a] = std::int64_t(std::floor(lo[a] / res + 32768.0)) - 2;
+    v.n[a] = std::int64_t(std::floor(hi[a] / res + 32768.0)) + 2 - v.klo[a] + 1;
+  }
+}
+
+// What one view's rays meet (see view_gains_unlocked), its cells read through `cells`, met cells kept in `met`.
+template <class Met, class Cells>
+ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, const Eigen::Vector3d& o, double res,
+                     int sw, int sh, const ViewRays& rays, double p, double p_void, const VisibilityCurve* curve,
+                     const Cells& cells, bool weighted, std::vector<ExpectedCell>* unknown_met) {
+  Met met(rays.klo, rays.n);
+  for (std::size_t r = 0; r < rays.dirs.size(); ++r) {
     if ((r & 1023) == 1023) poll_cancel("view scoring cancelled");  // a fine score grid takes long per view
-    if (lengths[r] < 0) continue;  // misses the clip box
+    if (rays.lengths[r] < 0) continue;  // misses the clip box
     double w = 1.0;  // the geometric weight: the product of the pass probabilities so far
     int depth = 0;   // unknown cells crossed so far
-    walk_cells(res, o, dirs[r], lengths[r], [&](CellKey k) {
-      const std::uint8_t f = g.get(k);
+    // walk_cells' walk, reading the cell cache block by block (a new block only where the ray crosses into one)
+    GridRay g;
+    if (!key_unit_ray(res, o, rays.dirs[r], rays.lengths[r], g)) continue;
+    const StateGrid::Block* block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+    for (;;) {
+      const std::uint8_t f = block ? (*block)[(g.key[0] & 15) | ((g.key[1] & 15) << 4) | ((g.key[2] & 15) << 8)] : 0;
       const std::uint8_t s = f & kStateMask;
-      if (s == std::uint8_t(CellState::Occupied)) return false;
+      if (s == std::uint8_t(CellState::Occupied)) break;
       if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
-        met.touch(k, curve ? curve->weight(v, depth, w) : w, depth);
+        met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(v, depth, w) : w, depth);
         w *= v ? p_void : p;
         ++depth;
       } else if (f & kFrontierFlag) {
-        met.touch(k, curve ? curve->weight(0, depth, w) : w, depth);
+        met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(0, depth, w) : w, depth);
       }
-      return true;
-    });
+      const int dim = g.axis();
+      if (g.t[dim] > g.length || !g.advance(dim)) break;
+      if ((g.key[dim] >> 4) != ((g.key[dim] - g.step[dim]) >> 4))
+        block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+    }
   }
   // A ray of the coarse grid stands for the pixels of its grid cell: at distance t its beam covers
   // t^2 du dv / res^2 cells across (at least 1), the cells the camera's pixels see there.
   const double beam = (double(cam.width) / sw / cam.focal()) * (double(cam.height) / sh / cam.focal()) / (res * res);
+  // with the learned curve, the beam's cells are calibrated too (per class: outside the voids, void)
+  const double scales[2] = {curve ? curve->beam_scale(0) : 1.0, curve ? curve->beam_scale(1) : 1.0};
   ViewGains v;
-  met.for_each([&](CellKey k, double w, int depth) {
-    const std::uint8_t f = g.get(k);
+  met.for_each([&](CellKey k, std::uint8_t f, double w, int depth) {
     const bool unknown = (f & kStateMask) == std::uint8_t(CellState::Unknown);
-    const double cells = std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
+    const double n = std::max(1.0, (S.center(k) - o).squaredNorm() * beam);
     if (unknown && unknown_met)
-      unknown_met->push_back({k, float(w), float(cells), std::uint16_t(std::min(depth, 65535)),
+      unknown_met->push_back({k, float(w), float(n), std::uint16_t(std::min(depth, 65535)),
                               std::uint8_t((f & kVoidFlag) ? 1 : 0)});
-    // unknown cells count with their seeability (lowered by views that expected them and missed); with
-    // the learned curve, the beam's cells are calibrated too
-    const double scale = curve ? curve->beam_scale((f & kVoidFlag) ? 1 : 0) : 1.0;
-    const double e = w * (unknown ? S.seeability(k) : 1.0) * cells * scale;
+    // unknown cells count with their seeability (lowered by views that expected them and missed)
+    const double scale = scales[(f & kVoidFlag) ? 1 : 0];
+    std::uint8_t mark = 0;
+    const double e = w * (unknown ? cells.seeability(k, mark) : 1.0) * n * scale;
     if (unknown) {
       ++v.unknown_cells;
       v.expected_unknown += e;
       if (f & kVoidFlag) {
         ++v.void_cells;
         v.expected_void += e;
-        v.expected_enclosed_void += void_weights ? e * void_weights->of(k) : e;
+        v.expected_enclosed_void += weighted ? e * cells.void_weight(k, mark) : e;
       }
     } else {
       ++v.frontier_cells;
@@ -257,13 +242,32 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
     }
   });
   return v;
-  };
-  if (unknown_met) {
-    MetCells<std::uint32_t> met(klo, n);
-    return count(met);
-  }
-  MetCells<std::uint16_t> met(klo, n);
-  return count(met);
+}
+
+}  // namespace
+
+ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
+                              double p, double p_void, bool learned, std::vector<ExpectedCell>* unknown_met,
+                              const VoidWeights* void_weights, const RayClip* clip, const ScoreCells* score_cells) {
+  const ExplorationState& S = state(map);
+  if (clip && clip->empty()) return {};  // no void cell: nothing counts
+  // (a curve no announced view taught is the geometric weight itself: skip it)
+  const VisibilityCurve* curve = learned && S.curve.taught ? &S.curve : nullptr;
+  const double res = map.resolution();
+  thread_local ViewRays rays;
+  view_rays(cam, pose, sw, sh, res, clip, rays);
+  const Eigen::Vector3d o = pose.translation();
+  const bool weighted = void_weights != nullptr;
+  // depths only for an announcement
+  if (unknown_met)
+    return count_view<MetCells<std::uint32_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
+                                               MapCells{S, void_weights}, weighted, unknown_met);
+  if (score_cells && (!weighted || score_cells->enclosure() == void_weights->table().get()))
+    return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
+                                               FlatCells{ScoreCells::Reader(*score_cells), void_weights}, weighted,
+                                               nullptr);
+  return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
+                                             MapCells{S, void_weights}, weighted, nullptr);
 }
 
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt) {
@@ -280,6 +284,7 @@ ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt) {
         void_weights(state(map), map.resolution(), opt.enclosure_power, opt.enclosure_range, opt.unexposed_weight);
     m.clip = void_box(map);
   }
+  m.cells = score_cells(state(map), m.void_weights.table());
   return m;
 }
 
@@ -288,7 +293,7 @@ void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const Nb
   static_cast<ViewGains&>(v) =
       view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, m.p.first, m.p.second,
                           opt.unknown_pass_probability < 0, nullptr, m.void_weights ? &m.void_weights : nullptr,
-                          m.clip ? &*m.clip : nullptr);
+                          m.clip ? &*m.clip : nullptr, m.cells.get());
   v.expected_gain = v.gain(opt.gain);
   const double res = map.resolution();
   v.utility_dm3 = v.expected_void * res * res * res * 1000.0;

@@ -1,6 +1,7 @@
 #pragma once
 // Internal: the visibility model of a view (view_score.cpp) and the checks that make a camera pose a
 // view (view_check.cpp), shared by next_best_view and score_views.
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -16,6 +17,7 @@ namespace octoreach::detail {
 
 struct ExplorationState;
 struct ExpectedCell;
+class ScoreCells;
 
 // Where a view's rays can still meet a cell that counts for the gain (map frame, cell bounds): with the
 // FrontierVoid gain, the box of the map's void cells; a ray ends where it leaves it (it cannot meet a
@@ -33,11 +35,13 @@ RayClip void_box(const ExplorationMap& map);
 // p_void as its prior), else the geometric weight alone. With `unknown_met`, also lists every unknown
 // cell a ray met with its largest ray weight w (before seeability), that ray's unknown depth and its class.
 // With `clip`, rays end where they leave it (the void and enclosed-void figures stay those of whole rays;
-// the unknown and frontier figures count what the rays met up to there).
+// the unknown and frontier figures count what the rays met up to there). With `cells` (made with
+// void_weights' table), the cells are read through it: the same values, faster.
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void, bool learned,
                               std::vector<ExpectedCell>* unknown_met = nullptr,
-                              const VoidWeights* void_weights = nullptr, const RayClip* clip = nullptr);
+                              const VoidWeights* void_weights = nullptr, const RayClip* clip = nullptr,
+                              const ScoreCells* cells = nullptr);
 
 // After an insert: each cell the view announced by expect_view expected (weight w), left unknown and
 // still met by the view's rays in the updated map (no surface seen in between) has its seeability
@@ -51,12 +55,13 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt);
 // p (unknown cells outside the voids) and p_void of a search: the fixed option or the map's learned values.
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt);
 
-// What every view score of one search shares: p and p_void, the void weights (enclosure_power) and,
-// with the FrontierVoid gain, the box the rays are clipped to (the void cells').
+// What every view score of one search shares: p and p_void, the void weights (enclosure_power), the map's cells
+// in flat form and, with the FrontierVoid gain, the box the rays are clipped to (the void cells').
 struct ScoreModel {
   std::pair<double, double> p{1.0, 1.0};
   VoidWeights void_weights;
   std::optional<RayClip> clip;
+  std::shared_ptr<const ScoreCells> cells;  // the map's cells for void_weights (made once per map version)
 };
 // The model of a search on `map` with `opt` (the caller holds the map's lock).
 ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);

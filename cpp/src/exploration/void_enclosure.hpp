@@ -19,6 +19,7 @@ class GridReader;
 using EnclosureTable = KeyTable<std::uint8_t>;
 constexpr std::uint8_t kExposed = 16;
 constexpr std::uint8_t kHalvesMask = 15;
+constexpr std::uint8_t kInTable = 128;  // a byte above the table's values: "the table holds the cell" (ScoreCells)
 
 // True when one of k's 26 neighbours is observed free: k lies on the face of a void that observed space
 // shows (the exposure of NbvOptions::unexposed_weight; public as exposed_cells).
@@ -36,7 +37,10 @@ class VoidWeights {
     const std::uint8_t* h = table_->find(k);
     return h ? weight_[*h & (kExposed | kHalvesMask)] : 1.0;
   }
+  // The same from the cell's table byte with kInTable set (without kInTable: not in the table).
+  double of_mark(std::uint8_t mark) const { return (mark & kInTable) ? weight_[mark & (kExposed | kHalvesMask)] : 1.0; }
   explicit operator bool() const { return bool(table_); }
+  const std::shared_ptr<const EnclosureTable>& table() const { return table_; }
 
  private:
   std::shared_ptr<const EnclosureTable> table_;
