@@ -33,8 +33,15 @@ ChainSelfCheck::ChainSelfCheck(const Chain& chain, const std::vector<std::pair<i
     const std::size_t na = robot.links()[a].shapes.size(), nb = robot.links()[b].shapes.size();
     for (std::size_t i = 0; i < na; ++i)
       for (std::size_t k = 0; k < nb; ++k)
-        entries_.push_back({first[a] + static_cast<int>(i), first[b] + static_cast<int>(k), static_cast<int>(p),
-                            MeshPairWitnesses::key(a, i, b, k)});
+      {
+        const int sa = first[a] + static_cast<int>(i), sb = first[b] + static_cast<int>(k);
+        int w = -1;
+        if (shapes_[sa].mesh && shapes_[sb].mesh) {
+          w = static_cast<int>(witnesses_.size());
+          witnesses_.emplace_back();
+        }
+        entries_.push_back({sa, sb, static_cast<int>(p), w});
+      }
   }
 }
 
@@ -50,19 +57,37 @@ void ChainSelfCheck::place(int shape, const Pose& link_pose) {
 
 bool ChainSelfCheck::collides(const Robot& robot, const std::vector<Pose>& poses, const Eigen::VectorXd& full) {
   for (int k : moved_) place(k, poses[shapes_[k].link]);
-  for (std::size_t e = 0; e < entries_.size(); ++e) {
+  auto hit = [&](std::size_t e) {
+    std::rotate(entries_.begin(), entries_.begin() + e, entries_.begin() + e + 1);
+    return true;
+  };
+  open_.clear();
+  for (std::size_t e = 0; e < entries_.size(); ++e) {  // boxes, certificates and witnesses
     const Entry& x = entries_[e];
     if (!overlap(boxes_[x.a], boxes_[x.b])) continue;
     if (hinge_[x.pair] && hinges_.certified_pair(robot, x.pair, full)) continue;
+    if (x.witness >= 0) {
+      const MeshVerdict v = mesh_witness_verdict(*shapes_[x.a].geometry, world_[x.a], *shapes_[x.b].geometry,
+                                                 world_[x.b], witnesses_[x.witness]);
+      if (v == MeshVerdict::touching) return hit(e);
+      if (v == MeshVerdict::apart) continue;
+    }
+    open_.push_back(e);
+  }
+  std::size_t n = 0;
+  for (std::size_t e : open_) {  // GJK on the hulls of the mesh pairs left open
+    const Entry& x = entries_[e];
+    if (x.witness < 0 || !meshes_hulls_apart(*shapes_[x.a].geometry, world_[x.a], *shapes_[x.b].geometry,
+                                             world_[x.b], witnesses_[x.witness]))
+      open_[n++] = e;
+  }
+  for (std::size_t i = 0; i < n; ++i) {  // FCL
+    const Entry& x = entries_[open_[i]];
     const ShapeRef& sa = shapes_[x.a];
     const ShapeRef& sb = shapes_[x.b];
-    const bool hit = sa.mesh && sb.mesh
-                         ? meshes_collide(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_.of(x.key))
-                         : geometry_collide(sa.geometry, world_[x.a], sb.geometry, world_[x.b]);
-    if (hit) {
-      std::rotate(entries_.begin(), entries_.begin() + e, entries_.begin() + e + 1);
-      return true;
-    }
+    if (x.witness >= 0 ? meshes_fcl_collide(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness])
+                       : geometry_collide(sa.geometry, world_[x.a], sb.geometry, world_[x.b]))
+      return hit(open_[i]);
   }
   return false;
 }

@@ -3,9 +3,12 @@
 // The checked pairs the chain moves are laid out flat, shape pair by shape pair, with the world box of
 // every shape in one array: the links the chain never moves keep their boxes from the reference, the
 // others are placed afresh per check, and a shape pair goes to the narrow phase only when its boxes
-// overlap and its hinge certificate (hinge_pairs.hpp) does not already rule it out. The answer is the
-// plain check's (first_colliding_pair over every pair): the boxes, the certificates, the order (the
-// shape pair that collided last is tested first) and the mesh witnesses only change its cost.
+// overlap and its hinge certificate (hinge_pairs.hpp) does not already rule it out. The narrow phase
+// runs in passes over those pairs, cheapest first: the mesh witnesses of every pair (one that confirms
+// a contact ends the check), then GJK on the hulls of the pairs left open, then FCL on the rest (and on
+// the pairs that are not two meshes). The answer is the plain check's (first_colliding_pair over every
+// pair): the boxes, the certificates, the passes, the order (the shape pair that collided last is
+// tested first) and the witnesses only change its cost.
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -45,7 +48,7 @@ class ChainSelfCheck {
   struct Entry {
     int a, b;      // indices into shapes_
     int pair;      // index into the pairs (hinge certificates)
-    std::uint64_t key;  // mesh witnesses' key
+    int witness;   // index into witnesses_ (mesh pairs), or -1
   };
   static bool overlap(const Box& x, const Box& y) {
     // fcl::AABB::overlap: boxes that touch overlap
@@ -61,7 +64,8 @@ class ChainSelfCheck {
   std::vector<Entry> entries_;      // walk order: the last hit first
   std::vector<char> hinge_;         // per pair: has a hinge certificate
   HingePairs hinges_;
-  MeshPairWitnesses witnesses_;
+  std::vector<MeshPairWitness> witnesses_;  // per mesh pair of shapes
+  std::vector<std::size_t> open_;           // scratch: entries the witnesses left undecided
 };
 
 }  // namespace octoreach::detail
