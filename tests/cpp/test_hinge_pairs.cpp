@@ -6,6 +6,7 @@
 #include <random>
 
 #include "collision/detail.hpp"
+#include "kinematics/chain_self_check.hpp"
 #include "kinematics/hinge_pairs.hpp"
 #include "octoreach/chain.hpp"
 #include "octoreach/robot.hpp"
@@ -73,6 +74,37 @@ TEST(HingePairs, SkipsOnlyPairsThatCannotCollide) {
   EXPECT_LT(colliding, 3900);
   EXPECT_GT(skipped, 2000);
   EXPECT_GT(hinge_hits, 20);
+}
+
+TEST(ChainSelfCheck, AnswersAsThePlainCheckOfEveryPair) {
+  // The flat walk (kept boxes, certificates, the last hit first, passes) answers as the plain check,
+  // on random configurations and on a path of small steps (the order and the certificates then carry over).
+  auto robot = Robot::from_urdf(kUrdf);
+  Chain chain = robot->chain("base", "fore");
+  std::vector<std::pair<int, int>> moving, fixed;
+  chain.split_collision_pairs(moving, fixed);
+  const Eigen::VectorXd reference = robot->home();
+  std::vector<Pose> poses;
+  robot->link_poses(reference, poses);
+  detail::ChainSelfCheck check(chain, moving, poses, reference);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> step(0.0, 0.05);
+  Eigen::VectorXd q = chain.random_configuration(rng);
+  int colliding = 0;
+  for (int i = 0; i < 4000; ++i) {
+    if (i % 2) {
+      q = chain.random_configuration(rng);
+    } else {
+      for (int k = 0; k < q.size(); ++k) q[k] = std::clamp(q[k] + step(rng), chain.lower()[k], chain.upper()[k]);
+    }
+    const Eigen::VectorXd full = chain.to_robot_configuration(q, reference);
+    robot->link_poses(full, poses);
+    const bool plain = robot->in_self_collision_poses(poses, moving);
+    EXPECT_EQ(check.collides(*robot, poses, full), plain) << "configuration " << i;
+    colliding += plain;
+  }
+  EXPECT_GT(colliding, 100);
+  EXPECT_LT(colliding, 3900);
 }
 
 TEST(HingePairs, BucketWidthBoundsTheMotion) {

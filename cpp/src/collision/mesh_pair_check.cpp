@@ -62,46 +62,66 @@ const HullMesh* hull_mesh(const fcl::CollisionGeometryd& g) {
 
 bool is_mesh(const fcl::CollisionGeometryd& g) { return hull_mesh(g) != nullptr; }
 
-bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
-                    const Pose& tb, MeshPairWitness& witness) {
+MeshVerdict mesh_witness_verdict(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                                 const Pose& tb, MeshPairWitness& witness) {
   const Mesh& ma = *hull_mesh(a);
   const Mesh& mb = *hull_mesh(b);
-  const Placed A{ma.hull_points(), ta.linear(), ta.translation()};
-  const Placed B{mb.hull_points(), tb.linear(), tb.translation()};
   // Cheapest first: the old separating direction (two passes over the vertices), then the old
-  // triangle pair, then GJK, then FCL.
-  if (witness.axis.squaredNorm() > 0 && apart_by(A, B, witness.axis)) return false;
-  const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
+  // triangle pairs.
+  if (witness.axis.squaredNorm() > 0 &&
+      apart_by(Placed{ma.hull_points(), ta.linear(), ta.translation()},
+               Placed{mb.hull_points(), tb.linear(), tb.translation()}, witness.axis))
+    return MeshVerdict::apart;
   // A witness only ever saves work: one kept under a key the caller reused for other meshes is still
   // a valid test of these meshes once its triangle indices are in range. The pairs are kept newest
   // (or last confirmed) first.
-  if (witness.triangles[0][0] >= 0) {
-    // FCL's leaf test (mesh_collision_traversal_node-inl.h): b's triangle moved into a's frame by the
-    // relative transform FCL's traversal node computes.
-    fcl::Matrix3d R;
-    fcl::Vector3d T;
-    fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
-    auto& tris = witness.triangles;
-    for (std::size_t k = 0; k < tris.size(); ++k) {
-      const int ia = tris[k][0], ib = tris[k][1];
-      if (ia < 0 || ia >= ma.num_tris || ib < 0 || ib >= mb.num_tris) continue;  // another mesh's witness
-      const fcl::Triangle& p = ma.tri_indices[ia];
-      const fcl::Triangle& q = mb.tri_indices[ib];
-      if (fcl::detail::Intersect<double>::intersect_Triangle(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]],
-                                                             mb.vertices[q[0]], mb.vertices[q[1]], mb.vertices[q[2]],
-                                                             R, T)) {
-        std::rotate(tris.begin(), tris.begin() + k, tris.begin() + k + 1);  // the last hit first
-        return true;
-      }
+  if (witness.triangles[0][0] < 0) return MeshVerdict::unknown;
+  // FCL's leaf test (mesh_collision_traversal_node-inl.h): b's triangle moved into a's frame by the
+  // relative transform FCL's traversal node computes.
+  const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
+  fcl::Matrix3d R;
+  fcl::Vector3d T;
+  fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
+  auto& tris = witness.triangles;
+  for (std::size_t k = 0; k < tris.size(); ++k) {
+    const int ia = tris[k][0], ib = tris[k][1];
+    if (ia < 0 || ia >= ma.num_tris || ib < 0 || ib >= mb.num_tris) continue;  // another mesh's witness
+    const fcl::Triangle& p = ma.tri_indices[ia];
+    const fcl::Triangle& q = mb.tri_indices[ib];
+    if (fcl::detail::Intersect<double>::intersect_Triangle(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]],
+                                                           mb.vertices[q[0]], mb.vertices[q[1]], mb.vertices[q[2]],
+                                                           R, T)) {
+      std::rotate(tris.begin(), tris.begin() + k, tris.begin() + k + 1);  // the last hit first
+      return MeshVerdict::touching;
     }
   }
-  if (gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), witness.axis)) return false;
+  return MeshVerdict::unknown;
+}
+
+bool meshes_hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                        const Pose& tb, MeshPairWitness& witness) {
+  const Placed A{hull_mesh(a)->hull_points(), ta.linear(), ta.translation()};
+  const Placed B{hull_mesh(b)->hull_points(), tb.linear(), tb.translation()};
+  return gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), witness.axis);
+}
+
+bool meshes_fcl_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                        const Pose& tb, MeshPairWitness& witness) {
+  const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
   if (fcl::collide(&a, fa, &b, fb, request, result) == 0) return false;
   std::rotate(witness.triangles.begin(), witness.triangles.end() - 1, witness.triangles.end());
   witness.triangles[0] = {{static_cast<int>(result.getContact(0).b1), static_cast<int>(result.getContact(0).b2)}};
   return true;
+}
+
+bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                    const Pose& tb, MeshPairWitness& witness) {
+  const MeshVerdict v = mesh_witness_verdict(a, ta, b, tb, witness);
+  if (v != MeshVerdict::unknown) return v == MeshVerdict::touching;
+  if (meshes_hulls_apart(a, ta, b, tb, witness)) return false;
+  return meshes_fcl_collide(a, ta, b, tb, witness);
 }
 
 bool hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,

@@ -109,9 +109,24 @@ struct PlacedHull {
   double reach(const Eigen::Vector3d& d) const { return projections(R.transpose() * d).maxCoeff() + d.dot(t); }
 };
 
-/// FCL's answer for two meshes (both is_mesh) at world poses, using and refreshing `witness`.
+/// FCL's answer for two meshes (both is_mesh) at world poses, using and refreshing `witness`: the
+/// witnesses' verdict if they give one, else meshes_decide's.
 bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                     const Pose& tb, MeshPairWitness& witness);
+
+/// What the witnesses alone say of two meshes (the kept plane, then the kept triangle pairs): FCL's
+/// answer when they decide, unknown otherwise. A check of many pairs can ask every pair this first and
+/// leave the costly steps to the pairs it leaves open: a configuration that collides is then often
+/// confirmed without FCL.
+enum class MeshVerdict { apart, touching, unknown };
+MeshVerdict mesh_witness_verdict(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                                 const Pose& tb, MeshPairWitness& witness);
+/// The steps after the witnesses: GJK on the hulls (true: apart, the plane kept), else nothing decided.
+bool meshes_hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                        const Pose& tb, MeshPairWitness& witness);
+/// FCL's narrow phase, the triangle pair of its hit joining the witnesses.
+bool meshes_fcl_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                        const Pose& tb, MeshPairWitness& witness);
 
 /// True when the convex hulls of the vertices of meshes `a` (at world pose `ta`) and `b` (at `tb`) are
 /// more than kHullMargin apart along some direction, which is then returned in `axis` (unit, world

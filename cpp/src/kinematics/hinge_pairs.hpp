@@ -33,6 +33,14 @@ class HingePairs {
   /// The pair at position `k` of the last uncertain() list collided: it moves to the front.
   void hit(std::size_t k);
 
+  /// The hinge certificate of pair `p` (index into the pairs given), or -1 when it has none.
+  int hinge_of(std::size_t p) const { return hinge_of_[p]; }
+  /// True when pair `p` has a hinge certificate and is certified free at the full configuration `full`.
+  bool certified_pair(const Robot& robot, std::size_t p, const Eigen::VectorXd& full) {
+    const int h = hinge_of_[p];
+    return h >= 0 && certified(robot, static_cast<std::size_t>(h), full[hinges_[h].config_index]);
+  }
+
   /// Number of hinge pairs found (the others are always returned).
   std::size_t hinges() const { return hinges_.size(); }
   /// True when the hinge pair `h` is certified free at joint value `v` (measures its bucket if new).

@@ -12,7 +12,7 @@
 #include "octoreach/robot.hpp"
 #include "kinematics/chain_checks.hpp"
 #include "collision/detail.hpp"
-#include "kinematics/hinge_pairs.hpp"
+#include "kinematics/chain_self_check.hpp"
 #include "common/cancel.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
@@ -61,7 +61,7 @@ std::optional<Eigen::VectorXd> rigid_chain_ik(const Chain& c, const Pose& target
 
 // What IK needs to check its solutions of one chain at one reference posture for collisions: the
 // robot's checked pairs split into those the chain moves and those it never moves, and the link
-// poses at the reference, the hinge pairs (hinge_pairs.hpp) and the pair order. Per thread, the set-ups
+// poses at the reference and the check of the moving pairs (chain_self_check.hpp). Per thread, the set-ups
 // of the last four robot, chain and reference combinations are kept and reused by the next call for
 // the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so a
 // robot built at the address of a freed one never matches). Checking a solution then recomputes
@@ -73,10 +73,8 @@ struct CollisionSetup {
   std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
   std::vector<int> moved;  // joints whose child link the chain moves, in the robot's (parents-first) order
   std::vector<Pose> poses;
-  detail::HingePairs hinges;  // moving pairs one joint sets: skipped where certainly free
-  Eigen::VectorXd full;       // scratch: the robot configuration of the solution checked
-  detail::ShapeBoxes boxes;   // shape boxes: the links the chain never moves stay at the reference
-  std::vector<int> moved_links;  // collision links the chain moves (their boxes follow each solution)
+  detail::ChainSelfCheck self;  // the moving pairs, flat: boxes, hinge certificates, witnesses
+  Eigen::VectorXd full;         // scratch: the robot configuration of the solution checked
 
   bool matches(const Chain& c, const std::shared_ptr<const Robot>& r, const Eigen::VectorXd& ref) const {
     return !robot.expired() && !robot.owner_before(r) && !r.owner_before(robot) && base == c.base_link() &&
@@ -109,14 +107,8 @@ struct CollisionSetup {
     for (std::size_t j = 0; j < r->joints().size(); ++j)
       if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
     r->link_poses(reference, s.poses);
-    s.hinges = detail::HingePairs(c, s.moving_pairs, reference);
+    s.self = detail::ChainSelfCheck(c, s.moving_pairs, s.poses, reference);
     s.full = reference;
-    s.boxes = detail::ShapeBoxes();
-    s.moved_links.clear();
-    for (int li : r->collision_links()) {
-      s.boxes.update(*r, s.poses, li);
-      if (c.link_mask(li) != 0) s.moved_links.push_back(li);
-    }
     return s;
   }
 
@@ -316,12 +308,7 @@ class LmIk {
     if (o_.check_self_collision) {
       if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
       if (fixed_state_ == 1) return false;
-      for (int li : s.moved_links) s.boxes.update(robot, s.poses, li);
-      const int k = detail::first_colliding_pair(robot, s.boxes, s.hinges.uncertain(robot, s.full));
-      if (k >= 0) {
-        s.hinges.hit(k);
-        return false;
-      }
+      if (s.self.collides(robot, s.poses, s.full)) return false;
     }
     return true;
   }
