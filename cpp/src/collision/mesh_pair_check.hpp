@@ -110,7 +110,8 @@ struct PlacedHull {
 };
 
 /// FCL's answer for two meshes (both is_mesh) at world poses, using and refreshing `witness`: the
-/// witnesses' verdict if they give one, else meshes_decide's.
+/// witnesses' verdict if they give one, else GJK on the hulls (meshes_hulls_apart), else FCL
+/// (meshes_fcl_collide).
 bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                     const Pose& tb, MeshPairWitness& witness);
 

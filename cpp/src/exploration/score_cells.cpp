@@ -48,23 +48,26 @@ ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const Enclosur
     for (int a = 0; a < 3; ++a) lo_[a] = lo[a], n_[a] = hi[a] - lo[a] + 1;
     dir_.assign(std::size_t(cells), Entry{});
     S.grid.for_each_block([&](CellKey b, const StateGrid::Block& block) {
-      dir_[std::size_t((std::uint64_t(key_z(b) - lo_[2]) * n_[1] + (key_y(b) - lo_[1])) * n_[0] + (key_x(b) - lo_[0]))]
-          .grid = &block;
+      dir_[slot(b)].grid = &block;
     });
     extra.for_each([&](CellKey b, Extra* e) {
-      dir_[std::size_t((std::uint64_t(key_z(b) - lo_[2]) * n_[1] + (key_y(b) - lo_[1])) * n_[0] + (key_x(b) - lo_[0]))]
-          .extra = e;
+      dir_[slot(b)].extra = e;
     });
   } else {
     extra.for_each([&](CellKey b, Extra* e) { extra_of_.at(b) = e; });
   }
 }
 
+std::size_t ScoreCells::slot(CellKey b) const {
+  const std::uint32_t x = key_x(b) - lo_[0], y = key_y(b) - lo_[1], z = key_z(b) - lo_[2];
+  if (x >= n_[0] || y >= n_[1] || z >= n_[2]) return kOutside;  // (unsigned: below lo wraps around)
+  return std::size_t((std::uint64_t(z) * n_[1] + y) * n_[0] + x);
+}
+
 ScoreCells::Entry ScoreCells::entry(CellKey b) const {
   if (n_[0]) {
-    const std::uint32_t x = key_x(b) - lo_[0], y = key_y(b) - lo_[1], z = key_z(b) - lo_[2];
-    if (x >= n_[0] || y >= n_[1] || z >= n_[2]) return {};  // (unsigned: below lo wraps around)
-    return dir_[std::size_t((std::uint64_t(z) * n_[1] + y) * n_[0] + x)];
+    const std::size_t i = slot(b);
+    return i == kOutside ? Entry{} : dir_[i];
   }
   Entry e;
   e.grid = grid_->find_block(b);

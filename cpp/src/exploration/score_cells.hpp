@@ -65,6 +65,10 @@ class ScoreCells {
   };
 
  private:
+  static constexpr std::size_t kOutside = ~std::size_t(0);
+  // The directory index of block key b, or kOutside when b lies outside the directory's box.
+  std::size_t slot(CellKey b) const;
+
   std::shared_ptr<const EnclosureTable> enclosure_;
   const StateGrid* grid_;
   std::uint32_t lo_[3] = {0, 0, 0}, n_[3] = {0, 0, 0};  // directory box (block keys); n 0: no directory
