@@ -82,7 +82,8 @@ struct CellQuality {
 ///
 /// A cell (voxel, orientation) is reachable when IK finds a solution inside the joint limits (and
 /// free of self-collision) for the voxel centre and that orientation. A cell whose centre is not reachable
-/// but that holds the tool pose of a configuration inside the limits is mixed: it holds reachable and
+/// but that holds the tool pose of a configuration inside the limits (and, with self-collision checked,
+/// free of it) is mixed: it holds reachable and
 /// unreachable poses (a five-joint arm reaches a thin set of directions that rarely passes through a
 /// direction bin's centre). With solutions kept, a map stores per reachable cell one joint solution and its
 /// quality (CellQuality), and per mixed cell the configuration found in it; CertifiedLookup answers from them
