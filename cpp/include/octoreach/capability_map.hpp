@@ -236,6 +236,9 @@ class CapabilityMap {
   }
   /// CapabilityLookup::vote of orientation o at p (o in range).
   bool vote_(const Eigen::Vector3d& p, int o) const;
+  /// The vote of orientation o from the records of the 8 corners around a position (corners() numbers them) and
+  /// its fractions towards the upper corners.
+  bool vote_records_(const std::uint32_t records[8], const double frac[3], int o) const;
   void finish_();  // builds the query tables once the tree and records are complete
   bool bit(std::uint32_t record, int o) const {
     return (bits_[static_cast<std::size_t>(record) * words_ + (o >> 6)] >> (o & 63)) & 1ULL;
