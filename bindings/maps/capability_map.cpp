@@ -123,15 +123,6 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
            }, py::arg("point"), py::arg("orientation"),
            "True when cell (point, orientation) is mixed: IK at its centre fails but a configuration reaches a pose\n"
            "inside it.")
-      .def("mixed_solution", [](const CapabilityMap& cm, const py::object& point, int o) -> py::object {
-             const std::int64_t r = cm.record_at(vec3_from(point, "point"));
-             if (o < 0 || o >= cm.orientations().size()) throw std::invalid_argument("orientation index out of range");
-             const float* q = r >= 0 ? cm.record_mixed_solution(static_cast<std::uint32_t>(r), o) : nullptr;
-             if (!q) return py::none();
-             return py::cast(Eigen::Map<const Eigen::VectorXf>(q, cm.dof()).cast<double>().eval());
-           }, py::arg("point"), py::arg("orientation"),
-           "The configuration stored for mixed cell (point, orientation): a collision-free configuration whose tool\n"
-           "pose lies in the cell; None for a cell that is not mixed or a map saved without solutions.")
       .def("voxels", [](const CapabilityMap& cm) {
         std::vector<Eigen::Vector3d> c;
         std::vector<double> v;

@@ -985,11 +985,6 @@ class CapabilityMap:
         True when cell (point, orientation) is mixed: IK at its centre fails but a configuration reaches a pose
         inside it.
         """
-    def mixed_solution(self, point: typing.Any, orientation: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
-        """
-        The configuration stored for mixed cell (point, orientation): a collision-free configuration whose tool
-        pose lies in the cell; None for a cell that is not mixed or a map saved without solutions.
-        """
     def quality(self, point: typing.Any, orientation: typing.SupportsInt | typing.SupportsIndex) -> typing.Any:
         """
         (manipulability, joint-limit penalty) of the stored solution of reachable cell (point, orientation), or

@@ -196,35 +196,3 @@ def test_cell_data_round_trips_through_files(cmap, check, poses_and_truth, robot
     cmap.save(bare)
     without = octoreach.CapabilityMap.load(bare)
     assert without.has_cell_data and not without.has_solutions and not without.has_quality
-
-
-def test_mixed_cells_hold_collision_free_configurations_in_the_cell(pr2):
-    """A mixed cell's configuration is evidence that the arm reaches a pose inside the cell: free of
-    self-collision at the map's reference posture, its tool pose in the cell's voxel and direction bin. A quarter
-    of the PR2 arm's random configurations collide with its body, so a build that kept every sample would fail."""
-    chain = pr2.chain("torso_lift_link", "r_gripper_tool_frame")
-    cmap = octoreach.arms.capability_map(pr2, "right_arm", resolution=0.2, directions=24, progress=False)
-    ref = cmap.reference
-    axis = np.asarray(cmap.approach_axis)
-    r = cmap.resolution
-    colliding = sum(bool(pr2.in_self_collision(chain.to_robot_configuration(q, ref)))
-                    for q in chain.random_configurations(400, 5))
-    assert colliding > 40  # the samples a build draws do collide
-    centres, _ = cmap.voxels()
-    lo, hi = cmap.bounds
-    checked = 0
-    for x in np.arange(lo[0] + r / 2, hi[0], r):
-        for y in np.arange(lo[1] + r / 2, hi[1], r):
-            for z in np.arange(lo[2] + r / 2, hi[2], r):
-                p = np.array([x, y, z])
-                for o in range(len(cmap.orientations)):
-                    q = cmap.mixed_solution(p, o)
-                    assert (q is not None) == cmap.mixed_cell(p, o)
-                    if q is None:
-                        continue
-                    checked += 1
-                    assert not pr2.in_self_collision(chain.to_robot_configuration(q, ref))
-                    T = chain.fk(q)
-                    assert np.all(np.abs(T[:3, 3] - p) <= r / 2 + 1e-6)
-                    assert cmap.orientations.nearest_direction(T[:3, :3] @ axis) == o
-    assert checked > 50

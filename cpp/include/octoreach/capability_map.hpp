@@ -82,8 +82,7 @@ struct CellQuality {
 ///
 /// A cell (voxel, orientation) is reachable when IK finds a solution inside the joint limits (and
 /// free of self-collision) for the voxel centre and that orientation. A cell whose centre is not reachable
-/// but that holds the tool pose of a configuration inside the limits (and, with self-collision checked,
-/// free of it) is mixed: it holds reachable and
+/// but that holds the tool pose of a configuration inside the limits is mixed: it holds reachable and
 /// unreachable poses (a five-joint arm reaches a thin set of directions that rarely passes through a
 /// direction bin's centre). With solutions kept, a map stores per reachable cell one joint solution and its
 /// quality (CellQuality), and per mixed cell the configuration found in it; CertifiedLookup answers from them
@@ -236,9 +235,6 @@ class CapabilityMap {
   }
   /// CapabilityLookup::vote of orientation o at p (o in range).
   bool vote_(const Eigen::Vector3d& p, int o) const;
-  /// The vote of orientation o from the records of the 8 corners around a position (corners() numbers them) and
-  /// its fractions towards the upper corners.
-  bool vote_records_(const std::uint32_t records[8], const double frac[3], int o) const;
   void finish_();  // builds the query tables once the tree and records are complete
   bool bit(std::uint32_t record, int o) const {
     return (bits_[static_cast<std::size_t>(record) * words_ + (o >> 6)] >> (o & 63)) & 1ULL;

@@ -123,12 +123,6 @@ class DenseIndex {
       if (key[a] < lo_[a] || key[a] > hi_[a]) return kNone;
     return records_[offset(key)];
   }
-  /// \brief Asks the CPU to load the entry of `key` ahead of a find (batched lookups overlap their reads).
-  void prefetch(const octomap::OcTreeKey& key) const {
-    for (int a = 0; a < 3; ++a)
-      if (key[a] < lo_[a] || key[a] > hi_[a]) return;
-    __builtin_prefetch(records_.data() + offset(key));
-  }
 
  private:
   std::size_t offset(const octomap::OcTreeKey& k) const {

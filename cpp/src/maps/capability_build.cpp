@@ -145,13 +145,6 @@ void CapabilityBuilder::run_wave(const std::vector<Item>& wave, const std::vecto
   const int O = box_.O, dof = dof_;
   std::vector<Eigen::VectorXf> results(wave.size());
   std::vector<char> ok(wave.size(), 0);
-  // Wave 0's seeds are forward-kinematics samples, drawn without a collision check (a quarter of the PR2 arm's
-  // random configurations collide with its body). When IK fails from one, the sample itself is checked (IK at
-  // its own pose from it: no descent, then the solution checks) and a sample in self-collision is dropped (1,
-  // below): a mixed cell holds a pose the arm reaches, and the certified lookup does not send poses to IK
-  // around cells whose only evidence is a configuration inside the robot.
-  const bool samples = &pool == &seed_pool_ && base_ik_.check_self_collision;
-  std::vector<char> bad_seed(samples ? wave.size() : 0, 0);
   detail::parallel_for(wave.size(), o_.threads, [&](std::size_t i, int) {
     const Item& it = wave[i];
     IkOptions opt = base_ik_;
@@ -167,15 +160,9 @@ void CapabilityBuilder::run_wave(const std::vector<Item>& wave, const std::vecto
     if (q) {
       results[i] = q->cast<float>();
       ok[i] = 1;
-    } else if (samples && it.seed >= 0) {
-      IkOptions check = opt;
-      check.max_iterations = 1;
-      bad_seed[i] = !chain_.ik(chain_.fk(s), check, &s);
     }
   }, 8);
   ik_calls_ += wave.size();
-  if (std::getenv("OCTOREACH_DEBUG") && samples)
-    std::fprintf(stderr, "capability map: wave0 samples in self-collision %zu\n", std::size_t(std::count(bad_seed.begin(), bad_seed.end(), 1)));
   newly.clear();
   for (std::size_t i = 0; i < wave.size(); ++i) {
     std::uint32_t c = wave[i].cell;
@@ -186,7 +173,6 @@ void CapabilityBuilder::run_wave(const std::vector<Item>& wave, const std::vecto
       newly.push_back(c);
     } else {
       status_[c] = kFailed;
-      if (!bad_seed.empty() && bad_seed[i]) seed_row_[c] = -1;  // (1) not a pose the arm reaches: not mixed
       // The solution row tried (flood), kept so that the retry pass does not repeat a call that fails
       // again (the same seed gives the same descent); -1 after wave 0 (its seed is an FK sample).
       sol_row_[c] = &pool == &sol_pool_ ? wave[i].seed : -1;

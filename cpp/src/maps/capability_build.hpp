@@ -47,7 +47,7 @@ class CapabilityBuilder {
   /// Stage 3: the quality of every reachable cell's solution (keep_solutions), on every core.
   void rate();
   /// The cells of voxel v (box index) as a map record holds them: reachable cells, mixed cells (a forward-
-  /// kinematics sample free of self-collision landed in them, IK at their centre failed) and, with keep_solutions, their solutions,
+  /// kinematics sample landed in them, IK at their centre failed) and, with keep_solutions, their solutions,
   /// quality (after rate()) and the mixed cells' samples.
   void collect(std::size_t v, VoxelCellData& out) const;
 

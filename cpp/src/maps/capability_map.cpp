@@ -186,21 +186,15 @@ bool corner_grid(const Eigen::Vector3d& p, double resolution, octomap::OcTreeKey
 }
 
 // Corner k (bit a: one voxel up along axis a) of the 8 around a position: its key and trilinear weight.
-inline double corner_weight(const double frac[3], int k) {
-  double w = 1.0;
-  for (int a = 0; a < 3; ++a) w *= (k >> a) & 1 ? frac[a] : 1.0 - frac[a];
-  return w;
-}
-
-inline octomap::OcTreeKey corner_key(const octomap::OcTreeKey& low, int k) {
-  octomap::OcTreeKey key = low;
-  for (int a = 0; a < 3; ++a) key[a] = static_cast<octomap::key_type>(key[a] + ((k >> a) & 1));
-  return key;
-}
-
 inline double corner(const octomap::OcTreeKey& low, const double frac[3], int k, octomap::OcTreeKey& key) {
-  key = corner_key(low, k);
-  return corner_weight(frac, k);
+  double w = 1.0;
+  key = low;
+  for (int a = 0; a < 3; ++a) {
+    const bool up = (k >> a) & 1;
+    w *= up ? frac[a] : 1.0 - frac[a];
+    key[a] = static_cast<octomap::key_type>(key[a] + up);
+  }
+  return w;
 }
 
 }  // namespace
@@ -216,27 +210,22 @@ void CapabilityMap::corners(const Eigen::Vector3d& p, std::uint32_t records[8], 
   }
 }
 
-bool CapabilityMap::vote_records_(const std::uint32_t records[8], const double frac[3], int o) const {
+bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
+  octomap::OcTreeKey low;
+  double frac[3];
+  if (!corner_grid(p, resolution_, low, frac)) return false;
   double yes = 0.0, left = 1.0;
   for (int k = 0; k < 8; ++k) {
-    const double w = corner_weight(frac, k);
+    octomap::OcTreeKey key;
+    const double w = corner(low, frac, k, key);
     if (w <= 0.0) continue;
-    const std::uint32_t r = records[k];
+    const std::uint32_t r = record_of_key(key);
     if (r != DenseIndex::kNone && bit(r, o)) yes += w;
     left -= w;
     if (yes >= 0.5) return true;
     if (yes + left < 0.5 - 1e-12) return false;  // the rest cannot reach one half
   }
   return yes >= 0.5;
-}
-
-bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
-  octomap::OcTreeKey low;
-  double frac[3];
-  if (!corner_grid(p, resolution_, low, frac)) return false;
-  std::uint32_t records[8];
-  for (int k = 0; k < 8; ++k) records[k] = record_of_key(corner_key(low, k));
-  return vote_records_(records, frac, o);
 }
 
 bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation, CapabilityLookup lookup) const {
@@ -263,52 +252,10 @@ void CapabilityMap::reachability(const double* points, std::size_t n, double* ou
 }
 
 void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, CapabilityLookup lookup) const {
-  if (!index_.active()) {
-    detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
-      Pose T;
-      T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
-      out[i] = reachable(T, lookup);
-    });
-    return;
-  }
-  // reachable(T) in three stages over groups of poses: orientations and voxel keys (their index entries
-  // prefetched), records (their bit words prefetched), answers. A random pose's cells are rarely in cache;
-  // the stages let the reads of a group overlap instead of waiting one after another. Same answers.
-  constexpr std::size_t G = 16;
-  const bool vote = lookup == CapabilityLookup::vote;
-  const int corners = vote ? 8 : 1;
-  detail::batch_lookup_finite_groups<G>(poses, n, 16, "pose", " (NaN or inf)",
-                                        [&](std::size_t first, std::size_t count, const bool* finite) {
-    int o[G];
-    bool inside[G];
-    octomap::OcTreeKey low[G];
-    double frac[G][3];
-    std::uint32_t records[G][8];
-    for (std::size_t k = 0; k < count; ++k) {
-      inside[k] = false;
-      if (!finite[k]) continue;
-      Pose T;
-      T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * (first + k));
-      o[k] = orientations_.nearest(T.linear(), approach_axis_);
-      const Eigen::Vector3d p = T.translation();
-      inside[k] = vote ? corner_grid(p, resolution_, low[k], frac[k]) : tree_->coordToKeyChecked(p.x(), p.y(), p.z(), low[k]);
-      if (inside[k])
-        for (int c = 0; c < corners; ++c) index_.prefetch(corner_key(low[k], c));
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-      if (!inside[k]) continue;
-      for (int c = 0; c < corners; ++c) {
-        const std::uint32_t r = index_.find(corner_key(low[k], c));
-        records[k][c] = r;
-        if (r != DenseIndex::kNone) __builtin_prefetch(bits_.data() + static_cast<std::size_t>(r) * words_ + (o[k] >> 6));
-      }
-    }
-    for (std::size_t k = 0; k < count; ++k) {
-      if (!finite[k]) continue;
-      if (!inside[k]) out[first + k] = false;
-      else if (vote) out[first + k] = vote_records_(records[k], frac[k], o[k]);
-      else out[first + k] = records[k][0] != DenseIndex::kNone && bit(records[k][0], o[k]);
-    }
+  detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
+    Pose T;
+    T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
+    out[i] = reachable(T, lookup);
   });
 }
 
