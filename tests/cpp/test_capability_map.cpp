@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
@@ -161,6 +163,55 @@ TEST(CapabilityMap, DamagedFilesThrowFileError) {
   EXPECT_THROW(CapabilityMap::load(path), FileError);
   std::remove(path.c_str());
   EXPECT_THROW(CapabilityMap::load(path), FileError);
+}
+
+// The plain lookups answer from their own table: they must say what the voxel records hold, pose by pose and in
+// batches (which compute every orientation first).
+TEST(CapabilityMap, PlainLookupsReadTheRecords) {
+  const CapabilityMap& m = coarse_map();
+  auto [lo, hi] = m.bounds();
+  const double r = m.resolution();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::normal_distribution<double> g;
+  const int n = 4000;
+  std::vector<double> rows(16 * n);
+  std::vector<char> vote(n), nearest(n);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d p;
+    for (int a = 0; a < 3; ++a) p[a] = lo[a] - 2 * r + u(rng) * (hi[a] - lo[a] + 4 * r);
+    Pose T = Pose::Identity();
+    T.linear() = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+    T.translation() = p;
+    const int o = m.orientations().nearest(T.linear(), m.approach_axis());
+    // nearest cell: the record of the voxel holding p
+    const std::uint32_t rec = m.record_of_key(m.tree().coordToKey(p.x(), p.y(), p.z()));
+    const bool stored = rec != DenseIndex::kNone && m.record_has(rec, o);
+    EXPECT_EQ(m.reachable(p, o, CapabilityLookup::nearest_cell), stored) << p.transpose() << " " << o;
+    // vote: the 8 records around p weighted trilinearly
+    std::uint32_t recs[8];
+    double w[8], yes = 0;
+    m.corners(p, recs, w);
+    for (int k = 0; k < 8; ++k) yes += recs[k] != DenseIndex::kNone && m.record_has(recs[k], o) ? w[k] : 0.0;
+    if (std::abs(yes - 0.5) > 1e-9) EXPECT_EQ(m.reachable(p, o, CapabilityLookup::vote), yes >= 0.5) << p.transpose();
+    vote[i] = m.reachable(T, CapabilityLookup::vote);
+    nearest[i] = m.reachable(T, CapabilityLookup::nearest_cell);
+    Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(rows.data() + 16 * i) = T.matrix();
+  }
+  std::unique_ptr<bool[]> out(new bool[n]);
+  for (auto [lookup, expected] : {std::make_pair(CapabilityLookup::vote, &vote),
+                                  std::make_pair(CapabilityLookup::nearest_cell, &nearest)}) {
+    m.reachable(rows.data(), n, out.get(), lookup);
+    for (int i = 0; i < n; ++i) EXPECT_EQ(out[i], bool((*expected)[i])) << i;
+  }
+  EXPECT_GT(std::count(vote.begin(), vote.end(), 1), n / 50);  // the poses test both answers
+  rows[16 * 1234 + 5] = std::nan("");
+  try {
+    m.reachable(rows.data(), n, out.get());
+    ADD_FAILURE() << "a NaN pose was answered";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("pose 1234 is not finite"), std::string::npos) << e.what();
+  }
 }
 
 TEST(OrientationSet, NearestDirectionIsExact) {

@@ -235,7 +235,15 @@ class CapabilityMap {
   }
   /// CapabilityLookup::vote of orientation o at p (o in range).
   bool vote_(const Eigen::Vector3d& p, int o) const;
+  /// CapabilityLookup::nearest_cell of orientation o at p (o in range).
+  bool nearest_cell_(const Eigen::Vector3d& p, int o) const;
   void finish_();  // builds the query tables once the tree and records are complete
+  void build_grid_();
+  /// The plain lookups' bit of orientation o at grid position (x, y, z), each inside grid_dim_.
+  bool grid_bit_(int o, int x, int y, int z) const {
+    const std::size_t i = ((static_cast<std::size_t>(o) * grid_dim_[0] + x) * grid_dim_[1] + y) * grid_dim_[2] + z;
+    return (grid_[i >> 6] >> (i & 63)) & 1ULL;
+  }
   bool bit(std::uint32_t record, int o) const {
     return (bits_[static_cast<std::size_t>(record) * words_ + (o >> 6)] >> (o & 63)) & 1ULL;
   }
@@ -265,6 +273,11 @@ class CapabilityMap {
   int jacobian_rank_ = 0;
   Eigen::VectorXd reference_;
   DenseIndex index_;
+  // The reachable bits again, orientation-major over the voxels' key box with one empty voxel around it, for the
+  // plain lookups: a vote's 8 corners share one or two cache lines and no record index is read. Empty (the
+  // records answer) when it would take more than kGridBytes.
+  std::vector<std::uint64_t> grid_;
+  int grid_lo_[3] = {0, 0, 0}, grid_dim_[3] = {0, 0, 0};
   MapProvenance provenance_;
   std::string base_link_, tip_link_;
   int dof_ = 0;

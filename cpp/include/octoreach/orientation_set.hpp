@@ -60,9 +60,11 @@ class OrientationSet {
   int symmetry_ = 1;
   std::vector<std::vector<int>> neighbours_;
   std::vector<std::vector<int>> rotated_;  // [k][i]
-  // Cube-map table: for each face cell the candidate directions that can be nearest.
+  // Cube-map table: for each face cell the candidate directions that can be nearest, one flat array
+  // (cell i's candidates are candidates_[start_[i] .. start_[i + 1])) so that a lookup reads one short run.
   static constexpr int kCells = 24;
-  std::vector<std::vector<int>> table_;
+  std::vector<std::uint32_t> start_;
+  std::vector<std::int32_t> candidates_;
 };
 
 }  // namespace octoreach

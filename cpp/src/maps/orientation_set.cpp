@@ -12,18 +12,17 @@
 namespace octoreach {
 namespace {
 
-// Cube-map cell of a unit vector: face (0..5) and cell coordinates in [0, n).
+// Cube-map cell of a unit vector: face (0..5) and cell coordinates in [0, n). A coordinate off by an ulp at a cell's
+// border is harmless: every cell's candidates hold the nearest direction of points a little beyond it too.
 inline int cube_cell(const Eigen::Vector3d& d, int n) {
-  Eigen::Vector3d a = d.cwiseAbs();
-  int axis;
-  if (a.x() >= a.y() && a.x() >= a.z()) axis = 0;
-  else if (a.y() >= a.z()) axis = 1;
-  else axis = 2;
-  double m = a[axis];
-  int face = axis * 2 + (d[axis] < 0 ? 1 : 0);
-  double u = d[(axis + 1) % 3] / m, v = d[(axis + 2) % 3] / m;  // in [-1, 1]
-  int iu = std::min(n - 1, std::max(0, static_cast<int>((u + 1) * 0.5 * n)));
-  int iv = std::min(n - 1, std::max(0, static_cast<int>((v + 1) * 0.5 * n)));
+  const double ax = std::abs(d.x()), ay = std::abs(d.y()), az = std::abs(d.z());
+  const int axis = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+  const double m = axis == 0 ? ax : (axis == 1 ? ay : az);
+  const int face = axis * 2 + (d[axis] < 0 ? 1 : 0);
+  const double half_n = 0.5 * n / m;
+  const double u = d[(axis + 1) % 3] * half_n + 0.5 * n, v = d[(axis + 2) % 3] * half_n + 0.5 * n;  // in [0, n]
+  const int iu = std::min(n - 1, std::max(0, static_cast<int>(u)));
+  const int iv = std::min(n - 1, std::max(0, static_cast<int>(v)));
   return (face * n + iu) * n + iv;
 }
 
@@ -153,7 +152,7 @@ void OrientationSet::finalize_() {
   }
   // Candidates per cube-map cell: directions nearest to some sample point of the cell,
   // widened by the cell's angular size so that the exact nearest is always among them.
-  table_.assign(6 * kCells * kCells, {});
+  std::vector<std::vector<int>> table(6 * kCells * kCells);
   for (int face = 0; face < 6; ++face) {
     int axis = face / 2;
     double sign = face % 2 ? -1.0 : 1.0;
@@ -177,7 +176,7 @@ void OrientationSet::finalize_() {
           if (beats_outside(best, r)) break;
         }
         double limit = std::acos(std::min(1.0, best)) + 2.0 * radius + 1e-9;
-        auto& cands = table_[cube_cell(c, kCells)];
+        auto& cands = table[cube_cell(c, kCells)];
         const std::size_t first = cands.size();
         const double reach = limit >= kPi ? kWholeSphere : 2.0 * std::sin(0.5 * limit) + 1e-9;
         grid.near(c, reach, [&](int j) {
@@ -185,6 +184,12 @@ void OrientationSet::finalize_() {
         });
         std::sort(cands.begin() + std::ptrdiff_t(first), cands.end());
       }
+  }
+  start_.assign(table.size() + 1, 0);
+  candidates_.clear();
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    candidates_.insert(candidates_.end(), table[i].begin(), table[i].end());
+    start_[i + 1] = static_cast<std::uint32_t>(candidates_.size());
   }
   // Rotation table for the z symmetry.
   rotated_.assign(symmetry_, std::vector<int>(n));
@@ -196,10 +201,32 @@ void OrientationSet::finalize_() {
 
 int OrientationSet::nearest_direction(const Eigen::Vector3d& d) const {
   if (!d.allFinite() || d.isZero(0)) throw std::invalid_argument("nearest_direction needs a finite non-zero direction");
-  const auto& cands = table_[cube_cell(d, kCells)];
-  int best = cands.empty() ? 0 : cands[0];
+  const int cell = cube_cell(d, kCells);
+  const std::int32_t* first = candidates_.data() + start_[cell];
+  const std::int32_t* last = candidates_.data() + start_[cell + 1];
+  if (first == last) return 0;
+  // The largest dot product; where no other candidate comes within 1e-12 of it, it is what the rule below picks
+  // (that rule only ever differs from the plain maximum among near-ties), found without its branches.
+  constexpr std::ptrdiff_t kShort = 32;
+  if (last - first <= kShort) {
+    double dots[kShort];
+    double best_dot = -2;
+    int best = *first;
+    for (const std::int32_t* j = first; j != last; ++j) {
+      const double v = dirs_[*j].dot(d);
+      dots[j - first] = v;
+      const bool better = v > best_dot;
+      best_dot = better ? v : best_dot;
+      best = better ? *j : best;
+    }
+    int close = 0;
+    for (std::ptrdiff_t k = 0; k < last - first; ++k) close += dots[k] > best_dot - 1e-12;
+    if (close == 1) return best;
+  }
+  int best = *first;
   double best_dot = -2;
-  for (int j : cands) {
+  for (const std::int32_t* it = first; it != last; ++it) {
+    const int j = *it;
     double v = dirs_[j].dot(d);
     if (v > best_dot + 1e-12) {
       best_dot = v;
