@@ -22,8 +22,7 @@ double HingePairs::bucket_width(double radius) { return std::min(0.05, 3e-3 / st
 
 HingePairs::HingePairs(const Chain& chain, const std::vector<std::pair<int, int>>& pairs,
                        const Eigen::VectorXd& reference)
-    : pairs_(pairs), hinge_of_(pairs.size(), -1), order_(pairs.size()) {
-  for (std::size_t p = 0; p < pairs.size(); ++p) order_[p] = static_cast<int>(p);
+    : pairs_(pairs), hinge_of_(pairs.size(), -1) {
   const Robot& robot = chain.robot();
   // A joint that mimics a chain joint moves links the chain's masks do not see: no certificates then.
   for (const Joint& j : robot.joints())
@@ -103,24 +102,6 @@ bool HingePairs::certified(const Robot& robot, std::size_t hi, double v) {
     for (std::size_t j = k; j-- > 0 && c - (h.lo + j * h.width) < reach;) h.bucket[j] = 1;
   }
   return h.bucket[k] == 1;
-}
-
-const std::vector<std::pair<int, int>>& HingePairs::uncertain(const Robot& robot, const Eigen::VectorXd& full) {
-  out_.clear();
-  out_index_.clear();
-  for (int p : order_) {
-    const int h = hinge_of_[p];
-    if (h >= 0 && certified(robot, h, full[hinges_[h].config_index])) continue;
-    out_.push_back(pairs_[p]);
-    out_index_.push_back(p);
-  }
-  return out_;
-}
-
-void HingePairs::hit(std::size_t k) {
-  if (k >= out_index_.size()) return;
-  auto it = std::find(order_.begin(), order_.end(), out_index_[k]);
-  std::rotate(order_.begin(), it, it + 1);
 }
 
 }  // namespace octoreach::detail

@@ -6,8 +6,7 @@
 // pair's distance at the bucket's centre exceeds what turning by half a bucket can close (every point
 // of the turned link moves at most radius * angle, radius = its farthest point from the joint axis).
 // A bucket is measured (one FCL distance query per shape pair) the first time a configuration falls
-// in it; the answer of a check never changes, only its cost. The pairs are also kept in the order of
-// their last collision, so that a colliding configuration is found at its first test.
+// in it; the answer of a check never changes, only its cost (ChainSelfCheck asks it per pair).
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -26,16 +25,10 @@ class HingePairs {
   /// configuration (the joints off the chain stay there).
   HingePairs(const Chain& chain, const std::vector<std::pair<int, int>>& pairs, const Eigen::VectorXd& reference);
 
-  /// The pairs that still need the collision check at the full robot configuration `full` (off-chain
-  /// joints at the reference): hinge pairs certified free are left out. Pairs that were hit lately
-  /// come first (a configuration in collision then stops at its first test); the set is what counts.
-  const std::vector<std::pair<int, int>>& uncertain(const Robot& robot, const Eigen::VectorXd& full);
-  /// The pair at position `k` of the last uncertain() list collided: it moves to the front.
-  void hit(std::size_t k);
-
   /// The hinge certificate of pair `p` (index into the pairs given), or -1 when it has none.
   int hinge_of(std::size_t p) const { return hinge_of_[p]; }
-  /// True when pair `p` has a hinge certificate and is certified free at the full configuration `full`.
+  /// True when pair `p` has a hinge certificate and is certified free at the full robot configuration `full`
+  /// (off-chain joints at the reference).
   bool certified_pair(const Robot& robot, std::size_t p, const Eigen::VectorXd& full) {
     const int h = hinge_of_[p];
     return h >= 0 && certified(robot, static_cast<std::size_t>(h), full[hinges_[h].config_index]);
@@ -58,10 +51,8 @@ class HingePairs {
   };
   double distance(const Robot& robot, const Hinge& h, double v);
 
-  std::vector<std::pair<int, int>> pairs_, out_;
+  std::vector<std::pair<int, int>> pairs_;
   std::vector<int> hinge_of_;  // per pair: index into hinges_, or -1
-  std::vector<int> order_;     // pair indices, the last hit first
-  std::vector<int> out_index_; // pair index of each entry of out_
   std::vector<Hinge> hinges_;
   Eigen::VectorXd base_;       // full configuration the buckets are measured at (only the hinge joint varies)
   std::vector<Pose> poses_;    // scratch
