@@ -16,20 +16,10 @@ ExplorerSetup setup_from(const py::object& camera, const py::object& search_spac
   ExplorerSetup s;
   s.camera = intrinsics_from(camera);
   if (!bases.is_none()) s.bases = poses_from(bases, "bases");
-  if (!std::isfinite(reach) || reach < 0)
-    throw std::invalid_argument("reach must be a finite number of metres >= 0, got " + std::to_string(reach));
-  s.reach = reach;
-  if (!resolution.is_none()) {
-    s.resolution = cast_arg<double>(resolution, "resolution", "a number of metres");
-    if (!(s.resolution > 0) || !std::isfinite(s.resolution))
-      throw std::invalid_argument("resolution must be a positive finite number of metres, got " +
-                                  std::to_string(s.resolution));
-  }
-  if (!void_fit_threshold.is_none()) {
+  s.reach = reach;  // the values are checked by Explorer
+  if (!resolution.is_none()) s.resolution = cast_arg<double>(resolution, "resolution", "a number of metres");
+  if (!void_fit_threshold.is_none())
     s.void_fit_threshold = cast_arg<double>(void_fit_threshold, "void_fit_threshold", "a number");
-    if (!std::isfinite(s.void_fit_threshold))
-      throw std::invalid_argument("void_fit_threshold must be finite, got " + std::to_string(s.void_fit_threshold));
-  }
   if (!options.is_none()) {
     if (!py::isinstance<ExploreOptions>(options))
       throw py::type_error("options must be an ExploreOptions or None, got " + type_name(options));

@@ -34,9 +34,7 @@ void wrap_view_choice(py::module_& m) {
                           const ExploreOptions& options, ChoiceMemory& memory, const std::string& strategy,
                           double reach) {
           const CameraIntrinsics c = intrinsics_from(camera);
-          if (!std::isfinite(reach) || reach < 0)
-            throw std::invalid_argument("reach must be a finite number of metres >= 0, got " + std::to_string(reach));
-          ViewSites sites;
+          ViewSites sites;  // checked by choose_view
           sites.bases = poses_from(bases, "bases");
           sites.reach = reach;
           const ViewStrategy s = strategy_from_name(strategy);
