@@ -235,6 +235,8 @@ class CapabilityMap {
   }
   /// CapabilityLookup::vote of orientation o at p (o in range).
   bool vote_(const Eigen::Vector3d& p, int o) const;
+  /// The vote from the lower corner's key and the fractions towards the upper corners (corner_grid's answer).
+  bool vote_corners_(const octomap::OcTreeKey& low, const double frac[3], int o) const;
   /// CapabilityLookup::nearest_cell of orientation o at p (o in range).
   bool nearest_cell_(const Eigen::Vector3d& p, int o) const;
   void finish_();  // builds the query tables once the tree and records are complete

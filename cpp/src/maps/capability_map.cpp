@@ -256,7 +256,10 @@ void CapabilityMap::corners(const Eigen::Vector3d& p, std::uint32_t records[8], 
 bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
   octomap::OcTreeKey low;
   double frac[3];
-  if (!corner_grid(p, resolution_, low, frac)) return false;
+  return corner_grid(p, resolution_, low, frac) && vote_corners_(low, frac, o);
+}
+
+bool CapabilityMap::vote_corners_(const octomap::OcTreeKey& low, const double frac[3], int o) const {
   int g[3];
   if (!grid_.empty())
     for (int a = 0; a < 3; ++a) {
@@ -329,37 +332,51 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
     });
     return;
   }
-  // In groups: every pose's orientation first, its grid word prefetched, then the lookups.
+  // In groups: every pose's orientation and corners first, its grid words prefetched, then the lookups.
   constexpr std::size_t kGroup = 32;
   detail::batch_lookup_finite_groups(poses, n, 16, "pose", " (NaN or inf)", kGroup,
                                      [&](std::size_t i0, std::size_t i1, const bool* finite) {
     int o[kGroup];
+    octomap::OcTreeKey low[kGroup];
+    double frac[kGroup][3];
+    bool keyed[kGroup];
     for (std::size_t i = i0; i < i1; ++i) {
-      if (!finite[i - i0]) continue;
+      const std::size_t k = i - i0;
+      keyed[k] = false;
+      if (!finite[k]) continue;
       const double* m = poses + 16 * i;
       Eigen::Matrix3d R;
       R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
-      o[i - i0] = orientations_.nearest(R, approach_axis_);
-      octomap::OcTreeKey low;
-      double frac[3];
-      if (!corner_grid(Eigen::Vector3d(m[3], m[7], m[11]), resolution_, low, frac)) continue;
+      o[k] = orientations_.nearest(R, approach_axis_);
+      // vote: the lower of the 8 corners (the grid words of its x and x + 1 planes); nearest cell: the voxel
+      keyed[k] = lookup == CapabilityLookup::vote
+                     ? corner_grid(Eigen::Vector3d(m[3], m[7], m[11]), resolution_, low[k], frac[k])
+                     : tree_->coordToKeyChecked(m[3], m[7], m[11], low[k]);
+      if (!keyed[k]) continue;
       int g[3];
       bool inside = true;
       for (int a = 0; a < 3; ++a) {
-        g[a] = low[a] - grid_lo_[a];
-        inside &= g[a] >= 0 && g[a] + 1 < grid_dim_[a];
+        g[a] = low[k][a] - grid_lo_[a];
+        inside &= g[a] >= 0 && g[a] < grid_dim_[a];
       }
-      if (!inside) continue;
-      const std::size_t b = ((static_cast<std::size_t>(o[i - i0]) * grid_dim_[0] + g[0]) * grid_dim_[1] + g[1]) *
-                            grid_dim_[2] + g[2];
+      if (!inside) {
+        keyed[k] &= lookup == CapabilityLookup::vote;  // a nearest cell outside the grid is a no; a vote checks its corners
+        continue;
+      }
+      const std::size_t b =
+          ((static_cast<std::size_t>(o[k]) * grid_dim_[0] + g[0]) * grid_dim_[1] + g[1]) * grid_dim_[2] + g[2];
       __builtin_prefetch(grid_.data() + (b >> 6));
-      __builtin_prefetch(grid_.data() + ((b + static_cast<std::size_t>(grid_dim_[1]) * grid_dim_[2]) >> 6));
+      if (lookup == CapabilityLookup::vote && g[0] + 1 < grid_dim_[0])
+        __builtin_prefetch(grid_.data() + ((b + static_cast<std::size_t>(grid_dim_[1]) * grid_dim_[2]) >> 6));
     }
     for (std::size_t i = i0; i < i1; ++i) {
-      if (!finite[i - i0]) continue;
-      const double* m = poses + 16 * i;
-      const Eigen::Vector3d p(m[3], m[7], m[11]);
-      out[i] = lookup == CapabilityLookup::vote ? vote_(p, o[i - i0]) : nearest_cell_(p, o[i - i0]);
+      const std::size_t k = i - i0;
+      if (!finite[k]) continue;
+      if (lookup == CapabilityLookup::vote) {
+        out[i] = keyed[k] && vote_corners_(low[k], frac[k], o[k]);
+      } else {
+        out[i] = keyed[k] && grid_bit_(o[k], low[k][0] - grid_lo_[0], low[k][1] - grid_lo_[1], low[k][2] - grid_lo_[2]);
+      }
     }
   });
 }
