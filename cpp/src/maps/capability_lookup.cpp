@@ -1,0 +1,230 @@
+// The plain lookups of a capability map (CapabilityLookup vote and nearest cell, one pose or a batch) and the
+// reachable-bit grid they read; the records, solutions and files are capability_map.cpp's.
+#include "octoreach/capability_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "maps/batch.hpp"
+
+namespace octoreach {
+
+namespace {
+// Largest plain-lookup grid: 200 orientations over a box of 2.7 million voxels (a 2 m cube at 0.015 m); finer maps
+// answer from their records.
+constexpr std::size_t kGridBytes = std::size_t(64) << 20;
+}  // namespace
+
+void CapabilityMap::build_grid_() {
+  grid_.clear();
+  int lo[3] = {0, 0, 0}, hi[3] = {-1, -1, -1};
+  bool first = true;
+  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
+    if (it->payload == DenseIndex::kNone) continue;
+    for (int a = 0; a < 3; ++a) {
+      const int k = it.getKey()[a];
+      lo[a] = first ? k : std::min(lo[a], k);
+      hi[a] = first ? k : std::max(hi[a], k);
+    }
+    first = false;
+  }
+  if (first) return;
+  std::size_t bits = static_cast<std::size_t>(orientations_.size());
+  for (int a = 0; a < 3; ++a) {
+    grid_lo_[a] = lo[a] - 1;
+    grid_dim_[a] = hi[a] - lo[a] + 3;
+    bits *= static_cast<std::size_t>(grid_dim_[a]);
+  }
+  if (bits / 8 > kGridBytes) return;
+  grid_.assign((bits + 63) / 64, 0);
+  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
+    if (it->payload == DenseIndex::kNone) continue;
+    const std::uint64_t* w = bits_.data() + static_cast<std::size_t>(it->payload) * words_;
+    for (int k = 0; k < words_; ++k)
+      for (std::uint64_t b = w[k]; b; b &= b - 1) {
+        const int o = 64 * k + __builtin_ctzll(b);
+        const std::size_t i =
+            ((static_cast<std::size_t>(o) * grid_dim_[0] + (it.getKey()[0] - grid_lo_[0])) * grid_dim_[1] +
+             (it.getKey()[1] - grid_lo_[1])) * grid_dim_[2] + (it.getKey()[2] - grid_lo_[2]);
+        grid_[i >> 6] |= 1ULL << (i & 63);
+      }
+  }
+}
+
+double CapabilityMap::reachability(const Eigen::Vector3d& p) const {
+  std::uint32_t r = record(p);
+  return r == DenseIndex::kNone ? 0.0 : d_[r];
+}
+
+namespace {
+
+// Grid coordinates of p in voxels from the centre of voxel key 0 (octomap's voxel i spans [i, i + 1) * resolution,
+// its centre is at (i + 0.5) * resolution): the lower corner's key and the fractions towards the upper ones.
+// False when a corner falls outside the octree's keys.
+bool corner_grid(const Eigen::Vector3d& p, double resolution, octomap::OcTreeKey& low, double frac[3]) {
+  constexpr double kOffset = 32768.0;  // octomap's tree_max_val at depth 16: key = floor(x / res) + 32768
+  const double inv = 1.0 / resolution;
+  for (int a = 0; a < 3; ++a) {
+    const double g = p[a] * inv - 0.5, base = std::floor(g);
+    frac[a] = g - base;
+    if (!(base + kOffset >= 0.0 && base + kOffset + 1.0 <= 65535.0)) return false;
+    low[a] = static_cast<octomap::key_type>(base + kOffset);
+  }
+  return true;
+}
+
+// Corner k (bit a: one voxel up along axis a) of the 8 around a position: its key and trilinear weight.
+inline double corner(const octomap::OcTreeKey& low, const double frac[3], int k, octomap::OcTreeKey& key) {
+  double w = 1.0;
+  key = low;
+  for (int a = 0; a < 3; ++a) {
+    const bool up = (k >> a) & 1;
+    w *= up ? frac[a] : 1.0 - frac[a];
+    key[a] = static_cast<octomap::key_type>(key[a] + up);
+  }
+  return w;
+}
+
+}  // namespace
+
+void CapabilityMap::corners(const Eigen::Vector3d& p, std::uint32_t records[8], double weights[8]) const {
+  octomap::OcTreeKey low;
+  double frac[3];
+  const bool inside = corner_grid(p, resolution_, low, frac);
+  for (int k = 0; k < 8; ++k) {
+    octomap::OcTreeKey key;
+    weights[k] = corner(low, frac, k, key);
+    records[k] = inside ? record_of_key(key) : DenseIndex::kNone;
+  }
+}
+
+bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
+  octomap::OcTreeKey low;
+  double frac[3];
+  return corner_grid(p, resolution_, low, frac) && vote_corners_(low, frac, o);
+}
+
+bool CapabilityMap::vote_corners_(const octomap::OcTreeKey& low, const double frac[3], int o) const {
+  int g[3];
+  if (!grid_.empty())
+    for (int a = 0; a < 3; ++a) {
+      g[a] = low[a] - grid_lo_[a];
+      // Both corners along an axis outside the grid's box (its rim is empty): no corner holds a record.
+      if (g[a] < 0 || g[a] + 1 >= grid_dim_[a]) return false;
+    }
+  double yes = 0.0, left = 1.0;
+  for (int k = 0; k < 8; ++k) {
+    octomap::OcTreeKey key;
+    const double w = corner(low, frac, k, key);
+    if (w <= 0.0) continue;
+    bool reach;
+    if (!grid_.empty()) {
+      reach = grid_bit_(o, g[0] + (k & 1), g[1] + ((k >> 1) & 1), g[2] + ((k >> 2) & 1));
+    } else {
+      const std::uint32_t r = record_of_key(key);
+      reach = r != DenseIndex::kNone && bit(r, o);
+    }
+    if (reach) yes += w;
+    left -= w;
+    if (yes >= 0.5) return true;
+    if (yes + left < 0.5 - 1e-12) return false;  // the rest cannot reach one half
+  }
+  return yes >= 0.5;
+}
+
+bool CapabilityMap::nearest_cell_(const Eigen::Vector3d& p, int o) const {
+  if (grid_.empty()) {
+    const std::uint32_t r = record(p);
+    return r != DenseIndex::kNone && bit(r, o);
+  }
+  octomap::OcTreeKey key;
+  if (!tree_->coordToKeyChecked(p.x(), p.y(), p.z(), key)) return false;
+  int g[3];
+  for (int a = 0; a < 3; ++a) {
+    g[a] = key[a] - grid_lo_[a];
+    if (g[a] < 0 || g[a] >= grid_dim_[a]) return false;
+  }
+  return grid_bit_(o, g[0], g[1], g[2]);
+}
+
+bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation, CapabilityLookup lookup) const {
+  if (orientation < 0 || orientation >= orientations_.size())
+    throw std::invalid_argument("orientation index " + std::to_string(orientation) + " out of range [0, " +
+                                std::to_string(orientations_.size()) + ")");
+  if (lookup == CapabilityLookup::vote) return vote_(p, orientation);
+  return nearest_cell_(p, orientation);
+}
+
+bool CapabilityMap::reachable(const Pose& T, CapabilityLookup lookup) const {
+  const int o = orientations_.nearest(T.linear(), approach_axis_);
+  if (lookup == CapabilityLookup::vote) return vote_(T.translation(), o);
+  return nearest_cell_(T.translation(), o);
+}
+
+void CapabilityMap::reachability(const double* points, std::size_t n, double* out) const {
+  detail::batch_lookup_finite(points, n, 3, "point", " (NaN or inf)", [&](std::size_t i) {
+    const double* p = points + 3 * i;
+    out[i] = reachability(Eigen::Vector3d(p[0], p[1], p[2]));
+  });
+}
+
+void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, CapabilityLookup lookup) const {
+  if (grid_.empty()) {
+    detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
+      Pose T;
+      T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
+      out[i] = reachable(T, lookup);
+    });
+    return;
+  }
+  // In groups: every pose's orientation and corners first, its grid words prefetched, then the lookups.
+  constexpr std::size_t kGroup = 32;
+  detail::batch_lookup_finite_groups(poses, n, 16, "pose", " (NaN or inf)", kGroup,
+                                     [&](std::size_t i0, std::size_t i1, const bool* finite) {
+    int o[kGroup];
+    octomap::OcTreeKey low[kGroup];
+    double frac[kGroup][3];
+    bool keyed[kGroup];
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::size_t k = i - i0;
+      keyed[k] = false;
+      if (!finite[k]) continue;
+      const double* m = poses + 16 * i;
+      Eigen::Matrix3d R;
+      R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
+      o[k] = orientations_.nearest(R, approach_axis_);
+      // vote: the lower of the 8 corners (the grid words of its x and x + 1 planes); nearest cell: the voxel
+      keyed[k] = lookup == CapabilityLookup::vote
+                     ? corner_grid(Eigen::Vector3d(m[3], m[7], m[11]), resolution_, low[k], frac[k])
+                     : tree_->coordToKeyChecked(m[3], m[7], m[11], low[k]);
+      if (!keyed[k]) continue;
+      int g[3];
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) {
+        g[a] = low[k][a] - grid_lo_[a];
+        inside &= g[a] >= 0 && g[a] < grid_dim_[a];
+      }
+      if (!inside) {
+        keyed[k] &= lookup == CapabilityLookup::vote;  // a nearest cell outside the grid is a no; a vote checks its corners
+        continue;
+      }
+      const std::size_t b =
+          ((static_cast<std::size_t>(o[k]) * grid_dim_[0] + g[0]) * grid_dim_[1] + g[1]) * grid_dim_[2] + g[2];
+      __builtin_prefetch(grid_.data() + (b >> 6));
+      if (lookup == CapabilityLookup::vote && g[0] + 1 < grid_dim_[0])
+        __builtin_prefetch(grid_.data() + ((b + static_cast<std::size_t>(grid_dim_[1]) * grid_dim_[2]) >> 6));
+    }
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::size_t k = i - i0;
+      if (!finite[k]) continue;
+      if (lookup == CapabilityLookup::vote) {
+        out[i] = keyed[k] && vote_corners_(low[k], frac[k], o[k]);
+      } else {
+        out[i] = keyed[k] && grid_bit_(o[k], low[k][0] - grid_lo_[0], low[k][1] - grid_lo_[1], low[k][2] - grid_lo_[2]);
+      }
+    }
+  });
+}
+
+}  // namespace octoreach
