@@ -34,9 +34,9 @@ void CapabilityMap::build_grid_() {
   for (int a = 0; a < 3; ++a) {
     grid_lo_[a] = lo[a] - 1;
     grid_dim_[a] = hi[a] - lo[a] + 3;
+    if (bits > 8 * kGridBytes / static_cast<std::size_t>(grid_dim_[a])) return;  // too large (and no overflow)
     bits *= static_cast<std::size_t>(grid_dim_[a]);
   }
-  if (bits / 8 > kGridBytes) return;
   grid_.assign((bits + 63) / 64, 0);
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
     if (it->payload == DenseIndex::kNone) continue;

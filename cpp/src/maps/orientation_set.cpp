@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <stdexcept>
@@ -12,17 +13,18 @@
 namespace octoreach {
 namespace {
 
-// Cube-map cell of a unit vector: face (0..5) and cell coordinates in [0, n). A coordinate off by an ulp at a cell's
-// border is harmless: every cell's candidates hold the nearest direction of points a little beyond it too.
+// Cube-map cell of a unit vector: face (0..5) and cell coordinates in [0, n).
 inline int cube_cell(const Eigen::Vector3d& d, int n) {
-  const double ax = std::abs(d.x()), ay = std::abs(d.y()), az = std::abs(d.z());
-  const int axis = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
-  const double m = axis == 0 ? ax : (axis == 1 ? ay : az);
-  const int face = axis * 2 + (d[axis] < 0 ? 1 : 0);
-  const double half_n = 0.5 * n / m;
-  const double u = d[(axis + 1) % 3] * half_n + 0.5 * n, v = d[(axis + 2) % 3] * half_n + 0.5 * n;  // in [0, n]
-  const int iu = std::min(n - 1, std::max(0, static_cast<int>(u)));
-  const int iv = std::min(n - 1, std::max(0, static_cast<int>(v)));
+  Eigen::Vector3d a = d.cwiseAbs();
+  int axis;
+  if (a.x() >= a.y() && a.x() >= a.z()) axis = 0;
+  else if (a.y() >= a.z()) axis = 1;
+  else axis = 2;
+  double m = a[axis];
+  int face = axis * 2 + (d[axis] < 0 ? 1 : 0);
+  double u = d[(axis + 1) % 3] / m, v = d[(axis + 2) % 3] / m;  // in [-1, 1]
+  int iu = std::min(n - 1, std::max(0, static_cast<int>((u + 1) * 0.5 * n)));
+  int iv = std::min(n - 1, std::max(0, static_cast<int>((v + 1) * 0.5 * n)));
   return (face * n + iu) * n + iv;
 }
 
@@ -205,12 +207,13 @@ int OrientationSet::nearest_direction(const Eigen::Vector3d& d) const {
   const std::int32_t* first = candidates_.data() + start_[cell];
   const std::int32_t* last = candidates_.data() + start_[cell + 1];
   if (first == last) return 0;
-  // The largest dot product; where no other candidate comes within 1e-12 of it, it is what the rule below picks
-  // (that rule only ever differs from the plain maximum among near-ties), found without its branches.
+  // The largest dot product; where no other candidate comes within 2e-12 of it, it is what the rule below picks
+  // (that rule only ever differs from the plain maximum among candidates within 1e-12; the wider margin leaves
+  // room for rounding), found without its branches.
   constexpr std::ptrdiff_t kShort = 32;
   if (last - first <= kShort) {
     double dots[kShort];
-    double best_dot = -2;
+    double best_dot = -std::numeric_limits<double>::infinity();
     int best = *first;
     for (const std::int32_t* j = first; j != last; ++j) {
       const double v = dirs_[*j].dot(d);
@@ -220,8 +223,8 @@ int OrientationSet::nearest_direction(const Eigen::Vector3d& d) const {
       best = better ? *j : best;
     }
     int close = 0;
-    for (std::ptrdiff_t k = 0; k < last - first; ++k) close += dots[k] > best_dot - 1e-12;
-    if (close == 1) return best;
+    for (std::ptrdiff_t k = 0; k < last - first; ++k) close += dots[k] > best_dot - 2e-12;
+    if (close == 1 && best_dot > -2 + 2e-12) return best;  // (the rule below starts from -2)
   }
   int best = *first;
   double best_dot = -2;
