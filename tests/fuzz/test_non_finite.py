@@ -34,6 +34,9 @@ VALID = {
     ("choose_view", "current"): 0,
     ("choose_view", "options"): o.ExploreOptions(),
     ("choose_view", "memory"): _core.ChoiceMemory(),
+    ("choose_view", "strategy"): "frontier_void",
+    ("ExplorerCore.__init__", "strategy"): "frontier_void",
+    ("ExplorerCore.__init__", "search_space"): np.array([[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]),
 }
 
 
