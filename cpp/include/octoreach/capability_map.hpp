@@ -241,9 +241,12 @@ class CapabilityMap {
   bool nearest_cell_(const Eigen::Vector3d& p, int o) const;
   void finish_();  // builds the query tables once the tree and records are complete
   void build_grid_();
-  /// The plain lookups' bit of orientation o at grid position (x, y, z), each inside grid_dim_.
+  /// The plain lookups' grid: the bit index of orientation o at grid position (x, y, z), each inside grid_dim_.
+  std::size_t grid_index_(int o, int x, int y, int z) const {
+    return ((static_cast<std::size_t>(o) * grid_dim_[0] + x) * grid_dim_[1] + y) * grid_dim_[2] + z;
+  }
   bool grid_bit_(int o, int x, int y, int z) const {
-    const std::size_t i = ((static_cast<std::size_t>(o) * grid_dim_[0] + x) * grid_dim_[1] + y) * grid_dim_[2] + z;
+    const std::size_t i = grid_index_(o, x, y, z);
     return (grid_[i >> 6] >> (i & 63)) & 1ULL;
   }
   bool bit(std::uint32_t record, int o) const {

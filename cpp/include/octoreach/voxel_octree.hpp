@@ -85,6 +85,7 @@ class DenseIndex {
 
   void build(const VoxelOcTree& tree, std::size_t max_cells = std::size_t(1) << 26) {
     records_.clear();
+    for (int a = 0; a < 3; ++a) lo_[a] = 0, hi_[a] = -1;
     bool first = true;
     for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
       if (it->payload == kNone) continue;
@@ -111,6 +112,12 @@ class DenseIndex {
       if (it->payload != kNone) records_[offset(it.getKey())] = it->payload;
   }
   bool active() const { return !records_.empty(); }
+  /// \brief The key box of the leaves with a record (inclusive), also when the table is not kept; false when
+  /// there is none.
+  bool key_box(int lo[3], int hi[3]) const {
+    for (int a = 0; a < 3; ++a) lo[a] = lo_[a], hi[a] = hi_[a];
+    return hi_[0] >= lo_[0];
+  }
   /// \brief Record of the voxel holding (x, y, z), or kNone; the caller checks active() first.
   std::uint32_t find(const VoxelOcTree& tree, double x, double y, double z) const {
     octomap::OcTreeKey key;

@@ -18,18 +18,8 @@ constexpr std::size_t kGridBytes = std::size_t(64) << 20;
 
 void CapabilityMap::build_grid_() {
   grid_.clear();
-  int lo[3] = {0, 0, 0}, hi[3] = {-1, -1, -1};
-  bool first = true;
-  for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
-    if (it->payload == DenseIndex::kNone) continue;
-    for (int a = 0; a < 3; ++a) {
-      const int k = it.getKey()[a];
-      lo[a] = first ? k : std::min(lo[a], k);
-      hi[a] = first ? k : std::max(hi[a], k);
-    }
-    first = false;
-  }
-  if (first) return;
+  int lo[3], hi[3];
+  if (!index_.key_box(lo, hi)) return;  // (index_ is built first)
   std::size_t bits = static_cast<std::size_t>(orientations_.size());
   for (int a = 0; a < 3; ++a) {
     grid_lo_[a] = lo[a] - 1;
@@ -43,10 +33,8 @@ void CapabilityMap::build_grid_() {
     const std::uint64_t* w = bits_.data() + static_cast<std::size_t>(it->payload) * words_;
     for (int k = 0; k < words_; ++k)
       for (std::uint64_t b = w[k]; b; b &= b - 1) {
-        const int o = 64 * k + __builtin_ctzll(b);
-        const std::size_t i =
-            ((static_cast<std::size_t>(o) * grid_dim_[0] + (it.getKey()[0] - grid_lo_[0])) * grid_dim_[1] +
-             (it.getKey()[1] - grid_lo_[1])) * grid_dim_[2] + (it.getKey()[2] - grid_lo_[2]);
+        const std::size_t i = grid_index_(64 * k + __builtin_ctzll(b), it.getKey()[0] - grid_lo_[0],
+                                          it.getKey()[1] - grid_lo_[1], it.getKey()[2] - grid_lo_[2]);
         grid_[i >> 6] |= 1ULL << (i & 63);
       }
   }
@@ -209,8 +197,7 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
         keyed[k] &= lookup == CapabilityLookup::vote;  // a nearest cell outside the grid is a no; a vote checks its corners
         continue;
       }
-      const std::size_t b =
-          ((static_cast<std::size_t>(o[k]) * grid_dim_[0] + g[0]) * grid_dim_[1] + g[1]) * grid_dim_[2] + g[2];
+      const std::size_t b = grid_index_(o[k], g[0], g[1], g[2]);
       __builtin_prefetch(grid_.data() + (b >> 6));
       if (lookup == CapabilityLookup::vote && g[0] + 1 < grid_dim_[0])
         __builtin_prefetch(grid_.data() + ((b + static_cast<std::size_t>(grid_dim_[1]) * grid_dim_[2]) >> 6));
