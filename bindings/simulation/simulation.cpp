@@ -1,4 +1,6 @@
 // Simulation bindings: Scene, CameraIntrinsics, DepthCamera, look_at.
+#include <algorithm>
+
 #include "common.hpp"
 #include "octoreach/simulation.hpp"
 
@@ -77,19 +79,15 @@ void wrap_scene(py::module_& m) {
         return py::make_tuple(b.lo, b.hi);
       })
       .def("solid", [](const Scene& s, const py::object& points) {
-             auto pts = points_from(points, "points");
-             py::array_t<bool> out(static_cast<py::ssize_t>(pts.size()));
-             for (std::size_t i = 0; i < pts.size(); ++i) {
-               if (!pts[i].allFinite()) throw std::invalid_argument("points row " + std::to_string(i) + " is not finite");
-               out.mutable_data()[i] = s.solid(pts[i]);
-             }
+             const std::vector<char> inside = s.solid(points_from(points, "points"));
+             py::array_t<bool> out(static_cast<py::ssize_t>(inside.size()));
+             std::copy(inside.begin(), inside.end(), out.mutable_data());
              return out;
            }, py::arg("points"), "True for points inside a solid box, sphere or cylinder.")
       .def("raycast", [](const Scene& s, const py::object& o, const py::object& d, double max_range,
                          bool normal) -> py::object {
              Eigen::Vector3d dir = vec3_from(d, "direction");
-             if (!(dir.norm() > 0)) throw std::invalid_argument("direction must be non-zero");
-             if (!std::isfinite(max_range)) throw std::invalid_argument("max_range must be finite, got " + std::to_string(max_range));
+             if (dir.allFinite() && dir.squaredNorm() > 0) dir.normalize();  // any length in Python
              double t;
              Eigen::Vector3d n;
              if (!s.raycast(vec3_from(o, "origin"), dir.normalized(), max_range, t, normal ? &n : nullptr))

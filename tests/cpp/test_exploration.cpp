@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -84,6 +85,27 @@ TEST(DepthCamera, ClosedBoxOpeningLetsRaysIn) {
   ASSERT_EQ(s.interiors().size(), 1u);
   EXPECT_THROW(s.add_closed_box({0, 0, 0}, {0.5, 0.5, 0.5}, 0.02, "up", 0.1, 0.1), std::invalid_argument);
   EXPECT_THROW(s.load_octomap("/nonexistent/world.bt"), FileError);
+}
+
+TEST(Scene, RaycastAndSolidRejectWhatIsNotARayOrAPoint) {
+  Scene s;
+  s.add_box({0, 0, 0}, {1, 1, 1});
+  double t;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(s.raycast({0.5, 0.5, 3}, {0, 0, 0}, 4.0, t), std::invalid_argument);    // no direction
+  EXPECT_THROW(s.raycast({0.5, 0.5, 3}, {0, 0, -2}, 4.0, t), std::invalid_argument);   // not unit: t would scale
+  EXPECT_THROW(s.raycast({0.5, 0.5, 3}, {0, 0, -1}, inf, t), std::invalid_argument);   // endless ray
+  EXPECT_THROW(s.raycast({nan, 0.5, 3}, {0, 0, -1}, 4.0, t), std::invalid_argument);
+  ASSERT_TRUE(s.raycast({0.5, 0.5, 3}, {0, 0, -1}, 4.0, t));
+  EXPECT_DOUBLE_EQ(t, 2.0);
+  EXPECT_THROW(s.solid(Eigen::Vector3d(nan, 0, 0)), std::invalid_argument);
+  try {
+    s.solid(std::vector<Eigen::Vector3d>{{0.5, 0.5, 0.5}, {0, inf, 0}});
+    FAIL() << "a point that is not finite was answered";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("row 1"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.solid(std::vector<Eigen::Vector3d>{{0.5, 0.5, 0.5}, {2, 2, 2}}), (std::vector<char>{1, 0}));
 }
 
 TEST(DepthCamera, MeshAndBoxAgree) {

@@ -75,9 +75,13 @@ class Scene {
   /// \brief Bounding box of everything in the scene.
   Aabb bounds() const;
   /// \brief True when p is inside a solid box, sphere or cylinder (meshes and octomaps are surfaces: false).
+  /// Throws std::invalid_argument for a point that is not finite.
   bool solid(const Eigen::Vector3d& p) const;
+  /// \brief solid() of every point (1 or 0); throws std::invalid_argument naming the first row that is not finite.
+  std::vector<char> solid(const std::vector<Eigen::Vector3d>& points) const;
 
-  /// \brief Distance along the unit direction d from o to the first surface within max_range.
+  /// \brief Distance along the unit direction d from o to the first surface within max_range. Throws
+  /// std::invalid_argument when o, d or max_range is not finite or d is not of unit length.
   bool raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t) const;
   /// \brief The same, and the unit normal of the surface at the hit facing the ray (a box's face, a sphere's
   /// or cylinder's surface, a triangle's plane, the entered face of an OctoMap cell; -d when the ray starts

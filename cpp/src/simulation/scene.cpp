@@ -224,7 +224,18 @@ Aabb Scene::bounds() const {
   return b;
 }
 
+std::vector<char> Scene::solid(const std::vector<Eigen::Vector3d>& points) const {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!points[i].allFinite())
+      throw std::invalid_argument("solid: points row " + std::to_string(i) + " is not finite: " +
+                                  detail::format_point(points[i]));
+  std::vector<char> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = solid(points[i]);
+  return out;
+}
+
 bool Scene::solid(const Eigen::Vector3d& p) const {
+  if (!p.allFinite()) throw std::invalid_argument("solid: the point " + detail::format_point(p) + " is not finite");
   for (const auto& b : boxes_)
     if (b.contains(p)) return true;
   return solids_ && solids_->contains(p);
@@ -236,9 +247,15 @@ bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double m
 
 bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double max_range, double& t,
                     Eigen::Vector3d* normal) const {
-  if (!o.allFinite() || !d.allFinite() || std::isnan(max_range))
-    throw std::invalid_argument("raycast: origin, direction and max_range must be numbers, got origin " +
-                                detail::format_point(o) + ", direction " + detail::format_point(d));
+  if (!o.allFinite() || !d.allFinite() || !std::isfinite(max_range))
+    throw std::invalid_argument("raycast: origin, direction and max_range must be finite, got origin " +
+                                detail::format_point(o) + ", direction " + detail::format_point(d) +
+                                ", max_range " + std::to_string(max_range));
+  // the distance is along d: a direction of another length would scale every answer
+  if (d.squaredNorm() == 0) throw std::invalid_argument("raycast: the direction must be non-zero");
+  if (!(std::abs(d.squaredNorm() - 1.0) <= 1e-9))
+    throw std::invalid_argument("raycast: the direction must be a unit vector, got " + detail::format_point(d) +
+                                " of length " + std::to_string(d.norm()));
   Eigen::Vector3d inv = d.cwiseInverse();
   double best = max_range;
   bool hit = false;
