@@ -167,8 +167,18 @@ TEST(CapabilityMap, DamagedFilesThrowFileError) {
 
 // The plain lookups answer from their own table: they must say what the voxel records hold, pose by pose and in
 // batches (which compute every orientation first).
+namespace octoreach {
+// The plain lookups answer from a grid of the reachable bits, or from the voxel records when the grid would be
+// larger than its limit: dropping the grid of a small map runs that second path.
+struct CapabilityMapTestAccess {
+  static bool has_grid(const CapabilityMap& m) { return !m.grid_.empty(); }
+  static void drop_grid(CapabilityMap& m) { m.grid_.clear(); }
+};
+}  // namespace octoreach
+
 TEST(CapabilityMap, PlainLookupsReadTheRecords) {
-  const CapabilityMap& m = coarse_map();
+  std::shared_ptr<Robot> robot = Robot::from_urdf(kArm);
+  CapabilityMap m = CapabilityMap::build(robot->chain("base_link", "tool0"), coarse_options());
   auto [lo, hi] = m.bounds();
   const double r = m.resolution();
   std::mt19937_64 rng(11);
@@ -176,35 +186,52 @@ TEST(CapabilityMap, PlainLookupsReadTheRecords) {
   std::normal_distribution<double> g;
   const int n = 4000;
   std::vector<double> rows(16 * n);
-  std::vector<char> vote(n), nearest(n);
+  std::vector<Pose> poses(n);
+  std::vector<int> dir(n);
+  std::vector<char> stored(n), vote(n), tie(n);
   for (int i = 0; i < n; ++i) {
     Eigen::Vector3d p;
     for (int a = 0; a < 3; ++a) p[a] = lo[a] - 2 * r + u(rng) * (hi[a] - lo[a] + 4 * r);
-    Pose T = Pose::Identity();
+    Pose& T = poses[i];
+    T = Pose::Identity();
     T.linear() = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
     T.translation() = p;
-    const int o = m.orientations().nearest(T.linear(), m.approach_axis());
+    const int o = dir[i] = m.orientations().nearest(T.linear(), m.approach_axis());
     // nearest cell: the record of the voxel holding p
     const std::uint32_t rec = m.record_of_key(m.tree().coordToKey(p.x(), p.y(), p.z()));
-    const bool stored = rec != DenseIndex::kNone && m.record_has(rec, o);
-    EXPECT_EQ(m.reachable(p, o, CapabilityLookup::nearest_cell), stored) << p.transpose() << " " << o;
+    stored[i] = rec != DenseIndex::kNone && m.record_has(rec, o);
     // vote: the 8 records around p weighted trilinearly
     std::uint32_t recs[8];
     double w[8], yes = 0;
     m.corners(p, recs, w);
     for (int k = 0; k < 8; ++k) yes += recs[k] != DenseIndex::kNone && m.record_has(recs[k], o) ? w[k] : 0.0;
-    if (std::abs(yes - 0.5) > 1e-9) EXPECT_EQ(m.reachable(p, o, CapabilityLookup::vote), yes >= 0.5) << p.transpose();
-    vote[i] = m.reachable(T, CapabilityLookup::vote);
-    nearest[i] = m.reachable(T, CapabilityLookup::nearest_cell);
+    vote[i] = yes >= 0.5;
+    tie[i] = std::abs(yes - 0.5) <= 1e-9;
     Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(rows.data() + 16 * i) = T.matrix();
   }
-  std::unique_ptr<bool[]> out(new bool[n]);
-  for (auto [lookup, expected] : {std::make_pair(CapabilityLookup::vote, &vote),
-                                  std::make_pair(CapabilityLookup::nearest_cell, &nearest)}) {
-    m.reachable(rows.data(), n, out.get(), lookup);
-    for (int i = 0; i < n; ++i) EXPECT_EQ(out[i], bool((*expected)[i])) << i;
-  }
   EXPECT_GT(std::count(vote.begin(), vote.end(), 1), n / 50);  // the poses test both answers
+  EXPECT_GT(std::count(vote.begin(), vote.end(), 0), n / 50);
+  std::unique_ptr<bool[]> out(new bool[n]);
+  ASSERT_TRUE(CapabilityMapTestAccess::has_grid(m));
+  for (const char* path : {"grid", "records"}) {
+    SCOPED_TRACE(path);
+    std::vector<char> by_pose_vote(n), by_pose_nearest(n);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d p = poses[i].translation();
+      EXPECT_EQ(m.reachable(p, dir[i], CapabilityLookup::nearest_cell), bool(stored[i])) << p.transpose();
+      if (!tie[i]) EXPECT_EQ(m.reachable(p, dir[i], CapabilityLookup::vote), bool(vote[i])) << p.transpose();
+      by_pose_vote[i] = m.reachable(poses[i], CapabilityLookup::vote);
+      by_pose_nearest[i] = m.reachable(poses[i], CapabilityLookup::nearest_cell);
+      EXPECT_EQ(bool(by_pose_nearest[i]), bool(stored[i])) << i;
+      if (!tie[i]) EXPECT_EQ(bool(by_pose_vote[i]), bool(vote[i])) << i;
+    }
+    for (auto [lookup, expected] : {std::make_pair(CapabilityLookup::vote, &by_pose_vote),
+                                    std::make_pair(CapabilityLookup::nearest_cell, &by_pose_nearest)}) {
+      m.reachable(rows.data(), n, out.get(), lookup);  // batched answers equal single ones
+      for (int i = 0; i < n; ++i) EXPECT_EQ(out[i], bool((*expected)[i])) << i;
+    }
+    CapabilityMapTestAccess::drop_grid(m);
+  }
   rows[16 * 1234 + 5] = std::nan("");
   try {
     m.reachable(rows.data(), n, out.get());

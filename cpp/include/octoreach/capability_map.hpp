@@ -214,6 +214,7 @@ class CapabilityMap {
 
  private:
   friend class CapabilityBlocks;  // assembles a map from blocks with the steps below
+  friend struct CapabilityMapTestAccess;  // the C++ tests: the plain lookups without their grid (maps above its limit)
   CapabilityMap() = default;
   /// The empty map of a build of `chain` (parameters, orientations, robot, tree) after checking the options
   /// and that the reference posture (returned in `reference`) is free of self-collision.

@@ -94,26 +94,31 @@ bool CapabilityMap::vote_(const Eigen::Vector3d& p, int o) const {
 }
 
 bool CapabilityMap::vote_corners_(const octomap::OcTreeKey& low, const double frac[3], int o) const {
-  int g[3];
-  if (!grid_.empty())
+  if (!grid_.empty()) {
+    // Every corner's weight added in corner order, unreachable ones as zero, without early ends and without a
+    // branch on the map: the record path's answer below (its early ends only foresee the full sum's side of 1/2).
+    int g[3];
     for (int a = 0; a < 3; ++a) {
       g[a] = low[a] - grid_lo_[a];
       // Both corners along an axis outside the grid's box (its rim is empty): no corner holds a record.
       if (g[a] < 0 || g[a] + 1 >= grid_dim_[a]) return false;
     }
+    const double fx[2] = {1.0 - frac[0], frac[0]}, fy[2] = {1.0 - frac[1], frac[1]}, fz[2] = {1.0 - frac[2], frac[2]};
+    double yes = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      const int x = k & 1, y = (k >> 1) & 1, z = (k >> 2) & 1;
+      const double w = fx[x] * fy[y] * fz[z];  // corner()'s product, in its order
+      yes += grid_bit_(o, g[0] + x, g[1] + y, g[2] + z) ? w : 0.0;
+    }
+    return yes >= 0.5;
+  }
   double yes = 0.0, left = 1.0;
   for (int k = 0; k < 8; ++k) {
     octomap::OcTreeKey key;
     const double w = corner(low, frac, k, key);
     if (w <= 0.0) continue;
-    bool reach;
-    if (!grid_.empty()) {
-      reach = grid_bit_(o, g[0] + (k & 1), g[1] + ((k >> 1) & 1), g[2] + ((k >> 2) & 1));
-    } else {
-      const std::uint32_t r = record_of_key(key);
-      reach = r != DenseIndex::kNone && bit(r, o);
-    }
-    if (reach) yes += w;
+    const std::uint32_t r = record_of_key(key);
+    if (r != DenseIndex::kNone && bit(r, o)) yes += w;
     left -= w;
     if (yes >= 0.5) return true;
     if (yes + left < 0.5 - 1e-12) return false;  // the rest cannot reach one half
@@ -168,6 +173,10 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
   }
   // In groups: every pose's orientation and corners first, its grid words prefetched, then the lookups.
   constexpr std::size_t kGroup = 32;
+  // OrientationSet::nearest's own steps with its normalised axis made once: a single roll needs only the
+  // direction of the approach axis.
+  const Eigen::Vector3d axis = approach_axis_.normalized();
+  const bool one_roll = orientations_.rolls() == 1;
   detail::batch_lookup_finite_groups(poses, n, 16, "pose", " (NaN or inf)", kGroup,
                                      [&](std::size_t i0, std::size_t i1, const bool* finite) {
     int o[kGroup];
@@ -181,7 +190,7 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
       const double* m = poses + 16 * i;
       Eigen::Matrix3d R;
       R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
-      o[k] = orientations_.nearest(R, approach_axis_);
+      o[k] = one_roll ? orientations_.nearest_direction(R * axis) : orientations_.nearest(R, approach_axis_);
       // vote: the lower of the 8 corners (the grid words of its x and x + 1 planes); nearest cell: the voxel
       keyed[k] = lookup == CapabilityLookup::vote
                      ? corner_grid(Eigen::Vector3d(m[3], m[7], m[11]), resolution_, low[k], frac[k])
