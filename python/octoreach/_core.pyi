@@ -2761,6 +2761,9 @@ def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, opti
     Gains and validity of given camera poses (N, 4, 4) (camera -> map) with the checks and ray casting
     of next_best_view (same options: workspace_*, capability_map, chain, chain_base, arm_collisions,
     min_distance, unknown_is_obstacle, unknown_margin, gain, unknown_pass_probability, score_*).
+    A chain that can only aim its camera (aiming 'look_at', or 'auto' and fewer than 5 joints: a pan/tilt
+    head) aims it at the point half the camera's range along each pose's optical axis, and the checks and
+    gains are of the pose it reaches (status no_ik when it cannot aim there).
     Returns ScoredViews: per-pose arrays valid, status, pose (the pose the arm reaches when IK succeeds,
     else the given one), q, the gains and expected_gain (of `gain`), and the poses one by one as
     ScoredView. score_invalid=False: poses that fail a check are not ray cast (cell counts 0, expected

@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import pytest
 
-from octoreach import DepthCamera, Robot, Scene
+from octoreach import DepthCamera, ExplorationMap, Robot, Scene, score_views
 from octoreach import exploration as ex
 from octoreach.testing.oracle import observable_cells
 
@@ -160,3 +160,32 @@ def test_the_joints_off_the_chain_stand_at_the_given_reference(head):
     e.integrate(_camera().capture(scene, start), start)
     with pytest.raises(ValueError, match="reference must hold the robot's"):
         e.next_view()
+
+
+def test_score_views_aims_a_head_at_what_each_pose_looks_at(head):
+    """The head cannot place its camera, so score_views aims it at the point half the camera's range along each
+    given pose's optical axis and checks and scores the pose it reaches; aiming="pose" asks IK for the whole pose
+    (which the head reaches only where it already is)."""
+    robot, chain = head
+    scene, cam = _table_scene(), _camera()
+    start = chain.fk(chain.aim(np.array([0.8, 0.0, 0.45])))
+    emap = ExplorationMap(resolution=RESOLUTION)
+    emap.insert(cam.capture(scene, start), start[:3, 3])
+    reachable = chain.fk(chain.aim(np.array([0.9, 0.3, 0.5])))
+    elsewhere = ex.look_at((2.0, -1.5, 1.6), (0.8, -0.3, 0.5))  # where no head camera can be
+    down = ex.look_at((0.05, 0.0, 0.9), (0.05, 0.0, -1.0))      # straight down: past the tilt's limit
+    poses = np.array([reachable, elsewhere, down])
+    kw = dict(chain=chain, chain_base=np.eye(4), seed=4, unknown_is_obstacle=False)  # one scan: unknown all round
+    sv = score_views(emap, cam, poses, **kw)
+    assert sv.status[2] == "no_ik", sv.status
+    for i in (0, 1):
+        assert sv.status[i] == "valid", sv.status
+        point = poses[i][:3, 3] + 0.5 * cam.max_range * poses[i][:3, 2]
+        T = np.asarray(sv.pose[i])
+        np.testing.assert_allclose(T, chain.fk(sv.q[i]), atol=1e-9)  # the pose the head reaches
+        ray = (point - T[:3, 3]) / np.linalg.norm(point - T[:3, 3])
+        assert np.arccos(min(1.0, T[:3, 2] @ ray)) <= 0.1 + 1e-9  # look_at_tolerance
+    assert np.linalg.norm(np.asarray(sv.pose[1])[:3, 3] - elsewhere[:3, 3]) > 1.0
+    assert np.isfinite(sv.expected_gain[:2]).all()
+    placed = score_views(emap, cam, poses, aiming="pose", **kw)
+    assert placed.status[1] == "no_ik" and placed.status[2] == "no_ik", placed.status

@@ -316,7 +316,7 @@ enum class ViewStatus {
   NotReachable,      ///< the capability map rules out the position (D <= min_reachability) or the axis
   CameraNotClear,    ///< camera cell not free, an occupied cell within min_distance, or (unknown_is_obstacle)
                      ///< an unknown cell of the search space within unknown_margin
-  NoIk,              ///< the chain has no IK solution
+  NoIk,              ///< the chain has no IK solution (a chain that aims: it cannot aim at the pose's point)
   ArmCollision,      ///< every IK solution found touches an occupied (or unknown, see NbvOptions) cell
 };
 /// \brief "valid", "outside_workspace", "not_reachable", "camera_not_clear", "no_ik", "arm_collision".
@@ -343,8 +343,10 @@ struct ScoredViews {
 /// \brief The gains and validity of given camera poses (camera -> map), with the very checks and ray
 /// casting of next_best_view (workspace, capability map, camera clearance, IK with the chain at
 /// chain_base, arm collisions; samples, candidate counts and max_valid_poses play no part). Poses are
-/// scored in parallel; pose i uses IK seed ik.seed + i. `score_invalid` false: the poses that fail a
-/// check are not ray cast (their cell counts 0, expected gains NaN), far less work when most fail.
+/// scored in parallel; pose i uses IK seed ik.seed + i. A chain that can only aim its camera (looks_at)
+/// aims it at the point half the camera's range along pose i's optical axis (aim seed seed + i; NoIk when it
+/// cannot) and the checks and the score are of the pose it reaches. `score_invalid` false: the poses that
+/// fail a check are not ray cast (their cell counts 0, expected gains NaN), far less work when most fail.
 /// \throws std::invalid_argument for a non-finite pose.
 ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& camera, const std::vector<Pose>& poses,
                         const NbvOptions& options, bool score_invalid = true);

@@ -54,21 +54,23 @@ std::vector<Eigen::Vector3d> look_at_targets(const ExplorationMap& map, NbvGain 
   return out;
 }
 
+AimResult aim_camera(const NbvOptions& opt, const Eigen::Vector3d& target, std::size_t index) {
+  const Chain& chain = *opt.chain;
+  AimOptions o;
+  o.tolerance = opt.look_at_tolerance;
+  o.seed = opt.seed + index;
+  std::mt19937_64 rng(~o.seed);  // not aim()'s restart stream: the start is not its first restart
+  const Eigen::VectorXd start = chain.random_configuration(rng);
+  return aim(chain, opt.chain_base.inverse() * target, o, &start);
+}
+
 LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam,
                           const std::vector<Eigen::Vector3d>& targets, const NbvOptions& opt,
                           const ViewChecker& checker, const ScoreModel& model, std::size_t max_valid) {
   const Chain& chain = *opt.chain;
-  const Pose base_inv = opt.chain_base.inverse();
   const int threads = default_threads(opt.threads);
   std::vector<AimResult> aims(targets.size());
-  parallel_for(targets.size(), threads, [&](std::size_t i, int) {
-    AimOptions o;
-    o.tolerance = opt.look_at_tolerance;
-    o.seed = opt.seed + i;
-    std::mt19937_64 rng(~o.seed);  // not aim()'s restart stream: the start is not its first restart
-    const Eigen::VectorXd start = chain.random_configuration(rng);
-    aims[i] = aim(chain, base_inv * targets[i], o, &start);
-  }, 4);
+  parallel_for(targets.size(), threads, [&](std::size_t i, int) { aims[i] = aim_camera(opt, targets[i], i); }, 4);
   LookAtViews out;
   std::set<std::vector<long>> seen;
   std::vector<ScoredView> views;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "octoreach/aim.hpp"
 #include "octoreach/next_best_view.hpp"
 
 namespace octoreach::detail {
@@ -25,8 +26,11 @@ struct LookAtViews {
   std::size_t camera_not_clear = 0, arm_collisions = 0, capability_rejected = 0;
 };
 
-// The chain (at opt.chain_base) aims its camera at each target (aim(): start a random configuration drawn from
-// opt.seed + the target's index, tolerance opt.look_at_tolerance); aims whose joints round to the same
+// The chain (at opt.chain_base) aims its camera at `target` (map frame): aim() from a random configuration drawn
+// from opt.seed + index, tolerance opt.look_at_tolerance.
+AimResult aim_camera(const NbvOptions& opt, const Eigen::Vector3d& target, std::size_t index);
+
+// The chain aims its camera at each target (aim_camera with the target's index); aims whose joints round to the same
 // 0.02 rad (or m) steps as an earlier one are dropped; the others get score_views' checks in its order
 // (workspace and its filter, capability map, camera clearance, the arm's collisions) and, up to `max_valid`
 // of them in target order, the valid ones are scored. The caller holds the map's lock.

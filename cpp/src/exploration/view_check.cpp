@@ -16,6 +16,7 @@
 #include "octoreach/capability_map.hpp"
 #include "octoreach/robot.hpp"
 #include "exploration/view_score.hpp"
+#include "exploration/look_at_views.hpp"
 
 namespace octoreach {
 
@@ -298,8 +299,24 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
   for (std::size_t i = 0; i < poses.size(); ++i)
     if (!poses[i].matrix().allFinite())
       throw std::invalid_argument("pose " + std::to_string(i) + " is not finite");
+  ScoredViews out;
+  out.views.resize(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) out.views[i].pose = poses[i];
+  // A chain that can only aim its camera looks at the point half the camera's range along each pose's optical
+  // axis (where the pose's own position matters least): every check and the score are of the pose it reaches.
+  const bool aims = looks_at(opt);
+  std::vector<char> aimed(poses.size(), 1);
+  if (aims)
+    detail::parallel_for(poses.size(), detail::default_threads(opt.threads), [&](std::size_t i, int) {
+      const Eigen::Vector3d target = poses[i].translation() + 0.5 * cam.max_range * poses[i].linear().col(2);
+      const AimResult a = detail::aim_camera(opt, target, i);
+      aimed[i] = a.reached;
+      if (!a.reached) return;
+      out.views[i].q = a.q;
+      out.views[i].pose = opt.chain_base * opt.chain->fk(a.q);
+    }, 4);
   std::vector<Eigen::Vector3d> pos(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) pos[i] = poses[i].translation();
+  for (std::size_t i = 0; i < poses.size(); ++i) pos[i] = out.views[i].pose.translation();
   std::vector<bool> keep(poses.size(), true);
   if (opt.workspace.filter && !poses.empty()) {
     keep = opt.workspace.filter(pos);
@@ -311,15 +328,14 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
   const detail::ScoreModel model = detail::score_model(map, opt);
   const detail::ViewChecker checker(map, opt);
   const Pose to_arm = opt.capability_base.inverse();
-  ScoredViews out;
   out.gain = opt.gain;
   std::tie(out.pass_probability, out.void_pass_probability) = model.p;
   out.dof = opt.chain ? opt.chain->dof() : 0;
-  out.views.resize(poses.size());
   detail::parallel_for(poses.size(), detail::default_threads(opt.threads), [&](std::size_t i, int) {
     ScoredView& s = out.views[i];
-    s.pose = poses[i];
-    if (!keep[i] || !opt.workspace.contains(pos[i]))
+    if (!aimed[i])
+      s.status = ViewStatus::NoIk;
+    else if (!keep[i] || !opt.workspace.contains(pos[i]))
       s.status = ViewStatus::OutsideWorkspace;
     else if (opt.capability_map && (!(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability) ||
                                     !checker.axis_reachable(poses[i])))
@@ -327,7 +343,7 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
     else if (!checker.camera_clear(pos[i]))
       s.status = ViewStatus::CameraNotClear;
     else if (opt.chain)
-      s.status = checker.reach(s.pose, s.q, i);
+      s.status = aims ? checker.arm_clear(s.q) : checker.reach(s.pose, s.q, i);
     if (score_invalid || s.valid()) {
       detail::score_view(map, cam, opt, model, s);
       return;
