@@ -41,7 +41,7 @@ from octoreach import testing
 from octoreach.testing import scene_families
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from exploration_strategies import _code_version, write_record  # noqa: E402  (the sibling script: one definition)
+from exploration_strategies import _code_version, explorer_setup, write_record  # noqa: E402  (the sibling script: one definition)
 
 LEVEL = 0.9  # the coverage the views are counted to
 
@@ -204,15 +204,11 @@ def main(argv=None) -> int:
         return _combine(a)
     if min(a.instances, a.seeds, a.views) < 1 or a.first_instance < 0:
         ap.error("--instances, --seeds and --views must be >= 1, --first-instance >= 0")
-    for s in a.strategies:
-        ex.strategies.check_strategy(s)
     t_all = time.perf_counter()
-    _, chain = ex.explorer_robot()
-    t0 = time.perf_counter()
-    cmap = ex.explorer_capability_map(chain)
+    chain, cmap, cmap_s = explorer_setup(a.strategies)
     setup = {k: getattr(a, k) for k in ("instances", "first_instance", "seeds", "views", "min_utility", "patience",
                                         "resolution", "noise", "clearance", "oracle_samples", "families", "strategies")}
-    setup.update(image=list(a.image), capability_map_s=time.perf_counter() - t0, code=_code_version())
+    setup.update(image=list(a.image), capability_map_s=cmap_s, code=_code_version())
     out = {"setup": setup, "oracle": {}, "summary": {}, "runs": {}}
     for fam in a.families:
         out["oracle"][fam], out["runs"][fam] = {}, {s: [] for s in a.strategies}

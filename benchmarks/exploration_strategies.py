@@ -60,6 +60,16 @@ def _camera(a, seed):
     return DepthCamera(a.image[0], a.image[1], np.deg2rad(58.0), 4.0, noise=a.noise, seed=seed, **extra)
 
 
+def explorer_setup(strategies):
+    """Checks the strategy names, then makes the explorer robot's camera chain and its capability map: (chain,
+    map, seconds the map took)."""
+    for s in strategies:
+        ex.strategies.check_strategy(s)
+    _, chain = ex.explorer_robot()
+    t0 = time.perf_counter()
+    return chain, ex.explorer_capability_map(chain), time.perf_counter() - t0
+
+
 def _code_version() -> str:
     """The commit of this checkout (+ "-dirty" with local changes), else the package version: parts of
     a record must come from the same code."""
@@ -338,14 +348,10 @@ def main(argv=None) -> int:
         return _combine(a)
     if a.seeds < 1 or a.views < 1 or a.generated < 0 or a.first_seed < 0:
         ap.error("--seeds and --views must be >= 1, --generated and --first-seed >= 0")
-    for s in a.strategies:
-        ex.strategies.check_strategy(s)
     t_all = time.perf_counter()
-    _, chain = ex.explorer_robot()
-    t0 = time.perf_counter()
-    cmap = ex.explorer_capability_map(chain)
+    chain, cmap, cmap_s = explorer_setup(a.strategies)
     out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "enclosure_power": a.enclosure_power, "unexposed_weight": a.unexposed_weight, "second_look": not a.no_second_look, "ground_is_obstacle": a.ground_is_obstacle, "resolution_m": a.resolution, "image": list(a.image),
-                     "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": time.perf_counter() - t0,
+                     "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": cmap_s,
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy",
                      "code": _code_version()},
            "oracle": {}, "summary": {}, "runs": {}}
