@@ -179,7 +179,7 @@ def _combine(a) -> int:
 
 def _parse(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--families", nargs="+", default=list(testing.FAMILIES))
+    ap.add_argument("--families", nargs="+", default=list(testing.FAMILIES), choices=testing.FAMILIES)
     ap.add_argument("--instances", type=int, default=5, help="instances per family (family seeds)")
     ap.add_argument("--first-instance", type=int, default=0)
     ap.add_argument("--seeds", type=int, default=3, help="exploration seeds per instance and strategy")
