@@ -87,16 +87,16 @@ void wrap_scene(py::module_& m) {
       .def("raycast", [](const Scene& s, const py::object& o, const py::object& d, double max_range,
                          bool normal) -> py::object {
              Eigen::Vector3d dir = vec3_from(d, "direction");
-             if (dir.allFinite() && dir.squaredNorm() > 0) dir.normalize();  // any length in Python
+             if (dir.allFinite()) dir.stableNormalize();  // any length in Python (zero stays zero: C++ says so)
              double t;
              Eigen::Vector3d n;
-             if (!s.raycast(vec3_from(o, "origin"), dir.normalized(), max_range, t, normal ? &n : nullptr))
+             if (!s.raycast(vec3_from(o, "origin"), dir, max_range, t, normal ? &n : nullptr))
                return py::none();
              if (normal) return py::make_tuple(t, n);
              return py::float_(t);
            }, py::arg("origin"), py::arg("direction"), py::arg("max_range") = 4.0, py::arg("normal") = false,
-           "Distance to the first surface along the ray, or None; with normal=True (distance, unit surface\n"
-           "normal facing the ray).");
+           "Distance to the first surface along the ray (direction: any non-zero length), or None; with\n"
+           "normal=True (distance, unit surface normal facing the ray).");
 
 }
 

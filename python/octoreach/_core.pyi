@@ -1666,8 +1666,8 @@ class Scene:
         """
     def raycast(self, origin: typing.Any, direction: typing.Any, max_range: typing.SupportsFloat | typing.SupportsIndex = 4.0, normal: bool = False) -> typing.Any:
         """
-        Distance to the first surface along the ray, or None; with normal=True (distance, unit surface
-        normal facing the ray).
+        Distance to the first surface along the ray (direction: any non-zero length), or None; with
+        normal=True (distance, unit surface normal facing the ray).
         """
     def solid(self, points: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
         """
@@ -2763,7 +2763,8 @@ def score_views(map: ExplorationMap, camera: typing.Any, poses: typing.Any, opti
     min_distance, unknown_is_obstacle, unknown_margin, gain, unknown_pass_probability, score_*).
     A chain that can only aim its camera (aiming 'look_at', or 'auto' and fewer than 5 joints: a pan/tilt
     head) aims it at the point half the camera's range along each pose's optical axis, and the checks and
-    gains are of the pose it reaches (status no_ik when it cannot aim there).
+    gains are of the pose it reaches, which pose and q hold whenever the aim succeeds (status no_ik when
+    it cannot aim there).
     Returns ScoredViews: per-pose arrays valid, status, pose (the pose the arm reaches when IK succeeds,
     else the given one), q, the gains and expected_gain (of `gain`), and the poses one by one as
     ScoredView. score_invalid=False: poses that fail a check are not ray cast (cell counts 0, expected

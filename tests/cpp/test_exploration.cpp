@@ -98,6 +98,12 @@ TEST(Scene, RaycastAndSolidRejectWhatIsNotARayOrAPoint) {
   EXPECT_THROW(s.raycast({nan, 0.5, 3}, {0, 0, -1}, 4.0, t), std::invalid_argument);
   ASSERT_TRUE(s.raycast({0.5, 0.5, 3}, {0, 0, -1}, 4.0, t));
   EXPECT_DOUBLE_EQ(t, 2.0);
+  // the rays of a camera whose rotation passes as orthonormal (R^T R within 1e-6 of I) still pass as unit
+  EXPECT_NO_THROW(s.raycast({0.5, 0.5, 3}, Eigen::Vector3d(0, 0, -1.000001), 4.0, t));
+  DepthCamera cam(8, 6, 1.0, 4.0);
+  Pose skewed = look_at({0.5, 0.5, 3}, {0.5, 0.5, 0});
+  skewed.linear() *= 1.01;  // not a rotation
+  EXPECT_THROW(cam.capture(s, skewed), std::invalid_argument);
   EXPECT_THROW(s.solid(Eigen::Vector3d(nan, 0, 0)), std::invalid_argument);
   try {
     s.solid(std::vector<Eigen::Vector3d>{{0.5, 0.5, 0.5}, {0, inf, 0}});

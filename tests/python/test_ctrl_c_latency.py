@@ -116,19 +116,21 @@ assert o.Surface.rectangle(1, 1, 0.7).area == 1
 
 
 def test_ctrl_c_stops_depth_capture():
-    # most rays hit the wall, so one capture takes over a second and the signal lands well inside the first
-    # call: a short call could end inside its last poll interval, and Python would then take the signal itself
+    # Every ray tests 32 walls and, with a 1 m range, reaches none: one capture takes over a second with no output
+    # to convert (a call that returned many points would spend most of its time unpolled, in that conversion),
+    # so the signal lands inside the first call's rays rather than after them.
     side = 4096
     assert_quick(f"""
 scene = o.Scene()
-scene.add_box([2, -3, 0], [2.2, 3, 2])
-cam = o.DepthCamera({side}, {side}, 1.5, 4.0)
-pose = o._core.look_at([0, 0, 1], [2, 0, 1])
+for k in range(32):
+    scene.add_box([-3 - 0.1 * k, -3, 0], [-2.95 - 0.1 * k, 3, 2])
+cam = o.DepthCamera({side}, {side}, 1.5, 1.0)
+aside = o._core.look_at([0, 0, 1], [0, 2, 1])
 """, """
 while True:
-    cam.capture(scene, pose)
+    cam.capture(scene, aside)
 """, """
-assert len(o.DepthCamera(32, 24, 1.0, 4.0).capture(scene, pose)) > 0
+assert len(o.DepthCamera(32, 24, 1.0, 4.0).capture(scene, o._core.look_at([0, 0, 1], [-3, 0, 1]))) > 0
 assert cam.width == 4096
 """, "depth capture")
 

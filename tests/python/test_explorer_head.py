@@ -165,27 +165,33 @@ def test_the_joints_off_the_chain_stand_at_the_given_reference(head):
 def test_score_views_aims_a_head_at_what_each_pose_looks_at(head):
     """The head cannot place its camera, so score_views aims it at the point half the camera's range along each
     given pose's optical axis and checks and scores the pose it reaches; aiming="pose" asks IK for the whole pose
-    (which the head reaches only where it already is)."""
+    (which the head reaches only where it already is). The robot stands turned and moved off the origin."""
     robot, chain = head
     scene, cam = _table_scene(), _camera()
-    start = chain.fk(chain.aim(np.array([0.8, 0.0, 0.45])))
+    c, s = np.cos(0.2), np.sin(0.2)
+    base = np.array([[c, -s, 0, 0.1], [s, c, 0, -0.05], [0, 0, 1, 0], [0, 0, 0, 1.0]])
+
+    def head_looking_at(point):
+        return base @ chain.fk(chain.aim((np.linalg.inv(base) @ np.append(point, 1.0))[:3]))
+
+    start = head_looking_at([0.8, 0.0, 0.45])
     emap = ExplorationMap(resolution=RESOLUTION)
     emap.insert(cam.capture(scene, start), start[:3, 3])
-    reachable = chain.fk(chain.aim(np.array([0.9, 0.3, 0.5])))
+    reachable = head_looking_at([0.9, 0.3, 0.5])
     elsewhere = ex.look_at((2.0, -1.5, 1.6), (0.8, -0.3, 0.5))  # where no head camera can be
     down = ex.look_at((0.05, 0.0, 0.9), (0.05, 0.0, -1.0))      # straight down: past the tilt's limit
     poses = np.array([reachable, elsewhere, down])
-    kw = dict(chain=chain, chain_base=np.eye(4), seed=4, unknown_is_obstacle=False)  # one scan: unknown all round
-    sv = score_views(emap, cam, poses, **kw)
+    kw = dict(chain=chain, chain_base=base, seed=4, unknown_is_obstacle=False)  # one scan: unknown all round
+    sv = score_views(emap, cam, poses, score_invalid=False, **kw)
     assert sv.status[2] == "no_ik", sv.status
     for i in (0, 1):
         assert sv.status[i] == "valid", sv.status
         point = poses[i][:3, 3] + 0.5 * cam.max_range * poses[i][:3, 2]
         T = np.asarray(sv.pose[i])
-        np.testing.assert_allclose(T, chain.fk(sv.q[i]), atol=1e-9)  # the pose the head reaches
+        np.testing.assert_allclose(T, base @ chain.fk(sv.q[i]), atol=1e-9)  # the pose the head reaches
         ray = (point - T[:3, 3]) / np.linalg.norm(point - T[:3, 3])
         assert np.arccos(min(1.0, T[:3, 2] @ ray)) <= 0.1 + 1e-9  # look_at_tolerance
     assert np.linalg.norm(np.asarray(sv.pose[1])[:3, 3] - elsewhere[:3, 3]) > 1.0
-    assert np.isfinite(sv.expected_gain[:2]).all()
+    assert np.isfinite(sv.expected_gain[:2]).all() and np.isnan(sv.expected_gain[2])  # the invalid one not scored
     placed = score_views(emap, cam, poses, aiming="pose", **kw)
     assert placed.status[1] == "no_ik" and placed.status[2] == "no_ik", placed.status

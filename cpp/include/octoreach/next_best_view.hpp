@@ -344,8 +344,9 @@ struct ScoredViews {
 /// casting of next_best_view (workspace, capability map, camera clearance, IK with the chain at
 /// chain_base, arm collisions; samples, candidate counts and max_valid_poses play no part). Poses are
 /// scored in parallel; pose i uses IK seed ik.seed + i. A chain that can only aim its camera (looks_at)
-/// aims it at the point half the camera's range along pose i's optical axis (aim seed seed + i; NoIk when it
-/// cannot) and the checks and the score are of the pose it reaches. `score_invalid` false: the poses that
+/// aims it at the point half the camera's range along pose i's optical axis (aim seed seed + i; NoIk, checked
+/// first, when it cannot) and the checks and the score are of the pose it reaches, which is the view's pose
+/// and q whenever the aim succeeds, valid or not. `score_invalid` false: the poses that
 /// fail a check are not ray cast (their cell counts 0, expected gains NaN), far less work when most fail.
 /// \throws std::invalid_argument for a non-finite pose.
 ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& camera, const std::vector<Pose>& poses,

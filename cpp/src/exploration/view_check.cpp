@@ -338,7 +338,7 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
     else if (!keep[i] || !opt.workspace.contains(pos[i]))
       s.status = ViewStatus::OutsideWorkspace;
     else if (opt.capability_map && (!(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability) ||
-                                    !checker.axis_reachable(poses[i])))
+                                    !checker.axis_reachable(s.pose)))
       s.status = ViewStatus::NotReachable;
     else if (!checker.camera_clear(pos[i]))
       s.status = ViewStatus::CameraNotClear;
