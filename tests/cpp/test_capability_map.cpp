@@ -165,8 +165,6 @@ TEST(CapabilityMap, DamagedFilesThrowFileError) {
   EXPECT_THROW(CapabilityMap::load(path), FileError);
 }
 
-// The plain lookups answer from their own table: they must say what the voxel records hold, pose by pose and in
-// batches (which compute every orientation first).
 // The plain lookups answer from a grid of the reachable bits, or from the voxel records when the grid would be
 // larger than its limit: dropping the grid of a small map runs that second path.
 namespace octoreach {
@@ -176,6 +174,8 @@ struct CapabilityMapTestAccess {
 };
 }  // namespace octoreach
 
+// The plain lookups must say what the voxel records hold, pose by pose and in batches (which compute every
+// orientation first), from the grid and from the records alike.
 TEST(CapabilityMap, PlainLookupsReadTheRecords) {
   std::shared_ptr<Robot> robot = Robot::from_urdf(kArm);
   CapabilityMap m = CapabilityMap::build(robot->chain("base_link", "tool0"), coarse_options());

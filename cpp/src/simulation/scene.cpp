@@ -225,12 +225,13 @@ Aabb Scene::bounds() const {
 }
 
 std::vector<char> Scene::solid(const std::vector<Eigen::Vector3d>& points) const {
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (!points[i].allFinite())
+  std::vector<char> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite())  // named by its row here; solid(p) alone could not say which
       throw std::invalid_argument("solid: points row " + std::to_string(i) + " is not finite: " +
                                   detail::format_point(points[i]));
-  std::vector<char> out(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) out[i] = solid(points[i]);
+    out[i] = solid(points[i]);
+  }
   return out;
 }
 
@@ -250,7 +251,7 @@ bool Scene::raycast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double m
   if (!o.allFinite() || !d.allFinite() || !std::isfinite(max_range))
     throw std::invalid_argument("raycast: origin, direction and max_range must be finite, got origin " +
                                 detail::format_point(o) + ", direction " + detail::format_point(d) +
-                                ", max_range " + std::to_string(max_range));
+                                ", max_range " + detail::format_number(max_range));
   // The distance is along d, so a direction of another length would scale every answer. The margin is what a
   // rotation passing as one (R^T R within 1e-6 of the identity per entry) leaves of a unit ray: at most 3e-6.
   if (d.squaredNorm() == 0) throw std::invalid_argument("raycast: the direction must be non-zero");
