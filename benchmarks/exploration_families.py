@@ -13,7 +13,9 @@ camera pose keeping that distance from every surface sees), computed once per in
 and whether such a pose sees the target (5 points of a 320 x 240 capture, as target_seen_view).
 
 Per family and strategy, over instances x seeds: views to 90 % of the observable interior (median; a run
-that never reaches it counts as never), the final share (median, min), how runs ended (stop reasons; "ends
+that never reaches it counts as never), the final share (median, min), both over the runs on instances with
+an observable interior (a generated instance may have none: its opening faces away from every safe view), how
+runs ended (stop reasons; "ends
 by itself": any reason but the budget), the target seen in the runs where the oracle sees it, seen/expected
 void ratios of the views (median, share under 0.1) and the loop's choice of a view in seconds (median,
 90th percentile, max; CPU time on whatever machine ran it). `goals` checks the issue's goals.
@@ -51,16 +53,18 @@ def _camera(a, seed) -> DepthCamera:
 
 
 def _run(a, inst, strategy, seed, oracle, cmap) -> dict:
+    """One exploration; its coverage after every view (none when the instance has nothing observable: no
+    curve in the plot, no coverage figure in the summary)."""
     cover = []
     r = ex.explore(inst.scene, _camera(a, seed), scene_families.start_pose(), robot=True, strategy=strategy,
                    max_views=a.views, resolution=a.resolution, seed=seed, capability_map=cmap, target=inst.target,
                    search_space=inst.search_space,
                    min_utility=a.min_utility, patience=a.patience,
-                   on_view=lambda row, emap, info: cover.append(oracle.share(emap)))
+                   on_view=lambda row, emap, info: cover.append(oracle.share(emap)) if oracle.count else None)
     return {
         "instance": inst.seed, "seed": seed, "coverage": [round(c, 4) for c in cover], "views": len(r.rows),
         "stop_reason": r.stop_reason, "views_to_90": ex.views_to_reach(cover, LEVEL),
-        "final_coverage": cover[-1] if cover else 0.0, "target_seen_view": r.target_seen_view(),
+        "final_coverage": cover[-1] if cover else None, "target_seen_view": r.target_seen_view(),
         "choice_s": [round(x.search_s, 4) for x in r.rows],
         "ratios": [round(x, 3) for x in ex.seen_expected_ratios(r.rows)],
         "expected_seen": [[round(x.expected_void, 1), x.void_seen] for x in r.rows if x.void_seen is not None],
@@ -72,21 +76,26 @@ def _pct(values, q):
     return float(np.percentile(values, q)) if len(values) else None
 
 
-def _summary(runs, budget, target_observable) -> dict:
-    """The figures of one family and strategy over its runs (see the module)."""
+def _summary(runs, budget, oracle) -> dict:
+    """The figures of one family and strategy over its runs (see the module). `oracle`: the family's oracle
+    records by instance. The coverage figures (views to 90 %, final share) are of the runs on instances with
+    an observable interior: 90 % of nothing is no figure (`runs_nothing_observable` counts the others)."""
     never = budget + 1
-    v90 = [r["views_to_90"] if r["views_to_90"] is not None else never for r in runs]
+    covered = [r for r in runs if oracle[r["instance"]]["observable_points"] > 0]
+    v90 = [r["views_to_90"] if r["views_to_90"] is not None else never for r in covered]
     ratios = [x for r in runs for x in r["ratios"]]
     choice = [x for r in runs for x in r["choice_s"]]
-    can = [r for r in runs if target_observable[r["instance"]]]
+    can = [r for r in runs if oracle[r["instance"]]["target_observable"]]
     reasons = sorted({r["stop_reason"] for r in runs})
-    med = statistics.median(v90)
+    med = statistics.median(v90) if v90 else never
+    finals = [r["final_coverage"] for r in covered]
     return {
-        "runs": len(runs), "reached_90": sum(r["views_to_90"] is not None for r in runs),
+        "runs": len(runs), "runs_nothing_observable": len(runs) - len(covered),
+        "reached_90": sum(r["views_to_90"] is not None for r in covered),
         "views_to_90_median": None if med >= never else med,
-        "final_median": statistics.median(r["final_coverage"] for r in runs),
-        "final_min": min(r["final_coverage"] for r in runs),
-        "runs_under_90": sum(r["final_coverage"] < LEVEL for r in runs),
+        "final_median": statistics.median(finals) if finals else None,
+        "final_min": min(finals, default=None),
+        "runs_under_90": sum(x < LEVEL for x in finals),
         "views_median": statistics.median(r["views"] for r in runs),
         "stop_reasons": {k: sum(r["stop_reason"] == k for r in runs) for k in reasons},
         "ended_by_itself": sum(r["stop_reason"] != "view budget" for r in runs),
@@ -113,7 +122,7 @@ def _goals(summary, runs, strategies) -> dict:
         out["per_family"][fam] = {
             "fewer_views_to_90_than_best_baseline": v is not None and (not best or v < min(best)),
             "best_baseline_views_to_90": min(best) if best else None,
-            "final_median_at_least_90": s["final_median"] >= LEVEL,
+            "final_median_at_least_90": s["final_median"] is not None and s["final_median"] >= LEVEL,
             "target_seen_wherever_observable": s["target_seen_where_observable"] == s["target_runs_observable"],
         }
         fv_runs += runs[fam][ours]
@@ -139,8 +148,9 @@ def _markdown(summary, strategies) -> str:
             v90 = "never" if x["views_to_90_median"] is None else f"{x['views_to_90_median']:g}"
             stops = ", ".join(f"{k} x{n}" for k, n in x["stop_reasons"].items())
             ratio = "-" if x["ratio_median"] is None else f"{x['ratio_median']:.2f} ({x['ratio_share_below_0.1']:.0%})"
+            final = "-" if x["final_median"] is None else f"{x['final_median']:.0%}, {x['final_min']:.0%}"
             lines.append(
-                f"| {fam} | {s} | {v90} ({x['reached_90']}/{x['runs']}) | {x['final_median']:.0%}, {x['final_min']:.0%} | "
+                f"| {fam} | {s} | {v90} ({x['reached_90']}/{x['runs'] - x['runs_nothing_observable']}) | {final} | "
                 f"{x['ended_by_itself']}/{x['runs']} ({stops}) | {x['target_seen_where_observable']}/"
                 f"{x['target_runs_observable']} | {ratio} | {x['choice_s_median']:.2f} / {x['choice_s_p90']:.2f} / "
                 f"{x['choice_s_max']:.2f} |")
@@ -170,8 +180,8 @@ def _combine(a) -> int:
     out["setup"]["strategies"] = [s for s in ex.STRATEGIES if s in names]
     out["setup"]["families"] = [f for f in testing.FAMILIES if f in out["runs"]]
     for fam in out["setup"]["families"]:
-        seen = {int(k): v["target_observable"] for k, v in out["oracle"][fam].items()}
-        out["summary"][fam] = {s: _summary(out["runs"][fam][s], out["setup"]["views"], seen)
+        oracle = {int(k): v for k, v in out["oracle"][fam].items()}
+        out["summary"][fam] = {s: _summary(out["runs"][fam][s], out["setup"]["views"], oracle)
                                for s in out["setup"]["strategies"] if s in out["runs"][fam]}
     out["total_s"] = sum(p["total_s"] for p in parts)
     return _finish(out, a)
@@ -224,10 +234,10 @@ def main(argv=None) -> int:
                 for seed in range(a.seeds):
                     out["runs"][fam][s].append(_run(a, inst, s, seed, oracle, cmap))
                     r = out["runs"][fam][s][-1]
-                    print(f"# {inst.name} {s} seed {seed}: {r['views']} views, {r['final_coverage']:.3f}, "
+                    share = "nothing observable" if r["final_coverage"] is None else f"{r['final_coverage']:.3f}"
+                    print(f"# {inst.name} {s} seed {seed}: {r['views']} views, {share}, "
                           f"{r['stop_reason']}, 90 % after {r['views_to_90']}", file=sys.stderr, flush=True)
-        seen = {k: v["target_observable"] for k, v in out["oracle"][fam].items()}
-        out["summary"][fam] = {s: _summary(out["runs"][fam][s], a.views, seen) for s in a.strategies}
+        out["summary"][fam] = {s: _summary(out["runs"][fam][s], a.views, out["oracle"][fam]) for s in a.strategies}
     out["total_s"] = time.perf_counter() - t_all
     return _finish(out, a)
 

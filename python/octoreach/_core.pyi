@@ -2200,7 +2200,7 @@ class ExploreOptions:
     @property
     def last_directions(self) -> int:
         """
-        last chance (the low view would end the loop): rays out of each void cell
+        last chance (the choice would end the loop): rays out of each void cell
         """
     @last_directions.setter
     def last_directions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

@@ -118,3 +118,27 @@ def test_a_lower_stopping_threshold_borrows_only_runs_the_rule_never_stopped(tmp
     paths["random"].write_text(json.dumps(longer))
     with pytest.raises(SystemExit, match="code path changed"):
         mod.main(args)
+
+
+def test_families_leave_instances_with_nothing_observable_out_of_the_coverage_figures():
+    """benchmarks/exploration_families.py: a run on an instance whose interior no safe reachable view sees has
+    no coverage (90 % of nothing is no figure); the summary counts it apart and takes the coverage figures
+    of the others."""
+    spec = importlib.util.spec_from_file_location("exploration_families", BENCH.parent / "exploration_families.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    run = lambda inst, cover: {"instance": inst, "seed": 0, "coverage": cover, "views": 4, "stop_reason": "no valid view",
+                               "views_to_90": mod.ex.views_to_reach(cover, mod.LEVEL),
+                               "final_coverage": cover[-1] if cover else None, "target_seen_view": 2,
+                               "choice_s": [0.1], "ratios": [1.0], "physically_invalid_views": 0}
+    oracle = {0: {"observable_points": 50, "target_observable": True},
+              1: {"observable_points": 0, "target_observable": False},
+              2: {"observable_points": 40, "target_observable": True}}
+    runs = [run(0, [0.5, 0.95]), run(1, []), run(2, [0.4, 0.7, 0.8])]
+    s = mod._summary(runs, 30, oracle)
+    assert (s["runs"], s["runs_nothing_observable"], s["reached_90"], s["runs_under_90"]) == (3, 1, 1, 1)
+    assert (s["final_median"], s["final_min"]) == (pytest.approx(0.875), 0.8)
+    assert s["views_to_90_median"] == pytest.approx(16.5)  # median of 2 and never (the budget + 1, 31)
+    assert s["target_runs_observable"] == 2 and s["ended_by_itself"] == 3
+    assert mod._summary([run(1, [])], 30, oracle)["final_median"] is None
+    assert "| - |" in mod._markdown({"f": {"frontier_void": mod._summary([run(1, [])], 30, oracle)}}, ["frontier_void"])

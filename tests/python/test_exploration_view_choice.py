@@ -237,3 +237,27 @@ def test_the_last_low_view_before_the_loop_would_stop_gets_the_rays_out_of_every
 
     r = _small_run(ex.paper_scene(1), "frontier_void", min_utility=1e9, patience=3, max_views=5)
     assert r.stop_reason == "utility below min_utility" and len(r.rows) == 3, (r.stop_reason, len(r.rows))
+
+
+def test_a_choice_that_ends_the_loop_has_taken_the_last_chance():
+    """A run that ends because the choice found no valid view (or only one of utility 0) has taken the last
+    chance first, as a run ending on its last low view does: replayed into a session with patience 1 (every
+    low choice takes the last chance, same seeds), the same map gives the same stop. A closed box of the
+    scene families whose opening faces the robot: late in the run every candidate of the search is refused,
+    while rays out of the box's void cells still found views."""
+    from octoreach import testing
+    from octoreach.exploration.robot import explorer_capability_map, explorer_robot
+    from octoreach.testing import scene_families
+
+    inst = testing.family_instances("closed_boxes", 1, 3)[0]
+    cam = DepthCamera(160, 120, FOV, 4.0, noise=0.0, seed=0)
+    settings = dict(robot=True, resolution=0.025, seed=0, capability_map=explorer_capability_map(explorer_robot()[1]))
+    r = ex.explore(inst.scene, cam, scene_families.start_pose(), search_space=inst.search_space, max_views=60,
+                   **settings)
+    assert r.stop_reason in ("no valid view", "utility 0", "utility below min_utility"), r.stop_reason
+    assert all(row.physically_valid for row in r.rows)  # every view was taken: the replay is the same session
+    replay = ex.Explorer(cam, inst.search_space, patience=1, **settings)
+    for pose in r.poses:
+        replay.integrate(cam.capture(inst.scene, pose), pose)
+    view = replay.next_view()
+    assert view.stop and view.stop_reason == r.stop_reason, (view.stop_reason, view.expected_gain, r.stop_reason)

@@ -375,7 +375,7 @@ struct ExploreOptions {
   std::pair<double, double> aimed_distance{0.3, 1.0};  ///< metres from an aimed pose's eye to its void cell
   double unexposed_share = 0.25;    ///< share of the void cells with no observed free neighbour among the aims
   int low_aimed_poses = 1200;       ///< before a low view is taken: this many more, aimed at any void cell
-  int last_directions = 128;        ///< last chance (the low view would end the loop): rays out of each void cell
+  int last_directions = 128;        ///< last chance (the choice would end the loop): rays out of each void cell
   int last_poses = 4000;            ///< last chance: poses kept from those rays
   std::pair<double, double> last_distance{0.15, 1.0};  ///< metres from a last-chance eye to its void cell
   int max_ray_cells = 4096;         ///< last chance: void cells the rays leave from (at most; drawn at random)
