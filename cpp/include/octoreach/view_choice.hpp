@@ -65,8 +65,9 @@ struct ViewChoice {
 /// baseline picks it), no valid view, a utility
 /// of 0, or a utility <= min_utility for `patience` choices in a row. Frontier-void: next_best_view, then
 /// (second_look) aimed_poses poses aimed at void cells; when the better still expects <= min_utility,
-/// low_aimed_poses more and, when that low view would end the loop, last_poses found along rays out of
-/// every void cell. \throws std::invalid_argument for bad options, sites or a current index out of range.
+/// low_aimed_poses more and, when the choice would end the loop (that low view is patience's last, or no valid
+/// view or only views of utility 0 were found), last_poses found along rays out of every void cell.
+/// \throws std::invalid_argument for bad options, sites or a current index out of range.
 ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites,
                        int current, const ExploreOptions& options, ChoiceMemory& memory,
                        ViewStrategy strategy = ViewStrategy::FrontierVoid);
