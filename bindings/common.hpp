@@ -29,13 +29,9 @@ inline void set_error(PyObject* type, const char* what) {
   Py_DECREF(msg);
 }
 
-/// Raises ValueError unless `m` is a finite rigid transform.
+/// Raises ValueError unless `m` is a finite rigid transform (octoreach::check_rigid, the C++ rule).
 inline Pose checked_pose(const Eigen::Matrix4d& m, const char* what = "pose") {
-  if (!m.allFinite()) throw std::invalid_argument(std::string(what) + " must be finite");
-  Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  if (!(R.transpose() * R).isIdentity(1e-6) || R.determinant() < 0 ||
-      !m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-9))
-    throw std::invalid_argument(std::string(what) + " must be a 4x4 rigid transform (orthonormal rotation, last row 0 0 0 1)");
+  check_rigid(m, what);
   Pose T;
   T.matrix() = m;
   return T;

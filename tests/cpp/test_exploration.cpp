@@ -104,6 +104,9 @@ TEST(Scene, RaycastAndSolidRejectWhatIsNotARayOrAPoint) {
   Pose skewed = look_at({0.5, 0.5, 3}, {0.5, 0.5, 0});
   skewed.linear() *= 1.01;  // not a rotation
   EXPECT_THROW(cam.capture(s, skewed), std::invalid_argument);
+  Pose mirrored = look_at({0.5, 0.5, 3}, {0.5, 0.5, 0});
+  mirrored.linear().col(0) *= -1;  // orthonormal, but a reflection
+  EXPECT_THROW(cam.capture(s, mirrored), std::invalid_argument);
   EXPECT_THROW(s.solid(Eigen::Vector3d(nan, 0, 0)), std::invalid_argument);
   try {
     s.solid(std::vector<Eigen::Vector3d>{{0.5, 0.5, 0.5}, {0, inf, 0}});
@@ -112,6 +115,35 @@ TEST(Scene, RaycastAndSolidRejectWhatIsNotARayOrAPoint) {
     EXPECT_NE(std::string(e.what()).find("row 1"), std::string::npos) << e.what();
   }
   EXPECT_EQ(s.solid(std::vector<Eigen::Vector3d>{{0.5, 0.5, 0.5}, {2, 2, 2}}), (std::vector<char>{1, 0}));
+}
+
+TEST(Pose, CheckRigidIsTheOneRule) {
+  // every pose argument, Python's included (bindings' checked_pose), is checked by check_rigid
+  Eigen::Matrix4d m = look_at({0.5, 0.5, 3}, {0.5, 0.5, 0}).matrix();
+  EXPECT_NO_THROW(check_rigid(m, "pose"));
+  Eigen::Matrix4d near = m;
+  near.topLeftCorner<3, 3>() *= 1.0 + 2e-7;  // R^T R within 1e-6 of I: a rotation
+  EXPECT_NO_THROW(check_rigid(near, "pose"));
+  auto message = [](const Eigen::Matrix4d& x) {
+    try {
+      check_rigid(x, "camera_pose");
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  Eigen::Matrix4d bad = m;
+  bad(0, 3) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message(bad), "camera_pose is not finite");
+  bad = m;
+  bad.topLeftCorner<3, 3>() *= 1.01;  // scaled
+  EXPECT_NE(message(bad).find("camera_pose is not a rigid transform"), std::string::npos) << message(bad);
+  bad = m;
+  bad.col(0) *= -1;  // a reflection
+  EXPECT_NE(message(bad).find("not a rigid transform"), std::string::npos) << message(bad);
+  bad = m;
+  bad(3, 0) = 1e-3;  // last row
+  EXPECT_NE(message(bad).find("not a rigid transform"), std::string::npos) << message(bad);
 }
 
 TEST(DepthCamera, MeshAndBoxAgree) {

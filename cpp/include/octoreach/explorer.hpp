@@ -82,8 +82,4 @@ class Explorer {
   Eigen::Vector3d last_camera_ = Eigen::Vector3d::Zero();
 };
 
-/// \brief Checks that `T` is a finite rigid transform (orthonormal rotation with determinant 1, last row
-/// 0 0 0 1, within 1e-6); \throws std::invalid_argument naming `what` otherwise.
-void check_rigid(const Pose& T, const std::string& what);
-
 }  // namespace octoreach

@@ -6,17 +6,6 @@
 
 namespace octoreach {
 
-void check_rigid(const Pose& T, const std::string& what) {
-  const Eigen::Matrix4d& m = T.matrix();
-  if (!m.allFinite()) throw std::invalid_argument(what + " is not finite");
-  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
-  const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  const double last = (m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff();
-  if (orth > 1e-6 || last > 1e-6 || std::abs(R.determinant() - 1.0) > 1e-6)
-    throw std::invalid_argument(what + " is not a rigid transform (rotation not orthonormal with determinant 1, "
-                                "or last row not 0 0 0 1)");
-}
-
 Explorer::Explorer(ExplorerSetup setup) : setup_(std::move(setup)) {
   setup_.camera.validate();
   setup_.options.validate();

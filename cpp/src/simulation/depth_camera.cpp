@@ -46,8 +46,7 @@ DepthCamera::DepthCamera(int width, int height, double fov, double max_range, do
 
 std::vector<Eigen::Vector3d> DepthCamera::capture(const Scene& scene, const Pose& pose, int threads) {
   detail::CancellableScope cancellable;  // rows are polled; the camera and the scene stay as they were
-  if (!pose.matrix().allFinite() || !(pose.linear().transpose() * pose.linear()).isIdentity(1e-6))
-    throw std::invalid_argument("capture: the camera pose must be finite with an orthonormal rotation");
+  check_rigid(pose, "capture: the camera pose");
   const int W = intr_.width, H = intr_.height;
   const std::uint64_t call = calls_++;
   struct SceneReadLock {  // the scene may not change during the capture
