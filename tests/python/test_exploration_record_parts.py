@@ -9,8 +9,8 @@ import pytest
 BENCH = Path(__file__).resolve().parents[2] / "benchmarks" / "exploration_strategies.py"
 
 
-def _bench():
-    spec = importlib.util.spec_from_file_location("exploration_strategies", BENCH)
+def _bench(name="exploration_strategies"):
+    spec = importlib.util.spec_from_file_location(name, BENCH.parent / f"{name}.py")
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
     return mod
@@ -124,9 +124,7 @@ def test_families_leave_instances_with_nothing_observable_out_of_the_coverage_fi
     """benchmarks/exploration_families.py: a run on an instance whose interior no safe reachable view sees has
     no coverage (90 % of nothing is no figure); the summary counts it apart and takes the coverage figures
     of the others."""
-    spec = importlib.util.spec_from_file_location("exploration_families", BENCH.parent / "exploration_families.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    mod = _bench("exploration_families")
     run = lambda inst, cover: {"instance": inst, "seed": 0, "coverage": cover, "views": 4, "stop_reason": "no valid view",
                                "views_to_90": mod.ex.views_to_reach(cover, mod.LEVEL),
                                "final_coverage": cover[-1] if cover else None, "target_seen_view": 2,

@@ -3,7 +3,6 @@
 /// \brief Common types of octoreach: poses, boxes, progress callbacks, errors.
 
 #include <Eigen/Geometry>
-#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>

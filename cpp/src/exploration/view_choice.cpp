@@ -175,23 +175,22 @@ ViewChoice frontier_void_choice(const ChoiceContext& ctx, std::uint64_t seed, bo
   }
   if (best.utility > *widen) return best;
   if (most.utility > best.utility) best = std::move(most);
+  // the last chance from base i: eyes along rays out of every void cell
+  const auto last_look = [&](int i) {
+    ViewChoice a = aimed_choice(ctx, i, seed + 7919 + std::uint64_t(o.last_directions), Look::Rays,
+                                std::size_t(o.last_poses), RankKey::ExpectedVoid, 1.0, o.last_distance);
+    if (a.found && a.utility > best.utility) adopt(best, std::move(a), true);
+  };
   // about to take a low view: more aims at any void cell; when it would end the loop, the last chance
   for (int i : ctx.order()) {
     ViewChoice a = aimed_choice(ctx, i, seed + 7919 + 1, Look::Sight, std::size_t(o.low_aimed_poses),
                                 RankKey::ExpectedVoid, 1.0, o.aimed_distance);
     if (a.found && a.utility > best.utility) adopt(best, std::move(a), true);
-    if (!last_chance) continue;
-    a = aimed_choice(ctx, i, seed + 7919 + std::uint64_t(o.last_directions), Look::Rays, std::size_t(o.last_poses),
-                     RankKey::ExpectedVoid, 1.0, o.last_distance);
-    if (a.found && a.utility > best.utility) adopt(best, std::move(a), true);
+    if (last_chance) last_look(i);
   }
   // a choice that found no valid view, or only views of utility 0, ends the loop as well: the last chance first
   if (!last_chance && (!best.found || best.utility <= 0))
-    for (int i : ctx.order()) {
-      ViewChoice a = aimed_choice(ctx, i, seed + 7919 + std::uint64_t(o.last_directions), Look::Rays,
-                                  std::size_t(o.last_poses), RankKey::ExpectedVoid, 1.0, o.last_distance);
-      if (a.found && a.utility > best.utility) adopt(best, std::move(a), true);
-    }
+    for (int i : ctx.order()) last_look(i);
   return best;
 }
 
