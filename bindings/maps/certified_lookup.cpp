@@ -19,7 +19,10 @@ void wrap_certified_lookup(py::module_& m) {
   py::class_<O>(m, "CertifiedLookupOptions", "Options of CertifiedLookup (defaults defined once, in C++).")
       .def(py::init<>())
       .def_readwrite("seeds", &O::seeds, "Stored configurations IK starts from at most, nearest cells first.")
-      .def_readwrite("max_iterations", &O::max_iterations, "Iterations per descent.");
+      .def_readwrite("max_iterations", &O::max_iterations, "Iterations per descent.")
+      .def_readwrite("branch_seeds", &O::branch_seeds,
+                     "Configurations of other IK branches tried at most when the seeds fail (0: none), from the cells\n"
+                     "around the corners, each more than 1 rad from every configuration tried in some joint.");
   py::class_<CertifiedLookup>(m, "CertifiedLookup",
       "Reachability of tool poses from a capability map where the cells around a pose agree, and from IK at the\n"
       "exact pose where they do not (the pose lies where the reachable set ends between the cells, or in a mixed\n"

@@ -805,6 +805,15 @@ class CertifiedLookupOptions:
     def __init__(self) -> None:
         ...
     @property
+    def branch_seeds(self) -> int:
+        """
+        Configurations of other IK branches tried at most when the seeds fail (0: none), from the cells
+        around the corners, each more than 1 rad from every configuration tried in some joint.
+        """
+    @branch_seeds.setter
+    def branch_seeds(self, arg0: int) -> None:
+        ...
+    @property
     def max_iterations(self) -> int:
         """
         Iterations per descent.

@@ -89,3 +89,12 @@ TEST(CertifiedLookup, RefusesAMapWithoutSolutions) {
   EXPECT_THROW(CertifiedLookup(bare, *arm()), std::invalid_argument);
   EXPECT_THROW(bare.voxel_quality(), std::invalid_argument);
 }
+
+TEST(CertifiedLookup, RefusesBadOptions) {
+  CertifiedLookupOptions o;
+  o.branch_seeds = -1;
+  EXPECT_THROW(CertifiedLookup(coarse_map(), *arm(), Eigen::VectorXd(), o), std::invalid_argument);
+  o.branch_seeds = 0;
+  o.seeds = 0;
+  EXPECT_THROW(CertifiedLookup(coarse_map(), *arm(), Eigen::VectorXd(), o), std::invalid_argument);
+}

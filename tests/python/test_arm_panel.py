@@ -57,3 +57,37 @@ def test_user_path_map_is_byte_identical_for_any_thread_count(tmp_path):
         paths.append(tmp_path / f"t{threads}.orcm")
         cmap.save(str(paths[-1]), with_solutions=True)
     assert paths[0].read_bytes() == paths[1].read_bytes()
+
+
+def test_other_branches_reach_what_the_seeds_miss():
+    """When the descents from the corners' stored configurations fail, configurations of other IK branches stored
+    around the corners are tried (branch_seeds): the answers are the seeds-only answers plus poses IK reaches from
+    them, each with a solution, none lost. The iCub arm stores other branches (elbow, wrist) in neighbouring cells
+    at 0.1 m, so some reachable poses need them."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        robot = robots.load("icub")
+        arm = octoreach.Arm.resolve(robot, "l_arm")
+        cmap = arms.capability_map(robot, "l_arm", resolution=0.1, directions=100, progress=False)
+    chain = robot.chain(arm.base_link, arm.tip_link)
+    reference = arms.default_reference(robot, "l_arm")
+    poses, known = reach_truth.check_poses(robot, chain, reference, 400, seed=7)
+    truth = reach_truth.ik_truth(chain, poses, arm.approach_axis, reference, known, rounds=3, seed=7).reachable
+    seeds_only = octoreach.CertifiedLookup(cmap, robot, branch_seeds=0)
+    check = octoreach.CertifiedLookup(cmap, robot)
+    assert check.options.branch_seeds > 0
+    before, after = seeds_only.reachable(poses), check.reachable(poses)
+    assert not (before & ~after).any()
+    gained = np.flatnonzero(after & ~before)
+    assert len(gained) > 0
+    assert truth[gained].all()
+    assert np.count_nonzero(~after & truth) < np.count_nonzero(~before & truth)
+    axis = np.asarray(arm.approach_axis)
+    for i in gained:
+        assert seeds_only.solution(poses[i]) is None
+        q = check.solution(poses[i])
+        F = chain.fk(q)
+        assert np.linalg.norm(F[:3, 3] - poses[i][:3, 3]) <= 1e-3 + 1e-9
+        assert np.arccos(np.clip((F[:3, :3] @ axis) @ (poses[i][:3, :3] @ axis), -1, 1)) <= 1e-2 + 1e-9
+        assert chain.within_limits(q)
+        assert not robot.in_self_collision(chain.to_robot_configuration(q, reference))

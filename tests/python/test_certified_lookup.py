@@ -165,6 +165,8 @@ def test_certified_bad_input(check, robot, cmap):
         octoreach.CertifiedLookup(cmap, robots.load("ur5"))
     with pytest.raises(ValueError, match="seeds"):
         octoreach.CertifiedLookup(cmap, robot, seeds=0)
+    with pytest.raises(ValueError, match="branch_seeds"):
+        octoreach.CertifiedLookup(cmap, robot, branch_seeds=-1)
 
 
 def test_format_1_files_still_load(robot, tmp_path):
@@ -196,3 +198,4 @@ def test_cell_data_round_trips_through_files(cmap, check, poses_and_truth, robot
     cmap.save(bare)
     without = octoreach.CapabilityMap.load(bare)
     assert without.has_cell_data and not without.has_solutions and not without.has_quality
+

@@ -19,6 +19,10 @@ struct CertifiedLookupOptions {
   int seeds = 8;
   /// Iterations per descent: the map's own build settles a cell from a neighbour's solution within this many.
   int max_iterations = 25;
+  /// Configurations of other IK branches IK starts from at most when the seeds fail (0: none): stored in the
+  /// cells around the corners (one voxel further, directions within two direction spacings of the pose's),
+  /// nearest first, each more than 1 rad from every configuration tried in some joint.
+  int branch_seeds = 4;
 };
 
 /// \brief The certified lookup: a pose's answer comes from the map where the cells around it agree, and from
@@ -30,7 +34,9 @@ struct CertifiedLookupOptions {
 /// lies where the reachable set ends between the cells, or in a mixed cell (a thin reachable set passes through
 /// it), and IK answers: single descents from the configurations stored in those cells, nearest first, with the
 /// map's criteria (tolerances, approach axis, self-collision at the reference posture). A yes from IK is a
-/// solution; the map's cells decide only where they agree. Needs a map built with solutions by this version
+/// solution; the map's cells decide only where they agree. When those descents fail, the pose may lie in another
+/// IK branch (elbow or wrist flipped) than every configuration the corners store: a few configurations of other
+/// branches stored in the cells around them are tried too (CertifiedLookupOptions::branch_seeds). Needs a map built with solutions by this version
 /// (CapabilityMap::has_cell_data()). The map must outlive the lookup. Const and thread-safe.
 class CertifiedLookup {
  public:
@@ -62,6 +68,8 @@ class CertifiedLookup {
   static constexpr int kMaxSeeds = 16;
   // The cells around T; for mixed cells, up to options_.seeds stored configurations, nearest first.
   Cells cells(const Pose& T, const float** seeds, int& n_seeds) const;
+  // IK from up to options_.branch_seeds configurations of other branches than `tried` (see the options).
+  bool other_branches(const Pose& T, const float* const* tried, int n_tried, Eigen::VectorXd* solution) const;
 
   const CapabilityMap& map_;
   Chain chain_;

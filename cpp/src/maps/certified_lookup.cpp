@@ -5,12 +5,20 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "octoreach/arm.hpp"
 #include "maps/batch.hpp"
 
 namespace octoreach {
 namespace {
+
+// Two configurations within this of each other in every joint (rad) descend into the same IK branch: a seed that
+// close to one already tried adds nothing.
+constexpr double kSameBranch = 1.0;
+// The directions whose cells may store other branches: within this many direction spacings (sqrt(4 pi / K) for K
+// directions) of the pose's approach direction.
+constexpr double kBranchCone = 2.0;
 
 const CapabilityMap& usable(const CapabilityMap& map, const Robot& robot) {
   if (!map.has_cell_data() || !map.has_solutions())
@@ -34,6 +42,8 @@ CertifiedLookup::CertifiedLookup(const CapabilityMap& map, const Robot& robot, c
   if (options.seeds < 1 || options.seeds > kMaxSeeds)
     throw std::invalid_argument("seeds must be in [1, " + std::to_string(kMaxSeeds) + "], got " +
                                 std::to_string(options.seeds));
+  if (options.branch_seeds < 0)
+    throw std::invalid_argument("branch_seeds must be at least 0, got " + std::to_string(options.branch_seeds));
   if (options.max_iterations < 1)
     throw std::invalid_argument("max_iterations must be at least 1, got " + std::to_string(options.max_iterations));
   if (chain_.dof() != map.dof())
@@ -106,6 +116,84 @@ bool CertifiedLookup::reachable(const Pose& T, Eigen::VectorXd* solution) const 
     for (int j = 0; j < chain_.dof(); ++j) q0[j] = seeds[i][j];
     if (auto q = chain_.ik(T, ik_, &q0)) {
       if (solution) *solution = *q;
+      return true;
+    }
+  }
+  return other_branches(T, seeds, n, solution);
+}
+
+bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, int n_tried,
+                                     Eigen::VectorXd* solution) const {
+  if (options_.branch_seeds == 0) return false;
+  const CapabilityMap& m = map_;
+  const OrientationSet& set = m.orientations();
+  const int rolls = set.rolls(), roll = m.orientations().nearest(T.linear(), m.approach_axis()) % rolls;
+  const Eigen::Vector3d d = T.linear() * m.approach_axis().normalized();
+  const double spacing = std::sqrt(4.0 * M_PI / set.directions());
+  const double cos_cone = std::cos(std::min(M_PI, kBranchCone * spacing));
+  struct Candidate {
+    double distance;    // voxels from the position plus direction spacings from the approach direction
+    std::uint32_t rec;
+    int o;
+  };
+  thread_local std::vector<std::pair<int, double>> directions;
+  thread_local std::vector<Candidate> candidates;
+  directions.clear();
+  candidates.clear();
+  for (int i = 0; i < set.directions(); ++i) {
+    const double c = set.direction(i).dot(d);
+    if (c >= cos_cone) directions.emplace_back(i * rolls + roll, std::acos(std::min(1.0, c)) / spacing);
+  }
+  // The 4 x 4 x 4 voxels around the position: its 8 corners (grid coordinates from the centre of key 0, as
+  // CapabilityMap::corners) and one voxel further; a cell's configuration is read only when its turn comes.
+  constexpr double kOffset = 32768.0;
+  const double res = m.resolution();
+  double low[3];
+  for (int a = 0; a < 3; ++a) low[a] = std::floor(T.translation()[a] / res - 0.5);
+  for (int dx = -1; dx <= 2; ++dx)
+    for (int dy = -1; dy <= 2; ++dy)
+      for (int dz = -1; dz <= 2; ++dz) {
+        const double g[3] = {low[0] + dx, low[1] + dy, low[2] + dz};
+        octomap::OcTreeKey key;
+        bool inside = true;
+        for (int a = 0; a < 3; ++a) {
+          inside &= g[a] + kOffset >= 0.0 && g[a] + kOffset <= 65535.0;
+          key[a] = inside ? static_cast<octomap::key_type>(g[a] + kOffset) : 0;
+        }
+        if (!inside) continue;
+        const std::uint32_t rec = m.record_of_key(key);
+        if (rec == DenseIndex::kNone) continue;
+        const double voxels = (Eigen::Vector3d(g[0] + 0.5, g[1] + 0.5, g[2] + 0.5) * res - T.translation()).norm() / res;
+        for (const auto& [o, angle] : directions)
+          if (m.record_has(rec, o) || m.record_mixed(rec, o)) candidates.push_back({voxels + angle, rec, o});
+      }
+  std::stable_sort(candidates.begin(), candidates.end(),  // (stable: ties keep the gathering order)
+                   [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+  const int dof = chain_.dof();
+  thread_local std::vector<const float*> used;
+  used.assign(tried, tried + n_tried);
+  Eigen::VectorXd q0(dof);
+  int descents = 0;
+  for (const Candidate& c : candidates) {
+    if (descents >= options_.branch_seeds) break;
+    const float* q = m.record_solution(c.rec, c.o);
+    if (!q) q = m.record_mixed_solution(c.rec, c.o);
+    if (!q) continue;
+    bool same = false;
+    for (const float* u : used) {
+      int j = 0;
+      while (j < dof && std::abs(q[j] - u[j]) <= float(kSameBranch)) ++j;
+      if (j == dof) {
+        same = true;
+        break;
+      }
+    }
+    if (same) continue;
+    used.push_back(q);
+    ++descents;
+    for (int j = 0; j < dof; ++j) q0[j] = q[j];
+    if (auto sol = chain_.ik(T, ik_, &q0)) {
+      if (solution) *solution = *sol;
       return true;
     }
   }
