@@ -18,10 +18,10 @@ configuration reaches them. Truths are cached in ``benchmarks/out/panel_truth`` 
 Lookups: every CapabilityLookup of ``map.reachable`` and the certified lookup (``CertifiedLookup``: the map
 where it is sure, IK where it is not), with the share of poses the certified lookup sent to IK and its mean
 cost per pose (CPU microseconds, one thread), and as the reference in the same run the certified lookup without
-other IK branches (``branch_seeds=0``: only the corners' own configurations). ``--diagnose`` asks IK at two more poses per check pose, the
-exact position with the direction of the nearest orientation bin and the voxel centre with that direction
-(the cell itself), and splits the nearest-cell lookup's disagreements into orientation binning, voxel
-boundary, build misses and the truth's own misses.
+other IK branches (``branch_seeds=0``: only the corners' own configurations). ``--diagnose`` asks IK at two
+more poses per check pose, the exact position with the direction of the nearest orientation bin and the voxel
+centre with that direction (the cell itself), and splits the nearest-cell lookup's disagreements into
+orientation binning, voxel boundary, build misses and the truth's own misses.
 
 Prints one JSON document; ``--table PATH`` also writes the markdown table the docs include.
 """
@@ -181,8 +181,9 @@ def certified_figures(cmap, robot, chain, reference, poses, truth) -> dict:
     seeds_only = octoreach.CertifiedLookup(cmap, robot, reference=reference, branch_seeds=0)
     c0 = cpu_seconds()
     seeds_only.reachable(uniform, threads=1)
+    us = round(1e6 * (cpu_seconds() - c0) / n, 3)
     out["seeds_only"] = {**shares(seeds_only.reachable(poses, threads=1), truth.reachable),
-                         "us_per_pose_uniform_in_map_box": round(1e6 * (cpu_seconds() - c0) / n, 3)}
+                         "us_per_pose_uniform_in_map_box": us}
     return out
 
 

@@ -26,7 +26,9 @@ void wrap_certified_lookup(py::module_& m) {
   py::class_<CertifiedLookup>(m, "CertifiedLookup",
       "Reachability of tool poses from a capability map where the cells around a pose agree, and from IK at the\n"
       "exact pose where they do not (the pose lies where the reachable set ends between the cells, or in a mixed\n"
-      "cell). Needs a map built with solutions by this version; keeps the map alive.")
+      "cell; where the descents from the cells' configurations fail, configurations of other IK branches stored\n"
+      "around them are tried too: branch_seeds). Needs a map built with solutions by this version; keeps the map\n"
+      "alive.")
       .def(py::init([](const CapabilityMap& map, const Robot& robot, const py::object& reference,
                        const py::object& options, const py::kwargs& kw) {
              O o = options_from<O>(options, kw, "CertifiedLookup");

@@ -831,7 +831,11 @@ class CertifiedLookupOptions:
         ...
 class CertifiedLookup:
     """
-    Reachability of tool poses from a capability map, answered by IK where the 8 cells around a pose disagree.
+    Reachability of tool poses from a capability map where the cells around a pose agree, and from IK at the
+    exact pose where they do not (the pose lies where the reachable set ends between the cells, or in a mixed
+    cell; where the descents from the cells' configurations fail, configurations of other IK branches stored
+    around them are tried too: branch_seeds). Needs a map built with solutions by this version; keeps the map
+    alive.
     """
     def __init__(self, map: CapabilityMap, robot: Robot, reference: typing.Any = None, options: typing.Any = None, **kwargs) -> None:
         ...

@@ -62,8 +62,8 @@ def test_user_path_map_is_byte_identical_for_any_thread_count(tmp_path):
 def test_other_branches_reach_what_the_seeds_miss():
     """When the descents from the corners' stored configurations fail, configurations of other IK branches stored
     around the corners are tried (branch_seeds): the answers are the seeds-only answers plus poses IK reaches from
-    them, each with a solution, none lost. The iCub arm stores other branches (elbow, wrist) in neighbouring cells
-    at 0.1 m, so some reachable poses need them."""
+    them, each with a solution (checked here; the saturated IK truth may miss a pose itself), none lost. The iCub
+    arm stores other branches (elbow, wrist) in neighbouring cells at 0.1 m, so some reachable poses need them."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         robot = robots.load("icub")
@@ -80,7 +80,6 @@ def test_other_branches_reach_what_the_seeds_miss():
     assert not (before & ~after).any()
     gained = np.flatnonzero(after & ~before)
     assert len(gained) > 0
-    assert truth[gained].all()
     assert np.count_nonzero(~after & truth) < np.count_nonzero(~before & truth)
     axis = np.asarray(arm.approach_axis)
     for i in gained:

@@ -198,4 +198,3 @@ def test_cell_data_round_trips_through_files(cmap, check, poses_and_truth, robot
     cmap.save(bare)
     without = octoreach.CapabilityMap.load(bare)
     assert without.has_cell_data and not without.has_solutions and not without.has_quality
-

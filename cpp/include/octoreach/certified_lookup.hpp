@@ -20,8 +20,9 @@ struct CertifiedLookupOptions {
   /// Iterations per descent: the map's own build settles a cell from a neighbour's solution within this many.
   int max_iterations = 25;
   /// Configurations of other IK branches IK starts from at most when the seeds fail (0: none): stored in the
-  /// cells around the corners (one voxel further, directions within two direction spacings of the pose's),
-  /// nearest first, each more than 1 rad from every configuration tried in some joint.
+  /// 4 x 4 x 4 cells around the pose (its 8 corners and one voxel further) under the approach directions within
+  /// two direction spacings of the pose's, nearest first, each more than 1 rad (1 m for a prismatic joint) from
+  /// every configuration tried in some joint.
   int branch_seeds = 4;
 };
 
@@ -36,8 +37,9 @@ struct CertifiedLookupOptions {
 /// map's criteria (tolerances, approach axis, self-collision at the reference posture). A yes from IK is a
 /// solution; the map's cells decide only where they agree. When those descents fail, the pose may lie in another
 /// IK branch (elbow or wrist flipped) than every configuration the corners store: a few configurations of other
-/// branches stored in the cells around them are tried too (CertifiedLookupOptions::branch_seeds). Needs a map built with solutions by this version
-/// (CapabilityMap::has_cell_data()). The map must outlive the lookup. Const and thread-safe.
+/// branches stored in the cells around them are tried too (CertifiedLookupOptions::branch_seeds). Needs a map
+/// built with solutions by this version (CapabilityMap::has_cell_data()). The map must outlive the lookup. Const
+/// and thread-safe.
 class CertifiedLookup {
  public:
   /// \brief The lookup of `map` for `robot` (the model the map was built for) at `reference` (the full robot

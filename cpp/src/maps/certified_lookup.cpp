@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,8 +14,8 @@
 namespace octoreach {
 namespace {
 
-// Two configurations within this of each other in every joint (rad) descend into the same IK branch: a seed that
-// close to one already tried adds nothing.
+// Two configurations within this of each other in every joint (rad; continuous joints compared modulo 2 pi, metres
+// for a prismatic joint) descend into the same IK branch: a seed that close to one already tried adds nothing.
 constexpr double kSameBranch = 1.0;
 // The directions whose cells may store other branches: within this many direction spacings (sqrt(4 pi / K) for K
 // directions) of the pose's approach direction.
@@ -127,29 +128,40 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
   if (options_.branch_seeds == 0) return false;
   const CapabilityMap& m = map_;
   const OrientationSet& set = m.orientations();
-  const int rolls = set.rolls(), roll = m.orientations().nearest(T.linear(), m.approach_axis()) % rolls;
-  const Eigen::Vector3d d = T.linear() * m.approach_axis().normalized();
+  const Eigen::Vector3d& axis = m.approach_axis();
+  const int rolls = set.rolls();
+  const Eigen::Vector3d d = T.linear() * axis.normalized();
   const double spacing = std::sqrt(4.0 * M_PI / set.directions());
   const double cos_cone = std::cos(std::min(M_PI, kBranchCone * spacing));
   struct Candidate {
-    double distance;    // voxels from the position plus direction spacings from the approach direction
+    double distance;  // voxels from the position plus direction spacings from the approach direction
     std::uint32_t rec;
     int o;
   };
-  thread_local std::vector<std::pair<int, double>> directions;
+  thread_local std::vector<std::pair<int, double>> directions;  // (orientation, direction spacings away)
   thread_local std::vector<Candidate> candidates;
   directions.clear();
   candidates.clear();
   for (int i = 0; i < set.directions(); ++i) {
     const double c = set.direction(i).dot(d);
-    if (c >= cos_cone) directions.emplace_back(i * rolls + roll, std::acos(std::min(1.0, c)) / spacing);
+    if (c < cos_cone) continue;
+    int o = i * rolls;
+    if (rolls > 1) {  // the roll of this direction nearest the pose's (roll indices do not line up across directions)
+      double best = -std::numeric_limits<double>::infinity();
+      for (int r = 0; r < rolls; ++r) {
+        const double t = (set.rotation(i * rolls + r, axis).transpose() * T.linear()).trace();
+        if (t > best) best = t, o = i * rolls + r;
+      }
+    }
+    directions.emplace_back(o, std::acos(std::min(1.0, c)) / spacing);
   }
   // The 4 x 4 x 4 voxels around the position: its 8 corners (grid coordinates from the centre of key 0, as
   // CapabilityMap::corners) and one voxel further; a cell's configuration is read only when its turn comes.
   constexpr double kOffset = 32768.0;
   const double res = m.resolution();
   double low[3];
-  for (int a = 0; a < 3; ++a) low[a] = std::floor(T.translation()[a] / res - 0.5);
+  const double inv = 1.0 / res;
+  for (int a = 0; a < 3; ++a) low[a] = std::floor(T.translation()[a] * inv - 0.5);
   for (int dx = -1; dx <= 2; ++dx)
     for (int dy = -1; dy <= 2; ++dy)
       for (int dz = -1; dz <= 2; ++dz) {
@@ -170,6 +182,7 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
   std::stable_sort(candidates.begin(), candidates.end(),  // (stable: ties keep the gathering order)
                    [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
   const int dof = chain_.dof();
+  const std::vector<bool>& continuous = chain_.continuous();
   thread_local std::vector<const float*> used;
   used.assign(tried, tried + n_tried);
   Eigen::VectorXd q0(dof);
@@ -182,7 +195,11 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
     bool same = false;
     for (const float* u : used) {
       int j = 0;
-      while (j < dof && std::abs(q[j] - u[j]) <= float(kSameBranch)) ++j;
+      while (j < dof) {
+        const double gap = double(q[j]) - double(u[j]);
+        if (std::abs(continuous[j] ? std::remainder(gap, 2.0 * M_PI) : gap) > kSameBranch) break;
+        ++j;
+      }
       if (j == dof) {
         same = true;
         break;
