@@ -79,7 +79,8 @@ void wrap_certified_lookup(py::module_& m) {
            }, py::arg("poses"), "True (N,) where the map's cells decide the pose without IK.")
       .def_property_readonly("chain", &CertifiedLookup::chain)
       .def_property_readonly("reference", &CertifiedLookup::reference)
-      .def_property_readonly("options", &CertifiedLookup::options);
+      .def_property_readonly("options", [](const CertifiedLookup& c) { return c.options(); },
+                             "A copy of the options (fixed when the lookup is made).");
 }
 
 }  // namespace octoreach::py_bindings

@@ -850,7 +850,9 @@ class CertifiedLookup:
         ...
     @property
     def options(self) -> CertifiedLookupOptions:
-        ...
+        """
+        A copy of the options (fixed when the lookup is made).
+        """
     @property
     def reference(self) -> numpy.ndarray:
         ...

@@ -167,6 +167,12 @@ def test_certified_bad_input(check, robot, cmap):
         octoreach.CertifiedLookup(cmap, robot, seeds=0)
     with pytest.raises(ValueError, match="branch_seeds"):
         octoreach.CertifiedLookup(cmap, robot, branch_seeds=-1)
+    with pytest.raises(ValueError, match="reference configuration entry 0 is not finite"):
+        octoreach.CertifiedLookup(cmap, robot, reference=np.full(robot.dof, np.nan))
+    # the options are fixed when the lookup is made: changing the copy it returns changes nothing
+    c = octoreach.CertifiedLookup(cmap, robot)
+    c.options.seeds = -1
+    assert c.options.seeds == octoreach.CertifiedLookupOptions().seeds
 
 
 def test_format_1_files_still_load(robot, tmp_path):

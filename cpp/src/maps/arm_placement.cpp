@@ -1,6 +1,7 @@
 #include "octoreach/arm.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "octoreach/capability_map.hpp"
@@ -26,6 +27,9 @@ Eigen::VectorXd reference_or_default(const Robot& robot, const Chain& chain, con
   if (q.size() != robot.dof())
     throw std::invalid_argument("reference configuration has " + std::to_string(q.size()) + " entries, the robot has " +
                                 std::to_string(robot.dof()));
+  for (int i = 0; i < q.size(); ++i)
+    if (!std::isfinite(q[i]))
+      throw std::invalid_argument("reference configuration entry " + std::to_string(i) + " is not finite (NaN or inf)");
   return q;
 }
 

@@ -31,7 +31,8 @@ const CapabilityMap& usable(const CapabilityMap& map, const Robot& robot) {
         "save(path, with_solutions=True)");
   if (map.model_hash() != 0 && robot.model_hash() != map.model_hash())
     throw std::invalid_argument("the capability map was built for another robot model than '" + robot.name() +
-                                "' (model hashes differ: another URDF or allowed-collision matrix)");
+                                "' (model hashes differ: another URDF or allowed-collision matrix): pass the robot "
+                                "the map was built for, or build a map for this one");
   return map;
 }
 
