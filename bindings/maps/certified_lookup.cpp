@@ -56,7 +56,6 @@ void wrap_certified_lookup(py::module_& m) {
              if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4) throw std::invalid_argument("pose must have shape (4, 4)");
              Pose T;
              T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(a.data());
-             if (!T.matrix().allFinite()) throw std::invalid_argument("pose must be finite");
              Eigen::VectorXd q;
              bool yes;
              {

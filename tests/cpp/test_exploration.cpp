@@ -127,14 +127,17 @@ TEST(Pose, CheckRigidIsTheOneRule) {
   auto message = [](const Eigen::Matrix4d& x) {
     try {
       check_rigid(x, "camera_pose");
+      EXPECT_TRUE(is_rigid(x));
     } catch (const std::invalid_argument& e) {
+      EXPECT_FALSE(is_rigid(x));  // the batch lookups' test of a row is check_rigid's rule
       return std::string(e.what());
     }
     return std::string("accepted");
   };
+  EXPECT_EQ(message(near), "accepted");
   Eigen::Matrix4d bad = m;
   bad(0, 3) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(message(bad), "camera_pose is not finite");
+  EXPECT_EQ(message(bad), "camera_pose is not finite (NaN or inf)");
   bad = m;
   bad.topLeftCorner<3, 3>() *= 1.01;  // scaled
   EXPECT_NE(message(bad).find("camera_pose is not a rigid transform"), std::string::npos) << message(bad);

@@ -57,6 +57,7 @@ def sweep(world, tmp_path_factory):
         "AllowedCollisionOptions": o.AllowedCollisionOptions(), "ExploreOptions": o.ExploreOptions(),
         "NbvResult": o.next_best_view(m, cam, max_valid_poses=2),
         "ScoredViews": o.score_views(m, cam, np.repeat(np.eye(4)[None], 2, axis=0)),
+        "CertifiedLookup": o.CertifiedLookup(cap, robot),
     }
     by_name = {
         "robot": robot, "chain": chain, "capability_map": cap, "surface": surface, "surface_map": sm,
@@ -155,7 +156,8 @@ def valid_value(sweep, fname: str, pname: str, ann: str):
     if fname.startswith("SurfaceMap.reachability") or fname.startswith("InversePointMap.reachability"):
         if pname == "poses":
             return np.zeros((2, 4))
-    if fname in ("CapabilityMap.reachable", "score_views") and pname == "poses":
+    if fname in ("CapabilityMap.reachable", "score_views", "CertifiedLookup.reachable",
+                 "CertifiedLookup.certain") and pname == "poses":
         return np.repeat(np.eye(4)[None], 2, axis=0)
     if fname == "InversePointMap.direct_reachability" and pname == "poses":
         return np.zeros((2, 4))

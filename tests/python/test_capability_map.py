@@ -405,6 +405,24 @@ def test_bad_query_shapes(small):
         small.reachable(np.eye(4))
 
 
+@pytest.mark.parametrize("lookup", ["vote", "nearest_cell"])
+def test_non_rigid_poses_raise(small, lookup):
+    """A scaled or sheared rotation is a pose nobody meant: named, never answered (the vote would normalise the
+    approach direction of a scaled one and tilt a sheared one)."""
+    poses = np.tile(np.eye(4), (3, 1, 1))
+    poses[:, :3, 3] = small.bounds[0] + 0.5 * (small.bounds[1] - small.bounds[0])
+    small.reachable(poses, lookup=lookup)
+    for broken in (np.diag([2.0, 2.0, 2.0]), np.array([[1.0, 0.5, 0], [0, 1, 0], [0, 0, 1]]), np.zeros((3, 3))):
+        bad = poses.copy()
+        bad[2, :3, :3] = broken
+        with pytest.raises(ValueError, match="pose 2 is not a rigid transform"):
+            small.reachable(bad, lookup=lookup)
+    bad = poses.copy()
+    bad[1, 3, 2] = 0.1
+    with pytest.raises(ValueError, match="pose 1 is not a rigid transform"):
+        small.reachable(bad, lookup=lookup)
+
+
 @pytest.fixture(scope="module")
 def saved_bytes(small, tmp_path_factory):
     path = tmp_path_factory.mktemp("maps") / "small.map"

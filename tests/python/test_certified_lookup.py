@@ -161,6 +161,13 @@ def test_certified_bad_input(check, robot, cmap):
     bad[1, 0, 3] = np.nan
     with pytest.raises(ValueError, match="pose 1 is not finite"):
         check.reachable(bad)
+    sheared = np.tile(np.eye(4), (2, 1, 1))
+    sheared[1, 0, 1] = 0.5
+    for call in (check.reachable, check.certain):
+        with pytest.raises(ValueError, match="pose 1 is not a rigid transform"):
+            call(sheared)
+    with pytest.raises(ValueError, match="pose is not a rigid transform"):
+        check.solution(2.0 * np.eye(4))
     with pytest.raises(ValueError, match="another robot model"):
         octoreach.CertifiedLookup(cmap, robots.load("ur5"))
     with pytest.raises(ValueError, match="seeds"):

@@ -120,11 +120,12 @@ class CapabilityMap {
   /// Throws std::invalid_argument naming the first point with a NaN or an infinity.
   void reachability(const double* points, std::size_t n, double* out) const;
   /// \brief reachable() of n tool poses, each a row-major 4x4 matrix (16 n doubles), into `out`;
-  /// throws std::invalid_argument naming the first pose with a NaN or an infinity.
+  /// throws std::invalid_argument naming the first pose that is not a finite rigid transform (is_rigid).
   void reachable(const double* poses, std::size_t n, bool* out,
                  CapabilityLookup lookup = kDefaultCapabilityLookup) const;
   /// \brief True when the tool pose T (base link frame) is reachable by the map: orientation nearest
-  /// T's, position looked up by `lookup` (CapabilityLookup).
+  /// T's, position looked up by `lookup` (CapabilityLookup). \throws std::invalid_argument unless T is a finite
+  /// rigid transform (check_rigid).
   bool reachable(const Pose& T, CapabilityLookup lookup = kDefaultCapabilityLookup) const;
   /// \brief The stored cell: true when orientation o is reachable in the voxel holding p (the
   /// nearest_cell rule; the cell-level consumers, e.g. the point map, read cells).

@@ -50,10 +50,11 @@ class CertifiedLookup {
                   const CertifiedLookupOptions& options = {});
 
   /// \brief True when the tool pose T is reachable; with a yes from IK, `solution` (if given) receives it.
+  /// \throws std::invalid_argument unless T is a finite rigid transform (check_rigid); so does certain().
   bool reachable(const Pose& T, Eigen::VectorXd* solution = nullptr) const;
   /// \brief reachable() of n row-major 4x4 poses (16 n doubles) into `out` on `threads` threads (0: every core);
-  /// the answers do not depend on the thread count. Throws std::invalid_argument naming the first pose with a NaN
-  /// or an infinity.
+  /// the answers do not depend on the thread count. Throws std::invalid_argument naming the first pose that is not
+  /// a finite rigid transform.
   void reachable(const double* poses, std::size_t n, bool* out, int threads = 0) const;
   /// \brief True when the map's cells decide T without IK.
   bool certain(const Pose& T) const;

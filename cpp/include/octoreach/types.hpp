@@ -17,15 +17,23 @@ namespace octoreach {
 /// \brief A rigid transform (metres, right-handed, z up).
 using Pose = Eigen::Isometry3d;
 
-/// \brief Checks that `m` is a finite rigid transform: rotation orthonormal (R^T R within 1e-6 of I) and not a
-/// reflection, last row 0 0 0 1 within 1e-6 (the rule every pose argument is checked by, Python's included);
-/// \throws std::invalid_argument naming `what` otherwise.
-inline void check_rigid(const Eigen::Matrix4d& m, const std::string& what) {
-  if (!m.allFinite()) throw std::invalid_argument(what + " is not finite");
-  const Eigen::Matrix3d R = m.topLeftCorner<3, 3>();
+/// \brief True when `m` (any 4x4 Eigen expression) is a finite rigid transform: rotation orthonormal (R^T R within
+/// 1e-6 of I) and not a reflection, last row 0 0 0 1 within 1e-6 (the rule every pose argument is checked by,
+/// Python's included; check_rigid throws by it).
+template <class Derived>
+bool is_rigid(const Eigen::MatrixBase<Derived>& m) {
+  if (!m.allFinite()) return false;
+  const Eigen::Matrix3d R = m.template topLeftCorner<3, 3>();
   const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
   const double last = (m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff();
-  if (orth > 1e-6 || last > 1e-6 || R.determinant() < 0)
+  return orth <= 1e-6 && last <= 1e-6 && R.determinant() > 0;
+}
+
+/// \brief Checks that `m` is a finite rigid transform (is_rigid);
+/// \throws std::invalid_argument naming `what` otherwise.
+inline void check_rigid(const Eigen::Matrix4d& m, const std::string& what) {
+  if (!m.allFinite()) throw std::invalid_argument(what + " is not finite (NaN or inf)");
+  if (!is_rigid(m))
     throw std::invalid_argument(what + " is not a rigid transform (rotation not orthonormal with determinant 1, "
                                 "or last row not 0 0 0 1)");
 }

@@ -210,9 +210,7 @@ void check_sites(const ViewSites& sites, int current, const ExploreOptions& opti
   if (current < 0 || current >= int(sites.bases.size()))
     throw std::invalid_argument("current base index " + std::to_string(current) + " is out of range (0 to " +
                                 std::to_string(sites.bases.size() - 1) + ")");
-  for (std::size_t i = 0; i < sites.bases.size(); ++i)
-    if (!sites.bases[i].matrix().allFinite())
-      throw std::invalid_argument("base pose " + std::to_string(i) + " is not finite");
+  for (std::size_t i = 0; i < sites.bases.size(); ++i) check_rigid(sites.bases[i], "base pose " + std::to_string(i));
   if (!(sites.reach >= 0) || !std::isfinite(sites.reach))
     throw std::invalid_argument("reach must be a finite number of metres >= 0, got " + std::to_string(sites.reach));
 }

@@ -150,13 +150,14 @@ bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation, Capabil
 }
 
 bool CapabilityMap::reachable(const Pose& T, CapabilityLookup lookup) const {
+  check_rigid(T, "pose");
   const int o = orientations_.nearest(T.linear(), approach_axis_);
   if (lookup == CapabilityLookup::vote) return vote_(T.translation(), o);
   return nearest_cell_(T.translation(), o);
 }
 
 void CapabilityMap::reachability(const double* points, std::size_t n, double* out) const {
-  detail::batch_lookup_finite(points, n, 3, "point", " (NaN or inf)", [&](std::size_t i) {
+  detail::batch_lookup_valid(points, n, 3, "point", " (NaN or inf)", [&](std::size_t i) {
     const double* p = points + 3 * i;
     out[i] = reachability(Eigen::Vector3d(p[0], p[1], p[2]));
   });
@@ -164,7 +165,7 @@ void CapabilityMap::reachability(const double* points, std::size_t n, double* ou
 
 void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, CapabilityLookup lookup) const {
   if (grid_.empty()) {
-    detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
+    detail::batch_lookup_valid(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
       Pose T;
       T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
       out[i] = reachable(T, lookup);
@@ -177,8 +178,8 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
   // direction of the approach axis.
   const Eigen::Vector3d axis = approach_axis_.normalized();
   const bool one_roll = orientations_.rolls() == 1;
-  detail::batch_lookup_finite_groups(poses, n, 16, "pose", " (NaN or inf)", kGroup,
-                                     [&](std::size_t i0, std::size_t i1, const bool* finite) {
+  detail::batch_lookup_valid_groups(poses, n, 16, "pose", " (NaN or inf)", kGroup,
+                                     [&](std::size_t i0, std::size_t i1, const bool* valid) {
     int o[kGroup];
     octomap::OcTreeKey low[kGroup];
     double frac[kGroup][3];
@@ -186,7 +187,7 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t k = i - i0;
       keyed[k] = false;
-      if (!finite[k]) continue;
+      if (!valid[k]) continue;
       const double* m = poses + 16 * i;
       Eigen::Matrix3d R;
       R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
@@ -213,7 +214,7 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
     }
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t k = i - i0;
-      if (!finite[k]) continue;
+      if (!valid[k]) continue;
       if (lookup == CapabilityLookup::vote) {
         out[i] = keyed[k] && vote_corners_(low[k], frac[k], o[k]);
       } else {

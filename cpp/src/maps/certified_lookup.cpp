@@ -104,11 +104,13 @@ CertifiedLookup::Cells CertifiedLookup::cells(const Pose& T, const float** seeds
 }
 
 bool CertifiedLookup::certain(const Pose& T) const {
+  check_rigid(T, "pose");
   int n = 0;
   return cells(T, nullptr, n) != Cells::mixed;
 }
 
 bool CertifiedLookup::reachable(const Pose& T, Eigen::VectorXd* solution) const {
+  check_rigid(T, "pose");
   const float* seeds[kMaxSeeds];
   int n = 0;
   const Cells answer = cells(T, seeds, n);
@@ -219,7 +221,7 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
 }
 
 void CertifiedLookup::reachable(const double* poses, std::size_t n, bool* out, int threads) const {
-  detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
+  detail::batch_lookup_valid(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
     Pose T;
     T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
     out[i] = reachable(T);
@@ -227,7 +229,7 @@ void CertifiedLookup::reachable(const double* poses, std::size_t n, bool* out, i
 }
 
 void CertifiedLookup::certain(const double* poses, std::size_t n, bool* out) const {
-  detail::batch_lookup_finite(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
+  detail::batch_lookup_valid(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
     Pose T;
     T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
     out[i] = certain(T);

@@ -46,7 +46,7 @@ double PoseMap::value(double x, double y, double z, double theta) const {
 }
 
 void PoseMap::values(const double* rows, std::size_t n, double* out) const {
-  detail::batch_lookup_finite(rows, n, 4, "pose", " (x, y, z, theta in m and rad)", [&](std::size_t i) {
+  detail::batch_lookup_valid(rows, n, 4, "pose", " (x, y, z, theta in m and rad)", [&](std::size_t i) {
     const double* r = rows + 4 * i;
     out[i] = value(r[0], r[1], r[2], r[3]);
   });

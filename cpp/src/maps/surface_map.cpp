@@ -250,7 +250,7 @@ SurfaceMap SurfaceMap::build(const Robot& robot, const CapabilityMap& cap, const
 }
 
 void SurfaceMap::reachability(const double* rows, std::size_t n, double* out) const {
-  detail::batch_lookup_finite(rows, n, 4, "base pose", " (x, y, z, theta in m and rad)", [&](std::size_t i) {
+  detail::batch_lookup_valid(rows, n, 4, "base pose", " (x, y, z, theta in m and rad)", [&](std::size_t i) {
     const double* r = rows + 4 * i;
     out[i] = reachability(r[0], r[1], r[2], r[3]);
   });
