@@ -3,6 +3,7 @@
 /// \brief Common types of octoreach: poses, boxes, progress callbacks, errors.
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -22,11 +23,14 @@ using Pose = Eigen::Isometry3d;
 /// Python's included; check_rigid throws by it).
 template <class Derived>
 bool is_rigid(const Eigen::MatrixBase<Derived>& m) {
-  if (!m.allFinite()) return false;
-  const Eigen::Matrix3d R = m.template topLeftCorner<3, 3>();
-  const double orth = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  const double last = (m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff();
-  return orth <= 1e-6 && last <= 1e-6 && R.determinant() > 0;
+  // (R^T R)_ij is column i . column j; each comparison is false for a NaN or an infinity, so only the translation
+  // needs its own finiteness test. Written out (no temporaries, no branches): the batch lookups test every row.
+  const auto near = [](double x, double v) { return std::abs(x - v) <= 1e-6; };
+  const Eigen::Vector3d a = m.template block<3, 1>(0, 0), b = m.template block<3, 1>(0, 1),
+                        c = m.template block<3, 1>(0, 2);
+  return near(a.dot(a), 1) & near(b.dot(b), 1) & near(c.dot(c), 1) & near(a.dot(b), 0) & near(a.dot(c), 0) &
+         near(b.dot(c), 0) & (a.dot(b.cross(c)) > 0) & near(m(3, 0), 0) & near(m(3, 1), 0) & near(m(3, 2), 0) &
+         near(m(3, 3), 1) & std::isfinite(m(0, 3)) & std::isfinite(m(1, 3)) & std::isfinite(m(2, 3));
 }
 
 /// \brief Checks that `m` is a finite rigid transform (is_rigid);
