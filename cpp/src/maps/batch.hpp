@@ -53,7 +53,7 @@ struct RowRule {
 /// answer.
 template <class F>
 void batch_lookup_valid(const double* rows, std::size_t n, int width, const char* what, const char* hint, F&& f,
-                         int threads = -1, std::size_t chunk = 4096) {
+                        int threads = -1, std::size_t chunk = 4096) {
   const RowRule rule{width, what, hint};
   std::atomic<std::size_t> first_bad{n};
   batch_lookup(n, [&](std::size_t i) {

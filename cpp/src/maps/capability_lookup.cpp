@@ -179,7 +179,7 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
   const Eigen::Vector3d axis = approach_axis_.normalized();
   const bool one_roll = orientations_.rolls() == 1;
   detail::batch_lookup_valid_groups(poses, n, 16, "pose", " (NaN or inf)", kGroup,
-                                     [&](std::size_t i0, std::size_t i1, const bool* valid) {
+                                    [&](std::size_t i0, std::size_t i1, const bool* valid) {
     int o[kGroup];
     octomap::OcTreeKey low[kGroup];
     double frac[kGroup][3];
