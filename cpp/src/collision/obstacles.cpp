@@ -18,7 +18,7 @@ using detail::world_aabb;
 
 void Obstacles::add(const Shape& shape, const std::string& name) {
   Shape s = shape.with_geometry();
-  if (!s.origin.matrix().allFinite()) throw std::invalid_argument("obstacle pose must be finite");
+  check_rigid(s.origin, "obstacle pose");
   auto obj = std::make_shared<fcl::CollisionObjectd>(s.geometry, fcl::Transform3d(s.origin.matrix()));
   obj->computeAABB();
   objects_.push_back(obj);
@@ -82,7 +82,7 @@ bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) cons
   if (!size.allFinite() || (size.array() < 0).any() || size.maxCoeff() > kMaxBoxSize)
     throw std::invalid_argument("collides_box: size must be finite, >= 0 and at most " + std::to_string(kMaxBoxSize) +
                                 " m per axis");
-  if (!pose.matrix().allFinite()) throw std::invalid_argument("collides_box: pose must be finite");
+  check_rigid(pose, "collides_box: pose");
   fcl::Boxd box(size);
   box.computeLocalAABB();
   return collides(box, pose);

@@ -18,10 +18,10 @@ namespace {
 
 using BVH = fcl::BVHModel<fcl::OBBRSSd>;
 
-// A finite pose whose position lies within limits::kCoordinate (far beyond, the millimetres the collision
-// checks work in are lost, and extents add up to infinity).
+// A rigid pose (check_rigid) whose position lies within limits::kCoordinate (far beyond, the millimetres the
+// collision checks work in are lost, and extents add up to infinity).
 void check_pose(const Pose& pose, const char* what) {
-  if (!pose.matrix().allFinite()) throw std::invalid_argument(std::string(what) + " pose must be finite");
+  check_rigid(pose, std::string(what) + " pose");
   detail::check_coordinates(pose.translation(), (std::string(what) + " position").c_str());
 }
 
@@ -133,7 +133,7 @@ Shape Shape::of(std::shared_ptr<fcl::CollisionGeometryd> geometry, const Pose& p
       throw std::invalid_argument("unsupported FCL geometry (node type " + std::to_string(geometry->getNodeType()) +
                                   "): a shape is a box, cylinder, sphere, BVH or convex mesh, or OcTree");
   }
-  if (!pose.matrix().allFinite()) throw std::invalid_argument("obstacle pose must be finite");
+  check_rigid(pose, "obstacle pose");
   return with_geometry_at(std::move(s), std::move(geometry), pose);
 }
 

@@ -296,9 +296,7 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
                         const NbvOptions& opt, bool score_invalid) {
   detail::CancellableScope cancellable;  // poses are polled between them; the map is only read
   detail::validate_options(cam, opt);
-  for (std::size_t i = 0; i < poses.size(); ++i)
-    if (!poses[i].matrix().allFinite())
-      throw std::invalid_argument("pose " + std::to_string(i) + " is not finite");
+  for (std::size_t i = 0; i < poses.size(); ++i) check_rigid(poses[i], "pose " + std::to_string(i));
   ScoredViews out;
   out.views.resize(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) out.views[i].pose = poses[i];

@@ -373,7 +373,7 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S) {
 
 void expect_view(ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, const NbvOptions& opt) {
   detail::validate_options(cam, opt);
-  if (!pose.matrix().allFinite()) throw std::invalid_argument("camera pose must be finite");
+  check_rigid(pose, "camera pose");
   detail::ExplorationState& S = detail::mutable_state(map);
   detail::MapGuard guard(S, true);
   const auto p = detail::pass_probabilities(map, opt);
@@ -412,7 +412,7 @@ ViewGains view_gains(const ExplorationMap& map, const CameraIntrinsics& cam, con
   if (!(p >= 0 && p <= 1) || !(p_void >= 0 && p_void <= 1))
     throw std::invalid_argument("pass probabilities must be in [0, 1], got " + std::to_string(p) + " and " +
                                 std::to_string(p_void));
-  if (!pose.matrix().allFinite()) throw std::invalid_argument("camera pose must be finite");
+  check_rigid(pose, "camera pose");
   auto guard = detail::read_guard(map);
   return detail::view_gains_unlocked(map, cam, pose, sw, sh, p, p_void, learned);
 }
