@@ -48,7 +48,7 @@ def _valid(world, label, pname, ann):
         return v
     if label == "Robot.configuration" and pname == "values":
         return {world["instances"]["Robot"].joint_names[0]: 0.0}
-    if label == "Obstacles.add_mesh" and pname == "path":
+    if label in ("Obstacles.add_mesh", "Shape.mesh_file") and pname == "path":
         return str(world["dir"] / "tetra.stl")
     return valid_value(world, label, pname, ann)
 

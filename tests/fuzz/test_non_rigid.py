@@ -1,5 +1,6 @@
 """Non-rigid poses, API-wide: every public callable of octoreach._core that takes a 4x4 pose or an (N, 4, 4) batch
-is called with each of these in turn in its first pose (the other arguments valid) and must raise ValueError,
+as an argument (options' pose fields are not swept) is called with each of these in turn in its first pose (the
+other arguments valid, the call with them succeeding) and must raise a ValueError that says "rigid transform",
 never answer: a scaled rotation, a sheared one, a reflection, a zero rotation and a last row other than 0 0 0 1.
 A pose nobody meant would otherwise get an answer (a lookup normalises the approach direction of a scaled
 rotation, a shear tilts it).
@@ -9,7 +10,9 @@ swept without editing this file."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
+from octoreach import _core
 from test_non_finite import _outcome, _valid, world  # noqa: F401 - the non-finite sweep's fixture, reused
 from test_wrong_types import _required, swept_signatures, sweep  # noqa: F401
 
@@ -61,12 +64,16 @@ def non_rigid_variants(v):
 
 
 def sweep_poses(world):
-    """(label, argument, break, exception or None) for every pose argument of every callable."""
+    """(label, argument, break, exception or None) for every pose argument of every callable whose call with the
+    unbroken pose succeeds (else the break would prove nothing)."""
     for label, target, params in swept_signatures(world):
         n = _required(params)
         for i, (pname, ann, _) in enumerate(params):
             base = [_valid(world, label, qn, qa) for (qn, qa, _) in params[: max(i + 1, n)]]
-            for name, v in non_rigid_variants(base[i]):
+            variants = non_rigid_variants(base[i])
+            if not variants or _outcome(lambda: target(*base)) is not None:
+                continue
+            for name, v in variants:
                 args = list(base)
                 args[i] = v
                 yield label, pname, name, _outcome(lambda: target(*args))
@@ -79,10 +86,21 @@ def test_every_pose_argument_rejects_non_rigid_transforms(world):
         swept.add(label)
         if err is None:
             accepted.append(f"{label}({pname}: {name})")
-        elif not isinstance(err, ValueError):
+        elif not isinstance(err, ValueError) or "rigid transform" not in str(err):
             wrong.append(f"{label}({pname}: {name}): {type(err).__name__}: {str(err)[:160]}")
     print(f"swept {n} calls of {len(swept)} callables")
     assert {"CapabilityMap.reachable", "CertifiedLookup.reachable", "CertifiedLookup.certain",
             "CertifiedLookup.solution", "Chain.ik"} <= swept
     assert not accepted, "non-rigid pose accepted:\n" + "\n".join(accepted)
     assert not wrong, "\n".join(wrong)
+
+
+def test_pose_fields_of_options_reject_non_rigid_transforms(world):
+    """The pose fields of the search options (where the chain and the capability map stand) by the same rule."""
+    m = world["by_name"]["map"]
+    cam = _core.DepthCamera(16, 12, 1.0, 3.0)
+    for field in ("chain_base", "capability_base"):
+        _core.score_views(m, cam, np.eye(4)[None], **{field: np.eye(4)})
+        for name, bad in non_rigid_variants(np.eye(4)):
+            with pytest.raises(ValueError, match="rigid transform"):
+                _core.score_views(m, cam, np.eye(4)[None], **{field: bad})

@@ -75,6 +75,8 @@ std::pair<std::shared_ptr<octomap::OcTree>, std::size_t> unknown_cells_tree(cons
 
 void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
   cam.validate();
+  check_rigid(opt.chain_base, "chain_base");
+  check_rigid(opt.capability_base, "capability_base");
   if (opt.max_valid_poses <= 0 || opt.orientations_per_cell <= 0 || opt.max_candidate_cells <= 0)
     throw std::invalid_argument("max_valid_poses, orientations_per_cell and max_candidate_cells must be positive");
   const std::uint64_t poses = std::uint64_t(opt.max_candidate_cells) * std::uint64_t(opt.orientations_per_cell);

@@ -28,6 +28,7 @@ Eigen::Vector3d log_so3(const Eigen::Matrix3d& R) {
 
 void check_ik_request(const Chain& c, const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) {
   check_rigid(target, "IK target pose");
+  check_rigid(o.base_pose, "IK base_pose");
   if (!(o.position_tolerance > 0) || !std::isfinite(o.position_tolerance))
     throw std::invalid_argument("IK position_tolerance must be a positive finite number of metres, got " +
                                 std::to_string(o.position_tolerance));

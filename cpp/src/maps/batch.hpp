@@ -43,8 +43,10 @@ struct RowRule {
   }
   [[noreturn]] void raise(const double* r, std::size_t i) const {
     const std::string name = std::string(what) + " " + std::to_string(i);
-    if (width == 16) check_rigid(Eigen::Matrix4d(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(r)), name);
-    throw std::invalid_argument(name + " is not finite" + hint);
+    if (width != 16) throw std::invalid_argument(name + " is not finite" + hint);
+    check_rigid(Eigen::Matrix4d(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(r)), name);
+    // valid() refused the row: a pose at the tolerance's edge that check_rigid's copy rounds the other way
+    throw std::invalid_argument(name + " is not a rigid transform (at the edge of the tolerance)");
   }
 };
 

@@ -38,6 +38,7 @@ double InversePointMap::direct_reachability(const CapabilityMap& cap, const Pose
                                             const std::vector<int>& orientations, double x, double y, double z,
                                             double theta) {
   if (orientations.empty()) throw std::invalid_argument("the grasp set is empty");
+  check_rigid(reference_to_arm, "reference_to_arm");
   Eigen::Vector3d p = target_in_arm(reference_to_arm, x, y, z, theta);
   int count = 0;
   for (int g : orientations) count += cap.reachable(p, mapped_orientation(cap, reference_to_arm, g, theta));

@@ -134,7 +134,7 @@ Surface Surface::rectangle(double sx, double sy, double height, double x, double
 void Surface::add_box(const Eigen::Vector3d& size, const Pose& pose) {
   detail::check_coordinates(size, "size");
   if (!(size.array() > 0).all()) throw std::invalid_argument("box size must be positive, got " + detail::format_point(size));
-  detail::check_finite(pose.matrix(), "pose");
+  check_rigid(pose, "pose");
   detail::check_coordinates(pose.translation(), "pose translation");
   boxes_.emplace_back(size, pose);
 }

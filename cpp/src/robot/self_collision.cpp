@@ -211,6 +211,7 @@ bool Robot::links_in_collision(const std::vector<Pose>& poses, const Obstacles& 
 
 bool Robot::in_collision(const Eigen::VectorXd& q, const Obstacles& obstacles, const Pose& base_pose,
                          bool check_self, const std::vector<int>* only_links) const {
+  check_rigid(base_pose, "base_pose");
   thread_local std::vector<Pose> poses;
   link_poses(q, poses);
   if (links_in_collision(poses, obstacles, base_pose, only_links)) return true;
