@@ -43,6 +43,11 @@ measures fairly; the wall-clock target needs a quiet one. The children's maps ar
 byte (``same_bytes``: sha256 of the saved file). ``--compare-only`` runs only this comparison (at
 ``--resolution``; e.g. ``--resolution 0.025 --compare-only --reference ... --repeats 1``).
 
+Lookup cost on a shared machine: with ``--reference`` the saved map (with solutions) is also loaded by child
+processes of each octoreach in turn (``--repeats`` each) that time the plain lookups (as above, wall clock, every
+core) and the certified lookup (CPU microseconds per uniform pose, one thread) on the same poses:
+``lookup_comparison`` gives each side's medians, the ratios, and whether both sides gave the same answers.
+
 Prints one JSON document. ``--quick`` runs at 0.1 m with fewer poses; ``--also-fine`` adds the 0.025 m build (its
 agreement is measured on the same poses).
 """
@@ -162,12 +167,16 @@ def build_map(robot, resolution, directions, threads, seed, progress=False):
                                threads=threads, progress=progress)
 
 
+def map_paths(workdir, resolution):
+    """The files build_and_measure saves the map to: without and with its joint solutions."""
+    return os.path.join(workdir, f"pr2_{resolution}.map"), os.path.join(workdir, f"pr2_{resolution}_solutions.map")
+
+
 def build_and_measure(robot, resolution, directions, threads, seed, workdir, progress):
     t0, c0 = time.perf_counter(), cpu_seconds()
     cmap = build_map(robot, resolution, directions, threads, seed, progress)
     wall, cpu = time.perf_counter() - t0, cpu_seconds() - c0
-    plain = os.path.join(workdir, f"pr2_{resolution}.map")
-    full = os.path.join(workdir, f"pr2_{resolution}_solutions.map")
+    plain, full = map_paths(workdir, resolution)
     cmap.save(plain)
     cmap.save(full, with_solutions=True)
     stats = dict(cmap.stats)
@@ -197,14 +206,40 @@ def child_build(resolution, directions, threads, seed) -> dict:
             "reachable_cells": int(cmap.stats["reachable_cells"]), "octoreach": os.path.dirname(octoreach.__file__)}
 
 
-def compare_builds(reference_path, resolution, directions, threads, seed, repeats) -> dict:
-    """Builds with this octoreach and with the one on `reference_path`, interleaved, in child processes."""
+def child_lookups(map_path, lookups, seed) -> dict:
+    """The lookups of the map at `map_path` in this process (the child of compare_lookups): seconds per item."""
+    cmap = octoreach.CapabilityMap.load(map_path)
+    robot = robots.pr2()
+    lo, hi = cmap.bounds
+    big = random_poses(lo, hi, lookups, np.random.default_rng(seed + 3))
+    points = np.ascontiguousarray(big[:, :3, 3])
+    cmap.reachable(big[:1000])
+    answers = hashlib.sha256()
+    out = {}
+    for name, fn in (("reachable_us_per_pose", lambda: cmap.reachable(big)),
+                     ("reachable_nearest_cell_us_per_pose", lambda: cmap.reachable(big, lookup="nearest_cell")),
+                     ("reachability_us_per_point", lambda: cmap.reachability(points))):
+        out[name] = 1e6 * median_seconds(fn) / lookups
+        answers.update(np.ascontiguousarray(fn()).tobytes())
+    check = octoreach.CertifiedLookup(cmap, robot)
+    uniform = random_poses(lo, hi, 20000, np.random.default_rng(seed + 4))
+    cpu = []
+    for _ in range(3):
+        c0 = cpu_seconds()
+        yes = check.reachable(uniform, threads=1)
+        cpu.append(cpu_seconds() - c0)
+    out["certified_cpu_us_per_uniform_pose"] = 1e6 * statistics.median(cpu) / len(uniform)
+    answers.update(yes.tobytes())
+    out["answers_sha256"] = answers.hexdigest()
+    return out
+
+
+def compare_children(reference_path, child_args, repeats) -> dict:
+    """Runs this script with `child_args` under this octoreach and the one on `reference_path`, interleaved."""
     def run(pythonpath):
         env = dict(os.environ)
-        if pythonpath is not None:
-            env["PYTHONPATH"] = pythonpath
-        cmd = [sys.executable, os.path.abspath(__file__), "--child-build", "--resolution", str(resolution),
-               "--directions", str(directions), "--threads", str(threads), "--seed", str(seed)]
+        env["PYTHONPATH"] = pythonpath
+        cmd = [sys.executable, os.path.abspath(__file__), *child_args]
         return json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
 
     this_path = os.path.dirname(os.path.dirname(os.path.abspath(octoreach.__file__)))
@@ -212,6 +247,30 @@ def compare_builds(reference_path, resolution, directions, threads, seed, repeat
     for _ in range(repeats):
         runs["reference"].append(run(reference_path))
         runs["this"].append(run(this_path))
+    return runs
+
+
+def compare_lookups(reference_path, map_path, lookups, seed, repeats) -> dict:
+    """The lookups of one saved map with this octoreach and with the one on `reference_path`, interleaved."""
+    runs = compare_children(reference_path, ["--child-lookups", map_path, "--lookups", str(lookups),
+                                             "--seed", str(seed)], repeats)
+    figures = [k for k in runs["this"][0] if k != "answers_sha256"]
+    med = {k: {f: round(statistics.median(r[f] for r in v), 4) for f in figures} for k, v in runs.items()}
+    return {
+        "reference_pythonpath": reference_path,
+        "repeats": repeats,
+        "interleaved": True,
+        "median": med,
+        "speedup": {f: round(med["reference"][f] / med["this"][f], 3) for f in figures},
+        "same_answers": len({r["answers_sha256"] for v in runs.values() for r in v}) == 1,
+        "load_average_after": [round(x, 2) for x in os.getloadavg()],
+    }
+
+
+def compare_builds(reference_path, resolution, directions, threads, seed, repeats) -> dict:
+    """Builds with this octoreach and with the one on `reference_path`, interleaved, in child processes."""
+    runs = compare_children(reference_path, ["--child-build", "--resolution", str(resolution), "--directions",
+                                             str(directions), "--threads", str(threads), "--seed", str(seed)], repeats)
     med = {k: {m: round(statistics.median(r[m] for r in v), 2) for m in ("wall", "cpu")} for k, v in runs.items()}
     return {
         "reference_pythonpath": reference_path,
@@ -284,9 +343,13 @@ def main(argv=None) -> int:
     ap.add_argument("--compare-only", action="store_true",
                     help="only the interleaved build comparison with --reference (no agreement, lookups, plot)")
     ap.add_argument("--child-build", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--child-lookups", metavar="MAP", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child_build:
         json.dump(child_build(args.resolution, args.directions, args.threads, args.seed), sys.stdout)
+        return 0
+    if args.child_lookups:
+        json.dump(child_lookups(args.child_lookups, args.lookups, args.seed), sys.stdout)
         return 0
     if args.quick:
         args.resolution, args.poses, args.lookups = 0.1, 2000, 100_000
@@ -354,6 +417,9 @@ def main(argv=None) -> int:
             "reachability_us_per_point": round(1e6 * s_point / args.lookups, 4),
         }
         del big, points
+        if args.reference:
+            out["lookup_comparison"] = compare_lookups(args.reference, map_paths(workdir, args.resolution)[1],
+                                                       args.lookups, args.seed, args.repeats)
 
         if args.also_fine:
             fine_map, fine = build_and_measure(robot, 0.025, args.directions, args.threads, args.seed, workdir,

@@ -242,6 +242,14 @@ TEST(CapabilityMap, PlainLookupsReadTheRecords) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("pose 1234 is not finite"), std::string::npos) << e.what();
     }
+    bad = rows;
+    for (int k : {0, 4, 8}) bad[16 * 2000 + k] *= 1.5;  // a stretched rotation: both paths check every row
+    try {
+      m.reachable(bad.data(), n, out.get());
+      ADD_FAILURE() << "a non-rigid pose was answered";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("pose 2000 is not a rigid transform"), std::string::npos) << e.what();
+    }
     CapabilityMapTestAccess::drop_grid(m);
   }
 }

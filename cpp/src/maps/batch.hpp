@@ -30,7 +30,8 @@ inline void note_bad_row(std::atomic<std::size_t>& first_bad, std::size_t i) {
 /// The rule of a batch's rows: finite numbers (points, planar poses), or with width 16 a row-major 4x4 pose that
 /// must also be a rigid transform (octoreach::is_rigid: a sheared or scaled rotation would give an answer for a
 /// pose nobody meant). valid() is checked as a row is read (inside the parallel loop: the batch is touched once);
-/// raise() throws std::invalid_argument "<what> <i> is not finite<hint>" or check_rigid's message.
+/// raise() throws std::invalid_argument "<what> <i> is not finite<hint>", or with width 16 check_rigid's message
+/// (its hint unused).
 struct RowRule {
   int width;
   const char* what;

@@ -165,10 +165,13 @@ void CapabilityMap::reachability(const double* points, std::size_t n, double* ou
 
 void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, CapabilityLookup lookup) const {
   if (grid_.empty()) {
-    detail::batch_lookup_valid(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
-      Pose T;
-      T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
-      out[i] = reachable(T, lookup);
+    detail::batch_lookup_valid(poses, n, 16, "pose", "", [&](std::size_t i) {  // (rows checked as they are read)
+      const double* m = poses + 16 * i;
+      Eigen::Matrix3d R;
+      R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
+      const int o = orientations_.nearest(R, approach_axis_);
+      const Eigen::Vector3d p(m[3], m[7], m[11]);
+      out[i] = lookup == CapabilityLookup::vote ? vote_(p, o) : nearest_cell_(p, o);
     });
     return;
   }
@@ -178,7 +181,7 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
   // direction of the approach axis.
   const Eigen::Vector3d axis = approach_axis_.normalized();
   const bool one_roll = orientations_.rolls() == 1;
-  detail::batch_lookup_valid_groups(poses, n, 16, "pose", " (NaN or inf)", kGroup,
+  detail::batch_lookup_valid_groups(poses, n, 16, "pose", "", kGroup,
                                     [&](std::size_t i0, std::size_t i1, const bool* valid) {
     int o[kGroup];
     octomap::OcTreeKey low[kGroup];

@@ -111,10 +111,14 @@ bool CertifiedLookup::certain(const Pose& T) const {
 
 bool CertifiedLookup::reachable(const Pose& T, Eigen::VectorXd* solution) const {
   check_rigid(T, "pose");
+  return answer(T, solution);
+}
+
+bool CertifiedLookup::answer(const Pose& T, Eigen::VectorXd* solution) const {
   const float* seeds[kMaxSeeds];
   int n = 0;
-  const Cells answer = cells(T, seeds, n);
-  if (answer != Cells::mixed) return answer == Cells::reachable;
+  const Cells verdict = cells(T, seeds, n);
+  if (verdict != Cells::mixed) return verdict == Cells::reachable;
   Eigen::VectorXd q0(chain_.dof());
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < chain_.dof(); ++j) q0[j] = seeds[i][j];
@@ -221,18 +225,19 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
 }
 
 void CertifiedLookup::reachable(const double* poses, std::size_t n, bool* out, int threads) const {
-  detail::batch_lookup_valid(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
+  detail::batch_lookup_valid(poses, n, 16, "pose", "", [&](std::size_t i) {  // (rows checked as they are read)
     Pose T;
     T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
-    out[i] = reachable(T);
+    out[i] = answer(T, nullptr);
   }, threads, 64);
 }
 
 void CertifiedLookup::certain(const double* poses, std::size_t n, bool* out) const {
-  detail::batch_lookup_valid(poses, n, 16, "pose", " (NaN or inf)", [&](std::size_t i) {
+  detail::batch_lookup_valid(poses, n, 16, "pose", "", [&](std::size_t i) {
     Pose T;
     T.matrix() = Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(poses + 16 * i);
-    out[i] = certain(T);
+    int seeds = 0;
+    out[i] = cells(T, nullptr, seeds) != Cells::mixed;
   });
 }
 
