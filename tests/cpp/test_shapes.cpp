@@ -78,6 +78,18 @@ TEST(Shapes, SceneObstaclesHoldEveryShape) {
     EXPECT_TRUE(o.collides_box(Eigen::Vector3d::Constant(0.01), at)) << x;
     EXPECT_TRUE(s.solid(at.translation())) << x;
   }
+  // Both queries refuse a pose that is not a rigid transform (a scaled one would place the box elsewhere).
+  Pose scaled = Pose::Identity();
+  scaled.linear() *= 2.0;
+  fcl::Boxd small(0.01, 0.01, 0.01);
+  small.computeLocalAABB();
+  EXPECT_THROW(o.collides_box(Eigen::Vector3d::Constant(0.01), scaled), std::invalid_argument);
+  try {
+    o.collides(small, scaled);
+    ADD_FAILURE() << "a scaled pose was answered";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("collides: pose is not a rigid transform"), std::string::npos) << e.what();
+  }
   Scene copy;
   copy.add(o);  // Obstacles -> Scene -> Obstacles keeps every shape
   EXPECT_EQ(copy.shapes().size(), 5u);

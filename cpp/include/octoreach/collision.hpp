@@ -78,6 +78,7 @@ class Obstacles {
   /// \brief Internal: obstacle `i`'s local AABB placed at its pose (world frame), the exact pre-test collides uses.
   const detail::Obb& oriented_box(std::size_t i) const { return *obbs_[i]; }
   /// \brief True when `geometry` at `pose` (world frame) touches any obstacle.
+  /// \throws std::invalid_argument unless `pose` is a finite rigid transform (check_rigid).
   bool collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
   /// \brief True when `object` (world frame, AABB computed) touches any obstacle; AABBs reject first.
   bool collides(const fcl::CollisionObjectd& object) const;

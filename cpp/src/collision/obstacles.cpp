@@ -14,6 +14,24 @@ namespace {
 using detail::geometry_collide;
 using detail::world_aabb;
 
+// Obstacles::collides of a pose already checked: world AABBs first, then an exact pre-test (the oriented boxes of
+// the geometry and of the obstacle, their local AABBs placed, clearly apart means no contact), and FCL (whose every
+// call fits a bounding volume to the obstacle) only for the rest.
+bool touches(const Obstacles& obstacles, const fcl::CollisionGeometryd& geometry, const Pose& pose) {
+  const fcl::AABBd box = world_aabb(geometry, pose);
+  std::optional<detail::Obb> shape;
+  const auto& objects = obstacles.objects();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const auto& o = objects[i];
+    if (!o->getAABB().overlap(box)) continue;
+    if (!shape) shape = detail::Obb::of(geometry, pose);
+    if (shape->apart(obstacles.oriented_box(i))) continue;
+    if (geometry_collide(&geometry, pose, o->collisionGeometry().get(), Pose(o->getTransform().matrix())))
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void Obstacles::add(const Shape& shape, const std::string& name) {
@@ -85,24 +103,12 @@ bool Obstacles::collides_box(const Eigen::Vector3d& size, const Pose& pose) cons
   check_rigid(pose, "collides_box: pose");
   fcl::Boxd box(size);
   box.computeLocalAABB();
-  return collides(box, pose);
+  return touches(*this, box, pose);
 }
 
-// World AABBs first, then an exact pre-test: the oriented boxes of the geometry and of the obstacle
-// (their local AABBs placed) clearly apart means no contact, and FCL (whose every call fits a bounding
-// volume to the obstacle) is skipped.
 bool Obstacles::collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const {
-  const fcl::AABBd box = world_aabb(geometry, pose);
-  std::optional<detail::Obb> shape;
-  for (std::size_t i = 0; i < objects_.size(); ++i) {
-    const auto& o = objects_[i];
-    if (!o->getAABB().overlap(box)) continue;
-    if (!shape) shape = detail::Obb::of(geometry, pose);
-    if (shape->apart(*obbs_[i])) continue;
-    if (geometry_collide(&geometry, pose, o->collisionGeometry().get(), Pose(o->getTransform().matrix())))
-      return true;
-  }
-  return false;
+  check_rigid(pose, "collides: pose");
+  return touches(*this, geometry, pose);
 }
 
 bool Obstacles::collides(const fcl::CollisionObjectd& object) const {

@@ -72,7 +72,7 @@ void batch_lookup_valid(const double* rows, std::size_t n, int width, const char
 /// then overlap instead of stalling one row after another). group is at most 64.
 template <class G>
 void batch_lookup_valid_groups(const double* rows, std::size_t n, int width, const char* what, const char* hint,
-                                std::size_t group, G&& g) {
+                               std::size_t group, G&& g) {
   const RowRule rule{width, what, hint};
   std::atomic<std::size_t> first_bad{n};
   const std::size_t groups = (n + group - 1) / group;
