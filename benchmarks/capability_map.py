@@ -234,13 +234,21 @@ def child_lookups(map_path, lookups, seed) -> dict:
     return out
 
 
+class ChildFailed(RuntimeError):
+    """A child process of a comparison failed (its stderr's end is the message)."""
+
+
 def compare_children(reference_path, child_args, repeats) -> dict:
-    """Runs this script with `child_args` under this octoreach and the one on `reference_path`, interleaved."""
+    """Runs this script with `child_args` under this octoreach and the one on `reference_path`, interleaved.
+    Raises ChildFailed with the child's error when one fails (e.g. a reference build too old for the call)."""
     def run(pythonpath):
         env = dict(os.environ)
         env["PYTHONPATH"] = pythonpath
         cmd = [sys.executable, os.path.abspath(__file__), *child_args]
-        return json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
+        done = subprocess.run(cmd, env=env, capture_output=True, text=True)
+        if done.returncode != 0:
+            raise ChildFailed(f"{child_args[0]} under PYTHONPATH={pythonpath} failed: {done.stderr[-2000:]}")
+        return json.loads(done.stdout)
 
     this_path = os.path.dirname(os.path.dirname(os.path.abspath(octoreach.__file__)))
     runs = {"reference": [], "this": []}
@@ -255,12 +263,13 @@ def compare_lookups(reference_path, map_path, lookups, seed, repeats) -> dict:
     runs = compare_children(reference_path, ["--child-lookups", map_path, "--lookups", str(lookups),
                                              "--seed", str(seed)], repeats)
     figures = [k for k in runs["this"][0] if k != "answers_sha256"]
-    med = {k: {f: round(statistics.median(r[f] for r in v), 4) for f in figures} for k, v in runs.items()}
+    med = {k: {f: statistics.median(r[f] for r in v) for f in figures} for k, v in runs.items()}
     return {
         "reference_pythonpath": reference_path,
         "repeats": repeats,
         "interleaved": True,
-        "median": med,
+        "runs": {k: [{f: round(r[f], 4) for f in figures} for r in v] for k, v in runs.items()},
+        "median": {k: {f: round(x, 4) for f, x in m.items()} for k, m in med.items()},
         "speedup": {f: round(med["reference"][f] / med["this"][f], 3) for f in figures},
         "same_answers": len({r["answers_sha256"] for v in runs.values() for r in v}) == 1,
         "load_average_after": [round(x, 2) for x in os.getloadavg()],
@@ -338,8 +347,10 @@ def main(argv=None) -> int:
     ap.add_argument("--plot", default="benchmarks/out/pr2_capability_slices.png", help="slice plot PNG ('' for none)")
     ap.add_argument("--progress", action="store_true", help="progress bars on stderr")
     ap.add_argument("--reference", default=None, metavar="PYTHONPATH",
-                    help="also build with the octoreach found on this PYTHONPATH (e.g. main's build), interleaved")
-    ap.add_argument("--repeats", type=int, default=3, help="builds per side with --reference (medians reported)")
+                    help="also build with the octoreach found on this PYTHONPATH (e.g. main's build) and time the "
+                         "lookups of the saved map with it, interleaved")
+    ap.add_argument("--repeats", type=int, default=3,
+                    help="builds and lookup runs per side with --reference (medians reported)")
     ap.add_argument("--compare-only", action="store_true",
                     help="only the interleaved build comparison with --reference (no agreement, lookups, plot)")
     ap.add_argument("--child-build", action="store_true", help=argparse.SUPPRESS)
@@ -418,8 +429,11 @@ def main(argv=None) -> int:
         }
         del big, points
         if args.reference:
-            out["lookup_comparison"] = compare_lookups(args.reference, map_paths(workdir, args.resolution)[1],
-                                                       args.lookups, args.seed, args.repeats)
+            try:
+                out["lookup_comparison"] = compare_lookups(args.reference, map_paths(workdir, args.resolution)[1],
+                                                           args.lookups, args.seed, args.repeats)
+            except ChildFailed as e:  # the run's other figures are kept
+                out["lookup_comparison"] = {"error": str(e)}
 
         if args.also_fine:
             fine_map, fine = build_and_measure(robot, 0.025, args.directions, args.threads, args.seed, workdir,
@@ -429,8 +443,11 @@ def main(argv=None) -> int:
             del fine_map
 
     if args.reference:
-        out["build_comparison"] = compare_builds(args.reference, args.resolution, args.directions, args.threads,
-                                                 args.seed, args.repeats)
+        try:
+            out["build_comparison"] = compare_builds(args.reference, args.resolution, args.directions, args.threads,
+                                                     args.seed, args.repeats)
+        except ChildFailed as e:
+            out["build_comparison"] = {"error": str(e)}
 
     if args.plot:
         Path(args.plot).parent.mkdir(parents=True, exist_ok=True)

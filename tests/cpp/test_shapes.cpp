@@ -90,6 +90,9 @@ TEST(Shapes, SceneObstaclesHoldEveryShape) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("collides: pose is not a rigid transform"), std::string::npos) << e.what();
   }
+  fcl::CollisionObjectd stretched(std::make_shared<fcl::Boxd>(0.01, 0.01, 0.01), fcl::Transform3d(scaled.matrix()));
+  stretched.computeAABB();
+  EXPECT_THROW(o.collides(stretched), std::invalid_argument);
   Scene copy;
   copy.add(o);  // Obstacles -> Scene -> Obstacles keeps every shape
   EXPECT_EQ(copy.shapes().size(), 5u);

@@ -69,7 +69,7 @@ class CertifiedLookup {
  private:
   enum class Cells : std::uint8_t { reachable, unreachable, mixed };
   static constexpr int kMaxSeeds = 16;
-  // reachable() of a pose already checked by check_rigid (the batch checks each row as it reads it).
+  // reachable() of a pose already known to be rigid (is_rigid, check_rigid's rule: the batch tests each row).
   bool answer(const Pose& T, Eigen::VectorXd* solution) const;
   // The cells around T; for mixed cells, up to options_.seeds stored configurations, nearest first.
   Cells cells(const Pose& T, const float** seeds, int& n_seeds) const;

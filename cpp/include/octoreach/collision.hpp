@@ -81,6 +81,7 @@ class Obstacles {
   /// \throws std::invalid_argument unless `pose` is a finite rigid transform (check_rigid).
   bool collides(const fcl::CollisionGeometryd& geometry, const Pose& pose) const;
   /// \brief True when `object` (world frame, AABB computed) touches any obstacle; AABBs reject first.
+  /// \throws std::invalid_argument unless the object's transform is a finite rigid transform (check_rigid).
   bool collides(const fcl::CollisionObjectd& object) const;
   /// \brief Largest box extent collides_box accepts, metres.
   static constexpr double kMaxBoxSize = limits::kCoordinate;

@@ -112,6 +112,7 @@ bool Obstacles::collides(const fcl::CollisionGeometryd& geometry, const Pose& po
 }
 
 bool Obstacles::collides(const fcl::CollisionObjectd& object) const {
+  check_rigid(Pose(object.getTransform().matrix()), "collides: object pose");
   for (const auto& o : objects_) {
     if (!o->getAABB().overlap(object.getAABB())) continue;
     fcl::CollisionRequestd request;
