@@ -206,30 +206,42 @@ def child_build(resolution, directions, threads, seed) -> dict:
             "reachable_cells": int(cmap.stats["reachable_cells"]), "octoreach": os.path.dirname(octoreach.__file__)}
 
 
-def child_lookups(map_path, lookups, seed) -> dict:
-    """The lookups of the map at `map_path` in this process (the child of compare_lookups): seconds per item."""
-    cmap = octoreach.CapabilityMap.load(map_path)
-    robot = robots.pr2()
-    lo, hi = cmap.bounds
-    big = random_poses(lo, hi, lookups, np.random.default_rng(seed + 3))
+def lookup_calls(cmap, lo, hi, n: int, seed: int) -> dict:
+    """The timed plain lookups (figure name -> call) on n uniform poses in [lo, hi] and their positions, warmed up."""
+    big = random_poses(lo, hi, n, np.random.default_rng(seed + 3))
     points = np.ascontiguousarray(big[:, :3, 3])
     cmap.reachable(big[:1000])
+    return {"reachable_us_per_pose": lambda: cmap.reachable(big),
+            "reachable_nearest_cell_us_per_pose": lambda: cmap.reachable(big, lookup="nearest_cell"),
+            "reachability_us_per_point": lambda: cmap.reachability(points)}
+
+
+def certified_poses(lo, hi, seed: int) -> np.ndarray:
+    """The 20,000 uniform poses in [lo, hi] the certified lookup's cost is measured on."""
+    return random_poses(lo, hi, 20000, np.random.default_rng(seed + 4))
+
+
+def certified_cpu_us(check, uniform):
+    """CPU microseconds per pose of check.reachable(uniform) on one thread, and its answers."""
+    c0 = cpu_seconds()
+    yes = check.reachable(uniform, threads=1)
+    return 1e6 * (cpu_seconds() - c0) / len(uniform), yes
+
+
+def child_lookups(map_path, lookups, seed) -> dict:
+    """The lookups of the map at `map_path` in this process (the child of compare_lookups): microseconds per item."""
+    cmap = octoreach.CapabilityMap.load(map_path)
+    lo, hi = cmap.bounds
     answers = hashlib.sha256()
     out = {}
-    for name, fn in (("reachable_us_per_pose", lambda: cmap.reachable(big)),
-                     ("reachable_nearest_cell_us_per_pose", lambda: cmap.reachable(big, lookup="nearest_cell")),
-                     ("reachability_us_per_point", lambda: cmap.reachability(points))):
+    for name, fn in lookup_calls(cmap, lo, hi, lookups, seed).items():
         out[name] = 1e6 * median_seconds(fn) / lookups
         answers.update(np.ascontiguousarray(fn()).tobytes())
-    check = octoreach.CertifiedLookup(cmap, robot)
-    uniform = random_poses(lo, hi, 20000, np.random.default_rng(seed + 4))
-    cpu = []
-    for _ in range(3):
-        c0 = cpu_seconds()
-        yes = check.reachable(uniform, threads=1)
-        cpu.append(cpu_seconds() - c0)
-    out["certified_cpu_us_per_uniform_pose"] = 1e6 * statistics.median(cpu) / len(uniform)
-    answers.update(yes.tobytes())
+    check = octoreach.CertifiedLookup(cmap, robots.pr2())
+    uniform = certified_poses(lo, hi, seed)
+    runs = [certified_cpu_us(check, uniform) for _ in range(3)]
+    out["certified_cpu_us_per_uniform_pose"] = statistics.median(us for us, _ in runs)
+    answers.update(runs[-1][1].tobytes())
     out["answers_sha256"] = answers.hexdigest()
     return out
 
@@ -326,10 +338,8 @@ def certified(cmap, robot, poses, truth, lo, hi, seed) -> dict:
     check = octoreach.CertifiedLookup(cmap, robot)
     out = {"all_poses": shares(check.reachable(poses), truth),
            "ik_share_percent": round(100 * float(1 - check.certain(poses).mean()), 3)}
-    uniform = random_poses(lo, hi, 20000, np.random.default_rng(seed + 4))
-    c0 = cpu_seconds()
-    check.reachable(uniform, threads=1)
-    out["cpu_us_per_uniform_pose"] = round(1e6 * (cpu_seconds() - c0) / len(uniform), 3)
+    uniform = certified_poses(lo, hi, seed)
+    out["cpu_us_per_uniform_pose"] = round(certified_cpu_us(check, uniform)[0], 3)
     out["ik_share_uniform_percent"] = round(100 * float(1 - check.certain(uniform).mean()), 3)
     return out
 
@@ -413,21 +423,10 @@ def main(argv=None) -> int:
         }
 
         # Lookup speed.
-        big = random_poses(lo, hi, args.lookups, np.random.default_rng(args.seed + 3))
-        points = np.ascontiguousarray(big[:, :3, 3])
-        cmap.reachable(big[:1000])
-        s_pose = median_seconds(lambda: cmap.reachable(big))
-        s_nearest = median_seconds(lambda: cmap.reachable(big, lookup="nearest_cell"))
-        s_point = median_seconds(lambda: cmap.reachability(points))
-        out["lookups"] = {
-            "batch": args.lookups,
-            "repeats": 5,
-            "threads": os.cpu_count(),
-            "reachable_us_per_pose": round(1e6 * s_pose / args.lookups, 4),
-            "reachable_nearest_cell_us_per_pose": round(1e6 * s_nearest / args.lookups, 4),
-            "reachability_us_per_point": round(1e6 * s_point / args.lookups, 4),
-        }
-        del big, points
+        calls = lookup_calls(cmap, lo, hi, args.lookups, args.seed)
+        out["lookups"] = {"batch": args.lookups, "repeats": 5, "threads": os.cpu_count(),
+                          **{name: round(1e6 * median_seconds(fn) / args.lookups, 4) for name, fn in calls.items()}}
+        del calls
         if args.reference:
             try:
                 out["lookup_comparison"] = compare_lookups(args.reference, map_paths(workdir, args.resolution)[1],
