@@ -3017,6 +3017,14 @@ class ChoiceMemory:
     def failed_views(self, arg1: typing.Any) -> None:
         ...
     @property
+    def last_void_seen(self) -> int | None:
+        """
+        void cells the last view taken turned known (InsertStats void_removed) or None; a low view that saw more than the stop threshold does not count as low (cleared by the next choice)
+        """
+    @last_void_seen.setter
+    def last_void_seen(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
+        ...
+    @property
     def low_views(self) -> int:
         """
         chosen views in a row with utility <= min_utility

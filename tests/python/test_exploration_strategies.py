@@ -376,11 +376,10 @@ def test_the_visibility_curve_learns_from_announced_views_what_rays_see():
     assert 0.67 < learned / seen < 1.5, (geometric, learned, seen)
 
 
-def test_views_near_a_failed_view_are_not_chosen_again():
-    """After a view that could not be taken (ChoiceMemory.failed_views), the choice keeps FAILED_VIEW_RADIUS
-    away from its camera."""
+def _box_seen_once():
+    """A closed box with a 16 cm opening in its lid seen once (5 cm cells, a 64 x 48 camera) and
+    ExploreOptions with a small search around it: (map, camera, options)."""
     from octoreach import ExplorationMap, ExploreOptions
-    from octoreach._core import ChoiceMemory, choose_view
 
     scene = ex.closed_box_scene("+z", 0.16)
     emap = ExplorationMap(resolution=0.05, search_space=ex.scene_region(scene))
@@ -389,11 +388,44 @@ def test_views_near_a_failed_view_are_not_chosen_again():
     emap.insert(cam.capture(scene, T), T[:3, 3], cam.max_range)
     o = ExploreOptions()
     o.search.workspace_sphere, o.search.max_valid_poses, o.aimed_poses = ((0.8, 0.0, 0.4), 1.0), 20, 60
+    return emap, cam, o
+
+
+def test_views_near_a_failed_view_are_not_chosen_again():
+    """After a view that could not be taken (ChoiceMemory.failed_views), the choice keeps FAILED_VIEW_RADIUS
+    away from its camera."""
+    from octoreach._core import ChoiceMemory, choose_view
+
+    emap, cam, o = _box_seen_once()
     first = choose_view(emap, cam, np.eye(4)[None], 0, o, ChoiceMemory())
     memory = ChoiceMemory()
     memory.failed_views = first.view.pose[:3, 3][None]
     again = choose_view(emap, cam, np.eye(4)[None], 0, o, memory)
     assert again.found and np.linalg.norm(again.view.pose[:3, 3] - first.view.pose[:3, 3]) > ex.FAILED_VIEW_RADIUS
+
+
+def test_a_low_view_that_saw_more_than_the_threshold_does_not_count_as_low():
+    """The stop rule weighs what a view saw over what it was expected to see: with patience 2 and every view
+    low, a memory holding one low view stops at the next choice, unless the last view taken turned more void
+    cells known than the threshold (ChoiceMemory.last_void_seen, which Explorer.integrate sets); the choice
+    reads and clears it."""
+    from octoreach._core import ChoiceMemory, choose_view
+
+    emap, cam, o = _box_seen_once()
+    o.min_utility, o.patience = 1e6, 2
+
+    def choice(seen):
+        memory = ChoiceMemory()
+        memory.low_views, memory.last_void_seen = 1, seen
+        c = choose_view(emap, cam, np.eye(4)[None], 0, o, memory)
+        assert memory.last_void_seen is None
+        return c, memory
+
+    for seen in (None, 0, 10 ** 6):  # at most the threshold: the low view counts
+        c, memory = choice(seen)
+        assert c.found and c.stop and c.stop_reason == "utility below min_utility", (seen, c.stop_reason)
+    c, memory = choice(10 ** 6 + 1)
+    assert c.found and not c.stop and memory.low_views == 1
 
 
 def test_ground_below_the_search_space_is_an_obstacle_for_the_arm_on_request():

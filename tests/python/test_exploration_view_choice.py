@@ -192,43 +192,6 @@ def test_the_search_tests_the_links_the_arm_moves_against_the_map():
     assert status.count("valid") > 10 and status.count("arm_collision") > 10, status
 
 
-def test_rays_out_of_void_cells_find_eyes_through_a_boxs_opening_and_not_through_unseen_walls():
-    """aimed_poses with `directions` (the last chance before the loop stops). A closed box with a
-    14 cm opening in its lid, surveyed from above and from two sides (its far walls unseen, unknown): each
-    eye lies in free space with free cells 5 cm around it, and the segment from its void cell to it meets
-    no occupied cell and, once in free space, no unknown cell again (an unseen wall is no way out). Poses
-    at the box's inner void look through the opening from above the lid."""
-    from octoreach.exploration.candidate_poses import _free_states, _observed_around
-
-    scene = ex.closed_box_scene("+z", 0.14)
-    region = ex.scene_region(scene)
-    emap, _ = _surveyed(scene, [(0.8, 0.0, 1.2), (0.2, -0.6, 0.7), (0.2, 0.6, 0.7), (0.8, 0.1, 0.9)],
-                        (0.8, 0.0, 0.2), res=0.025, image=(160, 120))
-    inner = ((0.63, -0.17, 0.03), (0.97, 0.17, 0.37))  # inside the walls
-    inside = lambda P: np.all((P >= inner[0]) & (P <= inner[1]), axis=-1)
-    keys = np.asarray(emap.void_keys())
-    assert np.count_nonzero(inside(emap.centers(keys))) > 100  # the box's inside is void
-
-    P = aimed_poses(np.random.default_rng(1), emap, sphere=((0.3, 0.0, 0.4), 1.2), n=600, unexposed_share=1.0,
-                    directions=64, every_cell=True, search_space=region, distance=(0.15, 1.0))
-    assert len(P) > 50
-    eyes, axes = P[:, :3, 3], P[:, :3, 2]
-    assert np.all(_observed_around(emap, eyes, 0.05, region))
-    # each pose's void cell: the first void cell along its optical axis within 1 m (the pose looks at it)
-    t = np.arange(0.0, 1.0, 0.5 * emap.resolution)
-    void = set(emap.key_of(c) for c in emap.centers(keys))
-    through = 0
-    for eye, axis in zip(eyes, axes):
-        line = eye + t[:, None] * axis
-        j = next(j for j, p in enumerate(line) if emap.key_of(p) in void)
-        states = _free_states(emap, line[:j + 1][::-1], region)  # from the void cell back to the eye
-        assert not np.any(states == 2), states
-        after_free = np.cumsum(states == 1) > 0
-        assert not np.any((states == 0) & after_free), states
-        through += bool(inside(line[j]) and eye[2] > 0.42)
-    assert through > 10, through
-
-
 def test_the_last_low_view_before_the_loop_would_stop_gets_the_rays_out_of_every_void_cell():
     """The loop's memory counts low views in a row (the choice takes the last chance when a low view would end
     the loop, patience's last): with patience 3 and every view low, the first two low views are taken and the

@@ -36,7 +36,9 @@ InsertStats Explorer::integrate(const std::vector<Eigen::Vector3d>& points, cons
     expect_view(*map_, setup_.camera, camera_pose, setup_.options.search);
   ++views_;
   has_last_ = false;
-  return map_->insert(points, camera_pose.translation(), setup_.camera.max_range);
+  const InsertStats stats = map_->insert(points, camera_pose.translation(), setup_.camera.max_range);
+  memory_.last_void_seen = stats.void_removed;
+  return stats;
 }
 
 InsertStats Explorer::integrate_depth(const std::vector<float>& depth, int width, int height, const Pose& camera_pose) {

@@ -14,7 +14,9 @@
 #include "common/thread_pool.hpp"
 #include "exploration/exploration_state.hpp"
 #include "octoreach/capability_map.hpp"
+#include "octoreach/orientation_set.hpp"
 #include "octoreach/robot.hpp"
+#include "octoreach/simulation.hpp"
 #include "exploration/view_score.hpp"
 #include "exploration/look_at_views.hpp"
 
@@ -201,6 +203,25 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
 
 bool ViewChecker::axis_reachable(const Pose& pose) const {
   return !cap_orient_ || opt_.capability_map->reachable(cap_inv_ * pose);
+}
+
+std::optional<Eigen::Vector3d> ViewChecker::reachable_axis(const Eigen::Vector3d& eye, const Eigen::Vector3d& axis,
+                                                           double max_turn) const {
+  if (axis_reachable(camera_pose(eye, axis, 0.0))) return axis;
+  if (!cap_orient_ || !(max_turn > 0)) return std::nullopt;
+  // the map's directions within max_turn, nearest first; each checked as axis_reachable checks a pose
+  const OrientationSet& set = opt_.capability_map->orientations();
+  const Eigen::Vector3d a = cap_inv_.linear() * axis;
+  const double min_cos = std::cos(max_turn);
+  std::vector<std::pair<double, int>> near;
+  for (int d = 0; d < set.directions(); ++d)
+    if (const double c = set.direction(d).dot(a); c >= min_cos) near.emplace_back(-c, d);
+  std::sort(near.begin(), near.end());
+  for (const auto& [c, d] : near) {
+    const Eigen::Vector3d w = opt_.capability_base.linear() * set.direction(d);
+    if (axis_reachable(camera_pose(eye, w, 0.0))) return w;
+  }
+  return std::nullopt;
 }
 
 ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t seed_offset) const {

@@ -2,6 +2,7 @@
 // decision; the baselines' sampled poses are in sampled_views.cpp.
 #include "octoreach/view_choice.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -88,6 +89,12 @@ using detail::ChoiceContext;
 
 enum class Look { Sight, Rays };
 
+// Half the narrower field angle of `camera`: an axis turned this far from a cell still has it in the image.
+double half_narrow_field(const CameraIntrinsics& camera) {
+  const double half_w = std::tan(camera.fov / 2);
+  return std::atan(half_w * std::min(1.0, double(camera.height) / double(camera.width)));
+}
+
 // The best valid of the poses one look aims at void cells (frontier_void's gain), by `key`.
 ViewChoice aimed_choice(const ChoiceContext& ctx, int i, std::uint64_t seed, Look look, std::size_t n, RankKey key,
                         double unexposed_share, std::pair<double, double> distance) {
@@ -120,6 +127,7 @@ ViewChoice aimed_choice(const ChoiceContext& ctx, int i, std::uint64_t seed, Loo
       req.every_cell = true;
       req.max_cells = std::size_t(ctx.options.max_ray_cells);
       req.directions = ctx.options.last_directions;
+      req.max_turn = half_narrow_field(ctx.camera);
       const detail::ViewChecker checker(ctx.map, opt);
       poses = detail::aim_at_voids(ctx.map, checker, opt, req);
     }
@@ -224,6 +232,9 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   const ChoiceContext ctx{map, camera, sites, current, options, memory,
                           options.search.chain && sites.reach > 0 && !ws.box && !ws.sphere_center && !ws.filter};
   const std::uint64_t seed = options.search.seed;
+  const double threshold = options.stop_threshold(camera, map.resolution());
+  if (memory.last_void_seen && double(*memory.last_void_seen) > threshold) memory.low_views = 0;
+  memory.last_void_seen.reset();
   const bool last_chance = memory.low_views + 1 >= options.patience;
   ViewChoice c;
   if (map.void_cell_count() == map.sealed_void_cell_count()) {  // no void cell a view could reveal
@@ -241,7 +252,6 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
     ++memory.choices;
     return c;
   }
-  const double threshold = options.stop_threshold(camera, map.resolution());
   c = strategy == ViewStrategy::FrontierVoid ? frontier_void_choice(ctx, seed, last_chance, threshold)
                                              : detail::sampled_choice(ctx, seed, strategy);
   ++memory.choices;

@@ -69,7 +69,7 @@ namespace {
 
 struct Eye {
   Eigen::Vector3d at;
-  CellKey cell;
+  Eigen::Vector3d axis;  // the optical axis (unit)
 };
 
 }  // namespace
@@ -95,7 +95,8 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
       bool left_unknown = false;
       walk_cells(res, c, d, req.distance.second, [&](CellKey k) {
         if (k == from[i]) return true;
-        std::uint8_t st = g.get(k) & kStateMask;
+        const std::uint8_t cell = g.get(k);
+        std::uint8_t st = cell & kStateMask;
         const Eigen::Vector3d p = S.center(k);
         const bool inside = (p.array() >= s_lo.array()).all() && (p.array() <= s_hi.array()).all();
         if (st == std::uint8_t(CellState::Unknown) && !inside) {
@@ -103,22 +104,26 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
           st = std::uint8_t(CellState::Free);  // the robot's side of the scene: no view needs to have seen it
         }
         if (st == std::uint8_t(CellState::Occupied)) return false;
-        if (st == std::uint8_t(CellState::Unknown)) return !left_unknown;  // an unseen wall ends the ray
+        // past free space an unknown cell ends the ray unless it is a void cell: the score weighs what lies
+        // behind one by the void pass probability
+        if (st == std::uint8_t(CellState::Unknown)) return !left_unknown || (cell & kVoidFlag) != 0;
         left_unknown = true;
         const double s = (p - c).dot(d);
         if (s >= req.distance.first) stretch.emplace_back(k, s);
         return true;
       });
-      // the eye: a random cell of the free stretch that passes the checks (a few tries per ray)
-      for (int tries = 0; tries < 4 && !stretch.empty(); ++tries) {
+      // the eye: a random cell of the free stretch that passes the checks (tried in random order)
+      while (!stretch.empty()) {
         const std::size_t j = std::size_t(rng.uniform() * double(stretch.size()));
         const Eigen::Vector3d eye = c + stretch[j].second * d;
         stretch[j] = stretch.back();
         stretch.pop_back();
         if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
         if (opt.capability_map && !(opt.capability_map->reachability(cap_inv * eye) > opt.min_reachability)) continue;
-        if (!checker.axis_reachable(camera_pose(eye, c - eye, 0.0)) || !checker.camera_clear(eye)) continue;
-        found[i].push_back({eye, from[i]});
+        if (!checker.camera_clear(eye)) continue;
+        const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, (c - eye).normalized(), req.max_turn);
+        if (!axis) continue;
+        found[i].push_back({eye, *axis});
         break;
       }
     }
@@ -139,7 +144,7 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
   for (std::size_t i = 0; i < n; ++i) std::swap(eyes[i], eyes[i + std::size_t(rng.uniform() * double(eyes.size() - i))]);
   std::vector<Pose> out;
   out.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) out.push_back(camera_pose(eyes[i].at, S.center(eyes[i].cell) - eyes[i].at, 0.0));
+  for (std::size_t i = 0; i < n; ++i) out.push_back(camera_pose(eyes[i].at, eyes[i].axis, 0.0));
   return out;
 }
 

@@ -25,6 +25,9 @@ struct AimRequest {
   int directions = 8;                            // rays per cell, uniform over the sphere
   std::pair<double, double> distance{0.3, 1.0};  // metres from the cell to the eye
   double min_height = 0.05;                      // eyes stay above this height (map frame z)
+  // aim_at_voids: radians the optical axis may turn away from the cell to one the arm can reach (a camera
+  // sees a cell anywhere in its image; 0: it looks at the cell)
+  double max_turn = 0;
   std::uint64_t seed = 0;
 };
 
@@ -35,10 +38,13 @@ std::vector<CellKey> draw_void_cells(const ExplorationState& S, const AimRequest
 // Poses (camera -> map) looking from an eye at a void cell. The eye is found along a ray out of the cell:
 // the ray crosses unknown cells, then observed-free ones (unknown cells outside the search space count as
 // free, as in the camera clearance), and ends at the first occupied cell or at the first unknown cell of the
-// search space after free space (an unseen wall); the eye is a cell of the free stretch `distance` from the
-// cell where the camera is clear (checker.camera_clear), inside opt's workspace box and sphere, above
-// min_height and, with a capability map, reachable there with that optical axis. Deterministic for the seed
-// whatever the thread count. The caller holds the map's lock.
+// search space after free space that is not a void cell (an unseen wall; void cells past free space, a box's
+// inside seen in patches, are crossed: the score weighs what lies behind them); the eye is a cell of the free
+// stretch `distance` from the cell (tried in random order) where the camera is clear (checker.camera_clear),
+// inside opt's workspace box and sphere, above min_height and, with a capability map, reachable there. Its
+// optical axis points at the cell or, when the capability map rules that axis out, is the map's reachable
+// direction nearest to it within req.max_turn (checker.reachable_axis). Deterministic for the seed whatever
+// the thread count. The caller holds the map's lock.
 std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& checker, const NbvOptions& opt,
                                const AimRequest& req);
 

@@ -1,0 +1,167 @@
+// The last chance's eyes (cpp/src/exploration/void_aims.hpp): rays out of void cells leave through observed-free
+// space and may cross void cells past it (a box's inside seen in patches), never an occupied cell or an unseen
+// cell that is not a void; and the optical axis turns, within a bound, to one the capability map reaches.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "exploration/exploration_state.hpp"
+#include "exploration/view_score.hpp"
+#include "exploration/void_aims.hpp"
+#include "octoreach/capability_map.hpp"
+#include "octoreach/exploration.hpp"
+#include "octoreach/orientation_set.hpp"
+#include "octoreach/robot.hpp"
+#include "octoreach/simulation.hpp"
+
+using namespace octoreach;
+
+namespace {
+
+constexpr double kRes = 0.025;
+
+// A closed box with a 14 cm opening in its lid, seen from above through the opening and from two sides at
+// a low resolution: its inside is seen in patches (columns under the opening), the rest of it is void.
+std::unique_ptr<ExplorationMap> box_seen_in_patches(Scene& scene) {
+  scene.add_box({-1.5, -1.5, -0.05}, {1.5, 1.5, 0.0});
+  scene.add_closed_box({0.6, -0.2, 0.0}, {1.0, 0.2, 0.4}, 0.02, "+z", 0.14, 0.14);
+  ExplorationOptions o;
+  o.resolution = kRes;
+  o.search_lo = {0.4, -0.4, 0.0};
+  o.search_hi = {1.2, 0.4, 0.6};
+  auto map = std::make_unique<ExplorationMap>(o);
+  DepthCamera cam(48, 36, 1.0123, 4.0, 0.0, 0);
+  for (const Pose& T : {look_at({0.8, 0.0, 1.1}, {0.8, 0.0, 0.0}), look_at({0.7, 0.05, 1.0}, {0.9, -0.1, 0.0}),
+                        look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2}), look_at({0.2, 0.6, 0.7}, {0.8, 0.0, 0.2})})
+    map->insert(cam.capture(scene, T), T.translation(), 4.0);
+  return map;
+}
+
+// The rule of a ray out of void cell `c` towards `eye`: no occupied cell, and past the first observed-free cell
+// only free or void cells (unknown cells outside the search space count as free). `crossed` is set when a void
+// cell lies past free space.
+bool ray_rule_holds(const ExplorationMap& map, const Eigen::Vector3d& c, const Eigen::Vector3d& eye, bool& crossed) {
+  const Eigen::Vector3d d = (eye - c).normalized();
+  const double len = (eye - c).norm();
+  const auto& o = map.options();
+  const CellKey own = map.key_of(c);
+  bool left = false;
+  crossed = false;
+  for (double s = 0; s <= len; s += kRes / 8) {
+    const Eigen::Vector3d p = c + s * d;
+    const CellKey k = map.key_of(p);
+    if (k == own) continue;
+    CellState st = map.state(k);
+    const bool inside = (p.array() >= o.search_lo.array()).all() && (p.array() <= o.search_hi.array()).all();
+    if (st == CellState::Unknown && !inside) st = CellState::Free;
+    if (st == CellState::Occupied) return false;
+    if (st == CellState::Free) left = true;
+    if (st == CellState::Unknown && left) {
+      if (!map.is_void(k)) return false;
+      crossed = true;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+TEST(VoidAims, RaysCrossVoidCellsPastFreeSpaceButNotWallsOrUnseenSpace) {
+  Scene scene;
+  auto map = box_seen_in_patches(scene);
+  ASSERT_GT(map->void_cell_count(), 100u);
+  NbvOptions opt;
+  opt.min_distance = 0.05;
+  detail::AimRequest req;
+  req.poses = 100000;
+  req.every_cell = true;
+  req.directions = 64;
+  req.distance = {0.15, 1.0};
+  req.seed = 5;
+  std::vector<Pose> poses;
+  {
+    auto guard = detail::read_guard(*map);
+    const detail::ViewChecker checker(*map, opt);
+    poses = detail::aim_at_voids(*map, checker, opt, req);
+  }
+  ASSERT_GT(poses.size(), 50u);
+  // each pose looks at its void cell (max_turn 0): a void cell whose centre is on the optical axis, 0.15-1 m
+  // out, from which the ray to the eye follows the rule
+  std::size_t crossing = 0;
+  for (const Pose& T : poses) {
+    const Eigen::Vector3d eye = T.translation(), axis = T.linear().col(2);
+    bool found = false, crossed_any = false;
+    for (double s = 0.15 - kRes; s <= 1.0 + kRes && !found; s += kRes / 8) {
+      const CellKey k = map->key_of(eye + s * axis);
+      const Eigen::Vector3d c = map->center(k);
+      const double off_axis = (c - eye - (c - eye).dot(axis) * axis).norm();
+      bool crossed = false;
+      if (map->is_void(k) && off_axis < 1e-6 && ray_rule_holds(*map, c, eye, crossed)) {
+        found = true;
+        crossed_any = crossed;
+      }
+    }
+    EXPECT_TRUE(found) << "eye " << eye.transpose() << " axis " << axis.transpose();
+    crossing += crossed_any ? 1 : 0;
+  }
+  // the patches matter: some eyes are only reached across void cells past free space
+  EXPECT_GT(crossing, 0u);
+}
+
+TEST(VoidAims, AnAxisTurnsToTheNearestReachableDirectionWithinItsBound) {
+  auto robot = Robot::from_urdf(std::string(OCTOREACH_URDF_DIR) + "/test_arm.urdf");
+  CapabilityMapOptions co;
+  co.resolution = 0.2;
+  co.directions = 100;
+  co.seed = 3;
+  const CapabilityMap cap = CapabilityMap::build(robot->chain("base_link", "tool0"), co);
+  ExplorationMap map;
+  NbvOptions opt;
+  opt.capability_map = &cap;
+  opt.capability_orientations = true;
+  const detail::ViewChecker checker(map, opt);
+  const OrientationSet& set = cap.orientations();
+  const auto [lo, hi] = cap.bounds();
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::normal_distribution<double> n;
+  const double turn = 0.4;
+  int kept = 0, turned = 0, refused = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Eigen::Vector3d eye = lo + (hi - lo).cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Eigen::Vector3d axis = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+    const std::optional<Eigen::Vector3d> got = checker.reachable_axis(eye, axis, turn);
+    if (checker.axis_reachable(camera_pose(eye, axis))) {  // a reachable axis is kept as it is
+      ASSERT_TRUE(got);
+      EXPECT_LT((*got - axis).norm(), 1e-12);
+      ++kept;
+      continue;
+    }
+    EXPECT_FALSE(checker.reachable_axis(eye, axis, 0.0));  // no turn allowed: refused
+    // the brute-force answer: the set's reachable direction within `turn` nearest to the axis
+    double best = std::cos(turn);
+    int want = -1;
+    for (int d = 0; d < set.directions(); ++d)
+      if (set.direction(d).dot(axis) >= best && checker.axis_reachable(camera_pose(eye, set.direction(d)))) {
+        best = set.direction(d).dot(axis);
+        want = d;
+      }
+    if (want < 0) {
+      EXPECT_FALSE(got);
+      ++refused;
+      continue;
+    }
+    ASSERT_TRUE(got);
+    EXPECT_NEAR(got->dot(axis), best, 1e-12);
+    EXPECT_LE(std::acos(std::min(1.0, got->dot(axis))), turn + 1e-9);
+    EXPECT_TRUE(checker.axis_reachable(camera_pose(eye, *got)));
+    ++turned;
+  }
+  EXPECT_GT(kept, 0);
+  EXPECT_GT(turned, 0);
+  EXPECT_GT(refused, 0);
+}
