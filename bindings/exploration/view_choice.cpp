@@ -13,8 +13,9 @@ void wrap_view_choice(py::module_& m) {
       .def_readwrite("choices", &ChoiceMemory::choices, "views chosen so far")
       .def_readwrite("low_views", &ChoiceMemory::low_views, "chosen views in a row with utility <= min_utility")
       .def_readwrite("last_void_seen", &ChoiceMemory::last_void_seen,
-                     "void cells the last view taken turned known (InsertStats void_removed) or None; a low view "
-                     "that saw more than the stop threshold does not count as low (cleared by the next choice)")
+                     "void cells the last view taken took off the void set (InsertStats void_removed; Explorer "
+                     "sets it) or None: for frontier_void and random, a low view that saw more than the stop "
+                     "threshold breaks the row of low views (cleared by the next choice)")
       .def_property("failed_views", [](const ChoiceMemory& c) { return to_points(c.failed_views); },
                     [](ChoiceMemory& c, const py::object& p) { c.failed_views = points_from(p, "failed_views"); },
                     "(N, 3) cameras of views chosen and not taken: no view is chosen near them again")

@@ -3019,7 +3019,7 @@ class ChoiceMemory:
     @property
     def last_void_seen(self) -> int | None:
         """
-        void cells the last view taken turned known (InsertStats void_removed) or None; a low view that saw more than the stop threshold does not count as low (cleared by the next choice)
+        void cells the last view taken took off the void set (InsertStats void_removed; Explorer sets it) or None: for frontier_void and random, a low view that saw more than the stop threshold breaks the row of low views (cleared by the next choice)
         """
     @last_void_seen.setter
     def last_void_seen(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:

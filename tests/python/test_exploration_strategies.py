@@ -404,28 +404,42 @@ def test_views_near_a_failed_view_are_not_chosen_again():
     assert again.found and np.linalg.norm(again.view.pose[:3, 3] - first.view.pose[:3, 3]) > ex.FAILED_VIEW_RADIUS
 
 
-def test_a_low_view_that_saw_more_than_the_threshold_does_not_count_as_low():
-    """The stop rule weighs what a view saw over what it was expected to see: with patience 2 and every view
-    low, a memory holding one low view stops at the next choice, unless the last view taken turned more void
-    cells known than the threshold (ChoiceMemory.last_void_seen, which Explorer.integrate sets); the choice
-    reads and clears it."""
+def test_a_low_view_that_saw_more_than_the_threshold_breaks_the_row_of_low_views():
+    """The stop rule weighs what a view saw over what it was expected to see: with patience 3 and every view
+    low, a memory holding two low views stops at the next choice, unless the last view taken turned more void
+    cells known than the threshold (ChoiceMemory.last_void_seen): then the row starts again and this low view
+    is its first. The choice reads and clears it; the other baselines' utility counts other cells, so it does
+    not apply to them. Explorer.integrate adds up what its inserts took off the void set."""
     from octoreach._core import ChoiceMemory, choose_view
 
     emap, cam, o = _box_seen_once()
-    o.min_utility, o.patience = 1e6, 2
+    o.min_utility, o.patience = 1e6, 3
 
-    def choice(seen):
+    def choice(seen, strategy="frontier_void"):
         memory = ChoiceMemory()
-        memory.low_views, memory.last_void_seen = 1, seen
-        c = choose_view(emap, cam, np.eye(4)[None], 0, o, memory)
+        memory.low_views, memory.last_void_seen = 2, seen
+        c = choose_view(emap, cam, np.eye(4)[None], 0, o, memory, strategy)
         assert memory.last_void_seen is None
         return c, memory
 
-    for seen in (None, 0, 10 ** 6):  # at most the threshold: the low view counts
+    for seen in (None, 0, 10 ** 6):  # at most the threshold: the row goes on, and ends here
         c, memory = choice(seen)
         assert c.found and c.stop and c.stop_reason == "utility below min_utility", (seen, c.stop_reason)
-    c, memory = choice(10 ** 6 + 1)
-    assert c.found and not c.stop and memory.low_views == 1
+    for strategy in ("frontier_void", "random"):
+        c, memory = choice(10 ** 6 + 1, strategy)
+        assert c.found and not c.stop and memory.low_views == 1, strategy
+    c, memory = choice(10 ** 6 + 1, "frontiers")
+    assert c.stop and memory.low_views == 3
+
+    explorer = ex.Explorer(cam, ex.scene_region(ex.closed_box_scene("+z", 0.16)), resolution=0.05)
+    assert explorer._core.memory.last_void_seen is None
+    scene = ex.closed_box_scene("+z", 0.16)
+    removed = []
+    for eye in ((0.3, -0.5, 0.9), (0.8, 0.0, 1.2), (1.3, 0.5, 0.8)):
+        T = ex.look_at(eye, (0.8, 0.0, 0.2))
+        removed.append(explorer.integrate(cam.capture(scene, T), T)["void_removed"])
+    assert removed[1] > 0 and removed[2] > 0, removed
+    assert explorer._core.memory.last_void_seen == sum(removed)  # every view so far: none was chosen in between
 
 
 def test_ground_below_the_search_space_is_an_obstacle_for_the_arm_on_request():

@@ -206,9 +206,8 @@ def test_a_choice_that_ends_the_loop_has_taken_the_last_chance():
     """A run that ends because the choice found no valid view (or only one of utility 0) has taken the last
     chance first, as a run ending on its last low view does: replayed into a session with patience 1 (every
     low choice takes the last chance, same seeds), the same map gives the same stop. A closed box of the
-    scene families: at view 26 of this run every candidate of the search and of the aimed looks is refused,
-    while rays out of the box's void cells find a view expecting about 25 void cells (a choice without the
-    last chance there ends the run with "no valid view"; with it the run goes on)."""
+    scene families: its run takes views that only the looks before a low view found (more aims, rays out of
+    the box's void cells) and ends when they find none."""
     from octoreach import testing
     from octoreach.exploration.robot import explorer_capability_map, explorer_robot
     from octoreach.testing import scene_families

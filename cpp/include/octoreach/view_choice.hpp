@@ -3,7 +3,8 @@
 /// \brief The exploration loop's whole choice of the next view: the search (next_best_view or a baseline's
 /// sampled poses), the second looks aimed at void cells, the last-chance look along rays out of every void
 /// cell, and the stop decision. explore() and the Explorer call it once per view; what it must remember
-/// between views (low views in a row, cameras of views not taken) is a ChoiceMemory the caller keeps.
+/// between views (low views in a row, what the last view saw, cameras of views not taken) is a ChoiceMemory the
+/// caller keeps.
 
 #include <cstdint>
 #include <optional>
@@ -40,10 +41,11 @@ struct ViewSites {
 struct ChoiceMemory {
   int choices = 0;    ///< views chosen so far
   int low_views = 0;  ///< chosen views in a row whose utility was <= min_utility
-  /// Void cells the last view taken turned known (InsertStats::void_removed of its insert), set by the caller
-  /// after the insert (Explorer::integrate does): a low view that saw more than the stop threshold does not
-  /// count as low, since what a view saw outweighs what it was expected to see. Read and cleared by the next
-  /// choice.
+  /// Void cells the last view taken took off the void set (InsertStats::void_removed of its inserts: cells it
+  /// turned known, and rarely cells the hull's numerical merging left out), set by the caller after the insert
+  /// (Explorer::integrate adds them up): for frontier-void and random, whose utility counts void cells, a low
+  /// view that saw more than the stop threshold breaks the row of low views, since what a view saw outweighs
+  /// what it was expected to see. Read and cleared by the next choice.
   std::optional<std::size_t> last_void_seen;
   /// Cameras of views that were chosen and not taken (a motion that failed): no view is chosen within
   /// ExploreOptions::failed_view_radius of them again.
@@ -69,12 +71,13 @@ struct ViewChoice {
 /// (choices, low_views) and decides the stop: no void cell ("nothing to explore"; but while no cell of a finite search
 /// space is known, the sampled view expected to see the most of its unknown cells comes first, as the unknown
 /// baseline picks it), no valid view, a utility
-/// of 0, or a utility <= min_utility for `patience` choices in a row (a low view taken that turned more void cells
-/// known than min_utility, memory.last_void_seen, breaks the row). Frontier-void: next_best_view, then
+/// of 0, or a utility <= min_utility for `patience` choices in a row (frontier-void and random: a low view taken
+/// that saw more void cells than min_utility, memory.last_void_seen, breaks the row). Frontier-void: next_best_view, then
 /// (second_look) aimed_poses poses aimed at void cells; when the better still expects <= min_utility,
 /// low_aimed_poses more and, when the choice would end the loop (that low view is patience's last, or no valid
 /// view or only views of utility 0 were found), last_poses found along rays out of every void cell, their optical
-/// axes turned by up to half the camera's narrower field angle to one the capability map reaches.
+/// axes turned by up to half the camera's narrower field angle to one the capability map reaches (at roll 0, as
+/// score_views checks a pose).
 /// \throws std::invalid_argument for bad options, sites or a current index out of range.
 ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites,
                        int current, const ExploreOptions& options, ChoiceMemory& memory,

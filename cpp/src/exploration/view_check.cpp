@@ -205,11 +205,8 @@ bool ViewChecker::axis_reachable(const Pose& pose) const {
   return !cap_orient_ || opt_.capability_map->reachable(cap_inv_ * pose);
 }
 
-std::optional<Eigen::Vector3d> ViewChecker::reachable_axis(const Eigen::Vector3d& eye, const Eigen::Vector3d& axis,
-                                                           double max_turn) const {
-  if (axis_reachable(camera_pose(eye, axis, 0.0))) return axis;
-  if (!cap_orient_ || !(max_turn > 0)) return std::nullopt;
-  // the map's directions within max_turn, nearest first; each checked as axis_reachable checks a pose
+std::vector<Eigen::Vector3d> ViewChecker::turned_axes(const Eigen::Vector3d& axis, double max_turn) const {
+  if (!cap_orient_ || !(max_turn > 0)) return {};
   const OrientationSet& set = opt_.capability_map->orientations();
   const Eigen::Vector3d a = cap_inv_.linear() * axis;
   const double min_cos = std::cos(max_turn);
@@ -217,10 +214,17 @@ std::optional<Eigen::Vector3d> ViewChecker::reachable_axis(const Eigen::Vector3d
   for (int d = 0; d < set.directions(); ++d)
     if (const double c = set.direction(d).dot(a); c >= min_cos) near.emplace_back(-c, d);
   std::sort(near.begin(), near.end());
-  for (const auto& [c, d] : near) {
-    const Eigen::Vector3d w = opt_.capability_base.linear() * set.direction(d);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(near.size());
+  for (const auto& [c, d] : near) out.push_back(opt_.capability_base.linear() * set.direction(d));
+  return out;
+}
+
+std::optional<Eigen::Vector3d> ViewChecker::reachable_axis(const Eigen::Vector3d& eye, const Eigen::Vector3d& axis,
+                                                           const std::vector<Eigen::Vector3d>& turned) const {
+  if (axis_reachable(camera_pose(eye, axis, 0.0))) return axis;
+  for (const Eigen::Vector3d& w : turned)
     if (axis_reachable(camera_pose(eye, w, 0.0))) return w;
-  }
   return std::nullopt;
 }
 

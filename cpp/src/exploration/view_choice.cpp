@@ -233,7 +233,10 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
                           options.search.chain && sites.reach > 0 && !ws.box && !ws.sphere_center && !ws.filter};
   const std::uint64_t seed = options.search.seed;
   const double threshold = options.stop_threshold(camera, map.resolution());
-  if (memory.last_void_seen && double(*memory.last_void_seen) > threshold) memory.low_views = 0;
+  // evidence: a low view taken that saw more void cells than the threshold breaks the row (only where the
+  // utility counts void cells: frontier-void's and random's; the other baselines' counts other cells)
+  const bool void_utility = strategy == ViewStrategy::FrontierVoid || strategy == ViewStrategy::Random;
+  if (void_utility && memory.last_void_seen && double(*memory.last_void_seen) > threshold) memory.low_views = 0;
   memory.last_void_seen.reset();
   const bool last_chance = memory.low_views + 1 >= options.patience;
   ViewChoice c;

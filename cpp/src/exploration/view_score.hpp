@@ -85,11 +85,14 @@ class ViewChecker {
   // The capability map's verdict on the pose's (voxel, optical axis) cell (true without one or when
   // its approach axis is not the camera's +z).
   bool axis_reachable(const Pose& pose) const;
-  // An optical axis for a camera at `eye` meant to look along `axis` (unit, map frame): `axis` itself when
-  // axis_reachable, else the capability map's reachable direction there nearest to it, when it is at most
-  // `max_turn` radians away; none otherwise.
+  // The capability map's directions (map frame) at most `max_turn` radians from `axis` (unit, map frame),
+  // nearest first; none without a capability map that checks axes (see axis_reachable).
+  std::vector<Eigen::Vector3d> turned_axes(const Eigen::Vector3d& axis, double max_turn) const;
+  // An optical axis for a camera at `eye` meant to look along `axis`: `axis` itself when axis_reachable (at
+  // roll 0, as score_views checks a pose), else the first of `turned` (turned_axes of `axis`) that is; none
+  // otherwise.
   std::optional<Eigen::Vector3d> reachable_axis(const Eigen::Vector3d& eye, const Eigen::Vector3d& axis,
-                                                double max_turn) const;
+                                                const std::vector<Eigen::Vector3d>& turned) const;
   // IK (seed ik.seed + seed_offset) and the arm's collision check; on success the pose becomes the
   // one the arm reaches and q is set. Needs a chain.
   ViewStatus reach(Pose& pose, Eigen::VectorXd& q, std::size_t seed_offset) const;

@@ -112,7 +112,10 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
         if (s >= req.distance.first) stretch.emplace_back(k, s);
         return true;
       });
-      // the eye: a random cell of the free stretch that passes the checks (tried in random order)
+      // the eye: a random cell of the free stretch that passes the checks (tried in random order); its axis
+      // looks back along the ray at the cell, or turns to a direction the arm reaches
+      const std::vector<Eigen::Vector3d> turned = stretch.empty() ? std::vector<Eigen::Vector3d>{}
+                                                                  : checker.turned_axes(-d, req.max_turn);
       while (!stretch.empty()) {
         const std::size_t j = std::size_t(rng.uniform() * double(stretch.size()));
         const Eigen::Vector3d eye = c + stretch[j].second * d;
@@ -120,9 +123,8 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
         stretch.pop_back();
         if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
         if (opt.capability_map && !(opt.capability_map->reachability(cap_inv * eye) > opt.min_reachability)) continue;
-        if (!checker.camera_clear(eye)) continue;
-        const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, (c - eye).normalized(), req.max_turn);
-        if (!axis) continue;
+        const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, -d, turned);
+        if (!axis || !checker.camera_clear(eye)) continue;
         found[i].push_back({eye, *axis});
         break;
       }

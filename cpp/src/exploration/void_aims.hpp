@@ -38,13 +38,13 @@ std::vector<CellKey> draw_void_cells(const ExplorationState& S, const AimRequest
 // Poses (camera -> map) looking from an eye at a void cell. The eye is found along a ray out of the cell:
 // the ray crosses unknown cells, then observed-free ones (unknown cells outside the search space count as
 // free, as in the camera clearance), and ends at the first occupied cell or at the first unknown cell of the
-// search space after free space that is not a void cell (an unseen wall; void cells past free space, a box's
-// inside seen in patches, are crossed: the score weighs what lies behind them); the eye is a cell of the free
-// stretch `distance` from the cell (tried in random order) where the camera is clear (checker.camera_clear),
-// inside opt's workspace box and sphere, above min_height and, with a capability map, reachable there. Its
-// optical axis points at the cell or, when the capability map rules that axis out, is the map's reachable
-// direction nearest to it within req.max_turn (checker.reachable_axis). Deterministic for the seed whatever
-// the thread count. The caller holds the map's lock.
+// search space after free space that is not a void cell (void cells past free space are crossed: a box's
+// inside seen in patches, and also an unseen wall inside the hull; the score weighs what lies behind them).
+// The eye is a cell of the free stretch `distance` from the cell (tried in random order) where the camera is
+// clear (checker.camera_clear), inside opt's workspace box and sphere, above min_height and, with a capability
+// map, reachable there. Its optical axis points at the cell or, when the capability map rules that axis out,
+// is the map's reachable direction nearest to it within req.max_turn (checker.turned_axes, reachable_axis).
+// Deterministic for the seed whatever the thread count. The caller holds the map's lock.
 std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& checker, const NbvOptions& opt,
                                const AimRequest& req);
 
