@@ -676,3 +676,15 @@ def test_the_second_look_on_every_view_takes_the_better_view_by_the_ranking_gain
                         gain="frontier_void", enclosure_power=2.0)
     assert again.valid[0] and again.expected_gain[0] == pytest.approx(wide.rank_gain)
     assert again.expected_void[0] == pytest.approx(wide.expected_void)
+
+
+def test_observed_share_names_an_argument_of_the_wrong_type():
+    """The scene is the second argument and the regions the third: a region passed as the scene is refused by
+    name (it failed deep inside with an AttributeError)."""
+    scene = ex.closed_box_scene("+z", 0.16)
+    emap = ExplorationMap(resolution=0.05)
+    assert ex.observed_share(emap, scene) == 0.0
+    with pytest.raises(TypeError, match="scene must be a Scene"):
+        ex.observed_share(emap, ex.scene_region(scene))
+    with pytest.raises(TypeError, match="emap must be an ExplorationMap"):
+        ex.observed_share(scene, scene)

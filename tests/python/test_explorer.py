@@ -37,9 +37,13 @@ def test_bad_input_is_refused_and_the_explorer_stays_unchanged():
         e.integrate(depth=np.ones((48, 64), np.float32), camera_pose=T)
     with pytest.raises(ValueError, match="depth image pixel"):
         e.integrate(depth=np.full((60, 80), np.nan, np.float32), camera_pose=T)
+    with pytest.raises(ValueError, match="must hold metres as floats, got dtype uint16"):  # a 16UC1 image, in mm
+        e.integrate(depth=np.full((60, 80), 1500, np.uint16), camera_pose=T)
     assert (e.views, e.map.void_cell_count, e.map.frontier_cell_count) == before
     with pytest.raises(ValueError, match="search_space"):
         ex.Explorer(replay_exploration.camera(), [[0, 0, 0], [np.nan, 1, 1]])
+    with pytest.raises(TypeError, match="'max_view': not a field of ExploreOptions.*did you mean 'max_views'"):
+        ex.Explorer(replay_exploration.camera(), ex.scene_region(scene), max_view=15)
 
 
 def test_a_depth_image_is_the_cloud_it_shows():

@@ -35,10 +35,20 @@ def explore_options(options=None, **settings) -> ExploreOptions:
         field = _ALIASES.get(key, key)
         target = o if _settable(o, field) and field != "search" else o.search if _settable(o.search, field) else None
         if target is None:
-            raise TypeError(f"explore() got an unexpected keyword argument {key!r}")
+            raise TypeError(f"unexpected keyword argument {key!r}: not a field of ExploreOptions or of its search "
+                            f"(NbvOptions){_did_you_mean(key, o)}")
         setattr(target, field, value)
     o.validate()
     return o
+
+
+def _did_you_mean(key: str, o: ExploreOptions) -> str:
+    """'; did you mean ...?' naming the settable fields (and aliases) closest to `key`, or ''."""
+    import difflib
+
+    names = [n for obj in (o, o.search) for n in dir(type(obj)) if not n.startswith("_") and _settable(obj, n)]
+    near = difflib.get_close_matches(key, names + list(_ALIASES) + ["score_size"], n=3)
+    return f"; did you mean {', '.join(repr(n) for n in near)}?" if near else ""
 
 
 def _settable(obj, name: str) -> bool:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._checks import check_type
 from .._core import ExplorationMap, Scene
 from .scenes import scene_region
 
@@ -31,6 +32,8 @@ def region_points(scene: Scene, regions, res: float) -> np.ndarray:
 def observed_share(emap: ExplorationMap, scene: Scene, regions=None) -> float:
     """Share (0-1) of the non-solid cells of `regions` ((lo, hi) pairs; default scene_region(scene))
     that the map knows (free or occupied). Everything is unknown at the start."""
+    check_type(emap, ExplorationMap, "emap", "an ExplorationMap")
+    check_type(scene, Scene, "scene", "a Scene (the regions are the third argument)")
     if regions is None:
         regions = [tuple(scene_region(scene))]
     pts = region_points(scene, regions, emap.resolution)
