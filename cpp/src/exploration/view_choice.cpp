@@ -91,8 +91,7 @@ enum class Look { Sight, Rays };
 
 // Half the narrower field angle of `camera`: an axis turned this far from a cell still has it in the image.
 double half_narrow_field(const CameraIntrinsics& camera) {
-  const double half_w = std::tan(camera.fov / 2);
-  return std::atan(half_w * std::min(1.0, double(camera.height) / double(camera.width)));
+  return std::atan(0.5 * std::min(camera.width, camera.height) / camera.focal());
 }
 
 // The best valid of the poses one look aims at void cells (frontier_void's gain), by `key`.

@@ -90,9 +90,9 @@ class Explorer:
         if camera_pose is None or (points is None) == (depth is None):
             raise ValueError("integrate needs camera_pose and either points or depth")
         if depth is not None:
-            kind = np.asarray(depth).dtype.kind
-            if kind not in "f":  # a 16UC1 ROS image holds millimetres; read as metres it would clear the room
-                raise ValueError(f"depth image must hold metres as floats, got dtype {np.asarray(depth).dtype} "
+            dtype = np.asarray(depth).dtype
+            if dtype.kind != "f":  # a 16UC1 ROS image holds millimetres; read as metres it would clear the room
+                raise ValueError(f"depth image must hold metres as floats, got dtype {dtype} "
                                  "(an integer image holds millimetres: pass depth / 1000.0)")
             return self._core.integrate_depth(depth, camera_pose)
         return self._core.integrate(points, camera_pose)
