@@ -1,23 +1,23 @@
-"""Seconds per choice of a view: Explorer.next_view() against the loop's choice as explore() made it before it
-became a driver over the Explorer (strategies.choose_view, the Python wrapper over _core.choose_view), both on
-the same map at every view of the same runs; prints JSON.
+"""Seconds per choice of a view, the loop's (a coarse first score, NbvOptions.rescore_best of the exploration
+loop's search) against every valid pose scored with the full grid (rescore_best 0, the paper's search), both on the
+same map at every view of the same runs; prints JSON.
 
-Runs explore(strategy="frontier_void") with the explorer robot, its coarse capability map and the benchmark's
-stop rule (ExploreOptions.benchmark()) for --views views on the paper scenes and one instance of every scene
-family. At each view both choices are made on the map as it stands, in alternating order (the first of the two
-fills the map's caches), the loop's with a copy of the Explorer's memory and the seed next_view uses; the
-Explorer's answer drives the run. Wall seconds and CPU seconds of the process (all threads: on a shared machine
-the CPU time is the figure that does not depend on the other jobs) per call, and how often the two chose the
-same camera pose. With --families-from DIR (a checkout's python/octoreach/testing), the families are loaded from
-there, so an older build can be timed on the same scenes.
+Runs explore(strategy="frontier_void") with the explorer robot, its coarse capability map and the default stop
+rule for --views views on the paper scenes and --instances instances of every scene family (320 x 240 images,
+2.5 cm cells, as the family record). At each view both choices are made on the map as it stands, in alternating
+order (the first of the two fills the map's caches), each with a copy of the Explorer's memory and the seed
+next_view uses; the Explorer's own answer (the loop's default) drives the run. Per call: wall seconds and CPU
+seconds of the process (all threads: on a shared machine the CPU time is the figure that does not depend on the
+other jobs), the void cells each chosen view expects (the choice's utility), and whether the two chose the same
+camera pose or both stop. `utility_ratio` is the loop's utility over the full score's (1: as good a view; the
+second look's aims and the last chance may find a better one either way).
 
-Run: .venv/bin/python benchmarks/view_choice_times.py [--views 12] [--families-from DIR] > times.json
+Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] > times.json
 """
 from __future__ import annotations
 
 import argparse
 import copy
-import importlib.util
 import json
 import os
 import sys
@@ -30,21 +30,7 @@ from octoreach import exploration as ex
 from octoreach.exploration import strategies
 from octoreach.exploration.camera import look_at
 from octoreach.exploration.explorer import Explorer
-
-
-def _families(src):
-    """The scene_families module: octoreach.testing's, or loaded from `src` into octoreach.testing."""
-    if src is None:
-        from octoreach.testing import scene_families
-        return scene_families
-    import octoreach.testing as t
-    for name in ("scene_parts", "family_containers", "family_debris", "scene_families"):
-        spec = importlib.util.spec_from_file_location(f"octoreach.testing.{name}", f"{src}/{name}.py")
-        mod = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = mod
-        spec.loader.exec_module(mod)
-        setattr(t, name, mod)
-    return sys.modules["octoreach.testing.scene_families"]
+from octoreach.testing import scene_families
 
 
 def _clock(fn):
@@ -54,27 +40,39 @@ def _clock(fn):
     return out, time.perf_counter() - w, time.process_time() - c
 
 
+def _full_score(o):
+    """A copy of ExploreOptions `o` whose search scores every valid pose with the full grid."""
+    full = copy.copy(o)
+    search = full.search
+    search.rescore_best = 0
+    full.search = search
+    return full
+
+
 def _timed(calls: list):
-    """Explorer.next_view, also making the loop's choice on the same map first or second (alternately)."""
+    """Explorer.next_view, also making both choices on the same map (alternately first and second)."""
     next_view = Explorer.next_view
 
     def timed(self):
         o = self.options
         seed = o.search.seed + self.views  # next_view's seed for this view
         sphere_of = (lambda b: (np.asarray(b, float)[:3, 3], self.reach)) if self.reach > 0 else None
-        memory = copy.copy(self._core.memory)
-        loop = lambda: strategies.choose_view(self.strategy, self.map, self._keep[0], self.bases,  # noqa: E731
-                                              self.current_base, sphere_of, o, seed, memory=memory)
-        first_loop = len(calls) % 2 == 0
-        if first_loop:
-            choice, lw, lc = _clock(loop)
-        view, nw, nc = _clock(lambda: next_view(self))
-        if not first_loop:
-            choice, lw, lc = _clock(loop)
-        same = (choice.pose is None and not view.choice.found) or (
-            choice.pose is not None and view.choice.found and np.allclose(choice.pose, view.camera_pose, atol=1e-9))
-        calls.append({"next_view": (nw, nc), "loop": (lw, lc), "same": bool(same)})
-        return view
+
+        def choice(opts):
+            return lambda: strategies.choose_view(self.strategy, self.map, self._keep[0], self.bases,
+                                                  self.current_base, sphere_of, opts,
+                                                  seed, memory=copy.copy(self._core.memory))
+        order = [("loop", o), ("full", _full_score(o))]
+        if len(calls) % 2:
+            order.reverse()
+        got = {name: _clock(choice(opts)) for name, opts in order}
+        (a, aw, ac), (b, bw, bc) = got["loop"], got["full"]
+        same = (a.pose is None and b.pose is None) or (
+            a.pose is not None and b.pose is not None and np.allclose(a.pose, b.pose, atol=1e-9))
+        calls.append({"loop": (aw, ac), "full": (bw, bc), "same": bool(same),
+                      "utility": (float(a.expected_void or 0.0), float(b.expected_void or 0.0)),
+                      "stop": (bool(a.stop), bool(b.stop))})
+        return next_view(self)
     return timed
 
 
@@ -84,39 +82,41 @@ def _stats(xs) -> dict:
 
 
 def _summary(calls: list) -> dict:
-    out = {"choices": len(calls), "same_view": sum(c["same"] for c in calls)}
-    for key in ("next_view", "loop"):
+    out = {"choices": len(calls), "same_view": sum(c["same"] for c in calls),
+           "same_stop": sum(c["stop"][0] == c["stop"][1] for c in calls)}
+    for key in ("loop", "full"):
         out[key] = {"wall": _stats([c[key][0] for c in calls]), "cpu": _stats([c[key][1] for c in calls])}
+    ratios = [c["utility"][0] / c["utility"][1] for c in calls if c["utility"][1] > 0]
+    out["utility_ratio"] = {"median": float(np.median(ratios)), "min": float(np.min(ratios)),
+                            "below_0.9": int(sum(r < 0.9 for r in ratios))} if ratios else {}
     return out
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--views", type=int, default=12)
-    ap.add_argument("--families-from", default=None)
+    ap.add_argument("--views", type=int, default=40)
+    ap.add_argument("--instances", type=int, default=1, help="instances per scene family")
     ap.add_argument("--seed", type=int, default=0)
     a = ap.parse_args(argv)
-    fams = _families(a.families_from)
     _, chain = ex.explorer_robot()
     cmap = ex.explorer_capability_map(chain)
-    bench = ex.ExploreOptions.benchmark()
     paper_start = look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))  # the demo's first view
     scenes = [(f"paper_{k}", ex.paper_scene(k), paper_start, None) for k in (1, 2)]
-    for fam in fams.FAMILIES:
-        inst = fams.family_scene(fam, 0)
-        scenes.append((inst.name, inst.scene, fams.start_pose(), inst.search_space))
+    for fam in scene_families.FAMILIES:
+        for inst in scene_families.family_instances(fam, a.instances):
+            scenes.append((inst.name, inst.scene, scene_families.start_pose(), inst.search_space))
     out = {"views": a.views, "cores": os.cpu_count(), "load_average": list(os.getloadavg()), "scenes": {}}
     every = []
     Explorer.next_view = _timed(every)
     for name, scene, start, space in scenes:
         first = len(every)
-        cam = DepthCamera(160, 120, np.deg2rad(58.0), 4.0, seed=a.seed)
+        cam = DepthCamera(320, 240, np.deg2rad(58.0), 4.0, seed=a.seed)
         r = ex.explore(scene, cam, start, robot=True, capability_map=cmap, search_space=space, max_views=a.views,
-                       seed=a.seed, min_utility=bench.min_utility, patience=bench.patience)
+                       resolution=0.025, seed=a.seed)
         s = _summary(every[first:])
-        out["scenes"][name] = dict(s, stop=r.stop_reason, interior=r.interior_share)
-        print(f"# {name}: {s['choices']} choices, cpu median next_view {s['next_view']['cpu']['median']:.3f} "
-              f"loop {s['loop']['cpu']['median']:.3f}", file=sys.stderr)
+        out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows))
+        print(f"# {name}: {s['choices']} choices, wall median loop {s['loop']['wall']['median']:.3f} "
+              f"full {s['full']['wall']['median']:.3f}, same view {s['same_view']}", file=sys.stderr, flush=True)
     out["all"] = _summary(every)
     out["load_average_after"] = list(os.getloadavg())
     print(json.dumps(out, indent=1))

@@ -1922,9 +1922,9 @@ class NbvOptions:
     @staticmethod
     def exploration_loop() -> NbvOptions:
         """
-        The exploration loop's search: 100 valid poses from the best 800 candidate cells, the camera
-        5 cm clear of surfaces, enclosed voids and the exposed faces of voids first
-        (docs/design/next_best_view.md says why).
+        The exploration loop's search: 100 valid poses from the best 800 candidate cells (the best 16
+        by a coarse score scored in full), the camera 5 cm clear of surfaces, enclosed voids and the exposed
+        faces of voids first (docs/design/next_best_view.md says why).
         """
     def __init__(self) -> None:
         ...
@@ -2083,6 +2083,15 @@ class NbvOptions:
         ...
     @orientations_per_cell.setter
     def orientations_per_cell(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rescore_best(self) -> int:
+        """
+        n > 0: valid poses are scored with a grid half as fine across and down first, and only the n
+        best by each ranking key with the full grid (ranked holds those); 0: every one in full
+        """
+    @rescore_best.setter
+    def rescore_best(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def score_height(self) -> int:

@@ -309,7 +309,9 @@ def test_pictures(tmp_path):
     cam = DepthCamera(80, 60, FOV, 3.0)
     T = ex.look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))
     emap.insert(cam.capture(scene, T), T[:3, 3], 3.0)
-    quads, normals = ex.plots.voxel_faces(np.array([[0, 0, 0], [RES, 0, 0]], float), RES)
+    from octoreach.exploration import plots  # a submodule: imported, not an attribute of the package until then
+
+    quads, normals = plots.voxel_faces(np.array([[0, 0, 0], [RES, 0, 0]], float), RES)
     assert len(quads) == 10 and np.allclose(np.abs(normals).sum(1), 1)  # two cubes side by side: 10 faces
     png = ex.plot_map(emap, tmp_path / "v.png", poses=[T], next_pose=ex.look_at((0.3, -0.5, 0.9), (0.9, 0, 0)),
                       camera=cam, region=ex.scene_region(scene))

@@ -96,10 +96,12 @@ struct NbvOptions {
     return ik;
   }
   /// \brief The exploration loop's search (docs/design/next_best_view.md says why each value): 100 valid
-  /// poses from the best 800 candidate cells, the camera 5 cm clear of surfaces, enclosed voids first
-  /// (enclosure_power 2) and the faces of voids that observed space shows first (unexposed_weight 0.2).
+  /// poses from the best 800 candidate cells (the best 16 by a coarse score scored in full), the camera 5 cm
+  /// clear of surfaces, enclosed voids first (enclosure_power 2) and the faces of voids that observed space
+  /// shows first (unexposed_weight 0.2).
   static NbvOptions exploration_loop() {
     NbvOptions o;
+    o.rescore_best = 16;
     o.max_valid_poses = 100;
     o.max_candidate_cells = 800;
     o.min_distance = 0.05;
@@ -112,6 +114,11 @@ struct NbvOptions {
   double orientation_spread = 0.35;  ///< radians: cone around the mean utility direction
   int max_candidate_cells = 400;     ///< cells tried, best utility first (up to 8 such batches while no pose is valid)
   int score_width = 48, score_height = 36;  ///< coarse ray grid for scoring (not every pixel)
+  /// With n > 0, every valid pose is first scored with a grid of half as many rays across and down (rounded
+  /// up; a quarter of the ray casting) and only the n best by each ranking key (ranks_before) are scored with
+  /// the full grid: `ranked` holds those. 0 (the default): every valid pose is scored with the full grid, as in
+  /// the paper.
+  int rescore_best = 0;
   double min_distance = 0.0;         ///< keep the camera this far (m) from occupied cells (one cell check)
   std::uint64_t seed = 0;
   int threads = 0;
@@ -222,7 +229,7 @@ RankKey rank_key_from_name(const std::string& name);
 bool ranks_before(const ViewCandidate& a, const ViewCandidate& b, RankKey key = RankKey::Gain);
 
 /// \brief Result of a search: valid poses ranked by ranks_before (the expected gain, then expected unknown
-/// cells, then the order they were sampled in).
+/// cells, then the order they were sampled in); with NbvOptions::rescore_best, only the ones scored in full.
 struct NbvResult {
   std::vector<ViewCandidate> ranked;
   NbvGain gain = NbvGain::FrontierVoid;  ///< the gain the views are ranked by (NbvOptions::gain)

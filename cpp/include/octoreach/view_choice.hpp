@@ -58,7 +58,7 @@ struct ViewChoice {
   ViewCandidate view;     ///< camera pose, joints q, gains
   int base = 0;           ///< index of the base in ViewSites::bases the view is taken from
   double utility = 0.0;   ///< the gain the stop rule looks at (the strategy's: expected void cells for ours)
-  std::size_t candidates = 0, valid = 0;  ///< poses scored and of them valid
+  std::size_t candidates = 0, valid = 0;  ///< poses scored and of them valid (of those checked: see choose_view)
   bool aimed = false;     ///< found by a look aimed at void cells, not by the search
   bool harder = false;    ///< found by the looks before a low view (more aims, the last chance)
   bool stop = false;      ///< the loop ends here (the view, when found, is a low view that need not be taken)
@@ -77,7 +77,9 @@ struct ViewChoice {
 /// low_aimed_poses more and, when the choice would end the loop (that low view is patience's last, or no valid
 /// view or only views of utility 0 were found), last_poses found along rays out of every void cell, their optical
 /// axes turned by up to half the camera's narrower field angle to one the capability map reaches (at roll 0, as
-/// score_views checks a pose).
+/// score_views checks a pose). With options.search.rescore_best = n > 0, each look scores its poses with the coarse
+/// grid first and checks IK in that order until n are valid, those n scored in full (`valid` counts the valid
+/// ones among the poses checked).
 /// \throws std::invalid_argument for bad options, sites or a current index out of range.
 ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites,
                        int current, const ExploreOptions& options, ChoiceMemory& memory,

@@ -290,7 +290,7 @@ Slot PoseScorer::score(std::size_t idx) const {
     s.collides = st == ViewStatus::ArmCollision;
     if (st != ViewStatus::Valid) return s;
   }
-  detail::score_view(map_, cam_, opt_, model_, s.view);
+  detail::score_view(map_, cam_, opt_, model_, s.view, opt_.rescore_best > 0);
   s.valid = true;
   return s;
 }
@@ -322,6 +322,21 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
     return a.first < b.first;
   });
   for (auto& v : valid) r.ranked.push_back(std::move(v.second));
+}
+
+// NbvOptions::rescore_best: the ranked views (scored with the coarse grid) become the best of each ranking key,
+// scored with the full grid and ranked again (ties keep the coarse order).
+void rescore_best(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
+                  const detail::ScoreModel& model, int threads, NbvResult& r) {
+  std::vector<const ViewCandidate*> coarse;
+  for (const ViewCandidate& v : r.ranked) coarse.push_back(&v);
+  std::vector<ViewCandidate> best;
+  for (std::size_t i : detail::best_by_each_key(coarse, std::size_t(opt.rescore_best))) best.push_back(r.ranked[i]);
+  detail::parallel_for(best.size(), threads, [&](std::size_t i, int) {
+    detail::score_view(map, cam, opt, model, best[i]);
+  }, 1);
+  std::stable_sort(best.begin(), best.end(), [](const auto& a, const auto& b) { return ranks_before(a, b); });
+  r.ranked = std::move(best);
 }
 
 }  // namespace
@@ -381,6 +396,7 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
     next = keep_clear_cells(checker, map, opt, cells, next, batch, r);
     score_candidates(map, cam, opt, batch, checker, model, threads, r);
   }
+  if (opt.rescore_best > 0) rescore_best(map, cam, opt, model, threads, r);
   r.seconds_score = seconds_since(t_score);
   r.seconds = seconds_since(t0);
   return r;

@@ -86,6 +86,9 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
     throw std::invalid_argument("max_candidate_cells x orientations_per_cell (" + std::to_string(poses) +
                                 ") and max_valid_poses (" + std::to_string(opt.max_valid_poses) +
                                 ") must be at most " + std::to_string(limits::kViewCandidates));
+  if (opt.rescore_best < 0)
+    throw std::invalid_argument("rescore_best must be >= 0 (0: every valid pose scored with the full grid), got " +
+                                std::to_string(opt.rescore_best));
   if (!(opt.orientation_spread >= 0) || !std::isfinite(opt.orientation_spread))
     throw std::invalid_argument("orientation_spread must be a finite number >= 0, got " +
                                 std::to_string(opt.orientation_spread));
@@ -319,6 +322,45 @@ const char* status_name(ViewStatus s) {
   return "?";
 }
 
+namespace {
+
+// score_views' checks of pose i before IK: the workspace (and its filter's verdict `kept`), the capability map,
+// the camera's clearance.
+ViewStatus check_before_ik(const NbvOptions& opt, const detail::ViewChecker& checker, const Pose& to_arm,
+                           const Pose& pose, bool kept) {
+  const Eigen::Vector3d p = pose.translation();
+  if (!kept || !opt.workspace.contains(p)) return ViewStatus::OutsideWorkspace;
+  if (opt.capability_map &&
+      (!(opt.capability_map->reachability(to_arm * p) > opt.min_reachability) || !checker.axis_reachable(pose)))
+    return ViewStatus::NotReachable;
+  if (!checker.camera_clear(p)) return ViewStatus::CameraNotClear;
+  return ViewStatus::Valid;
+}
+
+// The workspace filter's verdict on each position (all true without a filter).
+std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen::Vector3d>& pos) {
+  if (!opt.workspace.filter || pos.empty()) return std::vector<bool>(pos.size(), true);
+  std::vector<bool> keep = opt.workspace.filter(pos);
+  if (keep.size() != pos.size())
+    throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
+                                std::to_string(pos.size()) + " positions");
+  return keep;
+}
+
+void set_not_scored(ScoredView& s) {
+  constexpr double kNotScored = std::numeric_limits<double>::quiet_NaN();
+  s.expected_void = s.expected_unknown = s.expected_frontier = s.expected_gain = s.utility_dm3 =
+      s.expected_enclosed_void = kNotScored;
+}
+
+void describe(ScoredViews& out, const detail::ScoreModel& model, const NbvOptions& opt) {
+  out.gain = opt.gain;
+  std::tie(out.pass_probability, out.void_pass_probability) = model.p;
+  out.dof = opt.chain ? opt.chain->dof() : 0;
+}
+
+}  // namespace
+
 ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                         const NbvOptions& opt, bool score_invalid) {
   detail::CancellableScope cancellable;  // poses are polled between them; the map is only read
@@ -342,42 +384,85 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
     }, 4);
   std::vector<Eigen::Vector3d> pos(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) pos[i] = out.views[i].pose.translation();
-  std::vector<bool> keep(poses.size(), true);
-  if (opt.workspace.filter && !poses.empty()) {
-    keep = opt.workspace.filter(pos);
-    if (keep.size() != poses.size())
-      throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
-                                  std::to_string(poses.size()) + " positions");
-  }
+  const std::vector<bool> keep = filter_verdicts(opt, pos);
   auto guard = detail::read_guard(map);
   const detail::ScoreModel model = detail::score_model(map, opt);
   const detail::ViewChecker checker(map, opt);
   const Pose to_arm = opt.capability_base.inverse();
-  out.gain = opt.gain;
-  std::tie(out.pass_probability, out.void_pass_probability) = model.p;
-  out.dof = opt.chain ? opt.chain->dof() : 0;
+  describe(out, model, opt);
   detail::parallel_for(poses.size(), detail::default_threads(opt.threads), [&](std::size_t i, int) {
     ScoredView& s = out.views[i];
-    if (!aimed[i])
-      s.status = ViewStatus::NoIk;
-    else if (!keep[i] || !opt.workspace.contains(pos[i]))
-      s.status = ViewStatus::OutsideWorkspace;
-    else if (opt.capability_map && (!(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability) ||
-                                    !checker.axis_reachable(s.pose)))
-      s.status = ViewStatus::NotReachable;
-    else if (!checker.camera_clear(pos[i]))
-      s.status = ViewStatus::CameraNotClear;
-    else if (opt.chain)
+    s.status = aimed[i] ? check_before_ik(opt, checker, to_arm, s.pose, keep[i]) : ViewStatus::NoIk;
+    if (s.status == ViewStatus::Valid && opt.chain)
       s.status = aims ? checker.arm_clear(s.q) : checker.reach(s.pose, s.q, i);
-    if (score_invalid || s.valid()) {
+    if (score_invalid || s.valid())
       detail::score_view(map, cam, opt, model, s);
-      return;
-    }
-    constexpr double kNotScored = std::numeric_limits<double>::quiet_NaN();
-    s.expected_void = s.expected_unknown = s.expected_frontier = s.expected_gain = s.utility_dm3 =
-        s.expected_enclosed_void = kNotScored;
+    else
+      set_not_scored(s);
   }, 1);
   return out;
 }
+
+namespace detail {
+
+ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
+                           const NbvOptions& opt, RankKey key) {
+  if (opt.rescore_best <= 0 || looks_at(opt)) return score_views(map, cam, poses, opt, false);
+  CancellableScope cancellable;
+  validate_options(cam, opt);
+  for (std::size_t i = 0; i < poses.size(); ++i) check_rigid(poses[i], "pose " + std::to_string(i));
+  std::vector<Eigen::Vector3d> pos(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) pos[i] = poses[i].translation();
+  const std::vector<bool> keep = filter_verdicts(opt, pos);
+  auto guard = read_guard(map);
+  const ScoreModel model = score_model(map, opt);
+  const ViewChecker checker(map, opt);
+  const Pose to_arm = opt.capability_base.inverse();
+  const int threads = default_threads(opt.threads);
+  // the checks before IK and the coarse score of every pose
+  std::vector<ScoredView> coarse(poses.size());
+  parallel_for(poses.size(), threads, [&](std::size_t i, int) {
+    ScoredView& s = coarse[i];
+    s.pose = poses[i];
+    s.status = check_before_ik(opt, checker, to_arm, s.pose, keep[i]);
+    if (s.valid()) score_view(map, cam, opt, model, s, true);
+  }, 1);
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < coarse.size(); ++i)
+    if (coarse[i].valid()) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return ranks_before(coarse[a], coarse[b], key); });
+  // IK and the arm's collisions in that order, in batches, until rescore_best are valid (those after the
+  // rescore_best-th valid one are dropped, whatever the batch size: the same views for any thread count)
+  const std::size_t want = std::size_t(opt.rescore_best), batch = std::size_t(std::max(threads, 1)) * 4;
+  std::vector<std::size_t> checked;
+  std::size_t valid = 0;
+  for (std::size_t b = 0; b < order.size() && valid < want; b += batch) {
+    const std::size_t e = std::min(order.size(), b + batch);
+    if (opt.chain)
+      parallel_for(e - b, threads, [&](std::size_t j, int) {
+        ScoredView& s = coarse[order[b + j]];
+        s.status = checker.reach(s.pose, s.q, order[b + j]);
+      }, 1);
+    for (std::size_t j = b; j < e && valid < want; ++j) {
+      checked.push_back(order[j]);
+      valid += coarse[order[j]].valid() ? 1 : 0;
+    }
+  }
+  std::sort(checked.begin(), checked.end());
+  ScoredViews out;
+  describe(out, model, opt);
+  for (std::size_t i : checked) out.views.push_back(coarse[i]);
+  parallel_for(out.views.size(), threads, [&](std::size_t j, int) {
+    ScoredView& s = out.views[j];
+    if (s.valid())
+      score_view(map, cam, opt, model, s);
+    else
+      set_not_scored(s);
+  }, 1);
+  return out;
+}
+
+}  // namespace detail
 
 }  // namespace octoreach

@@ -132,7 +132,7 @@ ViewChoice aimed_choice(const ChoiceContext& ctx, int i, std::uint64_t seed, Loo
     }
   }
   if (poses.empty()) return ViewChoice{};
-  return ctx.best_of(score_views(ctx.map, ctx.camera, poses, opt, false), poses.size(), i, key, true);
+  return ctx.best_of(detail::rescored_views(ctx.map, ctx.camera, poses, opt, key), poses.size(), i, key, true);
 }
 
 // next_best_view from every base; the best by utility (the current base first: ties keep it).

@@ -289,14 +289,35 @@ ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt) {
 }
 
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
-                ViewCandidate& v) {
+                ViewCandidate& v, bool coarse) {
+  const int sw = coarse ? (opt.score_width + 1) / 2 : opt.score_width;
+  const int sh = coarse ? (opt.score_height + 1) / 2 : opt.score_height;
   static_cast<ViewGains&>(v) =
-      view_gains_unlocked(map, cam, v.pose, opt.score_width, opt.score_height, m.p.first, m.p.second,
+      view_gains_unlocked(map, cam, v.pose, sw, sh, m.p.first, m.p.second,
                           opt.unknown_pass_probability < 0, nullptr, m.void_weights ? &m.void_weights : nullptr,
                           m.clip ? &*m.clip : nullptr, m.cells.get());
   v.expected_gain = v.gain(opt.gain);
   const double res = map.resolution();
   v.utility_dm3 = v.expected_void * res * res * res * 1000.0;
+}
+
+std::vector<std::size_t> best_by_each_key(const std::vector<const ViewCandidate*>& views, std::size_t n) {
+  std::vector<char> keep(views.size(), 0);
+  std::vector<std::size_t> order(views.size());
+  for (RankKey key : {RankKey::Gain, RankKey::ExpectedVoid}) {
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    const std::size_t m = std::min(n, order.size());
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(m), order.end(), [&](std::size_t a, std::size_t b) {
+      if (ranks_before(*views[a], *views[b], key)) return true;
+      if (ranks_before(*views[b], *views[a], key)) return false;
+      return a < b;
+    });
+    for (std::size_t i = 0; i < m; ++i) keep[order[i]] = 1;
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) out.push_back(i);
+  return out;
 }
 
 namespace {

@@ -67,9 +67,23 @@ struct ScoreModel {
 ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);
 
 // Fills the gains, expected_gain (of opt.gain) and utility_dm3 of `v` (its pose set): the one place a view is
-// scored; ranks_before (next_best_view.hpp) is the one order of scored views.
+// scored; ranks_before (next_best_view.hpp) is the one order of scored views. `coarse`: with the coarse grid of
+// NbvOptions::rescore_best (half the score grid across and down, rounded up), the first score of many poses.
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
-                ViewCandidate& v);
+                ViewCandidate& v, bool coarse = false);
+
+// score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 (and a chain that
+// does more than aim its camera): the checks before IK for every pose and a coarse score of those that pass, then
+// IK and the arm's collisions in the coarse order until n are valid, those n scored with the full grid. Holds
+// only the poses that got IK (valid or not; without a chain, the n best by the coarse score), in their order in
+// `poses`; the
+// same views for any thread count. Takes the map's lock.
+ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
+                           const NbvOptions& opt, RankKey key);
+
+// The indices (ascending) of the n best of `views` by each ranking key (ranks_before; ties: the lower index):
+// the ones a coarse first score keeps for the full score (NbvOptions::rescore_best).
+std::vector<std::size_t> best_by_each_key(const std::vector<const ViewCandidate*>& views, std::size_t n);
 
 // The checks of one search that make a pose a view: camera clearance, the capability map's axis,
 // IK and the arm's collisions. Built once per search (the obstacles: the map's occupied cells and,
