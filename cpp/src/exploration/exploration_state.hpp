@@ -78,6 +78,47 @@ class StateGrid {
   std::unordered_map<CellKey, std::unique_ptr<Block>> blocks_;
 };
 
+// A float per cell, kept in the cell cache's 16^3 blocks (ExplorationState::hidden): a view score reads a
+// block's values in place (ScoreCells), so nothing proportional to the cells held is copied per map version.
+class HiddenCells {
+ public:
+  struct Block {
+    std::array<float, 4096> value;
+    std::array<std::uint8_t, 4096> held;  // 1: the cell has an entry (its value may still be 0)
+  };
+  // The value of k, 0 when k has none.
+  float get(CellKey k) const {
+    const Block* b = find_block(StateGrid::block_of(k));
+    return b ? b->value[std::size_t(StateGrid::offset(k))] : 0.0f;
+  }
+  // The value of k, made 0 when k is new.
+  float& at(CellKey k) {
+    auto& b = blocks_[StateGrid::block_of(k)];
+    if (!b) {
+      b = std::make_unique<Block>();
+      b->value.fill(0.0f);
+      b->held.fill(0);
+    }
+    const std::size_t i = std::size_t(StateGrid::offset(k));
+    if (!b->held[i]) b->held[i] = 1, ++size_;
+    return b->value[i];
+  }
+  const Block* find_block(CellKey block) const {
+    auto it = blocks_.find(block);
+    return it == blocks_.end() ? nullptr : it->second.get();
+  }
+  // f(block key, block) for every block, in no particular order.
+  template <class F>
+  void for_each_block(F&& f) const {
+    for (const auto& [k, b] : blocks_) f(k, *b);
+  }
+  std::size_t size() const { return size_; }  // cells with an entry
+
+ private:
+  std::unordered_map<CellKey, std::unique_ptr<Block>> blocks_;
+  std::size_t size_ = 0;
+};
+
 // Read-only view of a StateGrid with a one-block cache (one per thread).
 class GridReader {
  public:
@@ -214,7 +255,7 @@ struct ExplorationState {
   // cells it expects with their ray weights w; the next insert multiplies s by (1 - w) for each of
   // them it left unknown and its rays still meet in the updated map (no surface seen in between). The
   // view score counts an unknown cell with w * s.
-  KeyTable<float> hidden;
+  HiddenCells hidden;
   std::vector<ExpectedCell> expected_by_view;
   std::optional<AnnouncedView> announced;  // set with expected_by_view by expect_view
   VisibilityCurve curve;  // learned from the announced views' cells (view_score.cpp)
@@ -222,8 +263,7 @@ struct ExplorationState {
   KeyTable<std::uint8_t> sealed;
   double seeability(CellKey k) const {
     if (sealed.size() && sealed.find(k)) return 0.0;
-    const float* h = hidden.find(k);
-    return h ? 1.0 - double(*h) : 1.0;
+    return 1.0 - double(hidden.get(k));
   }
 
   // caches rebuilt on demand after an insert

@@ -14,19 +14,17 @@ constexpr std::uint64_t kMaxDirectory = std::uint64_t(1) << 21;
 }  // namespace
 
 ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const EnclosureTable> enclosure)
-    : enclosure_(std::move(enclosure)), grid_(&S.grid) {
+    : enclosure_(std::move(enclosure)), grid_(&S.grid), hidden_(&S.hidden) {
   KeyTable<Extra*> extra;
   const auto extra_at = [&](CellKey k) -> Extra& {
     Extra*& e = extra.at(StateGrid::block_of(k));
     if (!e) {
       extras_.push_back(std::make_unique<Extra>());
       e = extras_.back().get();
-      std::fill(std::begin(e->hidden), std::end(e->hidden), 0.0f);
       std::fill(std::begin(e->mark), std::end(e->mark), std::uint8_t(0));
     }
     return *e;
   };
-  S.hidden.for_each([&](CellKey k, float h) { extra_at(k).hidden[StateGrid::offset(k)] = h; });
   S.sealed.for_each([&](CellKey k, std::uint8_t) { extra_at(k).mark[StateGrid::offset(k)] |= kSealed; });
   if (enclosure_)
     enclosure_->for_each([&](CellKey k, std::uint8_t h) {
@@ -41,6 +39,7 @@ ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const Enclosur
     any = true;
   };
   S.grid.for_each_block([&](CellKey b, const StateGrid::Block&) { grow(b); });
+  S.hidden.for_each_block([&](CellKey b, const HiddenCells::Block&) { grow(b); });
   extra.for_each([&](CellKey b, Extra*) { grow(b); });
   std::uint64_t cells = any ? 1 : 0;
   for (int a = 0; a < 3 && any; ++a) cells *= std::uint64_t(hi[a] - lo[a] + 1);
@@ -50,6 +49,7 @@ ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const Enclosur
     S.grid.for_each_block([&](CellKey b, const StateGrid::Block& block) {
       dir_[slot(b)].grid = &block;
     });
+    S.hidden.for_each_block([&](CellKey b, const HiddenCells::Block& h) { dir_[slot(b)].hidden = &h; });
     extra.for_each([&](CellKey b, Extra* e) {
       dir_[slot(b)].extra = e;
     });
@@ -71,6 +71,7 @@ ScoreCells::Entry ScoreCells::entry(CellKey b) const {
   }
   Entry e;
   e.grid = grid_->find_block(b);
+  e.hidden = hidden_->find_block(b);
   if (const Extra* const* x = extra_of_.find(b)) e.extra = *x;
   return e;
 }

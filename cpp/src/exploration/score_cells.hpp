@@ -1,9 +1,10 @@
 #pragma once
 // Internal: what view scoring reads per cell (its flags, its seeability, its enclosure), in flat form for one
 // version of the map. A view's rays read these for every cell they cross and a search scores thousands of
-// views on one map: a directory of the cell cache's 16^3 blocks, with a companion block of the seeability and
-// enclosure entries beside each block that has some, replaces a hash lookup per block and per cell. The
-// values are the map tables' own (ExplorationState::seeability, the enclosure table), so a score is the same.
+// views on one map: a directory of the cell cache's 16^3 blocks, with the map's own block of seeability values
+// and a companion block of the sealed and enclosure entries beside each block that has some, replaces a hash
+// lookup per block and per cell. The values are the map tables' own (ExplorationState::seeability, the
+// enclosure table), so a score is the same.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -17,14 +18,14 @@ class ScoreCells {
  public:
   static constexpr std::uint8_t kSealed = 0x40;    // mark: the cell is sealed (seeability 0)
   static constexpr std::uint8_t kEnclosed = kInTable;  // mark: the enclosure table holds the cell (low bits: its byte)
-  // The seeability and enclosure entries of one block's cells: hidden (1 - seeability; 0: none) and mark.
+  // The sealed and enclosure entries of one block's cells.
   struct Extra {
-    float hidden[4096];
     std::uint8_t mark[4096];
   };
   struct Entry {
     const StateGrid::Block* grid = nullptr;
     const Extra* extra = nullptr;
+    const HiddenCells::Block* hidden = nullptr;  // the map's own block of 1 - seeability values
   };
 
   // The cells of S with the entries of `enclosure` (may be null); the caller holds the map's lock.
@@ -41,13 +42,10 @@ class ScoreCells {
     // ExplorationState::seeability(k), and the enclosure byte (with kEnclosed; 0: not in the table).
     double seeability(CellKey k, std::uint8_t& mark) const {
       const Entry& e = at(k);
-      if (!e.extra) {
-        mark = 0;
-        return 1.0;
-      }
       const int i = StateGrid::offset(k);
-      mark = e.extra->mark[i];
-      return (mark & kSealed) ? 0.0 : 1.0 - double(e.extra->hidden[i]);
+      mark = e.extra ? e.extra->mark[i] : 0;
+      if (mark & kSealed) return 0.0;
+      return e.hidden ? 1.0 - double(e.hidden->value[std::size_t(i)]) : 1.0;
     }
 
    private:
@@ -73,6 +71,7 @@ class ScoreCells {
   const StateGrid* grid_;
   std::uint32_t lo_[3] = {0, 0, 0}, n_[3] = {0, 0, 0};  // directory box (block keys); n 0: no directory
   std::vector<Entry> dir_;
+  const HiddenCells* hidden_;
   KeyTable<const Extra*> extra_of_;  // block key -> its extra block (outside the directory)
   std::vector<std::unique_ptr<Extra>> extras_;
 };
