@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "box_scene.hpp"
 #include "exploration/exploration_state.hpp"
 #include "exploration/view_score.hpp"
 #include "exploration/void_aims.hpp"
@@ -17,21 +18,10 @@ using namespace octoreach;
 
 namespace {
 
-constexpr double kRes = 0.025;
-
-// A closed box with an opening in its lid on a floor, seen from above and from one side: void cells inside.
+// The box seen from above and from one side: void cells inside.
 std::unique_ptr<ExplorationMap> box_map(Scene& scene) {
-  scene.add_box({-1.5, -1.5, -0.05}, {1.5, 1.5, 0.0});
-  scene.add_closed_box({0.6, -0.2, 0.0}, {1.0, 0.2, 0.4}, 0.02, "+z", 0.14, 0.14);
-  ExplorationOptions o;
-  o.resolution = kRes;
-  o.search_lo = {0.4, -0.4, 0.0};
-  o.search_hi = {1.2, 0.4, 0.6};
-  auto map = std::make_unique<ExplorationMap>(o);
-  DepthCamera cam(48, 36, 1.0123, 4.0, 0.0, 0);
-  for (const Pose& T : {look_at({0.8, 0.0, 1.1}, {0.8, 0.0, 0.0}), look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2})})
-    map->insert(cam.capture(scene, T), T.translation(), 4.0);
-  return map;
+  return test_scenes::box_with_lid_opening(
+      scene, {look_at({0.8, 0.0, 1.1}, {0.8, 0.0, 0.0}), look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2})});
 }
 
 CameraIntrinsics camera() { return CameraIntrinsics{48, 36, 1.0123, 4.0}; }

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "box_scene.hpp"
 #include "exploration/exploration_state.hpp"
 #include "exploration/view_score.hpp"
 #include "exploration/void_aims.hpp"
@@ -24,21 +25,12 @@ namespace {
 
 constexpr double kRes = 0.025;
 
-// A closed box with a 14 cm opening in its lid, seen from above through the opening and from two sides at
-// a low resolution: its inside is seen in patches (columns under the opening), the rest of it is void.
+// The box seen from above through the opening and from two sides at a low resolution: its inside is seen in
+// patches (columns under the opening), the rest of it is void.
 std::unique_ptr<ExplorationMap> box_seen_in_patches(Scene& scene) {
-  scene.add_box({-1.5, -1.5, -0.05}, {1.5, 1.5, 0.0});
-  scene.add_closed_box({0.6, -0.2, 0.0}, {1.0, 0.2, 0.4}, 0.02, "+z", 0.14, 0.14);
-  ExplorationOptions o;
-  o.resolution = kRes;
-  o.search_lo = {0.4, -0.4, 0.0};
-  o.search_hi = {1.2, 0.4, 0.6};
-  auto map = std::make_unique<ExplorationMap>(o);
-  DepthCamera cam(48, 36, 1.0123, 4.0, 0.0, 0);
-  for (const Pose& T : {look_at({0.8, 0.0, 1.1}, {0.8, 0.0, 0.0}), look_at({0.7, 0.05, 1.0}, {0.9, -0.1, 0.0}),
-                        look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2}), look_at({0.2, 0.6, 0.7}, {0.8, 0.0, 0.2})})
-    map->insert(cam.capture(scene, T), T.translation(), 4.0);
-  return map;
+  return test_scenes::box_with_lid_opening(
+      scene, {look_at({0.8, 0.0, 1.1}, {0.8, 0.0, 0.0}), look_at({0.7, 0.05, 1.0}, {0.9, -0.1, 0.0}),
+              look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2}), look_at({0.2, 0.6, 0.7}, {0.8, 0.0, 0.2})});
 }
 
 // The rule of a ray out of void cell `c` towards `eye`: no occupied cell, and past the first observed-free cell
