@@ -83,9 +83,9 @@ void wrap_search_options(py::module_& m) {
                              "keyword argument of next_best_view.");
   cls.def(py::init<>())
       .def_static("exploration_loop", &NbvOptions::exploration_loop,
-                  "The exploration loop's search: 100 valid poses from the best 800 candidate cells (the best 16\n"
-                  "by a coarse score scored in full), the camera 5 cm clear of surfaces, enclosed voids and the exposed faces of voids first\n"
-                  "(docs/design/next_best_view.md says why).")
+                  "The exploration loop's search: 100 valid poses from the best 800 candidate cells, the best\n"
+                  "16 by a coarse score scored in full (rescore_best), the camera 5 cm clear of surfaces,\n"
+                  "enclosed voids and the exposed faces of voids first (docs/design/next_best_view.md says why).")
       .def_readwrite("max_valid_poses", &NbvOptions::max_valid_poses, "N of the paper: stop after this many valid poses")
       .def_readwrite("orientations_per_cell", &NbvOptions::orientations_per_cell)
       .def_readwrite("orientation_spread", &NbvOptions::orientation_spread, "radians around the mean utility direction")
@@ -93,8 +93,10 @@ void wrap_search_options(py::module_& m) {
       .def_readwrite("score_width", &NbvOptions::score_width)
       .def_readwrite("score_height", &NbvOptions::score_height)
       .def_readwrite("rescore_best", &NbvOptions::rescore_best,
-                     "n > 0: valid poses are scored with a grid half as fine across and down first, and only the n\n"
-                     "best by each ranking key with the full grid (ranked holds those); 0: every one in full")
+                     "n > 0: next_best_view (and the loop's aimed looks) score valid poses with a grid half as fine\n"
+                     "across and down first, and only the n best by each ranking key with the full grid (ranked\n"
+                     "holds those); 0: every one in full. A camera that only aims, score_views and the baselines\n"
+                     "always score in full.")
       .def_readwrite("min_distance", &NbvOptions::min_distance, "metres from the camera to any occupied cell")
       .def_readwrite("seed", &NbvOptions::seed, "seeds the orientation samples and the IK restarts")
       .def_readwrite("threads", &NbvOptions::threads)

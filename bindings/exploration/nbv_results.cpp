@@ -155,7 +155,7 @@ void wrap_nbv_result(py::module_& m) {
   py::class_<R>(m, "NbvResult",
                 "next_best_view's answer: the valid poses ranked (best first), the best one's figures and the\n"
                 "search's statistics.")
-      .def_readonly("ranked", &R::ranked, "valid views (ViewCandidate), best first")
+      .def_readonly("ranked", &R::ranked, "valid views (ViewCandidate), best first (with rescore_best: those scored in full)")
       .def_property_readonly("best", [](const R& r) { return r.ranked.empty() ? py::object(py::none()) : py::cast(r.ranked.front()); },
                              "the best view, or None")
       .def_property_readonly("best_pose", [](const R& r) {

@@ -103,9 +103,10 @@ void wrap_search(py::module_& m) {
           return next_best_view(map, c, o);
         }, py::arg("map"), py::arg("camera"), py::arg("options") = py::none(),
         "Next best view (Algorithm 1 + frustum scoring). Options: an NbvOptions and/or its attributes as\n"
-        "keyword arguments. Returns an NbvResult: ranked (the valid views, best first, as ViewCandidate),\n"
-        "best and best_pose (4x4 camera -> map, or None), the best view's gains, expected_gain (of `gain`) and\n"
-        "utility_dm3, the pass probabilities used and the search's statistics. The workspace is\n"
+        "keyword arguments. Returns an NbvResult: ranked (the valid views, best first, as ViewCandidate;\n"
+        "with rescore_best, those scored in full), best and best_pose (4x4 camera -> map, or None), the best\n"
+        "view's gains, expected_gain (of `gain`) and utility_dm3, the pass probabilities used and the\n"
+        "search's statistics. The workspace is\n"
         "workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable\n"
         "taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,\n"
         "+z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.\n"

@@ -28,7 +28,7 @@ void wrap_view_choice(py::module_& m) {
       .def_readonly("base", &ViewChoice::base, "index of the base the view is taken from")
       .def_readonly("utility", &ViewChoice::utility, "the gain the stop rule looks at")
       .def_readonly("candidates", &ViewChoice::candidates, "poses scored")
-      .def_readonly("valid", &ViewChoice::valid, "of them valid")
+      .def_readonly("valid", &ViewChoice::valid, "of them valid (with rescore_best, of those an aimed look checked)")
       .def_readonly("aimed", &ViewChoice::aimed, "found by a look aimed at void cells")
       .def_readonly("harder", &ViewChoice::harder, "found by the looks before a low view")
       .def_readonly("stop", &ViewChoice::stop, "the loop ends here")

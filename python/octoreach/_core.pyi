@@ -1922,9 +1922,9 @@ class NbvOptions:
     @staticmethod
     def exploration_loop() -> NbvOptions:
         """
-        The exploration loop's search: 100 valid poses from the best 800 candidate cells (the best 16
-        by a coarse score scored in full), the camera 5 cm clear of surfaces, enclosed voids and the exposed
-        faces of voids first (docs/design/next_best_view.md says why).
+        The exploration loop's search: 100 valid poses from the best 800 candidate cells, the best
+        16 by a coarse score scored in full (rescore_best), the camera 5 cm clear of surfaces,
+        enclosed voids and the exposed faces of voids first (docs/design/next_best_view.md says why).
         """
     def __init__(self) -> None:
         ...
@@ -2087,8 +2087,10 @@ class NbvOptions:
     @property
     def rescore_best(self) -> int:
         """
-        n > 0: valid poses are scored with a grid half as fine across and down first, and only the n
-        best by each ranking key with the full grid (ranked holds those); 0: every one in full
+        n > 0: next_best_view (and the loop's aimed looks) score valid poses with a grid half as fine
+        across and down first, and only the n best by each ranking key with the full grid (ranked
+        holds those); 0: every one in full. A camera that only aims, score_views and the baselines
+        always score in full.
         """
     @rescore_best.setter
     def rescore_best(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2635,7 +2637,7 @@ class NbvResult:
     @property
     def ranked(self) -> list[ViewCandidate]:
         """
-        valid views (ViewCandidate), best first
+        valid views (ViewCandidate), best first (with rescore_best: those scored in full)
         """
     @property
     def seconds(self) -> float:
@@ -2764,9 +2766,10 @@ def missed_cells(map: ExplorationMap) -> int:
 def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any = None, **kwargs) -> NbvResult:
     """
     Next best view (Algorithm 1 + frustum scoring). Options: an NbvOptions and/or its attributes as
-    keyword arguments. Returns an NbvResult: ranked (the valid views, best first, as ViewCandidate),
-    best and best_pose (4x4 camera -> map, or None), the best view's gains, expected_gain (of `gain`) and
-    utility_dm3, the pass probabilities used and the search's statistics. The workspace is
+    keyword arguments. Returns an NbvResult: ranked (the valid views, best first, as ViewCandidate;
+    with rescore_best, those scored in full), best and best_pose (4x4 camera -> map, or None), the best
+    view's gains, expected_gain (of `gain`) and utility_dm3, the pass probabilities used and the
+    search's statistics. The workspace is
     workspace_box ((2, 3): lo, hi), workspace_sphere ((center, radius)) and/or workspace, a callable
     taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,
     +z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.
@@ -3093,7 +3096,7 @@ class ViewChoice:
     @property
     def valid(self) -> int:
         """
-        of them valid
+        of them valid (with rescore_best, of those an aimed look checked)
         """
     @property
     def view(self) -> typing.Any:

@@ -96,9 +96,9 @@ struct NbvOptions {
     return ik;
   }
   /// \brief The exploration loop's search (docs/design/next_best_view.md says why each value): 100 valid
-  /// poses from the best 800 candidate cells (the best 16 by a coarse score scored in full), the camera 5 cm
-  /// clear of surfaces, enclosed voids first (enclosure_power 2) and the faces of voids that observed space
-  /// shows first (unexposed_weight 0.2).
+  /// poses from the best 800 candidate cells, the best 16 by a coarse score scored in full (rescore_best), the
+  /// camera 5 cm clear of surfaces, enclosed voids first (enclosure_power 2) and the faces of voids that observed
+  /// space shows first (unexposed_weight 0.2).
   static NbvOptions exploration_loop() {
     NbvOptions o;
     o.rescore_best = 16;
@@ -114,10 +114,11 @@ struct NbvOptions {
   double orientation_spread = 0.35;  ///< radians: cone around the mean utility direction
   int max_candidate_cells = 400;     ///< cells tried, best utility first (up to 8 such batches while no pose is valid)
   int score_width = 48, score_height = 36;  ///< coarse ray grid for scoring (not every pixel)
-  /// With n > 0, every valid pose is first scored with a grid of half as many rays across and down (rounded
-  /// up; a quarter of the ray casting) and only the n best by each ranking key (ranks_before) are scored with
-  /// the full grid: `ranked` holds those. 0 (the default): every valid pose is scored with the full grid, as in
-  /// the paper.
+  /// With n > 0, next_best_view first scores every valid pose with a grid of half as many rays across and down
+  /// (rounded up; a quarter of the ray casting) and only the n best by each ranking key (ranks_before) with the
+  /// full grid: `ranked` holds those; choose_view's aimed looks do the same. 0 (the default): every valid pose
+  /// is scored with the full grid, as in the paper. A chain that only aims its camera (looks_at), score_views
+  /// and the baselines' sampled poses always score in full.
   int rescore_best = 0;
   double min_distance = 0.0;         ///< keep the camera this far (m) from occupied cells (one cell check)
   std::uint64_t seed = 0;
@@ -349,7 +350,7 @@ struct ScoredViews {
 
 /// \brief The gains and validity of given camera poses (camera -> map), with the very checks and ray
 /// casting of next_best_view (workspace, capability map, camera clearance, IK with the chain at
-/// chain_base, arm collisions; samples, candidate counts and max_valid_poses play no part). Poses are
+/// chain_base, arm collisions; samples, candidate counts, max_valid_poses and rescore_best play no part). Poses are
 /// scored in parallel; pose i uses IK seed ik.seed + i. A chain that can only aim its camera (looks_at)
 /// aims it at the point half the camera's range along pose i's optical axis (aim seed seed + i; NoIk, checked
 /// first, when it cannot) and the checks and the score are of the pose it reaches, which is the view's pose

@@ -77,9 +77,9 @@ struct ViewChoice {
 /// low_aimed_poses more and, when the choice would end the loop (that low view is patience's last, or no valid
 /// view or only views of utility 0 were found), last_poses found along rays out of every void cell, their optical
 /// axes turned by up to half the camera's narrower field angle to one the capability map reaches (at roll 0, as
-/// score_views checks a pose). With options.search.rescore_best = n > 0, each look scores its poses with the coarse
-/// grid first and checks IK in that order until n are valid, those n scored in full (`valid` counts the valid
-/// ones among the poses checked).
+/// score_views checks a pose). With options.search.rescore_best = n > 0 (and a chain that does more than aim its
+/// camera), each aimed look scores its poses with the coarse grid first and checks IK in that order until n are
+/// valid, those n scored in full (`valid` counts the valid ones among the poses checked).
 /// \throws std::invalid_argument for bad options, sites or a current index out of range.
 ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites,
                        int current, const ExploreOptions& options, ChoiceMemory& memory,

@@ -299,7 +299,7 @@ Slot PoseScorer::score(std::size_t idx) const {
 // ranked by ranks_before (the expected gain, then expected unknown cells), then index.
 void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
                       const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker,
-                      const detail::ScoreModel& model, int threads, NbvResult& r) {
+                      const detail::ScoreModel& model, int threads, NbvResult& r, std::vector<std::size_t>& sampled) {
   const PoseScorer scorer(map, cam, opt, cells, checker, model);
   const std::size_t total = scorer.total(), max_valid = std::size_t(opt.max_valid_poses);
   const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
@@ -321,22 +321,31 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
     if (ranks_before(b.second, a.second)) return false;
     return a.first < b.first;
   });
-  for (auto& v : valid) r.ranked.push_back(std::move(v.second));
+  for (auto& v : valid) {
+    sampled.push_back(v.first);
+    r.ranked.push_back(std::move(v.second));
+  }
 }
 
-// NbvOptions::rescore_best: the ranked views (scored with the coarse grid) become the best of each ranking key,
-// scored with the full grid and ranked again (ties keep the coarse order).
+// NbvOptions::rescore_best: the ranked views (scored with the coarse grid; `sampled`: each one's sample index)
+// become the best of each ranking key, scored with the full grid and ranked again (ties: the sample order).
 void rescore_best(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
-                  const detail::ScoreModel& model, int threads, NbvResult& r) {
+                  const detail::ScoreModel& model, int threads, NbvResult& r, const std::vector<std::size_t>& sampled) {
   std::vector<const ViewCandidate*> coarse;
   for (const ViewCandidate& v : r.ranked) coarse.push_back(&v);
-  std::vector<ViewCandidate> best;
-  for (std::size_t i : detail::best_by_each_key(coarse, std::size_t(opt.rescore_best))) best.push_back(r.ranked[i]);
+  std::vector<std::pair<std::size_t, ViewCandidate>> best;
+  for (std::size_t i : detail::best_by_each_key(coarse, std::size_t(opt.rescore_best)))
+    best.emplace_back(sampled[i], r.ranked[i]);
   detail::parallel_for(best.size(), threads, [&](std::size_t i, int) {
-    detail::score_view(map, cam, opt, model, best[i]);
+    detail::score_view(map, cam, opt, model, best[i].second);
   }, 1);
-  std::stable_sort(best.begin(), best.end(), [](const auto& a, const auto& b) { return ranks_before(a, b); });
-  r.ranked = std::move(best);
+  std::sort(best.begin(), best.end(), [](const auto& a, const auto& b) {
+    if (ranks_before(a.second, b.second)) return true;
+    if (ranks_before(b.second, a.second)) return false;
+    return a.first < b.first;
+  });
+  r.ranked.clear();
+  for (auto& v : best) r.ranked.push_back(std::move(v.second));
 }
 
 }  // namespace
@@ -389,14 +398,15 @@ NbvResult next_best_view(const ExplorationMap& map, const CameraIntrinsics& cam,
   r.seconds_prune = seconds_since(t_prune);
 
   auto t_score = Clock::now();
-  score_candidates(map, cam, opt, batch, checker, model, threads, r);
+  std::vector<std::size_t> sampled;  // the ranked views' sample indices
+  score_candidates(map, cam, opt, batch, checker, model, threads, r, sampled);
   // The paper walks the cells by utility until it has valid poses: when the best max_candidate_cells
   // cells give none (arm collisions, no IK), the next ones are tried, up to kMaxCellBatches batches.
   for (int round = 1; round < kMaxCellBatches && r.ranked.empty() && next < cells.size(); ++round) {
     next = keep_clear_cells(checker, map, opt, cells, next, batch, r);
-    score_candidates(map, cam, opt, batch, checker, model, threads, r);
+    score_candidates(map, cam, opt, batch, checker, model, threads, r, sampled);
   }
-  if (opt.rescore_best > 0) rescore_best(map, cam, opt, model, threads, r);
+  if (opt.rescore_best > 0) rescore_best(map, cam, opt, model, threads, r, sampled);
   r.seconds_score = seconds_since(t_score);
   r.seconds = seconds_since(t0);
   return r;

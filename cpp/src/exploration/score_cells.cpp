@@ -30,7 +30,7 @@ ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const Enclosur
     enclosure_->for_each([&](CellKey k, std::uint8_t h) {
       extra_at(k).mark[StateGrid::offset(k)] |= std::uint8_t(kEnclosed | (h & (kExposed | kHalvesMask)));
     });
-  // the directory's box: every block of the grid and every extra block
+  // the directory's box: every block of the grid, of the seeability memory and of the extra entries
   std::uint32_t lo[3] = {0xffffffffu, 0xffffffffu, 0xffffffffu}, hi[3] = {0, 0, 0};
   bool any = false;
   const auto grow = [&](CellKey b) {

@@ -353,7 +353,7 @@ void set_not_scored(ScoredView& s) {
       s.expected_enclosed_void = kNotScored;
 }
 
-void describe(ScoredViews& out, const detail::ScoreModel& model, const NbvOptions& opt) {
+void set_model_fields(ScoredViews& out, const detail::ScoreModel& model, const NbvOptions& opt) {
   out.gain = opt.gain;
   std::tie(out.pass_probability, out.void_pass_probability) = model.p;
   out.dof = opt.chain ? opt.chain->dof() : 0;
@@ -389,7 +389,7 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
   const detail::ScoreModel model = detail::score_model(map, opt);
   const detail::ViewChecker checker(map, opt);
   const Pose to_arm = opt.capability_base.inverse();
-  describe(out, model, opt);
+  set_model_fields(out, model, opt);
   detail::parallel_for(poses.size(), detail::default_threads(opt.threads), [&](std::size_t i, int) {
     ScoredView& s = out.views[i];
     s.status = aimed[i] ? check_before_ik(opt, checker, to_arm, s.pose, keep[i]) : ViewStatus::NoIk;
@@ -451,7 +451,7 @@ ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& ca
   }
   std::sort(checked.begin(), checked.end());
   ScoredViews out;
-  describe(out, model, opt);
+  set_model_fields(out, model, opt);
   for (std::size_t i : checked) out.views.push_back(coarse[i]);
   parallel_for(out.views.size(), threads, [&](std::size_t j, int) {
     ScoredView& s = out.views[j];

@@ -145,7 +145,8 @@ ViewChoice searched_choice(const ChoiceContext& ctx, std::uint64_t seed, std::op
     c.search = next_best_view(ctx.map, ctx.camera, opt);
     c.base = i;
     c.candidates = c.search.poses_scored;
-    c.valid = c.search.ranked.size();
+    // the valid poses kept (ranked holds only those scored in full with rescore_best)
+    c.valid = std::min(c.search.poses_scored, std::size_t(opt.max_valid_poses));
     const ViewCandidate* top = c.search.best(RankKey::Gain);
     // a view is low only when none on offer expects more: then the one expecting the most
     if (widen_below && top && top->expected_void <= *widen_below) top = c.search.best(RankKey::ExpectedVoid);

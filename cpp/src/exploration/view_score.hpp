@@ -72,12 +72,11 @@ ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
                 ViewCandidate& v, bool coarse = false);
 
-// score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 (and a chain that
-// does more than aim its camera): the checks before IK for every pose and a coarse score of those that pass, then
-// IK and the arm's collisions in the coarse order until n are valid, those n scored with the full grid. Holds
-// only the poses that got IK (valid or not; without a chain, the n best by the coarse score), in their order in
-// `poses`; the
-// same views for any thread count. Takes the map's lock.
+// score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 unless the chain
+// only aims its camera (then score_views itself): the checks before IK for every pose and a coarse score of those
+// that pass, then IK and the arm's collisions in the coarse order until n are valid, those n scored with the full
+// grid. Holds the poses checked up to the n-th valid one (without a chain, the n best by the coarse score), in
+// their order in `poses`: the same views for any thread count. Takes the map's lock.
 ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                            const NbvOptions& opt, RankKey key);
 
