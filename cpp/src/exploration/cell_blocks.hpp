@@ -55,8 +55,8 @@ struct HiddenBlock {
   std::array<std::uint8_t, 4096> held;  // 1: the cell has an entry (its value may still be 0)
 };
 
-// A float per cell in blocks laid out as the cell cache's (ExplorationState::hidden): a view score reads a block's values in
-// place (ScoreCells), so nothing proportional to the cells held is copied per map version.
+// A float per cell in blocks laid out as the cell cache's (ExplorationState::hidden): a view score reads a
+// block's values in place (ScoreCells), so nothing proportional to the cells held is copied per map version.
 class HiddenCells : public BlockMap<HiddenBlock> {
  public:
   // The value of k, 0 when k has none.

@@ -295,6 +295,14 @@ Slot PoseScorer::score(std::size_t idx) const {
   return s;
 }
 
+// A sampled view (its sample index, the view) ranks before another by ranks_before, then by sample order.
+using SampledView = std::pair<std::size_t, ViewCandidate>;
+bool ranks_before_sampled(const SampledView& a, const SampledView& b) {
+  if (ranks_before(a.second, b.second)) return true;
+  if (ranks_before(b.second, a.second)) return false;
+  return a.first < b.first;
+}
+
 // Step 4: poses in batches of a few per thread, in index order, until max_valid_poses are valid;
 // ranked by ranks_before (the expected gain, then expected unknown cells), then index.
 void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
@@ -316,11 +324,7 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
       if (valid.size() < max_valid) valid.emplace_back(start + b, std::move(slots[b].view));
     }
   }
-  std::sort(valid.begin(), valid.end(), [](const auto& a, const auto& b) {
-    if (ranks_before(a.second, b.second)) return true;
-    if (ranks_before(b.second, a.second)) return false;
-    return a.first < b.first;
-  });
+  std::sort(valid.begin(), valid.end(), ranks_before_sampled);
   for (auto& v : valid) {
     sampled.push_back(v.first);
     r.ranked.push_back(std::move(v.second));
@@ -339,11 +343,7 @@ void rescore_best(const ExplorationMap& map, const CameraIntrinsics& cam, const 
   detail::parallel_for(best.size(), threads, [&](std::size_t i, int) {
     detail::score_view(map, cam, opt, model, best[i].second);
   }, 1);
-  std::sort(best.begin(), best.end(), [](const auto& a, const auto& b) {
-    if (ranks_before(a.second, b.second)) return true;
-    if (ranks_before(b.second, a.second)) return false;
-    return a.first < b.first;
-  });
+  std::sort(best.begin(), best.end(), ranks_before_sampled);
   r.ranked.clear();
   for (auto& v : best) r.ranked.push_back(std::move(v.second));
 }

@@ -347,6 +347,12 @@ std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen
   return keep;
 }
 
+// The options and every pose checked (a bad one throws std::invalid_argument naming it).
+void check_poses(const CameraIntrinsics& cam, const NbvOptions& opt, const std::vector<Pose>& poses) {
+  detail::validate_options(cam, opt);
+  for (std::size_t i = 0; i < poses.size(); ++i) check_rigid(poses[i], "pose " + std::to_string(i));
+}
+
 void set_not_scored(ScoredView& s) {
   constexpr double kNotScored = std::numeric_limits<double>::quiet_NaN();
   s.expected_void = s.expected_unknown = s.expected_frontier = s.expected_gain = s.utility_dm3 =
@@ -364,8 +370,7 @@ void set_model_fields(ScoredViews& out, const detail::ScoreModel& model, const N
 ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                         const NbvOptions& opt, bool score_invalid) {
   detail::CancellableScope cancellable;  // poses are polled between them; the map is only read
-  detail::validate_options(cam, opt);
-  for (std::size_t i = 0; i < poses.size(); ++i) check_rigid(poses[i], "pose " + std::to_string(i));
+  check_poses(cam, opt, poses);
   ScoredViews out;
   out.views.resize(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) out.views[i].pose = poses[i];
@@ -409,8 +414,7 @@ ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& ca
                            const NbvOptions& opt, RankKey key) {
   if (opt.rescore_best <= 0 || looks_at(opt)) return score_views(map, cam, poses, opt, false);
   CancellableScope cancellable;
-  validate_options(cam, opt);
-  for (std::size_t i = 0; i < poses.size(); ++i) check_rigid(poses[i], "pose " + std::to_string(i));
+  check_poses(cam, opt, poses);
   std::vector<Eigen::Vector3d> pos(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) pos[i] = poses[i].translation();
   const std::vector<bool> keep = filter_verdicts(opt, pos);
