@@ -1,5 +1,7 @@
 // A coarse first score (NbvOptions::rescore_best): the views kept are scored exactly as the full grid scores
-// them, keeping every view gives the paper's search, and with an arm the views do not depend on the thread count.
+// them, keeping every view gives the paper's search, of many aimed poses a first pass with fewer rays keeps the
+// best, the search's batches follow the share of valid poses, and with an arm the views do not depend on the
+// thread count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -96,43 +98,76 @@ TEST(Rescore, KeepingEveryViewIsThePapersSearchAndKeptViewsGetTheFullScore) {
   EXPECT_GT(few.ranked[0].expected_gain, 0.5 * full.ranked[0].expected_gain);
 }
 
-TEST(Rescore, AimedViewsWithoutAnArmAreTheBestByTheCoarseScoreScoredInFull) {
-  Scene scene;
-  auto map = box_map(scene);
-  const std::vector<Pose> poses = aims(*map, 200);
-  ASSERT_GT(poses.size(), 50u);
-  NbvOptions opt = NbvOptions::exploration_loop();
-  opt.rescore_best = 5;
-  const ScoredViews one = detail::rescored_views(*map, camera(), poses, opt, RankKey::ExpectedVoid);
-  ASSERT_EQ(one.views.size(), 5u);
-  // the full score of every pose: the kept ones have it; the coarse score of every pose: they are its best
-  opt.rescore_best = 0;
-  const ScoredViews full = score_views(*map, camera(), poses, opt, false);
-  std::vector<ViewCandidate> coarse;
-  {
-    auto guard = detail::read_guard(*map);
-    const detail::ScoreModel model = detail::score_model(*map, opt);
-    for (const ScoredView& s : full.views) {
-      if (!s.valid()) continue;
-      ViewCandidate c;
-      c.pose = s.pose;
-      detail::score_view(*map, camera(), opt, model, c, true);
-      coarse.push_back(c);
-    }
+// The valid ones of `full` (score_views of poses) scored with every step-th ray, best first by expected void cells
+// (ties: the order of `full`).
+std::vector<ViewCandidate> scored_with_step(const ExplorationMap& map, const NbvOptions& opt, const ScoredViews& full,
+                                            int step) {
+  std::vector<ViewCandidate> out;
+  auto guard = detail::read_guard(map);
+  const detail::ScoreModel model = detail::score_model(map, opt);
+  for (const ScoredView& s : full.views) {
+    if (!s.valid()) continue;
+    ViewCandidate c;
+    c.pose = s.pose;
+    detail::score_view(map, camera(), opt, model, c, step);
+    out.push_back(c);
   }
-  std::stable_sort(coarse.begin(), coarse.end(),
+  std::stable_sort(out.begin(), out.end(),
                    [](const ViewCandidate& a, const ViewCandidate& b) { return ranks_before(a, b, RankKey::ExpectedVoid); });
-  for (const ScoredView& v : one.views) {
+  return out;
+}
+
+// The rank of pose p in `views` (views.size() when absent).
+std::ptrdiff_t rank_of(const std::vector<ViewCandidate>& views, const Pose& p) {
+  return std::find_if(views.begin(), views.end(), [&](const ViewCandidate& w) { return w.pose.isApprox(p, 0); }) -
+         views.begin();
+}
+
+// rescored_views of `poses` with rescore_best n (no arm): n views, each with the full score, the best n by the coarse
+// score among the poses the first pass keeps (all of them, or the 16 n best with every fourth ray).
+void expect_best_by_coarse_score(const ExplorationMap& map, const std::vector<Pose>& poses, int n, bool first_pass) {
+  NbvOptions opt = NbvOptions::exploration_loop();
+  opt.rescore_best = n;
+  const ScoredViews kept = detail::rescored_views(map, camera(), poses, opt, RankKey::ExpectedVoid);
+  ASSERT_EQ(kept.views.size(), std::size_t(n));
+  opt.rescore_best = 0;
+  const ScoredViews full = score_views(map, camera(), poses, opt, false);
+  std::vector<ViewCandidate> coarse = scored_with_step(map, opt, full, 2);
+  ASSERT_EQ(coarse.size() > 16 * std::size_t(n), first_pass);
+  if (first_pass) {  // the coarse order of the first pass's 16 n best
+    const std::vector<ViewCandidate> quarter = scored_with_step(map, opt, full, 4);
+    coarse.erase(std::remove_if(coarse.begin(), coarse.end(),
+                                [&](const ViewCandidate& c) { return rank_of(quarter, c.pose) >= 16 * n; }),
+                 coarse.end());
+    ASSERT_EQ(coarse.size(), 16 * std::size_t(n));
+  }
+  for (const ScoredView& v : kept.views) {
     ASSERT_TRUE(v.valid());
     const auto twin = std::find_if(full.views.begin(), full.views.end(),
                                    [&](const ScoredView& w) { return w.pose.isApprox(v.pose, 0); });
     ASSERT_NE(twin, full.views.end());
     EXPECT_TRUE(same_gains(v, *twin));
-    const auto rank = std::find_if(coarse.begin(), coarse.end(),
-                                   [&](const ViewCandidate& w) { return w.pose.isApprox(v.pose, 0); });
-    ASSERT_NE(rank, coarse.end());
-    EXPECT_LT(rank - coarse.begin(), 5);
+    EXPECT_LT(rank_of(coarse, v.pose), n);
   }
+}
+
+TEST(Rescore, AimedViewsWithoutAnArmAreTheBestByTheCoarseScoreScoredInFull) {
+  Scene scene;
+  auto map = box_map(scene);
+  const std::vector<Pose> poses = aims(*map, 200);
+  ASSERT_GT(poses.size(), 50u);
+  expect_best_by_coarse_score(*map, poses, 13, false);  // 13 x 16 poses or more: the coarse score of every pose
+  expect_best_by_coarse_score(*map, poses, 3, true);    // a first pass keeps 48
+}
+
+TEST(Rescore, BatchesGrowWithTheShareOfInvalidPoses) {
+  // 50 wanted, 49 of 99 valid: the 100 the rate expects, at most twice the last batch
+  EXPECT_EQ(detail::next_batch(50, 49, 99, 8, 80), 100u);
+  EXPECT_EQ(detail::next_batch(50, 49, 99, 8, 40), 80u);
+  // every pose valid: no fewer than a few per thread; none valid yet: the batch doubles, up to 16 x least
+  EXPECT_EQ(detail::next_batch(2, 100, 100, 8, 8), 8u);
+  EXPECT_EQ(detail::next_batch(50, 0, 200, 8, 64), 128u);
+  EXPECT_EQ(detail::next_batch(50, 0, 200, 8, 128), 128u);
 }
 
 TEST(Rescore, AimedViewsWithAnArmGetIkInCoarseOrderUntilEnoughAreValidForAnyThreadCount) {
@@ -153,7 +188,8 @@ TEST(Rescore, AimedViewsWithAnArmGetIkInCoarseOrderUntilEnoughAreValidForAnyThre
     valid += one.views[i].valid() ? 1 : 0;
   }
   ASSERT_EQ(valid, 4u);
-  EXPECT_GT(one.views.size(), valid);  // some of the coarse best fail IK or collide
+  // the first chunk (the 64 best of the first pass with every fourth ray) fail IK or collide: the next are checked
+  EXPECT_GT(one.views.size(), 64u);
   // each valid view is the one score_views makes of its pose (the same IK seed, the full score)
   opt.rescore_best = 0;
   const ScoredViews full = score_views(*map, camera(), poses, opt, false);

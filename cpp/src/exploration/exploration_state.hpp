@@ -213,6 +213,10 @@ struct ExplorationState {
   // What view scoring reads per cell, flat (score_cells.hpp), made at score_cells_generation.
   mutable std::shared_ptr<const ScoreCells> score_cells;
   mutable std::uint64_t score_cells_generation = 0;
+  // The tree's metric bounds (min x y z, max x y z), made at bounds_generation: OctoMap's const getMetricMin and
+  // getMetricMax walk every leaf of a tree changed since its last non-const call, and every search asks.
+  mutable double tree_bounds[6] = {};
+  mutable std::uint64_t bounds_generation = ~std::uint64_t(0);
   // The unknown cells of the search space as an octree (the safe views' obstacles, view_check.cpp), their
   // count and key box, made at unknown_tree_generation.
   mutable std::shared_ptr<octomap::OcTree> unknown_tree;

@@ -290,7 +290,7 @@ Slot PoseScorer::score(std::size_t idx) const {
     s.collides = st == ViewStatus::ArmCollision;
     if (st != ViewStatus::Valid) return s;
   }
-  detail::score_view(map_, cam_, opt_, model_, s.view, opt_.rescore_best > 0);
+  detail::score_view(map_, cam_, opt_, model_, s.view, opt_.rescore_best > 0 ? 2 : 1);
   s.valid = true;
   return s;
 }
@@ -303,16 +303,17 @@ bool ranks_before_sampled(const SampledView& a, const SampledView& b) {
   return a.first < b.first;
 }
 
-// Step 4: poses in batches of a few per thread, in index order, until max_valid_poses are valid;
+// Step 4: poses in batches (next_batch), in index order, until max_valid_poses are valid;
 // ranked by ranks_before (the expected gain, then expected unknown cells), then index.
 void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt,
                       const std::vector<UtilityCell>& cells, const detail::ViewChecker& checker,
                       const detail::ScoreModel& model, int threads, NbvResult& r, std::vector<std::size_t>& sampled) {
   const PoseScorer scorer(map, cam, opt, cells, checker, model);
   const std::size_t total = scorer.total(), max_valid = std::size_t(opt.max_valid_poses);
-  const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
+  const std::size_t least = std::size_t(std::max(threads, 1)) * 4;
+  std::size_t batch = least;
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
-  for (std::size_t start = 0; start < total && valid.size() < max_valid; start += batch) {
+  for (std::size_t start = 0; start < total && valid.size() < max_valid;) {
     std::vector<Slot> slots(std::min(total, start + batch) - start);
     detail::parallel_for(slots.size(), threads, [&](std::size_t b, int) { slots[b] = scorer.score(start + b); }, 1);
     for (std::size_t b = 0; b < slots.size(); ++b) {
@@ -323,6 +324,8 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
       ++r.poses_scored;
       if (valid.size() < max_valid) valid.emplace_back(start + b, std::move(slots[b].view));
     }
+    start += slots.size();
+    batch = detail::next_batch(max_valid - std::min(max_valid, valid.size()), r.poses_scored, start, least, batch);
   }
   std::sort(valid.begin(), valid.end(), ranks_before_sampled);
   for (auto& v : valid) {

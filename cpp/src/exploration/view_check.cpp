@@ -30,11 +30,18 @@ namespace {
 // space would otherwise hold infinitely many unknown cells). False when it is empty.
 bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, std::uint32_t lo[3], std::uint32_t hi[3]) {
   if (s.tree.size() == 0) return false;
-  double mn[3], mx[3];
-  s.tree.getMetricMin(mn[0], mn[1], mn[2]);
-  s.tree.getMetricMax(mx[0], mx[1], mx[2]);
+  double b[6];
+  {
+    std::lock_guard<std::mutex> lock(s.cache_mutex);
+    if (s.bounds_generation != s.generation) {
+      s.tree.getMetricMin(s.tree_bounds[0], s.tree_bounds[1], s.tree_bounds[2]);
+      s.tree.getMetricMax(s.tree_bounds[3], s.tree_bounds[4], s.tree_bounds[5]);
+      s.bounds_generation = s.generation;
+    }
+    std::copy(s.tree_bounds, s.tree_bounds + 6, b);
+  }
   for (int a = 0; a < 3; ++a) {
-    double l = std::max(mn[a], o.search_lo[a]), h = std::min(mx[a], o.search_hi[a]);
+    double l = std::max(b[a], o.search_lo[a]), h = std::min(b[a + 3], o.search_hi[a]);
     if (l > h) return false;
     lo[a] = s.tree.coordToKey(l);
     hi[a] = s.tree.coordToKey(h);
@@ -410,6 +417,12 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
 
 namespace detail {
 
+// rescored_views: more than kFirstPass x rescore_best poses (the last chance's thousands) are first ranked by a
+// score with every fourth ray of the grid (a sixteenth of the full score's rays) and get the coarse score in
+// chunks of kFirstPass x rescore_best in that order, until rescore_best are valid (a margin as rescore_best is
+// one, checked with benchmarks/view_choice_times.py).
+constexpr std::size_t kFirstPass = 16;
+
 ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                            const NbvOptions& opt, RankKey key) {
   if (opt.rescore_best <= 0 || looks_at(opt)) return score_views(map, cam, poses, opt, false);
@@ -423,34 +436,52 @@ ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& ca
   const ViewChecker checker(map, opt);
   const Pose to_arm = opt.capability_base.inverse();
   const int threads = default_threads(opt.threads);
-  // the checks before IK and the coarse score of every pose
+  // the checks before IK of every pose
   std::vector<ScoredView> coarse(poses.size());
   parallel_for(poses.size(), threads, [&](std::size_t i, int) {
     ScoredView& s = coarse[i];
     s.pose = poses[i];
     s.status = check_before_ik(opt, checker, to_arm, s.pose, keep[i]);
-    if (s.valid()) score_view(map, cam, opt, model, s, true);
-  }, 1);
-  std::vector<std::size_t> order;
+  }, 16);
+  std::vector<std::size_t> order;  // the poses that pass, in sample order
   for (std::size_t i = 0; i < coarse.size(); ++i)
     if (coarse[i].valid()) order.push_back(i);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return ranks_before(coarse[a], coarse[b], key); });
-  // IK and the arm's collisions in that order, in batches, until rescore_best are valid (those after the
-  // rescore_best-th valid one are dropped, whatever the batch size: the same views for any thread count)
-  const std::size_t want = std::size_t(opt.rescore_best), batch = std::size_t(std::max(threads, 1)) * 4;
+  const auto by_key = [&](std::size_t a, std::size_t b) { return ranks_before(coarse[a], coarse[b], key); };
+  // of many, a first pass with every fourth ray of the grid ranks them, and they go on in chunks of kFirstPass x
+  // rescore_best in that order; else in one chunk
+  const std::size_t want = std::size_t(opt.rescore_best);
+  const std::size_t chunk = order.size() > kFirstPass * want ? kFirstPass * want : order.size();
+  if (chunk < order.size()) {
+    parallel_for(order.size(), threads, [&](std::size_t j, int) {
+      score_view(map, cam, opt, model, coarse[order[j]], 4);
+    }, 1);
+    std::stable_sort(order.begin(), order.end(), by_key);
+  }
+  // each chunk: the coarse score, then IK and the arm's collisions in its order, in batches, until rescore_best
+  // are valid (those after the rescore_best-th valid one are dropped, whatever the batch size: the same views for
+  // any thread count)
+  const std::size_t batch = std::size_t(std::max(threads, 1)) * 4;
   std::vector<std::size_t> checked;
   std::size_t valid = 0;
-  for (std::size_t b = 0; b < order.size() && valid < want; b += batch) {
-    const std::size_t e = std::min(order.size(), b + batch);
-    if (opt.chain)
-      parallel_for(e - b, threads, [&](std::size_t j, int) {
-        ScoredView& s = coarse[order[b + j]];
-        s.status = checker.reach(s.pose, s.q, order[b + j]);
-      }, 1);
-    for (std::size_t j = b; j < e && valid < want; ++j) {
-      checked.push_back(order[j]);
-      valid += coarse[order[j]].valid() ? 1 : 0;
+  for (std::size_t c = 0; c < order.size() && valid < want; c += chunk) {
+    const std::size_t end = std::min(order.size(), c + chunk);
+    const auto first = order.begin() + std::ptrdiff_t(c), last = order.begin() + std::ptrdiff_t(end);
+    std::sort(first, last);  // ties in the coarse order: the sample order
+    parallel_for(end - c, threads, [&](std::size_t j, int) {
+      score_view(map, cam, opt, model, coarse[order[c + j]], 2);
+    }, 1);
+    std::stable_sort(first, last, by_key);
+    for (std::size_t b = c; b < end && valid < want; b += batch) {
+      const std::size_t e = std::min(end, b + batch);
+      if (opt.chain)
+        parallel_for(e - b, threads, [&](std::size_t j, int) {
+          ScoredView& s = coarse[order[b + j]];
+          s.status = checker.reach(s.pose, s.q, order[b + j]);
+        }, 1);
+      for (std::size_t j = b; j < e && valid < want; ++j) {
+        checked.push_back(order[j]);
+        valid += coarse[order[j]].valid() ? 1 : 0;
+      }
     }
   }
   std::sort(checked.begin(), checked.end());

@@ -289,9 +289,8 @@ ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt) {
 }
 
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
-                ViewCandidate& v, bool coarse) {
-  const int sw = coarse ? (opt.score_width + 1) / 2 : opt.score_width;
-  const int sh = coarse ? (opt.score_height + 1) / 2 : opt.score_height;
+                ViewCandidate& v, int step) {
+  const int sw = (opt.score_width + step - 1) / step, sh = (opt.score_height + step - 1) / step;
   static_cast<ViewGains&>(v) =
       view_gains_unlocked(map, cam, v.pose, sw, sh, m.p.first, m.p.second,
                           opt.unknown_pass_probability < 0, nullptr, m.void_weights ? &m.void_weights : nullptr,

@@ -1,6 +1,7 @@
 #pragma once
 // Internal: the visibility model of a view (view_score.cpp) and the checks that make a camera pose a
 // view (view_check.cpp), shared by next_best_view and score_views.
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -67,15 +68,16 @@ struct ScoreModel {
 ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);
 
 // Fills the gains, expected_gain (of opt.gain) and utility_dm3 of `v` (its pose set): the one place a view is
-// scored; ranks_before (next_best_view.hpp) is the one order of scored views. `coarse`: with the coarse grid of
-// NbvOptions::rescore_best (half the score grid across and down, rounded up), the first score of many poses.
+// scored; ranks_before (next_best_view.hpp) is the one order of scored views. `step` > 1: every step-th ray of
+// the score grid across and down (rounded up), the first score of many poses (NbvOptions::rescore_best: 2).
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
-                ViewCandidate& v, bool coarse = false);
+                ViewCandidate& v, int step = 1);
 
 // score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 unless the chain
 // only aims its camera (then score_views itself): the checks before IK for every pose and a coarse score of those
 // that pass, then IK and the arm's collisions in the coarse order until n are valid, those n scored with the full
-// grid. Holds the poses checked up to the n-th valid one (without a chain, the n best by the coarse score), in
+// grid. More than 16 n poses are ranked first by a score with every fourth ray and go through those steps in
+// chunks of 16 n in that order. Holds the poses checked up to the n-th valid one (without a chain, the n best by the coarse score), in
 // their order in `poses`: the same views for any thread count. Takes the map's lock.
 ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                            const NbvOptions& opt, RankKey key);
@@ -83,6 +85,18 @@ ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& ca
 // The indices (ascending) of the n best of `views` by each ranking key (ranks_before; ties: the lower index):
 // the ones a coarse first score keeps for the full score (NbvOptions::rescore_best).
 std::vector<std::size_t> best_by_each_key(const std::vector<const ViewCandidate*>& views, std::size_t n);
+
+// The size of the next batch of poses checked until `wanted` more are valid, when `valid` of the `tried` so far
+// were: the poses expected to give them at the rate seen so far, at least `least` (a few per thread), at most
+// twice `last` (the batch before: a rate measured on few poses grows it step by step) and 16 x least. Poses
+// past the last one needed are checked and scored for nothing: a fixed small batch wastes threads on its
+// slowest pose, one too large the scoring of valid poses that are not needed.
+inline std::size_t next_batch(std::size_t wanted, std::size_t valid, std::size_t tried, std::size_t least,
+                              std::size_t last) {
+  const double rate = double(valid + 1) / double(tried + 1);
+  const double expected = double(wanted) / rate;
+  return std::size_t(std::clamp(expected, double(least), double(std::min(2 * last, 16 * least))));
+}
 
 // The checks of one search that make a pose a view: camera clearance, the capability map's axis,
 // IK and the arm's collisions. Built once per search (the obstacles: the map's occupied cells and,
