@@ -1,6 +1,6 @@
 #pragma once
-// Internal: the visibility model of a view (view_score.cpp) and the checks that make a camera pose a
-// view (view_check.cpp), shared by next_best_view and score_views.
+// Internal: the visibility model of a view (view_score.cpp), the checks that make a camera pose a view
+// (view_check.cpp) and the aimed looks' scoring (score_views.cpp), shared by next_best_view and score_views.
 #include <algorithm>
 #include <memory>
 #include <optional>
