@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "common/thread_pool.hpp"
 #include "exploration/cell_sets.hpp"
@@ -72,6 +73,8 @@ struct Eye {
   Eigen::Vector3d axis;  // the optical axis (unit)
 };
 
+constexpr std::size_t kRayChunk = 8192;  // rays walked between two looks at the eyes found (a few ms of work)
+
 }  // namespace
 
 std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& checker, const NbvOptions& opt,
@@ -82,71 +85,87 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
   const double res = map.resolution();
   const Eigen::Vector3d s_lo = map.options().search_lo, s_hi = map.options().search_hi;
   const Pose cap_inv = opt.capability_base.inverse();
-  const int dirs = req.directions;
-  std::vector<std::vector<Eye>> found(from.size());
-  parallel_for(from.size(), default_threads(opt.threads), [&](std::size_t i, int) {
+  const std::size_t dirs = std::size_t(req.directions);
+  // The eye of ray r out of cell from[i], if any (its own random stream: the same whatever the thread).
+  const auto eye_of = [&](std::size_t i, std::size_t r, std::vector<std::pair<CellKey, double>>& stretch)
+      -> std::optional<Eye> {
     const GridReader g(S.grid);
     const Eigen::Vector3d c = S.center(from[i]);
-    std::vector<std::pair<CellKey, double>> stretch;  // free cells of one ray (key, distance along it)
-    for (int r = 0; r < dirs; ++r) {
-      Stream rng(mix(mix(req.seed, from[i]), std::uint64_t(r)));
-      const Eigen::Vector3d d = rng.direction();
-      stretch.clear();
-      bool left_unknown = false;
-      walk_cells(res, c, d, req.distance.second, [&](CellKey k) {
-        if (k == from[i]) return true;
-        const std::uint8_t cell = g.get(k);
-        std::uint8_t st = cell & kStateMask;
-        const Eigen::Vector3d p = S.center(k);
-        const bool inside = (p.array() >= s_lo.array()).all() && (p.array() <= s_hi.array()).all();
-        if (st == std::uint8_t(CellState::Unknown) && !inside) {
-          if (p.z() < s_lo.z()) return false;  // the ground under the search space
-          st = std::uint8_t(CellState::Free);  // the robot's side of the scene: no view needs to have seen it
-        }
-        if (st == std::uint8_t(CellState::Occupied)) return false;
-        // past free space an unknown cell ends the ray unless it is a void cell: the score weighs what lies
-        // behind one by the void pass probability
-        if (st == std::uint8_t(CellState::Unknown)) return !left_unknown || (cell & kVoidFlag) != 0;
-        left_unknown = true;
-        const double s = (p - c).dot(d);
-        if (s >= req.distance.first) stretch.emplace_back(k, s);
-        return true;
-      });
-      // the eye: a random cell of the free stretch that passes the checks (tried in random order); its axis
-      // looks back along the ray at the cell, or turns to a direction the arm reaches
-      const std::vector<Eigen::Vector3d> turned = stretch.empty() ? std::vector<Eigen::Vector3d>{}
-                                                                  : checker.turned_axes(-d, req.max_turn);
-      while (!stretch.empty()) {
-        const std::size_t j = std::size_t(rng.uniform() * double(stretch.size()));
-        const Eigen::Vector3d eye = c + stretch[j].second * d;
-        stretch[j] = stretch.back();
-        stretch.pop_back();
-        if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
-        if (opt.capability_map && !(opt.capability_map->reachability(cap_inv * eye) > opt.min_reachability)) continue;
-        const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, -d, turned);
-        if (!axis || !checker.camera_clear(eye)) continue;
-        found[i].push_back({eye, *axis});
-        break;
+    Stream rng(mix(mix(req.seed, from[i]), std::uint64_t(r)));
+    const Eigen::Vector3d d = rng.direction();
+    stretch.clear();  // the free cells of the ray (key, distance along it)
+    bool left_unknown = false;
+    walk_cells(res, c, d, req.distance.second, [&](CellKey k) {
+      if (k == from[i]) return true;
+      const std::uint8_t cell = g.get(k);
+      std::uint8_t st = cell & kStateMask;
+      const Eigen::Vector3d p = S.center(k);
+      const bool inside = (p.array() >= s_lo.array()).all() && (p.array() <= s_hi.array()).all();
+      if (st == std::uint8_t(CellState::Unknown) && !inside) {
+        if (p.z() < s_lo.z()) return false;  // the ground under the search space
+        st = std::uint8_t(CellState::Free);  // the robot's side of the scene: no view needs to have seen it
       }
+      if (st == std::uint8_t(CellState::Occupied)) return false;
+      // past free space an unknown cell ends the ray unless it is a void cell: the score weighs what lies
+      // behind one by the void pass probability
+      if (st == std::uint8_t(CellState::Unknown)) return !left_unknown || (cell & kVoidFlag) != 0;
+      left_unknown = true;
+      const double s = (p - c).dot(d);
+      if (s >= req.distance.first) stretch.emplace_back(k, s);
+      return true;
+    });
+    // the eye: a random cell of the free stretch that passes the checks (tried in random order); its axis
+    // looks back along the ray at the cell, or turns to a direction the arm reaches
+    const std::vector<Eigen::Vector3d> turned = stretch.empty() ? std::vector<Eigen::Vector3d>{}
+                                                                : checker.turned_axes(-d, req.max_turn);
+    while (!stretch.empty()) {
+      const std::size_t j = std::size_t(rng.uniform() * double(stretch.size()));
+      const Eigen::Vector3d eye = c + stretch[j].second * d;
+      stretch[j] = stretch.back();
+      stretch.pop_back();
+      if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
+      if (opt.capability_map && !(opt.capability_map->reachability(cap_inv * eye) > opt.min_reachability)) continue;
+      const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, -d, turned);
+      if (!axis || !checker.camera_clear(eye)) continue;
+      return Eye{eye, *axis};
     }
-  }, 4);
+    return std::nullopt;
+  };
+  // The rays in a random order of (cell, ray), in chunks, until `poses` eyes are found: the eyes of the first
+  // rays are a random sample of all the rays' eyes, and the rest need not be walked (about 12 000 of a table
+  // top's 150 000 rays give eyes, 4000 are wanted).
+  const std::size_t pairs = from.size() * dirs;
+  std::vector<std::uint32_t> order(pairs);
+  for (std::size_t k = 0; k < pairs; ++k) order[k] = std::uint32_t(k);
+  Stream rng(mix(req.seed, 2));
+  const int threads = default_threads(opt.threads);
   std::vector<Eye> eyes;
-  for (auto& f : found) eyes.insert(eyes.end(), f.begin(), f.end());
-  if (opt.workspace.filter && !eyes.empty()) {  // the caller's batch filter, once for all eyes
-    std::vector<Eigen::Vector3d> pos(eyes.size());
-    for (std::size_t i = 0; i < eyes.size(); ++i) pos[i] = eyes[i].at;
-    const std::vector<bool> keep = opt.workspace.filter(pos);
-    std::size_t w = 0;
-    for (std::size_t i = 0; i < eyes.size(); ++i)
-      if (i < keep.size() && keep[i]) eyes[w++] = eyes[i];
-    eyes.resize(w);
+  for (std::size_t b = 0; b < pairs && eyes.size() < req.poses; b += kRayChunk) {
+    const std::size_t e = std::min(pairs, b + kRayChunk);
+    for (std::size_t k = b; k < e; ++k)  // Fisher-Yates, as far as the rays walked
+      std::swap(order[k], order[k + std::size_t(rng.uniform() * double(pairs - k))]);
+    std::vector<std::optional<Eye>> got(e - b);
+    std::vector<std::vector<std::pair<CellKey, double>>> scratch(std::size_t(std::max(threads, 1)));
+    parallel_for(e - b, threads, [&](std::size_t j, int tid) {
+      got[j] = eye_of(order[b + j] / dirs, order[b + j] % dirs, scratch[std::size_t(tid)]);
+    }, 64);
+    std::vector<Eye> chunk;
+    for (auto& g : got)
+      if (g) chunk.push_back(*g);
+    if (opt.workspace.filter && !chunk.empty()) {  // the caller's batch filter, once per chunk
+      std::vector<Eigen::Vector3d> pos(chunk.size());
+      for (std::size_t i = 0; i < chunk.size(); ++i) pos[i] = chunk[i].at;
+      const std::vector<bool> keep = opt.workspace.filter(pos);
+      std::size_t w = 0;
+      for (std::size_t i = 0; i < chunk.size(); ++i)
+        if (i < keep.size() && keep[i]) chunk[w++] = chunk[i];
+      chunk.resize(w);
+    }
+    for (std::size_t i = 0; i < chunk.size() && eyes.size() < req.poses; ++i) eyes.push_back(chunk[i]);
   }
-  Stream rng(mix(req.seed, 2));  // `poses` of them at random
-  const std::size_t n = std::min(req.poses, eyes.size());
-  for (std::size_t i = 0; i < n; ++i) std::swap(eyes[i], eyes[i + std::size_t(rng.uniform() * double(eyes.size() - i))]);
   std::vector<Pose> out;
-  out.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) out.push_back(camera_pose(eyes[i].at, eyes[i].axis, 0.0));
+  out.reserve(eyes.size());
+  for (const Eye& y : eyes) out.push_back(camera_pose(y.at, y.axis, 0.0));
   return out;
 }
 

@@ -44,7 +44,8 @@ std::vector<CellKey> draw_void_cells(const ExplorationState& S, const AimRequest
 // clear (checker.camera_clear), inside opt's workspace box and sphere, above min_height and, with a capability
 // map, reachable there. Its optical axis points at the cell or, when the capability map rules that axis out,
 // is the map's reachable direction nearest to it within req.max_turn (checker.turned_axes, reachable_axis).
-// Deterministic for the seed whatever the thread count. The caller holds the map's lock.
+// The rays are walked in a random order of (cell, ray) until req.poses eyes are found (a random sample of all
+// the rays' eyes). Deterministic for the seed whatever the thread count. The caller holds the map's lock.
 std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& checker, const NbvOptions& opt,
                                const AimRequest& req);
 
