@@ -48,7 +48,8 @@ void def_workspace(py::class_<NbvOptions>& cls) {
             throw std::invalid_argument("workspace callable must return one bool per row of its (N, 3) input");
           return std::vector<bool>(a.data(), a.data() + a.size());
         };
-      }, "Callable taking candidate cell centres (N, 3) and returning (N,) bools, or None.");
+      }, "Callable taking positions (N, 3) (candidate cell centres, aimed eyes) and returning (N,) bools, each\n"
+         "judged on its own (a search may call it several times), or None.");
 }
 
 void def_arm(py::class_<NbvOptions>& cls) {
@@ -95,8 +96,9 @@ void wrap_search_options(py::module_& m) {
       .def_readwrite("rescore_best", &NbvOptions::rescore_best,
                      "n > 0: next_best_view (and the loop's aimed looks) score valid poses with a grid half as fine\n"
                      "across and down first, and only the n best by each ranking key with the full grid (ranked\n"
-                     "holds those); 0: every one in full. A camera that only aims, score_views and the baselines\n"
-                     "always score in full.")
+                     "holds those); the aimed looks rank more than 16 n poses with every fourth ray first and go\n"
+                     "on in chunks of 16 n; 0: every one in full. A camera that only aims, score_views and the\n"
+                     "baselines always score in full.")
       .def_readwrite("min_distance", &NbvOptions::min_distance, "metres from the camera to any occupied cell")
       .def_readwrite("seed", &NbvOptions::seed, "seeds the orientation samples and the IK restarts")
       .def_readwrite("threads", &NbvOptions::threads)

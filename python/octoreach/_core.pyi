@@ -2089,8 +2089,9 @@ class NbvOptions:
         """
         n > 0: next_best_view (and the loop's aimed looks) score valid poses with a grid half as fine
         across and down first, and only the n best by each ranking key with the full grid (ranked
-        holds those); 0: every one in full. A camera that only aims, score_views and the baselines
-        always score in full.
+        holds those); the aimed looks rank more than 16 n poses with every fourth ray first and go
+        on in chunks of 16 n; 0: every one in full. A camera that only aims, score_views and the
+        baselines always score in full.
         """
     @rescore_best.setter
     def rescore_best(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2157,7 +2158,8 @@ class NbvOptions:
     @property
     def workspace(self) -> typing.Any:
         """
-        Callable taking candidate cell centres (N, 3) and returning (N,) bools, or None.
+        Callable taking positions (N, 3) (candidate cell centres, aimed eyes) and returning (N,) bools, each
+        judged on its own (a search may call it several times), or None.
         """
     @workspace.setter
     def workspace(self, arg1: typing.Any) -> None:

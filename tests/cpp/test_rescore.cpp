@@ -134,6 +134,7 @@ void expect_best_by_coarse_score(const ExplorationMap& map, const std::vector<Po
   const ScoredViews full = score_views(map, camera(), poses, opt, false);
   std::vector<ViewCandidate> coarse = scored_with_step(map, opt, full, 2);
   ASSERT_EQ(coarse.size() > 16 * std::size_t(n), first_pass);
+  const std::vector<ViewCandidate> every = coarse;  // the coarse order of every valid pose
   if (first_pass) {  // the coarse order of the first pass's 16 n best
     const std::vector<ViewCandidate> quarter = scored_with_step(map, opt, full, 4);
     coarse.erase(std::remove_if(coarse.begin(), coarse.end(),
@@ -141,6 +142,7 @@ void expect_best_by_coarse_score(const ExplorationMap& map, const std::vector<Po
                  coarse.end());
     ASSERT_EQ(coarse.size(), 16 * std::size_t(n));
   }
+  std::size_t outside_best = 0;  // kept views that are not among the n best of every pose's coarse score
   for (const ScoredView& v : kept.views) {
     ASSERT_TRUE(v.valid());
     const auto twin = std::find_if(full.views.begin(), full.views.end(),
@@ -148,7 +150,10 @@ void expect_best_by_coarse_score(const ExplorationMap& map, const std::vector<Po
     ASSERT_NE(twin, full.views.end());
     EXPECT_TRUE(same_gains(v, *twin));
     EXPECT_LT(rank_of(coarse, v.pose), n);
+    outside_best += rank_of(every, v.pose) >= n ? 1 : 0;
   }
+  // on this map the first pass's 16 n hold the coarse score's n best: it loses none of them
+  EXPECT_EQ(outside_best, 0u);
 }
 
 TEST(Rescore, AimedViewsWithoutAnArmAreTheBestByTheCoarseScoreScoredInFull) {
@@ -188,7 +193,8 @@ TEST(Rescore, AimedViewsWithAnArmGetIkInCoarseOrderUntilEnoughAreValidForAnyThre
     valid += one.views[i].valid() ? 1 : 0;
   }
   ASSERT_EQ(valid, 4u);
-  // the first chunk (the 64 best of the first pass with every fourth ray) fail IK or collide: the next are checked
+  // the first chunk (the 64 best of the first pass with every fourth ray) holds fewer than 4 valid poses: the next
+  // chunks are checked
   EXPECT_GT(one.views.size(), 64u);
   // each valid view is the one score_views makes of its pose (the same IK seed, the full score)
   opt.rescore_best = 0;

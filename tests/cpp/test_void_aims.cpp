@@ -3,6 +3,7 @@
 // cell that is not a void; and the optical axis turns, within a bound, to one the capability map reaches.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -102,6 +103,35 @@ TEST(VoidAims, RaysCrossVoidCellsPastFreeSpaceButNotWallsOrUnseenSpace) {
   }
   // the patches matter: some eyes are only reached across void cells past free space
   EXPECT_GT(crossing, 0u);
+}
+
+TEST(VoidAims, EyesAreARandomSampleOfTheRaysEyesTheSameForAnyThreadCount) {
+  Scene scene;
+  auto map = box_seen_in_patches(scene);
+  NbvOptions opt;
+  opt.min_distance = 0.05;
+  detail::AimRequest req;
+  req.every_cell = true;
+  req.directions = 64;
+  req.distance = {0.15, 1.0};
+  req.seed = 9;
+  const auto aims = [&](std::size_t poses, int threads) {
+    opt.threads = threads;
+    req.poses = poses;
+    auto guard = detail::read_guard(*map);
+    const detail::ViewChecker checker(*map, opt);
+    return detail::aim_at_voids(*map, checker, opt, req);
+  };
+  const std::vector<Pose> all = aims(1000000, 2);  // every ray's eye
+  ASSERT_GT(all.size(), 200u);
+  const std::vector<Pose> one = aims(100, 1), two = aims(100, 2);
+  ASSERT_EQ(one.size(), 100u);
+  ASSERT_EQ(two.size(), 100u);
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_TRUE(one[i].isApprox(two[i], 0)) << i;
+    // each is one of the rays' eyes
+    EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const Pose& T) { return T.isApprox(one[i], 0); })) << i;
+  }
 }
 
 TEST(VoidAims, AnAxisTurnsToTheNearestReachableDirectionWithinItsBound) {

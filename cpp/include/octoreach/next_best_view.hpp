@@ -79,7 +79,8 @@ struct SensorWorkspace {
   std::optional<Aabb> box;                                  ///< sensor positions inside this box
   std::optional<Eigen::Vector3d> sphere_center;             ///< and within sphere_radius of this point
   double sphere_radius = 0;
-  /// Batch filter: one bool per position (called once per search with all candidate cells).
+  /// Filter: one bool per position, each judged on its own (a batch of positions per call; a search may call it
+  /// several times: with its candidate cells, and the loop's aimed looks with their eyes in chunks).
   std::function<std::vector<bool>(const std::vector<Eigen::Vector3d>&)> filter;
   /// \brief True when p (map frame) is inside the box and the sphere that are set (the filter is not asked).
   bool contains(const Eigen::Vector3d& p) const;
@@ -116,9 +117,11 @@ struct NbvOptions {
   int score_width = 48, score_height = 36;  ///< coarse ray grid for scoring (not every pixel)
   /// With n > 0, next_best_view first scores every valid pose with a grid of half as many rays across and down
   /// (rounded up; a quarter of the ray casting) and only the n best by each ranking key (ranks_before) with the
-  /// full grid: `ranked` holds those; choose_view's aimed looks do the same. 0 (the default): every valid pose
-  /// is scored with the full grid, as in the paper. A chain that only aims its camera (looks_at), score_views
-  /// and the baselines' sampled poses always score in full.
+  /// full grid: `ranked` holds those. choose_view's aimed looks do the same, checking IK in the coarse order
+  /// until n are valid; more than 16 n poses are ranked first with every fourth ray and go on in chunks of
+  /// 16 n in that order. 0 (the default): every valid pose is scored with the full grid, as in the paper. A
+  /// chain that only aims its camera (looks_at), score_views and the baselines' sampled poses always score in
+  /// full.
   int rescore_best = 0;
   double min_distance = 0.0;         ///< keep the camera this far (m) from occupied cells (one cell check)
   std::uint64_t seed = 0;

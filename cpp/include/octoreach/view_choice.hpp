@@ -79,7 +79,8 @@ struct ViewChoice {
 /// axes turned by up to half the camera's narrower field angle to one the capability map reaches (at roll 0, as
 /// score_views checks a pose). With options.search.rescore_best = n > 0 (and a chain that does more than aim its
 /// camera), each aimed look scores its poses with the coarse grid first and checks IK in that order until n are
-/// valid, those n scored in full (`valid` counts the valid ones among the poses checked).
+/// valid, those n scored in full (`valid` counts the valid ones among the poses checked); more than 16 n poses
+/// are ranked first with every fourth ray and go through those steps in chunks of 16 n in that order.
 /// \throws std::invalid_argument for bad options, sites or a current index out of range.
 ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites,
                        int current, const ExploreOptions& options, ChoiceMemory& memory,

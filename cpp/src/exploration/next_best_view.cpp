@@ -313,6 +313,7 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
   const std::size_t least = std::size_t(std::max(threads, 1)) * 4;
   std::size_t batch = least;
   std::vector<std::pair<std::size_t, ViewCandidate>> valid;
+  std::size_t valid_seen = 0;  // valid poses of this call, also those past max_valid
   for (std::size_t start = 0; start < total && valid.size() < max_valid;) {
     std::vector<Slot> slots(std::min(total, start + batch) - start);
     detail::parallel_for(slots.size(), threads, [&](std::size_t b, int) { slots[b] = scorer.score(start + b); }, 1);
@@ -322,10 +323,11 @@ void score_candidates(const ExplorationMap& map, const CameraIntrinsics& cam, co
       else if (slots[b].tried_ik && !slots[b].valid) ++r.ik_failures;
       if (!slots[b].valid) continue;
       ++r.poses_scored;
+      ++valid_seen;
       if (valid.size() < max_valid) valid.emplace_back(start + b, std::move(slots[b].view));
     }
     start += slots.size();
-    batch = detail::next_batch(max_valid - std::min(max_valid, valid.size()), r.poses_scored, start, least, batch);
+    batch = detail::next_batch(max_valid - std::min(max_valid, valid.size()), valid_seen, start, least, batch);
   }
   std::sort(valid.begin(), valid.end(), ranks_before_sampled);
   for (auto& v : valid) {

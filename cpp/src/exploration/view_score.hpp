@@ -74,10 +74,10 @@ void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const Nb
                 ViewCandidate& v, int step = 1);
 
 // score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 unless the chain
-// only aims its camera (then score_views itself): the checks before IK for every pose and a coarse score of those
-// that pass, then IK and the arm's collisions in the coarse order until n are valid, those n scored with the full
-// grid. More than 16 n poses are ranked first by a score with every fourth ray and go through those steps in
-// chunks of 16 n in that order. Holds the poses checked up to the n-th valid one (without a chain, the n best by the coarse score), in
+// only aims its camera (then score_views itself): the checks before IK for every pose, then for those that pass
+// a coarse score and IK and the arm's collisions in the coarse order until n are valid, those n scored with the
+// full grid. When more than 16 n pass, a score with every fourth ray ranks them first and they go through those
+// steps in chunks of 16 n in that order. Holds the poses checked up to the n-th valid one (without a chain, the n best by the coarse score), in
 // their order in `poses`: the same views for any thread count. Takes the map's lock.
 ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                            const NbvOptions& opt, RankKey key);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <unordered_map>
 
 #include "common/thread_pool.hpp"
 #include "exploration/cell_sets.hpp"
@@ -73,7 +74,7 @@ struct Eye {
   Eigen::Vector3d axis;  // the optical axis (unit)
 };
 
-constexpr std::size_t kRayChunk = 8192;  // rays walked between two looks at the eyes found (a few ms of work)
+constexpr std::uint64_t kRayChunk = 8192;  // rays walked between two looks at the eyes found (a few ms of work)
 
 }  // namespace
 
@@ -134,25 +135,33 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
   // The rays in a random order of (cell, ray), in chunks, until `poses` eyes are found: the eyes of the first
   // rays are a random sample of all the rays' eyes, and the rest need not be walked (about 12 000 of a table
   // top's 150 000 rays give eyes, 4000 are wanted).
-  const std::size_t pairs = from.size() * dirs;
-  std::vector<std::uint32_t> order(pairs);
-  for (std::size_t k = 0; k < pairs; ++k) order[k] = std::uint32_t(k);
+  const std::uint64_t pairs = std::uint64_t(from.size()) * dirs;
+  // Fisher-Yates as far as the rays walked, the swapped slots in a table (memory for the rays walked only)
+  std::unordered_map<std::uint64_t, std::uint64_t> swapped;
+  const auto slot = [&](std::uint64_t k) {
+    const auto it = swapped.find(k);
+    return it == swapped.end() ? k : it->second;
+  };
   Stream rng(mix(req.seed, 2));
   const int threads = default_threads(opt.threads);
   std::vector<Eye> eyes;
-  for (std::size_t b = 0; b < pairs && eyes.size() < req.poses; b += kRayChunk) {
-    const std::size_t e = std::min(pairs, b + kRayChunk);
-    for (std::size_t k = b; k < e; ++k)  // Fisher-Yates, as far as the rays walked
-      std::swap(order[k], order[k + std::size_t(rng.uniform() * double(pairs - k))]);
-    std::vector<std::optional<Eye>> got(e - b);
+  for (std::uint64_t b = 0; b < pairs && eyes.size() < req.poses; b += kRayChunk) {
+    const std::size_t n = std::size_t(std::min<std::uint64_t>(pairs - b, kRayChunk));
+    std::vector<std::uint64_t> rays(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::uint64_t at = b + k, j = at + std::uint64_t(rng.uniform() * double(pairs - at));
+      rays[k] = slot(j);
+      swapped[j] = slot(at);
+    }
+    std::vector<std::optional<Eye>> got(n);
     std::vector<std::vector<std::pair<CellKey, double>>> scratch(std::size_t(std::max(threads, 1)));
-    parallel_for(e - b, threads, [&](std::size_t j, int tid) {
-      got[j] = eye_of(order[b + j] / dirs, order[b + j] % dirs, scratch[std::size_t(tid)]);
+    parallel_for(n, threads, [&](std::size_t k, int tid) {
+      got[k] = eye_of(std::size_t(rays[k] / dirs), std::size_t(rays[k] % dirs), scratch[std::size_t(tid)]);
     }, 64);
     std::vector<Eye> chunk;
     for (auto& g : got)
       if (g) chunk.push_back(*g);
-    if (opt.workspace.filter && !chunk.empty()) {  // the caller's batch filter, once per chunk
+    if (opt.workspace.filter && !chunk.empty()) {  // the caller's filter, once per chunk
       std::vector<Eigen::Vector3d> pos(chunk.size());
       for (std::size_t i = 0; i < chunk.size(); ++i) pos[i] = chunk[i].at;
       const std::vector<bool> keep = opt.workspace.filter(pos);

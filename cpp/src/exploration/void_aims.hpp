@@ -14,7 +14,7 @@ struct ExplorationState;
 
 // Which void cells to aim at and how many rays to walk out of each.
 struct AimRequest {
-  std::size_t poses = 400;  // at most this many poses, drawn at random among the eyes found
+  std::size_t poses = 400;  // at most this many poses: a random sample of the eyes the rays give
   // Void cells the rays leave from: `cells` drawn at random (exposed cells first: all exposed ones drawn,
   // then unexposed ones with probability unexposed_share), or every void cell (at most max_cells, drawn at
   // random) with every_cell.
