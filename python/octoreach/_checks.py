@@ -41,6 +41,19 @@ def float_array(value, name: str, expected: str):
         raise TypeError(f"{name} must be {expected}, got {type(value).__name__}") from None
 
 
+def finite_pose(value, name: str):
+    """value as a (4, 4) float array; ValueError naming the argument for another shape or a NaN or inf entry
+    (whether it is rigid is the compiled module's check)."""
+    import numpy as np
+
+    a = float_array(value, name, "a 4x4 pose")
+    if a.shape != (4, 4):
+        raise ValueError(f"{name} must be a 4x4 pose, got shape {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} holds NaN or inf: {shown(a.tolist())}")
+    return a
+
+
 def shown(value) -> str:
     """repr(value) for an error message, bounded in time and length (reprlib: at most a few items per level and
     a few levels, then at most limits.MAX_SHOWN characters): a message names a value, it never spells out a

@@ -333,8 +333,16 @@ def test_bad_input():
         ex.explore(scene, cam, T, max_views=0)
     with pytest.raises(ValueError, match="min_utility"):
         ex.explore(scene, cam, T, min_utility=float("nan"))
-    with pytest.raises(ValueError, match="start_pose"):
+    with pytest.raises(ValueError, match="start_pose must be a 4x4 pose"):
         ex.explore(scene, cam, np.eye(3))
+    with pytest.raises(ValueError, match="start_pose holds NaN or inf"):
+        ex.explore(scene, cam, np.full((4, 4), np.nan))
+    robot, chain = ex.explorer_robot()
+    with pytest.raises(ValueError, match="base_pose holds NaN or inf"):
+        ex.Explorer(cam, ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.full((4, 4), np.nan))
+    with pytest.raises(ValueError, match=r"base_moves\[0\]"):
+        ex.Explorer(cam, ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4),
+                    base_moves=[np.eye(3)])
     with pytest.raises(ValueError, match="target"):
         ex.explore(scene, cam, T, target=(1, 2, 3))
     with pytest.raises(ValueError, match="resolution"):

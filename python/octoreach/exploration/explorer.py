@@ -8,6 +8,7 @@ from typing import Optional
 import numpy as np
 
 from .. import _core
+from .._checks import finite_pose
 from ._options import explore_options
 from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot
 from .strategies import Choice, _choice_of, check_strategy, stop_message
@@ -31,13 +32,11 @@ def carrier(robot, chain, base_pose):
 
 def base_list(chain, base_pose, base_moves) -> list:
     """The chain base poses the search may use: the current one first, then `base_moves` (None: a free camera)."""
-    bases = [np.asarray(base_pose, float)] if chain is not None else [None]
+    bases = [finite_pose(base_pose, "base_pose")] if chain is not None else [None]
     if base_moves is not None:
         if chain is None:
             raise ValueError("base_moves needs a chain (or robot=True)")
-        bases += [np.asarray(b, float) for b in base_moves]
-        if any(b.shape != (4, 4) for b in bases):
-            raise ValueError("base_moves must be 4x4 poses (chain base -> world)")
+        bases += [finite_pose(b, f"base_moves[{i}] (chain base -> world)") for i, b in enumerate(base_moves)]
     return bases
 
 

@@ -7,6 +7,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from .._checks import finite_pose
 from .._core import DepthCamera, ExplorationMap, ExploreOptions, Scene
 from .explorer import Explorer
 from .metrics import observed_share, points_on
@@ -104,9 +105,7 @@ class ExplorationResult:
 def _check_args(strategy, start_pose, target) -> np.ndarray:
     """The start pose as a finite 4x4 array; ValueError for a bad strategy, start pose or target."""
     check_strategy(strategy)
-    pose = np.asarray(start_pose, float)
-    if pose.shape != (4, 4) or not np.all(np.isfinite(pose)):
-        raise ValueError(f"start_pose must be a finite 4x4 pose, got shape {pose.shape}")
+    pose = finite_pose(start_pose, "start_pose")
     if target is not None:
         points_on(target, np.zeros((0, 3)))  # ValueError for a wrong shape, before any work
     return pose
