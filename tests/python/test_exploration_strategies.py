@@ -340,6 +340,12 @@ def test_bad_input():
     robot, chain = ex.explorer_robot()
     with pytest.raises(ValueError, match="base_pose holds NaN or inf"):
         ex.Explorer(cam, ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.full((4, 4), np.nan))
+    far = np.array([[5.0, 5.0, 0.0], [6.0, 6.0, 1.0]])  # beyond the arm's reach plus the camera's 3 m
+    with pytest.raises(ValueError, match="search_space lies .* from the nearest chain base"):
+        ex.Explorer(cam, far, robot=True)
+    with pytest.raises(ValueError, match="search_space lies"):  # millimetres
+        ex.Explorer(cam, 1000 * ex.scene_region(scene), robot=True)
+    ex.Explorer(cam, far, robot=True, base_moves=[ex.look_at((5.0, 4.0, 0.0), (5.5, 5.5, 0.0))])  # a base near it
     with pytest.raises(ValueError, match=r"base_moves\[0\]"):
         ex.Explorer(cam, ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4),
                     base_moves=[np.eye(3)])

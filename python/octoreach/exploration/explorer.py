@@ -8,7 +8,7 @@ from typing import Optional
 import numpy as np
 
 from .. import _core
-from .._checks import finite_pose
+from .._checks import finite_pose, shown
 from ._options import explore_options
 from .robot import arm_base_pose, arm_reach, explorer_capability_map, explorer_robot
 from .strategies import Choice, _choice_of, check_strategy, stop_message
@@ -38,6 +38,18 @@ def base_list(chain, base_pose, base_moves) -> list:
             raise ValueError("base_moves needs a chain (or robot=True)")
         bases += [finite_pose(b, f"base_moves[{i}] (chain base -> world)") for i, b in enumerate(base_moves)]
     return bases
+
+
+def check_in_sight(bases, region, limit: float) -> None:
+    """ValueError when the search space `region` ((2, 3) lo, hi) lies farther than `limit` metres (the arm's reach
+    plus the camera's range) from every chain base: no view could see any of it (a box in millimetres, or in
+    another frame)."""
+    lo, hi = region[0], region[1]
+    gaps = [float(np.linalg.norm(np.maximum(0.0, np.maximum(lo - b[:3, 3], b[:3, 3] - hi)))) for b in bases]
+    if gaps and min(gaps) > limit:
+        raise ValueError(f"search_space lies {min(gaps):.2f} m from the nearest chain base, beyond the arm's reach "
+                         f"plus the camera's range ({limit:.2f} m): no view can see any of it (metres, in the "
+                         f"world frame?); got {shown(region.tolist())}")
 
 
 def capability(capability_map, chain):
@@ -82,6 +94,8 @@ class Explorer:
         self.options, self.strategy, self.reach = opts, strategy, reach
         self._core = _core.ExplorerCore(camera, np.asarray(search_space, float), bases, reach, resolution,
                                         void_fit_threshold, opts, strategy)
+        if reach > 0 and getattr(camera, "max_range", None):  # the core checked the search space's shape
+            check_in_sight(bases, np.asarray(search_space, float), reach + float(camera.max_range))
         self._keep = (camera, search.chain, search.capability_map)  # the core holds plain pointers to them
 
     def integrate(self, points=None, camera_pose=None, *, depth=None) -> dict:
