@@ -85,15 +85,9 @@ LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam
     v.pose = opt.chain_base * chain.fk(a.q);
     views.push_back(std::move(v));
   }
-  std::vector<bool> keep(views.size(), true);
-  if (opt.workspace.filter && !views.empty()) {
-    std::vector<Eigen::Vector3d> pos(views.size());
-    for (std::size_t i = 0; i < views.size(); ++i) pos[i] = views[i].pose.translation();
-    keep = opt.workspace.filter(pos);
-    if (keep.size() != views.size())
-      throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
-                                  std::to_string(views.size()) + " positions");
-  }
+  std::vector<Eigen::Vector3d> pos(views.size());
+  for (std::size_t i = 0; i < views.size(); ++i) pos[i] = views[i].pose.translation();
+  const std::vector<bool> keep = filter_verdicts(opt, pos);
   const Pose to_arm = opt.capability_base.inverse();
   parallel_for(views.size(), threads, [&](std::size_t i, int) {
     ScoredView& s = views[i];

@@ -188,13 +188,7 @@ void prune_by_workspace(const ExplorationMap& map, const NbvOptions& opt, std::v
                         NbvResult& r) {
   std::vector<Eigen::Vector3d> pos(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) pos[i] = map.center(cells[i].first);
-  std::vector<bool> keep(cells.size(), true);
-  if (opt.workspace.filter) {
-    keep = opt.workspace.filter(pos);
-    if (keep.size() != cells.size())
-      throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
-                                  std::to_string(cells.size()) + " positions");
-  }
+  const std::vector<bool> keep = detail::filter_verdicts(opt, pos);
   const Pose to_arm = opt.capability_base.inverse();
   std::size_t w = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {

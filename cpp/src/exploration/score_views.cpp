@@ -30,16 +30,6 @@ ViewStatus check_before_ik(const NbvOptions& opt, const detail::ViewChecker& che
   return ViewStatus::Valid;
 }
 
-// The workspace filter's verdict on each position (all true without a filter).
-std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen::Vector3d>& pos) {
-  if (!opt.workspace.filter || pos.empty()) return std::vector<bool>(pos.size(), true);
-  std::vector<bool> keep = opt.workspace.filter(pos);
-  if (keep.size() != pos.size())
-    throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
-                                std::to_string(pos.size()) + " positions");
-  return keep;
-}
-
 // The options and every pose checked (a bad one throws std::invalid_argument naming it).
 void check_poses(const CameraIntrinsics& cam, const NbvOptions& opt, const std::vector<Pose>& poses) {
   detail::validate_options(cam, opt);
@@ -82,7 +72,7 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
     }, 4);
   std::vector<Eigen::Vector3d> pos(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) pos[i] = out.views[i].pose.translation();
-  const std::vector<bool> keep = filter_verdicts(opt, pos);
+  const std::vector<bool> keep = detail::filter_verdicts(opt, pos);
   auto guard = detail::read_guard(map);
   const detail::ScoreModel model = detail::score_model(map, opt);
   const detail::ViewChecker checker(map, opt);
@@ -102,6 +92,15 @@ ScoredViews score_views(const ExplorationMap& map, const CameraIntrinsics& cam, 
 }
 
 namespace detail {
+
+std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen::Vector3d>& pos) {
+  if (!opt.workspace.filter || pos.empty()) return std::vector<bool>(pos.size(), true);
+  std::vector<bool> keep = opt.workspace.filter(pos);
+  if (keep.size() != pos.size())
+    throw std::invalid_argument("workspace filter returned " + std::to_string(keep.size()) + " values for " +
+                                std::to_string(pos.size()) + " positions");
+  return keep;
+}
 
 // rescored_views: when more than kFirstPass x rescore_best poses pass the checks before IK (the second look's
 // 400 aims may, a low view's 1200 and the last chance's 4000 do), a score with every fourth ray of the grid (a

@@ -73,12 +73,17 @@ ScoreModel score_model(const ExplorationMap& map, const NbvOptions& opt);
 void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const NbvOptions& opt, const ScoreModel& m,
                 ViewCandidate& v, int step = 1);
 
+// The verdict of opt.workspace.filter on each position (all true without a filter, which is then not called): the
+// one call of the caller's filter. \throws std::invalid_argument when it returns another number of values.
+std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen::Vector3d>& pos);
+
 // score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 unless the chain
 // only aims its camera (then score_views itself): the checks before IK for every pose, then for those that pass
 // a coarse score and IK and the arm's collisions in the coarse order until n are valid, those n scored with the
 // full grid. When more than 16 n pass, a score with every fourth ray ranks them first and they go through those
-// steps in chunks of 16 n in that order. Holds the poses checked up to the n-th valid one (without a chain, the n best by the coarse score), in
-// their order in `poses`: the same views for any thread count. Takes the map's lock.
+// steps in chunks of 16 n in that order. Holds the poses checked up to the n-th valid one (without a chain, the
+// n best by the coarse score), in their order in `poses`: the same views for any thread count. Takes the map's
+// lock.
 ScoredViews rescored_views(const ExplorationMap& map, const CameraIntrinsics& cam, const std::vector<Pose>& poses,
                            const NbvOptions& opt, RankKey key);
 

@@ -161,13 +161,13 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
     std::vector<Eye> chunk;
     for (auto& g : got)
       if (g) chunk.push_back(*g);
-    if (opt.workspace.filter && !chunk.empty()) {  // the caller's filter, once per chunk
+    if (opt.workspace.filter) {  // the caller's filter, once per chunk
       std::vector<Eigen::Vector3d> pos(chunk.size());
       for (std::size_t i = 0; i < chunk.size(); ++i) pos[i] = chunk[i].at;
-      const std::vector<bool> keep = opt.workspace.filter(pos);
+      const std::vector<bool> keep = filter_verdicts(opt, pos);
       std::size_t w = 0;
       for (std::size_t i = 0; i < chunk.size(); ++i)
-        if (i < keep.size() && keep[i]) chunk[w++] = chunk[i];
+        if (keep[i]) chunk[w++] = chunk[i];
       chunk.resize(w);
     }
     for (std::size_t i = 0; i < chunk.size() && eyes.size() < req.poses; ++i) eyes.push_back(chunk[i]);
