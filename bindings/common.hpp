@@ -108,6 +108,21 @@ inline RowMatrixXd finite_matrix_from(const py::handle& obj, py::ssize_t cols, c
   return m;
 }
 
+/// A box given as (2, 3) rows lo and hi, every entry finite: ValueError naming the shape or the fault otherwise (the
+/// order of lo and hi is the caller's to check: some boxes may be flat).
+inline Aabb box_from(const py::handle& obj, const char* what) {
+  Array a = array_arg(obj, what, "a (2, 3) array of rows lo, hi");
+  if (a.ndim() != 2 || a.shape(0) != 2 || a.shape(1) != 3) {
+    std::string got = "(";
+    for (py::ssize_t k = 0; k < a.ndim(); ++k) got += (k ? ", " : "") + std::to_string(a.shape(k));
+    throw std::invalid_argument(std::string(what) + " must have shape (2, 3): rows lo and hi, got shape " + got +
+                                (a.ndim() == 1 ? ",)" : ")"));
+  }
+  RowMatrixXd b = Eigen::Map<const RowMatrixXd>(a.data(), 2, 3);
+  if (!b.allFinite()) throw std::invalid_argument(std::string(what) + " must be finite (got NaN or inf)");
+  return Aabb{b.row(0).transpose(), b.row(1).transpose()};
+}
+
 using IndexTriples = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 /// (M, 3) integer array of vertex indices, each checked against [0, vertices) at full 64-bit width

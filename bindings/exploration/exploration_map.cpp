@@ -39,11 +39,10 @@ void wrap_void_cluster(py::module_& m) {
 // The search space box of the constructor and of from_file into the options.
 void set_search_space(ExplorationOptions& o, const py::object& search_space) {
   if (search_space.is_none()) return;
-  RowMatrixXd b = matrix_from(search_space, 3, "search_space");
-  if (b.rows() != 2 || !b.allFinite() || (b.row(0).array() > b.row(1).array()).any())
-    throw std::invalid_argument("search_space must be finite (2, 3) rows lo, hi with lo <= hi");
-  o.search_lo = b.row(0).transpose();
-  o.search_hi = b.row(1).transpose();
+  const Aabb b = box_from(search_space, "search_space");
+  if ((b.lo.array() > b.hi.array()).any()) throw std::invalid_argument("search_space must have lo <= hi on every axis");
+  o.search_lo = b.lo;
+  o.search_hi = b.hi;
 }
 
 // Construction, insertion and per-cell queries.

@@ -27,9 +27,7 @@ ExplorerSetup setup_from(const py::object& camera, const py::object& search_spac
   }
   s.strategy = strategy_from_name(strategy);
   // The search space last: every other argument's wrong type is named before a shape is checked.
-  RowMatrixXd box = finite_matrix_from(search_space, 3, "search_space");
-  if (box.rows() != 2) throw std::invalid_argument("search_space must have shape (2, 3): lo and hi rows");
-  s.search_space = Aabb{box.row(0).transpose(), box.row(1).transpose()};
+  s.search_space = box_from(search_space, "search_space");
   return s;
 }
 

@@ -19,9 +19,7 @@ void def_workspace(py::class_<NbvOptions>& cls) {
         return py::make_tuple(o.workspace.box->lo, o.workspace.box->hi);
       }, [](NbvOptions& o, const py::object& box) {
         if (box.is_none()) return o.workspace.box.reset();
-        RowMatrixXd b = matrix_from(box, 3, "workspace_box");
-        if (b.rows() != 2) throw std::invalid_argument("workspace_box must have shape (2, 3): lo and hi rows");
-        o.workspace.box = Aabb{b.row(0).transpose(), b.row(1).transpose()};
+        o.workspace.box = box_from(box, "workspace_box");
       }, "Sensor positions inside this box ((2, 3): lo, hi rows; map frame), or None.")
       .def_property("workspace_sphere", [](const NbvOptions& o) -> py::object {
         if (!o.workspace.sphere_center) return py::none();

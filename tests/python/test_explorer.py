@@ -2,11 +2,13 @@
 refused with the explorer unchanged; a replayed recording gives the views explore() took. Coarse maps, small
 images."""
 import os
+import re
 import sys
 
 import numpy as np
 import pytest
 
+from octoreach import ExplorationMap
 from octoreach import exploration as ex
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "examples"))
@@ -25,7 +27,7 @@ def test_bad_input_is_refused_and_the_explorer_stays_unchanged():
     e.integrate(replay_exploration.camera().capture(scene, T), T)
     before = (e.views, e.map.void_cell_count, e.map.frontier_cell_count)
     pts = np.array([[0.8, 0.0, 0.2], [np.nan, 0.0, 0.2]])
-    with pytest.raises(ValueError, match="points row 1"):
+    with pytest.raises(ValueError, match="points row 1 is not finite .* drop those rows, or integrate the depth image"):
         e.integrate(pts, T)
     with pytest.raises(ValueError, match="points row 0"):
         e.integrate(np.array([[np.inf, 0.0, 0.0]]), T)
@@ -40,8 +42,12 @@ def test_bad_input_is_refused_and_the_explorer_stays_unchanged():
     with pytest.raises(ValueError, match="must hold metres as floats, got dtype uint16"):  # a 16UC1 image, in mm
         e.integrate(depth=np.full((60, 80), 1500, np.uint16), camera_pose=T)
     assert (e.views, e.map.void_cell_count, e.map.frontier_cell_count) == before
-    with pytest.raises(ValueError, match="search_space"):
+    with pytest.raises(ValueError, match="search_space must be finite"):
         ex.Explorer(replay_exploration.camera(), [[0, 0, 0], [np.nan, 1, 1]])
+    for box, got in ((np.zeros(6), "(6,)"), (np.zeros((3, 3)), "(3, 3)"), (np.zeros((2, 3, 1)), "(2, 3, 1)")):
+        for make in (lambda b: ex.Explorer(replay_exploration.camera(), b), lambda b: ExplorationMap(search_space=b)):
+            with pytest.raises(ValueError, match=rf"search_space must have shape \(2, 3\): rows lo and hi, got shape {re.escape(got)}"):
+                make(box)
     with pytest.raises(TypeError, match="'max_view': not a field of ExploreOptions.*did you mean 'max_views'"):
         ex.Explorer(replay_exploration.camera(), ex.scene_region(scene), max_view=15)
 

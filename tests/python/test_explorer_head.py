@@ -195,3 +195,13 @@ def test_score_views_aims_a_head_at_what_each_pose_looks_at(head):
     assert np.isfinite(sv.expected_gain[:2]).all() and np.isnan(sv.expected_gain[2])  # the invalid one not scored
     placed = score_views(emap, cam, poses, aiming="pose", **kw)
     assert placed.status[1] == "no_ik" and placed.status[2] == "no_ik", placed.status
+
+
+def test_a_chain_without_joints_is_refused_when_the_explorer_is_made(head):
+    """A chain of fixed joints (the camera link to its optical frame) can neither move nor aim the camera: the
+    explorer says so at once, naming the chain, instead of stopping at its first view with every pose "no_ik"."""
+    robot, _ = head
+    fixed = robot.chain("camera_link", "camera_optical_frame")
+    assert fixed.dof == 0
+    with pytest.raises(ValueError, match="chain camera_link -> camera_optical_frame has no movable joint"):
+        ex.Explorer(_camera(), ex.scene_region(_table_scene()), robot=robot, chain=fixed, base_pose=np.eye(4))

@@ -4,11 +4,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "exploration/view_score.hpp"
+
 namespace octoreach {
 
 Explorer::Explorer(ExplorerSetup setup) : setup_(std::move(setup)) {
   setup_.camera.validate();
   setup_.options.validate();
+  detail::validate_options(setup_.camera, setup_.options.search);  // (here, not at the first next_view)
   const Aabb& s = setup_.search_space;
   if (!s.lo.allFinite() || !s.hi.allFinite() || (s.hi.array() <= s.lo.array()).any())
     throw std::invalid_argument("search_space must be a finite box with lo < hi on every axis");
@@ -31,7 +34,10 @@ Explorer::~Explorer() = default;
 InsertStats Explorer::integrate(const std::vector<Eigen::Vector3d>& points, const Pose& camera_pose) {
   check_rigid(camera_pose, "camera_pose");
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (!points[i].allFinite()) throw std::invalid_argument("points row " + std::to_string(i) + " is not finite");
+    if (!points[i].allFinite())
+      throw std::invalid_argument("points row " + std::to_string(i) +
+                                  " is not finite (an organised cloud marks a pixel without return with NaN: drop "
+                                  "those rows, or integrate the depth image)");
   if (setup_.options.learn_misses && map_->void_cell_count())
     expect_view(*map_, setup_.camera, camera_pose, setup_.options.search);
   ++views_;

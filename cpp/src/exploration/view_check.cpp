@@ -87,6 +87,10 @@ void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt) {
   cam.validate();
   check_rigid(opt.chain_base, "chain_base");
   check_rigid(opt.capability_base, "capability_base");
+  if (opt.chain && opt.chain->dof() == 0)
+    throw std::invalid_argument("chain " + opt.chain->base_link() + " -> " + opt.chain->tip_link() +
+                                " has no movable joint: it can neither move nor aim the camera (pass no chain for a "
+                                "camera placed freely, or a chain that ends at the camera link)");
   if (opt.max_valid_poses <= 0 || opt.orientations_per_cell <= 0 || opt.max_candidate_cells <= 0)
     throw std::invalid_argument("max_valid_poses, orientations_per_cell and max_candidate_cells must be positive");
   const std::uint64_t poses = std::uint64_t(opt.max_candidate_cells) * std::uint64_t(opt.orientations_per_cell);

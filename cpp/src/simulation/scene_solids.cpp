@@ -52,9 +52,13 @@ bool Scene::Solids::add(const Shape& s) {
     case Shape::Type::Cylinder:
       cylinders.push_back(placed(Eigen::Vector3d(s.radius, s.radius, s.length / 2)));
       return true;
-    case Shape::Type::Octree:
-      octrees.push_back({s.octree, s.origin, s.origin.matrix() == Eigen::Matrix4d::Identity()});
+    case Shape::Type::Octree: {
+      Octree t{s.octree, s.origin, s.origin.matrix() == Eigen::Matrix4d::Identity(), {}, {}};
+      s.octree->getMetricMin(t.lo.x(), t.lo.y(), t.lo.z());
+      s.octree->getMetricMax(t.hi.x(), t.hi.y(), t.hi.z());
+      octrees.push_back(std::move(t));
       return true;
+    }
     case Shape::Type::Mesh: return false;
   }
   return false;
@@ -134,15 +138,11 @@ void Scene::Solids::extend(Aabb& b) const {
     const Eigen::Vector3d rim = (Eigen::Vector3d::Ones() - a.cwiseAbs2()).cwiseMax(0.0).cwiseSqrt() * x.half.x();
     grow(x.c, rim + a.cwiseAbs() * x.half.z());
   }
-  for (const Octree& t : octrees) {
-    double x0, y0, z0, x1, y1, z1;
-    t.tree->getMetricMin(x0, y0, z0);
-    t.tree->getMetricMax(x1, y1, z1);
+  for (const Octree& t : octrees)
     for (int k = 0; k < 8; ++k) {
-      const Eigen::Vector3d corner(k & 1 ? x1 : x0, k & 2 ? y1 : y0, k & 4 ? z1 : z0);
+      const Eigen::Vector3d corner(k & 1 ? t.hi.x() : t.lo.x(), k & 2 ? t.hi.y() : t.lo.y(), k & 4 ? t.hi.z() : t.lo.z());
       grow(t.pose * corner, Eigen::Vector3d::Zero());
     }
-  }
 }
 
 }  // namespace octoreach

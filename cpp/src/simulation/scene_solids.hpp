@@ -23,6 +23,7 @@ struct Scene::Solids {
     std::shared_ptr<const octomap::OcTree> tree;
     Pose pose;      // tree frame -> world
     bool identity;  // placed as read: rays stay in world coordinates
+    Eigen::Vector3d lo, hi;  // the tree's metric bounds (tree frame), read once: OctoMap walks every leaf for them
   };
   std::vector<Octree> octrees;
 
