@@ -39,3 +39,28 @@ TEST(ViewChecker, TheSearchSpacesKnownBoxFollowsEveryInsert) {
   ASSERT_EQ(map.state(map.key_of(far)), CellState::Unknown);
   EXPECT_FALSE(clear_at(map, far));
 }
+
+// min_distance is a distance to the nearest point of an occupied cell (the surface may lie anywhere in it): a camera
+// 4.9 cm from the cell is refused and one 5.1 cm away is clear, along an axis, a face diagonal or a space
+// diagonal, whichever cells of the cube around the camera's cell they fall in.
+TEST(ViewChecker, TheClearanceIsADistanceToTheCells) {
+  ExplorationOptions o;
+  o.resolution = 0.025;
+  ExplorationMap map(o);
+  map.insert({{1.0, 0.0, 0.5}}, Eigen::Vector3d(0.0, 0.0, 0.5), 4.0);
+  const Eigen::Vector3d c = map.center(map.key_of(Eigen::Vector3d(1.0, 0.0, 0.5)));
+  ASSERT_EQ(map.state(map.key_of(c)), CellState::Occupied);
+  NbvOptions opt;
+  opt.min_distance = 0.05;
+  opt.unknown_is_obstacle = false;
+  auto guard = detail::read_guard(map);
+  const detail::ViewChecker checker(map, opt);
+  const double h = 0.0125;  // half a cell: the corner of the cell nearest a diagonal
+  for (const Eigen::Vector3d& u : {Eigen::Vector3d(-1.0, 0.0, 0.0), Eigen::Vector3d(0.0, 0.0, 1.0),
+                                   Eigen::Vector3d(1.0, 1.0, 0.0).normalized(), Eigen::Vector3d(1.0, 1.0, 1.0).normalized()}) {
+    const Eigen::Vector3d edge = c + h * u.cwiseSign();  // the cell's point nearest the direction u
+    EXPECT_FALSE(checker.camera_clear(edge + 0.049 * u)) << u.transpose();
+    EXPECT_TRUE(checker.camera_clear(edge + 0.051 * u)) << u.transpose();
+  }
+  EXPECT_FALSE(checker.camera_clear(c));
+}

@@ -123,7 +123,7 @@ struct NbvOptions {
   /// chain that only aims its camera (looks_at), score_views and the baselines' sampled poses always score in
   /// full.
   int rescore_best = 0;
-  double min_distance = 0.0;         ///< keep the camera this far (m) from occupied cells (one cell check)
+  double min_distance = 0.0;         ///< keep the camera this far (m) from every point of an occupied cell
   std::uint64_t seed = 0;
   int threads = 0;
   SensorWorkspace workspace;
@@ -167,7 +167,7 @@ struct NbvOptions {
   /// cells outside the search space (the robot's own body, space the camera never looks at) are not
   /// obstacles.
   bool unknown_is_obstacle = true;
-  double unknown_margin = 0.05;  ///< metres around the camera that must be observed (not unknown)
+  double unknown_margin = 0.05;  ///< metres around the camera that no unknown cell may reach into
   /// With a chain and arm_collisions: the ground below the map's search space (ExplorationOptions::
   /// search_lo's z) is an obstacle for the links the chain moves (the links it does not move, a base
   /// standing on the floor, are not tested against it). Unknown cells outside the search space are no
@@ -243,6 +243,8 @@ struct NbvResult {
   std::size_t utility_cells = 0;    ///< cells of the workspace's box and sphere with utility > 0 before pruning
   std::size_t candidate_cells = 0;  ///< after workspace and capability-map pruning (before the clearance check)
   std::size_t capability_pruned = 0;  ///< cells the capability map removed
+  /// Poses checked and why they failed. The search checks poses in parallel batches and stops after the batch that
+  /// completes max_valid_poses, so these counts (not the ranked views) depend on the number of threads.
   std::size_t poses_scored = 0, ik_failures = 0;
   std::size_t arm_collisions = 0;   ///< IK solutions rejected because the arm touches an occupied (or unknown) cell or itself
   std::size_t camera_not_clear = 0; ///< sampled poses whose camera is not in observed-free space

@@ -94,8 +94,7 @@ LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam
     const Eigen::Vector3d p = s.pose.translation();
     if (!keep[i] || !opt.workspace.contains(p))
       s.status = ViewStatus::OutsideWorkspace;
-    else if (opt.capability_map && (!(opt.capability_map->reachability(to_arm * p) > opt.min_reachability) ||
-                                    !checker.axis_reachable(s.pose)))
+    else if (!position_reachable(opt, to_arm, p) || !checker.axis_reachable(s.pose))
       s.status = ViewStatus::NotReachable;
     else if (!checker.camera_clear(p))
       s.status = ViewStatus::CameraNotClear;

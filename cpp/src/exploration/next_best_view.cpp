@@ -193,7 +193,7 @@ void prune_by_workspace(const ExplorationMap& map, const NbvOptions& opt, std::v
   std::size_t w = 0;
   for (std::size_t i = 0; i < cells.size(); ++i) {
     if (!keep[i] || !opt.workspace.contains(pos[i])) continue;
-    if (opt.capability_map && !(opt.capability_map->reachability(to_arm * pos[i]) > opt.min_reachability)) {
+    if (!detail::position_reachable(opt, to_arm, pos[i])) {
       ++r.capability_pruned;
       continue;
     }

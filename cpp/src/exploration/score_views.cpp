@@ -23,8 +23,7 @@ ViewStatus check_before_ik(const NbvOptions& opt, const detail::ViewChecker& che
                            const Pose& pose, bool kept) {
   const Eigen::Vector3d p = pose.translation();
   if (!kept || !opt.workspace.contains(p)) return ViewStatus::OutsideWorkspace;
-  if (opt.capability_map &&
-      (!(opt.capability_map->reachability(to_arm * p) > opt.min_reachability) || !checker.axis_reachable(pose)))
+  if (!detail::position_reachable(opt, to_arm, p) || !checker.axis_reachable(pose))
     return ViewStatus::NotReachable;
   if (!checker.camera_clear(p)) return ViewStatus::CameraNotClear;
   return ViewStatus::Valid;

@@ -200,18 +200,26 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
   const std::uint8_t own = g.get(c) & kStateMask;
   if (own == std::uint8_t(CellState::Occupied)) return false;
   if (own == std::uint8_t(CellState::Unknown) && opt_.unknown_is_obstacle && in_search_space(c)) return false;
-  const int m_occ = int(std::ceil(opt_.min_distance / res - 1e-9));
-  const int m_unk = opt_.unknown_is_obstacle ? int(std::ceil(opt_.unknown_margin / res - 1e-9)) : 0;
-  const int m = std::max(m_occ, m_unk);
+  // A cell is within a margin of the camera when any point of it is: the map knows only that a surface (or unseen
+  // space) lies somewhere in the cell, so this is the rule that keeps the margin to every surface the cells allow,
+  // at any cell size. The whole cube of cells around the camera's cell would keep it up to sqrt(3) times the margin
+  // plus a cell from some surfaces and refuse the views through a box's opening that the rule allows.
+  const double occ2 = opt_.min_distance * opt_.min_distance;
+  const double unk2 = opt_.unknown_is_obstacle ? opt_.unknown_margin * opt_.unknown_margin : 0.0;
+  const int m = int(std::ceil(std::sqrt(std::max(occ2, unk2)) / res + 1.0));  // (the camera anywhere in its cell)
+  const Eigen::Vector3d off = p - map_.center(c);
   for (int dz = -m; dz <= m; ++dz)
     for (int dy = -m; dy <= m; ++dy)
       for (int dx = -m; dx <= m; ++dx) {
+        // the camera's distance to the cell (dx, dy, dz): to the nearest point of its cube
+        const Eigen::Vector3d gap = ((Eigen::Vector3d(dx, dy, dz) * res - off).cwiseAbs().array() - res / 2).max(0.0);
+        const double d2 = gap.squaredNorm();
+        if (!(d2 < occ2) && !(d2 < unk2)) continue;
         CellKey nb;
         if (!neighbour(c, dx, dy, dz, nb)) continue;
-        const int r = std::max({std::abs(dx), std::abs(dy), std::abs(dz)});
         const std::uint8_t s = g.get(nb) & kStateMask;
-        if (s == std::uint8_t(CellState::Occupied) && r <= m_occ) return false;
-        if (s == std::uint8_t(CellState::Unknown) && r <= m_unk && in_search_space(nb)) return false;
+        if (s == std::uint8_t(CellState::Occupied) && d2 < occ2) return false;
+        if (s == std::uint8_t(CellState::Unknown) && d2 < unk2 && in_search_space(nb)) return false;
       }
   return true;
 }

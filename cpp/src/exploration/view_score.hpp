@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/next_best_view.hpp"
 #include "exploration/void_enclosure.hpp"
@@ -77,6 +78,12 @@ void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const Nb
 // one call of the caller's filter. \throws std::invalid_argument when it returns another number of values.
 std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen::Vector3d>& pos);
 
+// The capability map's verdict on a camera position p (map frame; `to_arm` the inverse of opt.capability_base): true
+// without a map, else when the voxel holding p has D > opt.min_reachability.
+inline bool position_reachable(const NbvOptions& opt, const Pose& to_arm, const Eigen::Vector3d& p) {
+  return !opt.capability_map || opt.capability_map->reachability(to_arm * p) > opt.min_reachability;
+}
+
 // score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 unless the chain
 // only aims its camera (then score_views itself): the checks before IK for every pose, then for those that pass
 // a coarse score and IK and the arm's collisions in the coarse order until n are valid, those n scored with the
@@ -111,8 +118,8 @@ class ViewChecker {
  public:
   ViewChecker(const ExplorationMap& map, const NbvOptions& opt);
   ~ViewChecker();
-  // Camera cell free, no occupied cell within min_distance, and (unknown_is_obstacle) no unknown cell
-  // of the search space within unknown_margin.
+  // Camera cell free, no point of an occupied cell within min_distance of it, and (unknown_is_obstacle) no point of
+  // an unknown cell of the search space within unknown_margin.
   bool camera_clear(const Eigen::Vector3d& p) const;
   // The capability map's verdict on the pose's (voxel, optical axis) cell (true without one or when
   // its approach axis is not the camera's +z).

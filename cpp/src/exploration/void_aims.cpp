@@ -125,7 +125,7 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
       stretch[j] = stretch.back();
       stretch.pop_back();
       if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
-      if (opt.capability_map && !(opt.capability_map->reachability(cap_inv * eye) > opt.min_reachability)) continue;
+      if (!position_reachable(opt, cap_inv, eye)) continue;
       const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, -d, turned);
       if (!axis || !checker.camera_clear(eye)) continue;
       return Eye{eye, *axis};
