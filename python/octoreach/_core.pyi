@@ -2059,7 +2059,7 @@ class NbvOptions:
     @property
     def min_distance(self) -> float:
         """
-        metres from the camera to any occupied cell
+        metres from the camera to the nearest point of any occupied cell
         """
     @min_distance.setter
     def min_distance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:

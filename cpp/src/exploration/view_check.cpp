@@ -203,10 +203,11 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
   // A cell is within a margin of the camera when any point of it is: the map knows only that a surface (or unseen
   // space) lies somewhere in the cell, so this is the rule that keeps the margin to every surface the cells allow,
   // at any cell size. The whole cube of cells around the camera's cell would keep it up to sqrt(3) times the margin
-  // plus a cell from some surfaces and refuse the views through a box's opening that the rule allows.
+  // rounded up to whole cells from some surfaces and refuse the views through a box's opening that the rule allows.
   const double occ2 = opt_.min_distance * opt_.min_distance;
   const double unk2 = opt_.unknown_is_obstacle ? opt_.unknown_margin * opt_.unknown_margin : 0.0;
-  const int m = int(std::ceil(std::sqrt(std::max(occ2, unk2)) / res + 1.0));  // (the camera anywhere in its cell)
+  // a cell k steps away along an axis is at least (k - 1) cells from any point of the camera's cell
+  const int m = int(std::ceil(std::sqrt(std::max(occ2, unk2)) / res - 1e-9));
   const Eigen::Vector3d off = p - map_.center(c);
   for (int dz = -m; dz <= m; ++dz)
     for (int dy = -m; dy <= m; ++dy)

@@ -66,7 +66,8 @@ class Choice:
 REJECTIONS = (
     ("not_reachable", "capability_rejected", "the capability map rules the pose out"),
     ("camera_not_clear", "camera_not_clear",
-     "the camera stands in or next to an occupied cell or an unknown cell of the search space"),
+     "the camera stands within min_distance of an occupied cell or unknown_margin of an unknown cell of the "
+     "search space"),
     ("no_ik", "ik_failures", "no joint solution reaches (or aims at) the pose"),
     ("arm_collision", "arm_collisions",
      "a link the chain moves touches an occupied cell or an unknown cell of the search space"),

@@ -10,9 +10,10 @@ The oracle samples camera poses densely in two ways and keeps the collision-free
   IK (approach mode, obstacles = the true scene, self-collision checked) decides whether the arm gets the camera there.
 
 With `clearance` > 0 (the safe-view rule of the exploration: its camera keeps min_distance from every
-surface) only the poses whose camera keeps that distance (Chebyshev, as the search's cube of cells) from every
-solid box of the scene are kept. Each kept pose's capture (noiseless, low resolution) is integrated into one
-map at the exploration's resolution; the observable cells are the interior sample points that map knows. The same sample
+surface) only the poses whose camera keeps that distance per axis (Chebyshev: near a box's edges and corners
+stricter than the search's distance to the nearest point of a cell) from every solid box of the scene are
+kept. Each kept pose's capture (noiseless, low resolution) is integrated into one map at the exploration's
+resolution; the observable cells are the interior sample points that map knows. The same sample
 points (metrics.region_points) measure what an exploration saw, so `Observable.share(emap)` is the
 share of the observable interior an exploration map knows.
 """
