@@ -50,6 +50,13 @@ inline Array array_arg(const py::handle& obj, const std::string& what, const std
   return a;
 }
 
+/// An array's shape as numpy prints it: "(6,)", "(2, 3)", "()".
+inline std::string shape_text(const Array& a) {
+  std::string out = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) out += (i ? ", " : "") + std::to_string(a.shape(i));
+  return out + (a.ndim() == 1 ? ",)" : ")");
+}
+
 inline Pose pose_from(const py::handle& obj, const char* what = "pose") {
   Array a = array_arg(obj, what, "a 4x4 array");
   if (a.ndim() != 2 || a.shape(0) != 4 || a.shape(1) != 4)
@@ -112,12 +119,9 @@ inline RowMatrixXd finite_matrix_from(const py::handle& obj, py::ssize_t cols, c
 /// order of lo and hi is the caller's to check: some boxes may be flat).
 inline Aabb box_from(const py::handle& obj, const char* what) {
   Array a = array_arg(obj, what, "a (2, 3) array of rows lo, hi");
-  if (a.ndim() != 2 || a.shape(0) != 2 || a.shape(1) != 3) {
-    std::string got = "(";
-    for (py::ssize_t k = 0; k < a.ndim(); ++k) got += (k ? ", " : "") + std::to_string(a.shape(k));
-    throw std::invalid_argument(std::string(what) + " must have shape (2, 3): rows lo and hi, got shape " + got +
-                                (a.ndim() == 1 ? ",)" : ")"));
-  }
+  if (a.ndim() != 2 || a.shape(0) != 2 || a.shape(1) != 3)
+    throw std::invalid_argument(std::string(what) + " must have shape (2, 3): rows lo and hi, got shape " +
+                                shape_text(a));
   RowMatrixXd b = Eigen::Map<const RowMatrixXd>(a.data(), 2, 3);
   if (!b.allFinite()) throw std::invalid_argument(std::string(what) + " must be finite (got NaN or inf)");
   return Aabb{b.row(0).transpose(), b.row(1).transpose()};
@@ -147,12 +151,8 @@ inline IndexTriples index_triples_from(const py::handle& obj, std::size_t vertic
 /// Rows of an (N, 3) array; ValueError naming `what` and the shape it got otherwise.
 inline std::vector<Eigen::Vector3d> points_from(const py::handle& obj, const char* what) {
   Array a = array_arg(obj, what, "an (N, 3) array");
-  if (a.ndim() != 2 || a.shape(1) != 3) {
-    std::string shape = "(";
-    for (py::ssize_t i = 0; i < a.ndim(); ++i) shape += (i ? ", " : "") + std::to_string(a.shape(i));
-    shape += a.ndim() == 1 ? ",)" : ")";
-    throw std::invalid_argument(std::string(what) + " must have shape (N, 3), got " + shape);
-  }
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw std::invalid_argument(std::string(what) + " must have shape (N, 3), got " + shape_text(a));
   auto r = a.unchecked<2>();
   std::vector<Eigen::Vector3d> out(a.shape(0));
   for (py::ssize_t i = 0; i < a.shape(0); ++i) out[i] = {r(i, 0), r(i, 1), r(i, 2)};
