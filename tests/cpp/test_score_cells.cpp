@@ -1,12 +1,13 @@
 // View scoring's flat cells (cpp/src/exploration/score_cells.hpp) read the map's own values: a search's scores
-// (through the cells) equal view_gains' (through the map's tables) on a map with a memory of missed views, with
-// the block directory and with the hash lookups of a map spread over a huge box.
+// (through the cells) equal view_gains' (through the map's tables) on a map with a memory of missed views (the
+// seeability and the lines that returned nothing), with the block directory and with the hash lookups of a map spread over a huge box.
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <vector>
 
 #include "box_scene.hpp"
+#include "exploration/exploration_state.hpp"
 #include "octoreach/exploration.hpp"
 #include "octoreach/next_best_view.hpp"
 #include "octoreach/simulation.hpp"
@@ -32,6 +33,7 @@ std::vector<Pose> poses() {
   std::vector<Pose> out;
   for (double y : {-0.6, -0.3, 0.3, 0.6})
     for (double z : {0.6, 0.9}) out.push_back(look_at({0.3, y, z}, {0.8, 0.0, 0.2}));
+  out.push_back(look_at({0.2, -0.6, 0.7}, {0.8, 0.1, 0.3}));  // the missed view's eye: its lines that returned nothing
   return out;
 }
 
@@ -44,9 +46,10 @@ ScoredViews flat_scores(const ExplorationMap& map) {
 }
 
 // The flat scores equal view_gains' (the map's tables), and the memory of misses lowers some of them.
-void expect_scores_match(const ExplorationMap& map, const ExplorationMap& unannounced) {
+void expect_scores_match(ExplorationMap& map, const ExplorationMap& unannounced) {
   ASSERT_GT(missed_cells(map), 100u);
   ASSERT_EQ(missed_cells(unannounced), 0u);
+  ASSERT_GT(detail::state(map).blind.size(), 0u);  // the missed view's lines that returned nothing
   const ScoredViews flat = flat_scores(map), plain = flat_scores(unannounced);
   const std::vector<Pose> P = poses();
   int lowered = 0;
@@ -60,6 +63,13 @@ void expect_scores_match(const ExplorationMap& map, const ExplorationMap& unanno
     lowered += flat.views[i].expected_unknown < plain.views[i].expected_unknown ? 1 : 0;
   }
   EXPECT_GT(lowered, 0);
+  // from the missed view's eye, the cells along its lines count 0: less than the seeability alone gives
+  detail::ExplorationState& S = detail::mutable_state(map);
+  const detail::BlindLines lines = S.blind;
+  S.blind = detail::BlindLines();
+  const ViewGains seeability_only = view_gains(map, kCamera, P.back(), 48, 36, 0.9, 0.9);
+  S.blind = lines;
+  EXPECT_LT(flat.views.back().expected_unknown, seeability_only.expected_unknown);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@ ends a scene of solids by itself. Coarse maps, small images."""
 import numpy as np
 
 from octoreach import DepthCamera, ExplorationMap, ExploreOptions, Scene, score_views
-from octoreach._core import ChoiceMemory, choose_view
+from octoreach._core import ChoiceMemory, choose_view, expect_view
 from octoreach import exploration as ex
 
 FOV = np.deg2rad(58.0)
@@ -62,3 +62,29 @@ def test_a_scene_of_solids_stops_by_itself_with_the_defaults():
                    last_poses=200)
     assert r.stop_reason != "view budget", r.table()
     assert len(r.rows) <= 6, r.table()
+
+
+def test_a_line_of_sight_that_returned_nothing_draws_no_view_along_it():
+    """A table top with a post on its far edge and nothing under or behind them: the camera's rays over the top end
+    on nothing, so its inserts leave the void cells above the top unknown. After one view from the side that
+    expected them and missed, views along the same lines expect none of them; a view from above, whose rays end on
+    the top, still expects some. (Before, each miss only lowered their seeability by the ray weight.)"""
+    s = Scene()
+    s.add_box((0.6, -0.3, 0.37), (1.0, 0.3, 0.4))
+    s.add_box((0.95, -0.03, 0.4), (1.0, 0.03, 0.8))
+    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.55, -0.35, 0.35], [1.05, 0.35, 0.85]]))
+    cam = DepthCamera(96, 72, FOV, 3.0)
+    side, above = ex.look_at((0.0, 0.0, 0.9), (0.9, 0.0, 0.55)), ex.look_at((0.8, 0.05, 1.6), (0.8, 0.0, 0.4))
+    emap.insert(cam.capture(s, side), side[:3, 3], cam.max_range)
+
+    def expected():
+        return score_views(emap, cam, np.array([side, above]), unknown_is_obstacle=False).expected_void
+
+    first = expected()
+    assert emap.void_cell_count > 20 and first[0] > 10 and first[1] > 1
+    expect_view(emap, cam, side)
+    emap.insert(cam.capture(s, side), side[:3, 3], cam.max_range)
+    after = expected()
+    assert after[0] == 0.0 and after[1] > 1, after
+    turned = ex.look_at((0.0, 0.0, 0.9), (0.9, 0.1, 0.6))  # the same eye, turned: the same lines
+    assert score_views(emap, cam, turned[None], unknown_is_obstacle=False).expected_void[0] == 0.0

@@ -294,8 +294,10 @@ ViewGainsResult view_gains(const ExplorationMap& map, const CameraIntrinsics& ca
 /// probability) are recorded with their ray weights w; the next ExplorationMap::insert multiplies the
 /// seeability s of each of them it leaves unknown by (1 - w). Every later view score counts an unknown
 /// cell with w * s, so voids that views aimed at and did not see (behind unseen surfaces, inside
-/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A second call
-/// replaces the announcement. \throws std::invalid_argument for a bad option or a non-finite pose.
+/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A cell left unknown
+/// though the rays still meet it in the updated map (they ended on nothing within range) also keeps the
+/// line of sight: later views from an eye within the angle one cell spans from this one count it 0. A
+/// second call replaces the announcement. \throws std::invalid_argument for a bad option or a non-finite pose.
 void expect_view(ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, const NbvOptions& options);
 /// \brief Unknown cells whose seeability a missed view has lowered (some may be known by now).
 std::size_t missed_cells(const ExplorationMap& map);

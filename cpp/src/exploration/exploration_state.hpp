@@ -14,6 +14,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "exploration/blind_lines.hpp"
 #include "exploration/cell_blocks.hpp"
 #include "exploration/cell_sets.hpp"
 #include "common/shared_mutex.hpp"
@@ -183,6 +184,9 @@ struct ExplorationState {
   std::vector<ExpectedCell> expected_by_view;
   std::optional<AnnouncedView> announced;  // set with expected_by_view by expect_view
   VisibilityCurve curve;  // learned from the announced views' cells (view_score.cpp)
+  // Lines of sight that returned nothing (blind_lines.hpp, learned with `hidden`): a cell counts 0 in a
+  // view that looks at it along one of its lines.
+  BlindLines blind;
   // Void cells no ray can reach (update_sealed): seeability 0.
   KeyTable<std::uint8_t> sealed;
   double seeability(CellKey k) const {

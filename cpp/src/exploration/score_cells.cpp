@@ -14,7 +14,7 @@ constexpr std::uint64_t kMaxDirectory = std::uint64_t(1) << 21;
 }  // namespace
 
 ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const EnclosureTable> enclosure)
-    : enclosure_(std::move(enclosure)), grid_(&S.grid), hidden_(&S.hidden) {
+    : enclosure_(std::move(enclosure)), grid_(&S.grid), hidden_(&S.hidden), blind_(&S.blind), state_(&S) {
   KeyTable<Extra*> extra;
   const auto extra_at = [&](CellKey k) -> Extra& {
     Extra*& e = extra.at(StateGrid::block_of(k));
@@ -26,6 +26,7 @@ ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const Enclosur
     return *e;
   };
   S.sealed.for_each([&](CellKey k, std::uint8_t) { extra_at(k).mark[StateGrid::offset(k)] |= kSealed; });
+  S.blind.for_each_cell([&](CellKey k) { extra_at(k).mark[StateGrid::offset(k)] |= kBlind; });
   if (enclosure_)
     enclosure_->for_each([&](CellKey k, std::uint8_t h) {
       extra_at(k).mark[StateGrid::offset(k)] |= std::uint8_t(kEnclosed | (h & (kExposed | kHalvesMask)));

@@ -17,6 +17,7 @@ namespace octoreach::detail {
 class ScoreCells {
  public:
   static constexpr std::uint8_t kSealed = 0x40;    // mark: the cell is sealed (seeability 0)
+  static constexpr std::uint8_t kBlind = 0x20;     // mark: the cell has lines that returned nothing
   static constexpr std::uint8_t kEnclosed = kInTable;  // mark: the enclosure table holds the cell (low bits: its byte)
   // The sealed and enclosure entries of one block's cells.
   struct Extra {
@@ -47,6 +48,10 @@ class ScoreCells {
       if (mark & kSealed) return 0.0;
       return e.hidden ? 1.0 - double(e.hidden->value[std::size_t(i)]) : 1.0;
     }
+    // True when a view from `eye` looks at cell k (marked `mark`) along a line that returned nothing.
+    bool blind(CellKey k, std::uint8_t mark, const Eigen::Vector3d& eye) const {
+      return (mark & kBlind) && c_.blind_->covers(k, c_.state_->center(k), eye);
+    }
 
    private:
     const Entry& at(CellKey k) const {
@@ -72,6 +77,8 @@ class ScoreCells {
   std::uint32_t lo_[3] = {0, 0, 0}, n_[3] = {0, 0, 0};  // directory box (block keys); n 0: no directory
   std::vector<Entry> dir_;
   const HiddenCells* hidden_;
+  const BlindLines* blind_;
+  const ExplorationState* state_;
   KeyTable<const Extra*> extra_of_;  // block key -> its extra block (outside the directory)
   std::vector<std::unique_ptr<Extra>> extras_;
 };

@@ -117,6 +117,9 @@ struct MapCells {
   const VoidWeights* weights;
   const StateGrid::Block* block(CellKey b) const { return S.grid.find_block(b); }
   double seeability(CellKey k, std::uint8_t&) const { return S.seeability(k); }
+  bool blind(CellKey k, std::uint8_t, const Eigen::Vector3d& eye) const {
+    return !S.blind.empty() && S.blind.covers(k, S.center(k), eye);
+  }
   double void_weight(CellKey k, std::uint8_t) const { return weights->of(k); }
 };
 
@@ -126,6 +129,7 @@ struct FlatCells {
   const VoidWeights* weights;
   const StateGrid::Block* block(CellKey b) const { return r.block(b); }
   double seeability(CellKey k, std::uint8_t& mark) const { return r.seeability(k, mark); }
+  bool blind(CellKey k, std::uint8_t mark, const Eigen::Vector3d& eye) const { return r.blind(k, mark, eye); }
   double void_weight(CellKey, std::uint8_t mark) const { return weights->of_mark(mark); }
 };
 
@@ -227,7 +231,9 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     // unknown cells count with their seeability (lowered by views that expected them and missed)
     const double scale = scales[(f & kVoidFlag) ? 1 : 0];
     std::uint8_t mark = 0;
-    const double e = w * (unknown ? cells.seeability(k, mark) : 1.0) * n * scale;
+    double s = unknown ? cells.seeability(k, mark) : 1.0;
+    if (s > 0 && unknown && cells.blind(k, mark, o)) s = 0;  // a line that returned nothing (blind_lines.hpp)
+    const double e = w * s * n * scale;
     if (unknown) {
       ++v.unknown_cells;
       v.expected_unknown += e;
@@ -367,10 +373,13 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S) {
     c.known_total[0] += double(known_other - c.known_at_announce[0]);
     c.known_total[1] += double(known_void - c.known_at_announce[1]);
   }
+  const double res = map.resolution();
   for (const ExpectedCell& e : S.expected_by_view) {
-    // the model expects w s of a cell (s: its seeability): the curve learns the seen share per unit
-    // of seeability, so cells already missed weigh less in it
+    // the model expects w s of a cell (s: its seeability from the view's eye, 0 along a line that returned
+    // nothing): the curve learns the seen share per unit of seeability, so cells already missed weigh less in it
     const int d = std::min<int>(e.depth, VisibilityCurve::kDepths - 1);
+    const Eigen::Vector3d centre = S.center(e.key);
+    if (S.announced && S.blind.covers(e.key, centre, S.announced->pose.translation())) continue;
     c.expected[e.void_cell][d] += S.seeability(e.key);
     if (S.state(e.key) != CellState::Unknown) {
       c.seen[e.void_cell][d] += 1;
@@ -378,6 +387,8 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S) {
       continue;
     }
     if (S.announced && !still_met.find(e.key)) continue;  // explained by a surface seen in between
+    // still met and still unknown: the camera's rays through the cell returned nothing (blind_lines.hpp)
+    if (S.announced) S.blind.add(e.key, centre, S.announced->pose.translation(), res);
     float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s
     h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(e.weight), 0.0), 1.0)));
   }
