@@ -92,7 +92,7 @@ def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
                    resolution=a.resolution, seed=seed, capability_map=cmap, target=target, min_utility=a.min_utility,
                    patience=a.patience, enclosure_power=a.enclosure_power, unexposed_weight=a.unexposed_weight,
                    second_look=not a.no_second_look,
-                   ground_is_obstacle=a.ground_is_obstacle,
+                   ground_is_obstacle=bool(a.ground_is_obstacle),
                    score_size=tuple(a.score) if a.score else None, on_view=on_view)
     views = len(r.rows)
     per_view = [x.integration_s + x.search_s for x in r.rows]
@@ -324,8 +324,9 @@ def main(argv=None) -> int:
                     help="frontier_void: void cells with no observed free neighbour count with this factor (1: the paper's count)")
     ap.add_argument("--no-second-look", action="store_true",
                     help="frontier_void: stop on next_best_view's answer alone (no aimed poses when it is low)")
-    ap.add_argument("--ground-is-obstacle", action="store_true",
-                    help="the ground below the search space is an obstacle for the arm's moved links (all strategies)")
+    ap.add_argument("--ground-is-obstacle", type=int, choices=(0, 1),
+                    default=int(ex.ExploreOptions().search.ground_is_obstacle),
+                    help="1: the ground is an obstacle for the arm's moved links (all strategies; default: the preset's)")
     ap.add_argument("--resolution", type=float, default=0.025)
     ap.add_argument("--image", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))
     ap.add_argument("--score", type=int, nargs=2, default=None, metavar=("W", "H"), help="score ray grid")
@@ -350,7 +351,7 @@ def main(argv=None) -> int:
         ap.error("--seeds and --views must be >= 1, --generated and --first-seed >= 0")
     t_all = time.perf_counter()
     chain, cmap, cmap_s = explorer_setup(a.strategies)
-    out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "enclosure_power": a.enclosure_power, "unexposed_weight": a.unexposed_weight, "second_look": not a.no_second_look, "ground_is_obstacle": a.ground_is_obstacle, "resolution_m": a.resolution, "image": list(a.image),
+    out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "enclosure_power": a.enclosure_power, "unexposed_weight": a.unexposed_weight, "second_look": not a.no_second_look, "ground_is_obstacle": bool(a.ground_is_obstacle), "resolution_m": a.resolution, "image": list(a.image),
                      "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": cmap_s,
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy",
                      "code": _code_version()},

@@ -84,7 +84,8 @@ void wrap_search_options(py::module_& m) {
       .def_static("exploration_loop", &NbvOptions::exploration_loop,
                   "The exploration loop's search: 100 valid poses from the best 800 candidate cells, the best\n"
                   "16 by a coarse score scored in full (rescore_best), the camera 5 cm clear of surfaces,\n"
-                  "enclosed voids and the exposed faces of voids first (docs/design/next_best_view.md says why).")
+                  "enclosed voids and the exposed faces of voids first, the ground an obstacle for the arm\n"
+                  "(docs/design/next_best_view.md says why).")
       .def_readwrite("max_valid_poses", &NbvOptions::max_valid_poses, "N of the paper: stop after this many valid poses")
       .def_readwrite("orientations_per_cell", &NbvOptions::orientations_per_cell)
       .def_readwrite("orientation_spread", &NbvOptions::orientation_spread, "radians around the mean utility direction")
@@ -139,8 +140,8 @@ void wrap_search_options(py::module_& m) {
       .def_readwrite("unknown_margin", &NbvOptions::unknown_margin,
                      "metres around the camera with no unknown cell of the search space (unknown_is_obstacle)")
       .def_readwrite("ground_is_obstacle", &NbvOptions::ground_is_obstacle,
-                     "with a chain: the ground below the map's search space is an obstacle for the links the chain\n"
-                     "moves (its unknown cells are not obstacles otherwise)")
+                     "with a chain: the ground is an obstacle for the links the chain moves, at the lower of the\n"
+                     "robot's root link and the map's search space floor (on in exploration_loop())")
       .def_readwrite("enclosure_power", &NbvOptions::enclosure_power,
                      "gain 'frontier_void': each void cell also counts with e^power in the ranking and the voids'\n"
                      "utility, e its enclosure (share of the six axis directions that meet a surface before free\n"

@@ -1924,7 +1924,8 @@ class NbvOptions:
         """
         The exploration loop's search: 100 valid poses from the best 800 candidate cells, the best
         16 by a coarse score scored in full (rescore_best), the camera 5 cm clear of surfaces,
-        enclosed voids and the exposed faces of voids first (docs/design/next_best_view.md says why).
+        enclosed voids and the exposed faces of voids first, the ground an obstacle for the arm
+        (docs/design/next_best_view.md says why).
         """
     def __init__(self) -> None:
         ...
@@ -2010,8 +2011,8 @@ class NbvOptions:
     @property
     def ground_is_obstacle(self) -> bool:
         """
-        with a chain: the ground below the map's search space is an obstacle for the links the chain
-        moves (its unknown cells are not obstacles otherwise)
+        with a chain: the ground is an obstacle for the links the chain moves, at the lower of the
+        robot's root link and the map's search space floor (on in exploration_loop())
         """
     @ground_is_obstacle.setter
     def ground_is_obstacle(self, arg0: bool) -> None:

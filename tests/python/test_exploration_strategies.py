@@ -5,7 +5,7 @@ Coarse maps (5 cm) and small images keep this to about a minute on two cores."""
 import numpy as np
 import pytest
 
-from octoreach import DepthCamera, ExplorationMap, Scene
+from octoreach import DepthCamera, ExplorationMap, NbvOptions, Scene
 from octoreach import exploration as ex
 from octoreach import testing
 
@@ -458,32 +458,41 @@ def test_a_low_view_that_saw_more_than_the_threshold_breaks_the_row_of_low_views
     assert explorer._core.memory.last_void_seen == sum(removed)  # every view so far: none was chosen in between
 
 
-def test_ground_below_the_search_space_is_an_obstacle_for_the_arm_on_request():
+def test_the_ground_is_an_obstacle_for_the_arm_in_the_loop():
     """The Panda looking straight down with its hand 7 cm above a ground the map has never seen (the map
     knows only the air in front of a wall, seen from the side): the ground lies below the search space,
-    where unknown cells are no obstacles, so the pose is a valid view, unless ground_is_obstacle makes the
-    ground an obstacle for the links the arm moves (its fingers reach below z = 0; the base, standing on the
-    floor, is not tested against it). 12 cm up the pose is valid either way."""
+    where unknown cells are no obstacles, so the pose is a valid view, unless ground_is_obstacle (on in the
+    loop's preset) makes the ground an obstacle for the links the arm moves (its fingers reach below z = 0;
+    the base, standing on the floor, is not tested against it). 12 cm up the pose is valid either way. The
+    ground is the lower of the robot's root (panda_link0 at z = 0) and the search space's floor: a search
+    space over a table top (floor 0.3 m) keeps it at 0, and a map without a search space has it too."""
     from octoreach import _core, robots
 
+    assert NbvOptions.exploration_loop().ground_is_obstacle and not NbvOptions().ground_is_obstacle
     robot = robots.load("panda")
     chain = robot.chain("panda_link0", "panda_hand")
     s = Scene()
     s.add_box((1.0, -1.0, 0.0), (1.05, 1.0, 0.6))  # a wall, no floor: the map never sees the ground
-    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.2, -0.5, 0.0], [1.1, 0.5, 0.6]]))
     cam = DepthCamera(64, 48, FOV, 3.0)
-    for z in (0.07, 0.2):
-        T = ex.look_at((0.0, 0.0, z), (1.0, 0.0, z))
-        emap.insert(cam.capture(s, T), T[:3, 3], 3.0)
+
+    def mapped(search_space):
+        emap = ExplorationMap(resolution=RES, search_space=search_space)
+        for z in (0.07, 0.2, 0.35):
+            T = ex.look_at((0.0, 0.0, z), (1.0, 0.0, z))
+            emap.insert(cam.capture(s, T), T[:3, 3], 3.0)
+        return emap
+
     common = dict(chain=chain, chain_base=np.eye(4), unknown_is_obstacle=False, seed=3)
     low = ex.look_at((0.5, 0.0, 0.07), (0.5, 0.0, -1.0))[None]
-    assert _core.score_views(emap, cam, low, **common).status == ["valid"]
-    assert _core.score_views(emap, cam, low, ground_is_obstacle=True, **common).status == ["arm_collision"]
     high = ex.look_at((0.5, 0.0, 0.12), (0.5, 0.0, -1.0))[None]
-    assert _core.score_views(emap, cam, high, ground_is_obstacle=True, **common).status == ["valid"]
-    # without a search space there is no floor to stand for the ground: no effect
-    free = ExplorationMap(resolution=RES)
-    for z in (0.07, 0.2):
-        T = ex.look_at((0.0, 0.0, z), (1.0, 0.0, z))
-        free.insert(cam.capture(s, T), T[:3, 3], 3.0)
-    assert _core.score_views(free, cam, low, ground_is_obstacle=True, **common).status == ["valid"]
+    under_the_layer = ex.look_at((0.5, 0.0, 0.2), (0.5, 0.0, -1.0))[None]  # below a floor of 0.3 m, above the ground
+    floor = mapped(np.array([[0.2, -0.5, 0.0], [1.1, 0.5, 0.6]]))
+    assert _core.score_views(floor, cam, low, **common).status == ["valid"]
+    assert _core.score_views(floor, cam, low, ground_is_obstacle=True, **common).status == ["arm_collision"]
+    assert _core.score_views(floor, cam, high, ground_is_obstacle=True, **common).status == ["valid"]
+    layer = mapped(np.array([[0.2, -0.5, 0.3], [1.1, 0.5, 0.6]]))
+    assert _core.score_views(layer, cam, low, ground_is_obstacle=True, **common).status == ["arm_collision"]
+    assert _core.score_views(layer, cam, under_the_layer, ground_is_obstacle=True, **common).status == ["valid"]
+    free = mapped(None)
+    assert _core.score_views(free, cam, low, **common).status == ["valid"]
+    assert _core.score_views(free, cam, low, ground_is_obstacle=True, **common).status == ["arm_collision"]

@@ -98,10 +98,11 @@ struct NbvOptions {
   }
   /// \brief The exploration loop's search (docs/design/next_best_view.md says why each value): 100 valid
   /// poses from the best 800 candidate cells, the best 16 by a coarse score scored in full (rescore_best), the
-  /// camera 5 cm clear of surfaces, enclosed voids first (enclosure_power 2) and the faces of voids that observed
-  /// space shows first (unexposed_weight 0.2).
+  /// camera 5 cm clear of surfaces, enclosed voids first (enclosure_power 2), the faces of voids that observed
+  /// space shows first (unexposed_weight 0.2) and the ground an obstacle for the arm (ground_is_obstacle).
   static NbvOptions exploration_loop() {
     NbvOptions o;
+    o.ground_is_obstacle = true;
     o.rescore_best = 16;
     o.max_valid_poses = 100;
     o.max_candidate_cells = 800;
@@ -168,11 +169,12 @@ struct NbvOptions {
   /// obstacles.
   bool unknown_is_obstacle = true;
   double unknown_margin = 0.05;  ///< metres around the camera that no unknown cell may reach into
-  /// With a chain and arm_collisions: the ground below the map's search space (ExplorationOptions::
-  /// search_lo's z) is an obstacle for the links the chain moves (the links it does not move, a base
-  /// standing on the floor, are not tested against it). Unknown cells outside the search space are no
-  /// obstacles otherwise, and a camera looking down could take the arm's wrist into the floor the map
-  /// has not seen (the physical check then refused the view). No effect without a search space.
+  /// With a chain and arm_collisions: the ground is an obstacle for the links the chain moves (the links it
+  /// does not move, a base standing on the floor, are not tested against it). The ground is the horizontal
+  /// plane at the lower of the robot's root link (the robot stands on the ground) and the map's search
+  /// space floor (ExplorationOptions::search_lo's z; the space searched lies above the ground). Unknown
+  /// cells outside the search space are no obstacles otherwise, and a camera looking down could take the
+  /// arm's wrist into a floor the map has not seen. On in exploration_loop().
   bool ground_is_obstacle = false;
   /// Enclosed voids first (gain FrontierVoid): each void cell also counts with e^enclosure_power in the
   /// ranking gain (ViewGains::expected_enclosed_void) and in its void's utility (step 1), e its

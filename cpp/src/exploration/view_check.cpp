@@ -163,12 +163,15 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   // the floor under it).
   moved_links_ = opt.chain->moved_collision_links();
   const ExplorationOptions& mo = map.options();
-  if (opt.ground_is_obstacle && mo.search_lo.z() > -1e8) {  // (-1e9: no search space, no floor)
-    // a slab 1 m deep whose top is the search space's floor, 100 m across around the chain's base
+  if (opt.ground_is_obstacle) {
+    // The ground lies at or below the robot's root link (the robot stands on it) and at or below the search
+    // space's floor (the space searched lies above it; -1e9: no search space): the lower of the two. A slab
+    // 1 m deep with that top, 100 m across around the chain's base.
+    const double top = std::min(robot_root_.translation().z(), mo.search_lo.z() > -1e8 ? mo.search_lo.z() : 1e300);
     constexpr double kSide = 100.0, kDepth = 1.0;
     Pose slab = Pose::Identity();
     slab.translation() = Eigen::Vector3d(opt.chain_base.translation().x(), opt.chain_base.translation().y(),
-                                         mo.search_lo.z() - kDepth / 2);
+                                         top - kDepth / 2);
     ground_.emplace();
     ground_->add_box(Eigen::Vector3d(kSide, kSide, kDepth), slab);
   }
