@@ -57,7 +57,8 @@ def capability(capability_map, chain):
     if isinstance(capability_map, str):
         if capability_map != "auto" or chain is None:
             raise ValueError(f"capability_map must be a CapabilityMap, None or 'auto' (with a chain), got {capability_map!r}")
-        capability_map = explorer_capability_map(chain)
+        # a chain without a movable joint has no map to build: the Explorer refuses it by name
+        capability_map = explorer_capability_map(chain) if chain.dof > 0 else None
     return capability_map
 
 
