@@ -130,9 +130,9 @@ void wrap_visibility_model(py::module_& m) {
         "Announces the view (4x4 camera -> map) the map's next insert comes from: the unknown cells it is\n"
         "expected to see (score_width x score_height rays, unknown_pass_probability as in next_best_view)\n"
         "are recorded with their ray weights w, and the next insert multiplies the seeability of each one it\n"
-        "leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability; a cell its\n"
-        "rays still meet after the insert (they ended on nothing within range) counts 0 in views from an eye\n"
-        "within the angle one cell spans from this one.");
+        "leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability; a void cell\n"
+        "its rays still meet after the insert with no surface behind it within range (they ended on nothing)\n"
+        "counts 0 in views from an eye within the angle one cell spans from this one and no nearer.");
   m.def("exposed_cells", [](const ExplorationMap& map, const py::array_t<std::uint64_t>& keys) {
           const std::vector<CellKey> k(keys.data(), keys.data() + keys.size());
           std::vector<bool> e;

@@ -2710,9 +2710,9 @@ def expect_view(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any
     Announces the view (4x4 camera -> map) the map's next insert comes from: the unknown cells it is
     expected to see (score_width x score_height rays, unknown_pass_probability as in next_best_view)
     are recorded with their ray weights w, and the next insert multiplies the seeability of each one it
-    leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability; a cell its
-    rays still meet after the insert (they ended on nothing within range) counts 0 in views from an eye
-    within the angle one cell spans from this one.
+    leaves unknown by (1 - w). Later view scores count unknown cells with w * seeability; a void cell
+    its rays still meet after the insert with no surface behind it within range (they ended on nothing)
+    counts 0 in views from an eye within the angle one cell spans from this one and no nearer.
     """
 def exposed_cells(map: ExplorationMap, keys: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.bool_]:
     """

@@ -296,10 +296,10 @@ ViewGainsResult view_gains(const ExplorationMap& map, const CameraIntrinsics& ca
 /// probability) are recorded with their ray weights w; the next ExplorationMap::insert multiplies the
 /// seeability s of each of them it leaves unknown by (1 - w). Every later view score counts an unknown
 /// cell with w * s, so voids that views aimed at and did not see (behind unseen surfaces, inside
-/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A cell left unknown
-/// though the rays still meet it in the updated map (they ended on nothing within range) also keeps the
-/// line of sight: later views from an eye within the angle one cell spans from this one count it 0. A
-/// second call replaces the announcement. \throws std::invalid_argument for a bad option or a non-finite pose.
+/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A void cell left
+/// unknown though the rays still meet it in the updated map, with no occupied cell behind it within range
+/// (the rays ended on nothing), also keeps the line of sight: later views from an eye within the angle one
+/// cell spans from this one, and no nearer to it, count it 0. A second call replaces the announcement. \throws std::invalid_argument for a bad option or a non-finite pose.
 void expect_view(ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, const NbvOptions& options);
 /// \brief Unknown cells whose seeability a missed view has lowered (some may be known by now).
 std::size_t missed_cells(const ExplorationMap& map);
@@ -316,7 +316,8 @@ std::vector<bool> exposed_cells(const ExplorationMap& map, const std::vector<Cel
 
 /// \brief The visibility curve a map learned from its announced views (see the file comment), per
 /// class (index 0: unknown cells outside the voids, 1: void cells) and unknown depth d (the last
-/// entry holds the deeper cells too): the cells views expected (weighted by their seeability), the
+/// entry holds the deeper cells too): the cells views expected (weighted by their seeability; a cell a
+/// view counted 0 for a line that returned nothing is left out), the
 /// ones their inserts turned known, and the learned non-increasing share.
 struct VisibilityCurveTable {
   std::vector<double> expected[2], seen[2], share[2];

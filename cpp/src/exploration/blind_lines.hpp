@@ -1,12 +1,14 @@
 #pragma once
 // Internal: lines of sight that returned nothing. A view announced with expect_view whose rays, walked again
-// through the map its insert updated, still meet an unknown cell it left unknown looked along a line with no
-// surface in between: its camera's rays through that cell ended on nothing within range (past the scene, the
-// range too short), or they would have turned the cell free. Geometry does not change, so another view along
-// the same line reveals nothing there either; views from elsewhere may (a surface behind the cell along their
-// line). A line is kept per cell as the unit direction from the cell to the eye that missed it; a view counts
-// the cell 0 when its eye lies within the angle one cell spans from that eye (its line passes within a cell of
-// the missed eye's line at the cell). A pan/tilt head, whose eye barely moves, thus stops expecting what its
+// through the map its insert updated, still meet a void cell the insert left unknown, with no occupied cell
+// behind it within the camera's range either, looked along a line with nothing on it: its rays through the
+// cell ended on nothing within range (past the end of the scene, a wall beyond the range), or they would have
+// turned the cell free. Geometry does not change, so a view from the same eye, or from farther back along the
+// same line (its rays reach no farther past the cell), reveals nothing there either; a view from elsewhere, or
+// from nearer (its rays reach farther), may. A line is kept per cell as the unit direction from the cell to
+// the eye that missed it and that eye's distance; a view counts the cell 0 when its eye lies within the angle
+// one cell spans at the cell (at the missed eye's distance, within a cell of that eye's line) and no nearer
+// than a cell less than the missed eye. A pan/tilt head, whose eye barely moves, thus stops expecting what its
 // rays cannot return; a camera that moves still may look from another side.
 #include <cmath>
 #include <cstdint>
@@ -38,7 +40,7 @@ class BlindLines {
     const double n = d.norm();
     if (!(n > 0)) return false;
     for (const Line& l : it->second)
-      if (d.dot(l.dir.cast<double>()) >= double(l.cos_tolerance) * n) return true;
+      if (n >= double(l.min_distance) && d.dot(l.dir.cast<double>()) >= double(l.cos_tolerance) * n) return true;
     return false;
   }
   bool empty() const { return lines_.empty(); }
@@ -52,6 +54,7 @@ class BlindLines {
   struct Line {
     Eigen::Vector3f dir;  // unit, cell -> eye
     float cos_tolerance;  // cos of the angle one cell spans from the eye (atan(res / distance))
+    float min_distance;   // the eye's distance less a cell: a nearer eye's rays reach farther past the cell
   };
   static bool line(const Eigen::Vector3d& centre, const Eigen::Vector3d& eye, double res, Line& l) {
     const Eigen::Vector3d d = eye - centre;
@@ -59,6 +62,7 @@ class BlindLines {
     if (!(n > res)) return false;  // an eye in or next to the cell: no line to speak of
     l.dir = (d / n).cast<float>();
     l.cos_tolerance = float(n / std::hypot(n, res));
+    l.min_distance = float(n - res);
     return true;
   }
   std::unordered_map<CellKey, std::vector<Line>> lines_;

@@ -167,7 +167,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
   changed_.clear();
   const std::vector<octomap::point3d> pc = finite_points(points, origin, resolution_, st);
   if (pc.empty()) {
-    detail::learn_from_missed(*this, S);
+    detail::learn_from_missed(*this, S, /*returned=*/false);
     st.seconds_total = seconds_since(t_start);
     return st;
   }
@@ -204,7 +204,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     cell = std::uint8_t((cell & ~kStateMask) | std::uint8_t(c.after));
   }
   st.changed_cells = changed_.size();
-  detail::learn_from_missed(*this, S);  // the announced view's expected cells that are still unknown
+  detail::learn_from_missed(*this, S, /*returned=*/true);  // the announced view's expected cells that are still unknown
   st.seconds_tree = seconds_since(t0);
 
   // 4. frontiers

@@ -178,8 +178,9 @@ struct ExplorationState {
   // The visibility model's memory of views that missed (view_score.cpp, expect_view): per unknown
   // cell, 1 - its seeability s (absent: 0, s = 1). A view announced by expect_view lists the unknown
   // cells it expects with their ray weights w; the next insert multiplies s by (1 - w) for each of
-  // them it left unknown and its rays still meet in the updated map (no surface seen in between). The
-  // view score counts an unknown cell with w * s.
+  // them it left unknown and its rays still meet in the updated map (no surface seen in between), unless
+  // a line that returned nothing (`blind`) already made the view count it 0. The view score counts an
+  // unknown cell with w * s.
   HiddenCells hidden;
   std::vector<ExpectedCell> expected_by_view;
   std::optional<AnnouncedView> announced;  // set with expected_by_view by expect_view

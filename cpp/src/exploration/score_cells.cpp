@@ -14,7 +14,7 @@ constexpr std::uint64_t kMaxDirectory = std::uint64_t(1) << 21;
 }  // namespace
 
 ScoreCells::ScoreCells(const ExplorationState& S, std::shared_ptr<const EnclosureTable> enclosure)
-    : enclosure_(std::move(enclosure)), grid_(&S.grid), hidden_(&S.hidden), blind_(&S.blind), state_(&S) {
+    : enclosure_(std::move(enclosure)), grid_(&S.grid), hidden_(&S.hidden), state_(&S) {
   KeyTable<Extra*> extra;
   const auto extra_at = [&](CellKey k) -> Extra& {
     Extra*& e = extra.at(StateGrid::block_of(k));

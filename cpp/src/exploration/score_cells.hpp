@@ -2,9 +2,9 @@
 // Internal: what view scoring reads per cell (its flags, its seeability, its enclosure), in flat form for one
 // version of the map. A view's rays read these for every cell they cross and a search scores thousands of
 // views on one map: a directory of the cell cache's 16^3 blocks, with the map's own block of seeability values
-// and a companion block of the sealed and enclosure entries beside each block that has some, replaces a hash
-// lookup per block and per cell. The values are the map tables' own (ExplorationState::seeability, the
-// enclosure table), so a score is the same.
+// and a companion block of the sealed, lines-that-returned-nothing and enclosure entries beside each block that
+// has some, replaces a hash lookup per block and per cell. The values are the map tables' own
+// (ExplorationState::seeability, its lines, the enclosure table), so a score is the same.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -19,7 +19,9 @@ class ScoreCells {
   static constexpr std::uint8_t kSealed = 0x40;    // mark: the cell is sealed (seeability 0)
   static constexpr std::uint8_t kBlind = 0x20;     // mark: the cell has lines that returned nothing
   static constexpr std::uint8_t kEnclosed = kInTable;  // mark: the enclosure table holds the cell (low bits: its byte)
-  // The sealed and enclosure entries of one block's cells.
+  static_assert(((kSealed | kBlind) & (kEnclosed | kExposed | kHalvesMask)) == 0 && (kSealed & kBlind) == 0,
+                "the mark byte's flags and the enclosure byte must not share bits");
+  // The sealed, lines-that-returned-nothing and enclosure entries of one block's cells.
   struct Extra {
     std::uint8_t mark[4096];
   };
@@ -40,7 +42,8 @@ class ScoreCells {
     explicit Reader(const ScoreCells& c) : c_(c) {}
     // The cell cache's block of block key b (null: all its cells unknown, no flag).
     const StateGrid::Block* block(CellKey b) const { return c_.entry(b).grid; }
-    // ExplorationState::seeability(k), and the enclosure byte (with kEnclosed; 0: not in the table).
+    // ExplorationState::seeability(k), and the cell's mark: the enclosure byte (with kEnclosed; 0: not in the
+    // table) and the kSealed and kBlind flags.
     double seeability(CellKey k, std::uint8_t& mark) const {
       const Entry& e = at(k);
       const int i = StateGrid::offset(k);
@@ -50,7 +53,7 @@ class ScoreCells {
     }
     // True when a view from `eye` looks at cell k (marked `mark`) along a line that returned nothing.
     bool blind(CellKey k, std::uint8_t mark, const Eigen::Vector3d& eye) const {
-      return (mark & kBlind) && c_.blind_->covers(k, c_.state_->center(k), eye);
+      return (mark & kBlind) && c_.state_->blind.covers(k, c_.state_->center(k), eye);
     }
 
    private:
@@ -77,8 +80,7 @@ class ScoreCells {
   std::uint32_t lo_[3] = {0, 0, 0}, n_[3] = {0, 0, 0};  // directory box (block keys); n 0: no directory
   std::vector<Entry> dir_;
   const HiddenCells* hidden_;
-  const BlindLines* blind_;
-  const ExplorationState* state_;
+  const ExplorationState* state_;  // the lines that returned nothing (blind), read for marked cells only
   KeyTable<const Extra*> extra_of_;  // block key -> its extra block (outside the directory)
   std::vector<std::unique_ptr<Extra>> extras_;
 };

@@ -167,7 +167,8 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
     // The ground lies at or below the robot's root link (the robot stands on it) and at or below the search
     // space's floor (the space searched lies above it; -1e9: no search space): the lower of the two. A slab
     // 1 m deep with that top, 100 m across around the chain's base.
-    const double top = std::min(robot_root_.translation().z(), mo.search_lo.z() > -1e8 ? mo.search_lo.z() : 1e300);
+    const double search_floor = mo.search_lo.z() > -1e8 ? mo.search_lo.z() : std::numeric_limits<double>::infinity();
+    const double top = std::min(robot_root_.translation().z(), search_floor);
     constexpr double kSide = 100.0, kDepth = 1.0;
     Pose slab = Pose::Identity();
     slab.translation() = Eigen::Vector3d(opt.chain_base.translation().x(), opt.chain_base.translation().y(),

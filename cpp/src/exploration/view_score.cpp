@@ -352,9 +352,24 @@ void non_increasing_share(const double* n, const double* seen, double* share, in
     for (int i = 0; i < len[b]; ++i) share[d++] = val[b];
 }
 
+// True when the line from `eye` through cell k goes on to an occupied cell within `range` of the eye: rays
+// through k could have ended on it, so k's staying unknown proves nothing about where they ended (no pixel's
+// ray may have crossed k).
+bool surface_behind(const ExplorationState& S, double res, const Eigen::Vector3d& eye, CellKey k, double range) {
+  const Eigen::Vector3d c = S.center(k);
+  const double n = (c - eye).norm();
+  if (!(n > 0) || n >= range) return false;
+  bool hit = false;
+  walk_cells(res, c, (c - eye) / n, range - n, [&](CellKey x) {
+    hit = x != k && S.state(x) == CellState::Occupied;
+    return !hit;
+  });
+  return hit;
+}
+
 }  // namespace
 
-void learn_from_missed(const ExplorationMap& map, ExplorationState& S) {
+void learn_from_missed(const ExplorationMap& map, ExplorationState& S, bool returned) {
   VisibilityCurve& c = S.curve;
   // The announced view's rays walked again through the updated map: the unknown cells they still meet
   // before the first occupied cell. A cell the view expected, left unknown and no longer met lies
@@ -387,8 +402,11 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S) {
       continue;
     }
     if (S.announced && !still_met.find(e.key)) continue;  // explained by a surface seen in between
-    // still met and still unknown: the camera's rays through the cell returned nothing (blind_lines.hpp)
-    if (S.announced) S.blind.add(e.key, centre, S.announced->pose.translation(), res);
+    // a void cell still met and still unknown, nothing behind it within range, and the insert had points: the
+    // camera's rays through it returned nothing (blind_lines.hpp; an empty insert, a dropped frame, proves nothing)
+    if (S.announced && returned && e.void_cell &&
+        !surface_behind(S, res, S.announced->pose.translation(), e.key, S.announced->camera.max_range))
+      S.blind.add(e.key, centre, S.announced->pose.translation(), res);
     float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s
     h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(e.weight), 0.0), 1.0)));
   }

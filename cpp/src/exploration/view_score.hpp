@@ -47,9 +47,11 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
 
 // After an insert: each cell the view announced by expect_view expected (weight w), left unknown and
 // still met by the view's rays in the updated map (no surface seen in between) has its seeability
-// multiplied by (1 - w); every announced cell teaches the visibility curve (seen or not, at its depth
-// and class); the announcement is cleared. S is map's state; the caller holds the write lock.
-void learn_from_missed(const ExplorationMap& map, ExplorationState& S);
+// multiplied by (1 - w), and a void cell with no surface behind it within range keeps the line of sight
+// when the insert had points (`returned`; blind_lines.hpp); every announced cell the view did not count 0
+// for a line teaches the visibility curve (seen or not, at its depth and class); the announcement is
+// cleared. S is map's state; the caller holds the write lock.
+void learn_from_missed(const ExplorationMap& map, ExplorationState& S, bool returned);
 
 // Throws std::invalid_argument naming the first bad option (or camera value).
 void validate_options(const CameraIntrinsics& cam, const NbvOptions& opt);
@@ -149,7 +151,7 @@ class ViewChecker {
   Pose base_inv_, cap_inv_, robot_root_ = Pose::Identity();
   bool cap_orient_ = false;
   std::optional<Obstacles> obstacles_;
-  std::optional<Obstacles> ground_;  // ground_is_obstacle: a slab under the search space
+  std::optional<Obstacles> ground_;  // ground_is_obstacle: a slab whose top is the ground (view_check.cpp)
   std::vector<int> moved_links_;     // collision links the chain moves (tested against the map and ground_)
   std::shared_ptr<octomap::OcTree> unknown_tree_;
   std::size_t unknown_cells_ = 0;
