@@ -465,7 +465,8 @@ def test_the_ground_is_an_obstacle_for_the_arm_in_the_loop():
     loop's preset) makes the ground an obstacle for the links the arm moves (its fingers reach below z = 0;
     the base, standing on the floor, is not tested against it). 12 cm up the pose is valid either way. The
     ground is the lower of the robot's root (panda_link0 at z = 0) and the search space's floor: a search
-    space over a table top (floor 0.3 m) keeps it at 0, and a map without a search space has it too."""
+    space over a table top (floor 0.3 m) keeps it at 0, a map without a search space has it too, and a Panda on
+    a pedestal over the floor's search space reaches below its root."""
     from octoreach import _core, robots
 
     assert NbvOptions.exploration_loop().ground_is_obstacle and not NbvOptions().ground_is_obstacle
@@ -496,3 +497,8 @@ def test_the_ground_is_an_obstacle_for_the_arm_in_the_loop():
     free = mapped(None)
     assert _core.score_views(free, cam, low, **common).status == ["valid"]
     assert _core.score_views(free, cam, low, ground_is_obstacle=True, **common).status == ["arm_collision"]
+    pedestal = np.eye(4)
+    pedestal[2, 3] = 0.5  # the Panda on a 0.5 m pedestal over the floor search space: the ground stays at 0
+    below_the_root = ex.look_at((0.4, 0.0, 0.2), (0.4, 0.0, -1.0))[None]  # the hand 0.3 m below the pedestal's top
+    assert _core.score_views(floor, cam, below_the_root, ground_is_obstacle=True, chain=chain, chain_base=pedestal,
+                             unknown_is_obstacle=False, seed=3).status == ["valid"]
