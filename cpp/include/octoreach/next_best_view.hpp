@@ -299,7 +299,8 @@ ViewGainsResult view_gains(const ExplorationMap& map, const CameraIntrinsics& ca
 /// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A void cell left
 /// unknown though the rays still meet it in the updated map, with no occupied cell behind it within range
 /// (the rays ended on nothing), also keeps the line of sight: later views from an eye within the angle one
-/// cell spans from this one, and no nearer to it, count it 0. A second call replaces the announcement. \throws std::invalid_argument for a bad option or a non-finite pose.
+/// cell spans from this one, and no nearer to it, count it 0. A second call replaces the announcement.
+/// \throws std::invalid_argument for a bad option or a non-finite pose.
 void expect_view(ExplorationMap& map, const CameraIntrinsics& camera, const Pose& pose, const NbvOptions& options);
 /// \brief Unknown cells whose seeability a missed view has lowered (some may be known by now).
 std::size_t missed_cells(const ExplorationMap& map);

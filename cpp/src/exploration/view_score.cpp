@@ -389,12 +389,13 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S, bool retu
     c.known_total[1] += double(known_void - c.known_at_announce[1]);
   }
   const double res = map.resolution();
+  const Eigen::Vector3d eye = S.announced ? Eigen::Vector3d(S.announced->pose.translation()) : Eigen::Vector3d::Zero();
   for (const ExpectedCell& e : S.expected_by_view) {
     // the model expects w s of a cell (s: its seeability from the view's eye, 0 along a line that returned
     // nothing): the curve learns the seen share per unit of seeability, so cells already missed weigh less in it
     const int d = std::min<int>(e.depth, VisibilityCurve::kDepths - 1);
     const Eigen::Vector3d centre = S.center(e.key);
-    if (S.announced && S.blind.covers(e.key, centre, S.announced->pose.translation())) continue;
+    if (S.announced && S.blind.covers(e.key, centre, eye)) continue;
     c.expected[e.void_cell][d] += S.seeability(e.key);
     if (S.state(e.key) != CellState::Unknown) {
       c.seen[e.void_cell][d] += 1;
@@ -405,8 +406,8 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S, bool retu
     // a void cell still met and still unknown, nothing behind it within range, and the insert had points: the
     // camera's rays through it returned nothing (blind_lines.hpp; an empty insert, a dropped frame, proves nothing)
     if (S.announced && returned && e.void_cell &&
-        !surface_behind(S, res, S.announced->pose.translation(), e.key, S.announced->camera.max_range))
-      S.blind.add(e.key, centre, S.announced->pose.translation(), res);
+        !surface_behind(S, res, eye, e.key, S.announced->camera.max_range))
+      S.blind.add(e.key, centre, eye, res);
     float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s
     h = float(1.0 - (1.0 - double(h)) * (1.0 - std::min(std::max(double(e.weight), 0.0), 1.0)));
   }

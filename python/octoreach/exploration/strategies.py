@@ -70,7 +70,7 @@ REJECTIONS = (
      "search space"),
     ("no_ik", "ik_failures", "no joint solution reaches (or aims at) the pose"),
     ("arm_collision", "arm_collisions",
-     "a link the chain moves touches an occupied cell or an unknown cell of the search space"),
+     "a link the chain moves touches an occupied cell, an unknown cell of the search space or the ground"),
 )
 
 
