@@ -41,6 +41,7 @@ inline py::dict stats_dict(const InsertStats& s) {
   d["frontier_removed"] = s.frontier_removed;
   d["void_added"] = s.void_added;
   d["void_removed"] = s.void_removed;
+  d["space_known"] = s.space_known;
   d["seconds_rays"] = s.seconds_rays;
   d["seconds_tree"] = s.seconds_tree;
   d["seconds_frontiers"] = s.seconds_frontiers;

@@ -55,10 +55,13 @@ py::object best_by(const Result& r, const std::string& by) {
 void wrap_view(py::module_& m) {
   py::class_<ViewGains>(m, "ViewGains", "What a camera pose is expected to see (the visibility model of next_best_view).")
       .def_readonly("void_cells", &ViewGains::void_cells, "distinct void cells met before the first occupied cell (raw)")
-      .def_readonly("unknown_cells", &ViewGains::unknown_cells, "distinct unknown cells met (void cells included; raw)")
+      .def_readonly("unknown_cells", &ViewGains::unknown_cells,
+                    "distinct unknown cells of the search space met (void cells included; raw)")
       .def_readonly("frontier_cells", &ViewGains::frontier_cells, "distinct frontier cells met (raw)")
       .def_readonly("expected_void", &ViewGains::expected_void, "void cells weighted by their expected visibility")
-      .def_readonly("expected_unknown", &ViewGains::expected_unknown, "unknown cells weighted likewise")
+      .def_readonly("expected_unknown", &ViewGains::expected_unknown,
+                    "unknown cells of the search space weighted likewise, each outside the voids also by the chance "
+                    "that its ray returns at or behind it (1 when it ends on an occupied cell)")
       .def_readonly("expected_frontier", &ViewGains::expected_frontier, "frontier cells weighted likewise")
       .def_readonly("expected_enclosed_void", &ViewGains::expected_enclosed_void,
                     "expected_void with each void cell weighted by enclosure_power and unexposed_weight")

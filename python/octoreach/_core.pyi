@@ -2381,7 +2381,7 @@ class ViewGains:
     @property
     def expected_unknown(self) -> float:
         """
-        unknown cells weighted likewise
+        unknown cells of the search space weighted likewise, each outside the voids also by the chance that its ray returns at or behind it (1 when it ends on an occupied cell)
         """
     @property
     def expected_void(self) -> float:
@@ -2396,7 +2396,7 @@ class ViewGains:
     @property
     def unknown_cells(self) -> int:
         """
-        distinct unknown cells met (void cells included; raw)
+        distinct unknown cells of the search space met (void cells included; raw)
         """
     @property
     def void_cells(self) -> int:
@@ -3018,6 +3018,14 @@ class ChoiceMemory:
     def __init__(self) -> None:
         ...
     @property
+    def beyond_open(self) -> bool:
+        """
+        frontier_void: views beyond the voids are on offer
+        """
+    @beyond_open.setter
+    def beyond_open(self, arg0: bool) -> None:
+        ...
+    @property
     def choices(self) -> int:
         """
         views chosen so far
@@ -3032,6 +3040,22 @@ class ChoiceMemory:
         """
     @failed_views.setter
     def failed_views(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def last_beyond(self) -> bool:
+        """
+        the last choice was a view beyond the voids
+        """
+    @last_beyond.setter
+    def last_beyond(self, arg0: bool) -> None:
+        ...
+    @property
+    def last_space_seen(self) -> int | None:
+        """
+        unknown cells of the search space the last view taken made known (InsertStats space_known; Explorer sets it) or None: for frontier_void, a view beyond the voids that saw no more than the stop threshold closes the way beyond them, a view that saw more opens it (cleared by the next choice)
+        """
+    @last_space_seen.setter
+    def last_space_seen(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
         ...
     @property
     def last_void_seen(self) -> int | None:
@@ -3062,6 +3086,11 @@ class ViewChoice:
     def base(self) -> int:
         """
         index of the base the view is taken from
+        """
+    @property
+    def beyond(self) -> bool:
+        """
+        frontier_void: a view beyond the spent voids, expecting the most unknown cells of the search space (its expected_unknown is the utility)
         """
     @property
     def candidates(self) -> int:

@@ -70,6 +70,7 @@ struct InsertStats {
   std::size_t changed_cells = 0;    ///< cells whose class changed
   std::size_t frontier_added = 0, frontier_removed = 0;
   std::size_t void_added = 0, void_removed = 0;
+  std::size_t space_known = 0;      ///< unknown cells of the search space this insert made known (free or occupied)
   double seconds_rays = 0, seconds_tree = 0, seconds_frontiers = 0, seconds_hull = 0, seconds_voids = 0,
          seconds_total = 0;
 };

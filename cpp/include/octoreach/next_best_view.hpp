@@ -200,10 +200,14 @@ bool looks_at(const NbvOptions& options);
 /// \brief What one camera pose sees under the visibility model (see the file comment).
 struct ViewGains {
   std::size_t void_cells = 0;     ///< distinct void cells met before the first occupied cell (raw)
-  std::size_t unknown_cells = 0;  ///< distinct unknown cells met (void cells included; raw)
+  std::size_t unknown_cells = 0;  ///< distinct unknown cells of the search space met (void cells included; raw)
   std::size_t frontier_cells = 0; ///< distinct frontier cells met (raw)
   double expected_void = 0;       ///< void cells weighted by their expected visibility
-  double expected_unknown = 0;    ///< unknown cells weighted likewise (void cells included)
+  /// unknown cells of the search space weighted likewise (void cells included), each outside the voids also by
+  /// the chance that its ray returns at or behind it (a depth camera clears only the cells in front of what a ray
+  /// returns from): 1 when the ray ends on an occupied cell, else the chance that an unknown cell of the search
+  /// space from there on (not crossed by a ray that returned nothing) holds a surface, 1 - p each
+  double expected_unknown = 0;
   double expected_frontier = 0;   ///< frontier cells weighted likewise
   /// expected_void with each void cell also weighted by its enclosure (NbvOptions::enclosure_power;
   /// equal to expected_void at power 0): the gain FrontierVoid ranks by.

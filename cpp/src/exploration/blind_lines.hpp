@@ -43,6 +43,8 @@ class BlindLines {
       if (n >= double(l.min_distance) && d.dot(l.dir.cast<double>()) >= double(l.cos_tolerance) * n) return true;
     return false;
   }
+  // True when some view's rays through cell k returned nothing: no surface lies on the lines they crossed it on.
+  bool holds(CellKey k) const { return lines_.find(k) != lines_.end(); }
   bool empty() const { return lines_.empty(); }
   std::size_t size() const { return lines_.size(); }  // cells with a line
   template <class F>

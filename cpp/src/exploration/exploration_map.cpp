@@ -189,9 +189,11 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
   t0 = Clock::now();
   detail::apply_updates(S.tree, up.updates, changed_);
   detail::GridWriter gw(S.grid);
+  const detail::SpaceKeys space = detail::space_keys(options_);
   for (const auto& c : changed_) {
     std::uint8_t& cell = gw.at(c.key);
     if (c.before == CellState::Unknown) {  // the visibility model's statistics (void flags still set)
+      if (space.contains(c.key)) ++st.space_known;
       const bool occ = c.after == CellState::Occupied;
       const double w = 1.0 / std::max((S.center(c.key) - origin).squaredNorm(), 0.01);
       ++(occ ? S.rays.unknown_to_occupied : S.rays.unknown_to_free);

@@ -3,6 +3,7 @@
 // labels, void cells, hull), shared by the files of the exploration room and by next_best_view.
 // Nothing here is part of the public API.
 #include <array>
+#include <cmath>
 #include <memory>
 #include <algorithm>
 #include <mutex>
@@ -97,6 +98,26 @@ class GridWriter {
 inline CellKey to_cell(const octomap::OcTreeKey& k) { return pack_key(k[0], k[1], k[2]); }
 inline octomap::OcTreeKey to_octo(CellKey k) {
   return octomap::OcTreeKey(octomap::key_type(key_x(k)), octomap::key_type(key_y(k)), octomap::key_type(key_z(k)));
+}
+
+// The key box of a map's search space (every key along an unbounded axis): the cells a view's unknown figures and
+// InsertStats::space_known count.
+struct SpaceKeys {
+  std::uint32_t lo[3] = {0, 0, 0}, hi[3] = {0xffff, 0xffff, 0xffff};
+  bool contains(CellKey k) const {
+    const std::uint32_t x[3] = {key_x(k), key_y(k), key_z(k)};
+    return x[0] >= lo[0] && x[0] <= hi[0] && x[1] >= lo[1] && x[1] <= hi[1] && x[2] >= lo[2] && x[2] <= hi[2];
+  }
+};
+inline SpaceKeys space_keys(const ExplorationOptions& o) {
+  SpaceKeys s;
+  for (int a = 0; a < 3; ++a) {
+    if (o.search_lo[a] > -1e8)
+      s.lo[a] = std::uint32_t(std::clamp(std::floor(o.search_lo[a] / o.resolution + 32768.0), 0.0, 65535.0));
+    if (o.search_hi[a] < 1e8)
+      s.hi[a] = std::uint32_t(std::clamp(std::floor(o.search_hi[a] / o.resolution + 32768.0), 0.0, 65535.0));
+  }
+  return s;
 }
 
 // The one leaf-to-cells expansion: calls f(cell, leaf iterator) for every finest-resolution cell

@@ -44,6 +44,7 @@ InsertStats Explorer::integrate(const std::vector<Eigen::Vector3d>& points, cons
   has_last_ = false;
   const InsertStats stats = map_->insert(points, camera_pose.translation(), setup_.camera.max_range);
   memory_.last_void_seen = memory_.last_void_seen.value_or(0) + stats.void_removed;  // a view may come in parts
+  memory_.last_space_seen = memory_.last_space_seen.value_or(0) + stats.space_known;
   return stats;
 }
 

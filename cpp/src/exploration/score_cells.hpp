@@ -55,6 +55,11 @@ class ScoreCells {
     bool blind(CellKey k, std::uint8_t mark, const Eigen::Vector3d& eye) const {
       return (mark & kBlind) && c_.state_->blind.covers(k, c_.state_->center(k), eye);
     }
+    // True when cell k has a line of sight that returned nothing (BlindLines::holds).
+    bool crossed_empty(CellKey k) const {
+      const Entry& e = at(k);
+      return e.extra && (e.extra->mark[StateGrid::offset(k)] & kBlind);
+    }
 
    private:
     const Entry& at(CellKey k) const {

@@ -223,6 +223,35 @@ void check_sites(const ViewSites& sites, int current, const ExploreOptions& opti
     throw std::invalid_argument("reach must be a finite number of metres >= 0, got " + std::to_string(sites.reach));
 }
 
+// The stop decision on a choice made (counted in memory): no valid view, or the row of low views.
+ViewChoice& decide(ViewChoice& c, ChoiceMemory& memory, const ExploreOptions& options, double threshold) {
+  ++memory.choices;
+  if (!c.found) {
+    c.stop = true;
+    c.stop_reason = "no valid view";
+    return c;
+  }
+  memory.low_views = c.utility <= threshold ? memory.low_views + 1 : 0;
+  if (memory.low_views >= options.patience || c.utility <= 0) {
+    c.stop = true;
+    c.stop_reason = c.utility <= 0 ? "utility 0" : "utility below min_utility";
+  }
+  return c;
+}
+
+// Frontier-void's choice `low` is a low view or none: the voids are spent. The search space may still hold
+// unknown cells outside them (beside and above what the hull of the occupied cells encloses, where the paper's
+// voids end): while the way beyond the voids is open (ChoiceMemory::beyond_open), the sampled view expecting the
+// most unknown cells of the search space (the "unknown" strategy's choice, whose rays count an unknown cell outside
+// the voids only in front of a known surface) when it expects more than the stop threshold, else `low`.
+ViewChoice beyond(const ChoiceContext& ctx, ViewChoice&& low, std::uint64_t seed, double threshold) {
+  if (!ctx.memory.beyond_open) return std::move(low);
+  ViewChoice c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
+  if (!c.found || c.utility <= threshold) return std::move(low);
+  c.beyond = true;
+  return c;
+}
+
 }  // namespace
 
 ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites, int current,
@@ -237,38 +266,46 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   // utility counts void cells: frontier-void's and random's; the other baselines' counts other cells)
   const bool void_utility = strategy == ViewStrategy::FrontierVoid || strategy == ViewStrategy::Random;
   if (void_utility && memory.last_void_seen && double(*memory.last_void_seen) > threshold) memory.low_views = 0;
+  // what a view beyond the voids saw decides whether the way stays open (any view that saw more opens it again)
+  if (memory.last_space_seen) {
+    if (double(*memory.last_space_seen) > threshold) memory.beyond_open = true;
+    else if (memory.last_beyond) memory.beyond_open = false;
+  }
   memory.last_void_seen.reset();
+  memory.last_space_seen.reset();
   const bool last_chance = memory.low_views + 1 >= options.patience;
+  const bool frontier_void = strategy == ViewStrategy::FrontierVoid;
   ViewChoice c;
   if (map.void_cell_count() == map.sealed_void_cell_count()) {  // no void cell a view could reveal
-    if (map.void_cell_count() == 0 && search_space_unseen(map)) {
-      // no cell of the search space known yet (the views so far looked past it): the view expected to see the
-      // most of its unknown cells
+    // frontier-void: the unknown cells of the search space beyond the voids (beyond); every strategy, while no
+    // cell of the search space is known (the views so far looked past it): the view expecting the most of them
+    const bool unseen = map.void_cell_count() == 0 && search_space_unseen(map);
+    if (unseen) {
       c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
-      ++memory.choices;
-      if (c.found && c.utility > 0) return c;
-      --memory.choices;
-      c = ViewChoice{};
+      if (c.found && c.utility > 0) {
+        ++memory.choices;
+        memory.last_beyond = false;
+        return c;
+      }
+    } else if (frontier_void) {
+      c = beyond(ctx, ViewChoice{}, seed, threshold);
+      memory.last_beyond = c.beyond;
+      if (c.found) return decide(c, memory, options, threshold);
     }
+    c = ViewChoice{};
     c.stop = true;
     c.stop_reason = "nothing to explore";
     ++memory.choices;
     return c;
   }
-  c = strategy == ViewStrategy::FrontierVoid ? frontier_void_choice(ctx, seed, last_chance, threshold)
-                                             : detail::sampled_choice(ctx, seed, strategy);
-  ++memory.choices;
-  if (!c.found) {
-    c.stop = true;
-    c.stop_reason = "no valid view";
-    return c;
+  if (frontier_void) {
+    c = frontier_void_choice(ctx, seed, last_chance, threshold);
+    if (!c.found || c.utility <= threshold) c = beyond(ctx, std::move(c), seed, threshold);
+  } else {
+    c = detail::sampled_choice(ctx, seed, strategy);
   }
-  memory.low_views = c.utility <= threshold ? memory.low_views + 1 : 0;
-  if (memory.low_views >= options.patience || c.utility <= 0) {
-    c.stop = true;
-    c.stop_reason = c.utility <= 0 ? "utility 0" : "utility below min_utility";
-  }
-  return c;
+  memory.last_beyond = c.beyond;
+  return decide(c, memory, options, threshold);
 }
 
 }  // namespace octoreach

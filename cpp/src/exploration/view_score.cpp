@@ -120,6 +120,7 @@ struct MapCells {
   bool blind(CellKey k, std::uint8_t, const Eigen::Vector3d& eye) const {
     return !S.blind.empty() && S.blind.covers(k, S.center(k), eye);
   }
+  bool crossed_empty(CellKey k) const { return S.blind.holds(k); }
   double void_weight(CellKey k, std::uint8_t) const { return weights->of(k); }
 };
 
@@ -130,6 +131,7 @@ struct FlatCells {
   const StateGrid::Block* block(CellKey b) const { return r.block(b); }
   double seeability(CellKey k, std::uint8_t& mark) const { return r.seeability(k, mark); }
   bool blind(CellKey k, std::uint8_t mark, const Eigen::Vector3d& eye) const { return r.blind(k, mark, eye); }
+  bool crossed_empty(CellKey k) const { return r.crossed_empty(k); }
   double void_weight(CellKey, std::uint8_t mark) const { return weights->of_mark(mark); }
 };
 
@@ -187,8 +189,23 @@ void view_rays(const CameraIntrinsics& cam, const Pose& pose, int sw, int sh, do
 template <class Met, class Cells>
 ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, const Eigen::Vector3d& o, double res,
                      int sw, int sh, const ViewRays& rays, double p, double p_void, const VisibilityCurve* curve,
-                     const Cells& cells, bool weighted, std::vector<ExpectedCell>* unknown_met) {
+                     const Cells& cells, bool weighted, std::vector<ExpectedCell>* unknown_met,
+                     const SpaceKeys& space) {
   Met met(rays.klo, rays.n);
+  // A depth camera clears only the cells in front of the surface a ray returns from. Void cells lie inside the
+  // hull of the occupied cells, enclosed by surfaces: they count as they are met. An unknown cell outside them
+  // counts with the chance that its ray returns at or behind it: 1 when the ray ends on an occupied cell, else the
+  // chance that an unknown cell of the search space from there on holds a surface (1 - p each, where p is the
+  // pass probability; none on a cell a ray that returned nothing has crossed, blind_lines.hpp). Outside the
+  // search space the views so far are taken to have seen what there is.
+  struct Pending {
+    int k[3];
+    std::uint8_t f;
+    bool in_space;
+    double w;
+    int depth;
+  };
+  thread_local std::vector<Pending> pending;
   for (std::size_t r = 0; r < rays.dirs.size(); ++r) {
     if ((r & 1023) == 1023) poll_cancel("view scoring cancelled");  // a fine score grid takes long per view
     if (rays.lengths[r] < 0) continue;  // misses the clip box
@@ -198,13 +215,24 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     GridRay g;
     if (!key_unit_ray(res, o, rays.dirs[r], rays.lengths[r], g)) continue;
     const StateGrid::Block* block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+    pending.clear();
+    bool surface = false;  // the ray ends on an occupied cell
     for (;;) {
       const std::uint8_t f = block ? (*block)[(g.key[0] & 15) | ((g.key[1] & 15) << 4) | ((g.key[2] & 15) << 8)] : 0;
       const std::uint8_t s = f & kStateMask;
-      if (s == std::uint8_t(CellState::Occupied)) break;
+      if (s == std::uint8_t(CellState::Occupied)) {
+        surface = true;
+        break;
+      }
       if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
-        met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(v, depth, w) : w, depth);
+        const double wc = curve ? curve->weight(v, depth, w) : w;
+        if (v) {
+          met.touch(g.key[0], g.key[1], g.key[2], f, wc, depth);
+        } else {
+          const CellKey k = pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2]));
+          pending.push_back({{g.key[0], g.key[1], g.key[2]}, f, space.contains(k), wc, depth});
+        }
         w *= v ? p_void : p;
         ++depth;
       } else if (f & kFrontierFlag) {
@@ -214,6 +242,13 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
       if (g.t[dim] > g.length || !g.advance(dim)) break;
       if ((g.key[dim] >> 4) != ((g.key[dim] - g.step[dim]) >> 4))
         block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+    }
+    double through = 1.0;  // the chance that no unknown cell from here on stops the ray
+    for (auto c = pending.rbegin(); c != pending.rend(); ++c) {
+      if (!surface && c->in_space &&
+          !cells.crossed_empty(pack_key(std::uint32_t(c->k[0]), std::uint32_t(c->k[1]), std::uint32_t(c->k[2]))))
+        through *= p;
+      met.touch(c->k[0], c->k[1], c->k[2], c->f, surface ? c->w : c->w * (1.0 - through), c->depth);
     }
   }
   // A ray of the coarse grid stands for the pixels of its grid cell: at distance t its beam covers
@@ -234,6 +269,7 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     double s = unknown ? cells.seeability(k, mark) : 1.0;
     if (s > 0 && unknown && cells.blind(k, mark, o)) s = 0;  // a line that returned nothing (blind_lines.hpp)
     const double e = w * s * n * scale;
+    if (unknown && !(f & kVoidFlag) && !space.contains(k)) return;
     if (unknown) {
       ++v.unknown_cells;
       v.expected_unknown += e;
@@ -264,16 +300,17 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   view_rays(cam, pose, sw, sh, res, clip, rays);
   const Eigen::Vector3d o = pose.translation();
   const bool weighted = void_weights != nullptr;
+  const SpaceKeys space = space_keys(map.options());  // unknown cells outside it are not counted
   // depths only for an announcement
   if (unknown_met)
     return count_view<MetCells<std::uint32_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
-                                               MapCells{S, void_weights}, weighted, unknown_met);
+                                               MapCells{S, void_weights}, weighted, unknown_met, space);
   if (score_cells && (!weighted || score_cells->enclosure() == void_weights->table().get()))
     return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
                                                FlatCells{ScoreCells::Reader(*score_cells), void_weights}, weighted,
-                                               nullptr);
+                                               nullptr, space);
   return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
-                                             MapCells{S, void_weights}, weighted, nullptr);
+                                             MapCells{S, void_weights}, weighted, nullptr, space);
 }
 
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt) {
@@ -389,6 +426,7 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S, bool retu
     c.known_total[1] += double(known_void - c.known_at_announce[1]);
   }
   const double res = map.resolution();
+  const SpaceKeys space = space_keys(map.options());
   const Eigen::Vector3d eye = S.announced ? Eigen::Vector3d(S.announced->pose.translation()) : Eigen::Vector3d::Zero();
   for (const ExpectedCell& e : S.expected_by_view) {
     // the model expects w s of a cell (s: its seeability from the view's eye, 0 along a line that returned
@@ -405,7 +443,8 @@ void learn_from_missed(const ExplorationMap& map, ExplorationState& S, bool retu
     if (S.announced && !still_met.find(e.key)) continue;  // explained by a surface seen in between
     // a void cell still met and still unknown, nothing behind it within range, and the insert had points: the
     // camera's rays through it returned nothing (blind_lines.hpp; an empty insert, a dropped frame, proves nothing)
-    if (S.announced && returned && e.void_cell &&
+    // (for void cells and the search space's unknown cells: those are what views count)
+    if (S.announced && returned && (e.void_cell || space.contains(e.key)) &&
         !surface_behind(S, res, eye, e.key, S.announced->camera.max_range))
       S.blind.add(e.key, centre, eye, res);
     float& h = S.hidden.at(e.key);  // s' = s (1 - w), kept as h = 1 - s

@@ -98,6 +98,8 @@ def _choice_of(c) -> Choice:
     details = {"aimed": True} if c.aimed else {}
     if c.harder:
         details["harder"] = True
+    if c.beyond:
+        details["beyond"] = True
     if not c.found:
         return Choice(pose=None, base=c.base, candidates=int(c.candidates), details=details,
                       search=c.search if c.search.poses_scored else None, stop=c.stop, stop_reason=c.stop_reason)

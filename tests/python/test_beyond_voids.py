@@ -1,0 +1,99 @@
+"""Beyond the voids: the unknown cells of the search space outside the hull of the occupied cells (the layer above
+a table's objects) draw views once the voids are spent, counted only where a ray through them can return; a view
+beyond the voids that saw nothing closes the way. Coarse maps, small images."""
+import numpy as np
+
+from octoreach import DepthCamera, ExplorationMap, ExploreOptions, Scene, view_gains
+from octoreach._core import ChoiceMemory, choose_view
+from octoreach import exploration as ex
+
+FOV = np.deg2rad(58.0)
+RES = 0.05
+SPACE = np.array([[0.55, -0.35, 0.35], [1.05, 0.35, 0.85]])  # the layer above the table top
+
+
+def _table(post=True):
+    """A table top (0.6-1.0 x -0.3-0.3 m at 0.4 m) floating over nothing, a post on its far edge."""
+    s = Scene()
+    s.add_box((0.6, -0.3, 0.37), (1.0, 0.3, 0.4))
+    if post:
+        s.add_box((0.95, -0.03, 0.4), (1.0, 0.03, 0.8))
+    return s
+
+
+def _mapped(scene, eye=(0.0, 0.0, 0.9)):
+    emap = ExplorationMap(resolution=RES, search_space=SPACE)
+    cam = DepthCamera(96, 72, FOV, 3.0)
+    side = ex.look_at(eye, (0.9, 0.0, 0.55))
+    emap.insert(cam.capture(scene, side), side[:3, 3], cam.max_range)
+    return emap, cam
+
+
+def test_an_unknown_cell_outside_the_voids_counts_only_where_its_ray_can_return():
+    """A depth camera clears only the cells in front of what a ray returns from. With p = 1 no unknown cell can
+    stop a ray, so an unknown cell outside the voids counts only in front of an occupied cell: looking over the
+    table into nothing counts none of them, the same look with a wall known behind counts those in front of it, and
+    a look down onto the table top counts the layer above it."""
+    over = ex.look_at((0.2, 0.0, 0.82), (1.0, 0.0, 0.82))  # level, over the table (its lowest rays pass its edge)
+    down = ex.look_at((0.8, 0.0, 1.6), (0.8, 0.0, 0.4))
+    open_map, cam = _mapped(_table(post=False))
+    walled, _ = _mapped(_table(post=False))
+    wall = Scene()
+    wall.add_box((1.6, -1.5, 0.0), (1.65, 1.5, 1.5))
+    near_wall = ex.look_at((1.3, 0.0, 0.8), (1.6, 0.0, 0.8))  # the wall seen from behind the table: S stays unknown
+    walled.insert(cam.capture(wall, near_wall), near_wall[:3, 3], cam.max_range)
+
+    def outside_voids(emap, pose):
+        g = view_gains(emap, cam, pose, 24, 18, pass_probability=1.0)
+        return g.expected_unknown - g.expected_void, g.unknown_cells - g.void_cells
+
+    counted, met = outside_voids(open_map, over)
+    assert met > 50 and counted == 0
+    counted_walled, met_walled = outside_voids(walled, over)
+    assert counted_walled > 50 and met_walled > 50  # those in front of the part of the wall the map knows
+    counted_down, _ = outside_voids(open_map, down)
+    assert counted_down > 50
+
+
+def test_the_loop_looks_beyond_spent_voids():
+    """A table top with low objects and a search space reaching 0.45 m above it: the hull of what the views see
+    ends at the objects' tops, the layer above them is not void. Once the voids are spent frontier-void takes
+    views beyond them and knows nearly all of the layer before it stops by itself."""
+    s = _table(post=False)
+    s.add_box((-2.0, -2.0, -0.05), (2.0, 2.0, 0.0))  # the floor
+    for x in (0.6, 0.96):
+        for y in (-0.3, 0.26):
+            s.add_box((x, y, 0.0), (x + 0.04, y + 0.04, 0.37))
+    s.add_crate((0.65, -0.25, 0.4), (0.8, -0.05, 0.55), 0.02)
+    s.add_box((0.82, 0.05, 0.4), (0.95, 0.2, 0.5))
+    beyond = []
+    cam = DepthCamera(64, 48, FOV, 3.0, noise=0.002, seed=1)
+    r = ex.explore(s, cam, ex.look_at((0.3, 0.0, 1.0), (0.8, 0.0, 0.45)), robot=True, resolution=RES,
+                   search_space=SPACE, max_views=20, max_valid_poses=20, score_size=(24, 18), aimed_poses=60,
+                   low_aimed_poses=60, last_poses=300, seed=0,
+                   on_view=lambda row, emap, info: beyond.append(bool(info.get("beyond"))))
+    assert r.stop_reason != "view budget", r.table()
+    assert any(beyond), r.table()
+    assert r.observed_share > 0.9, r.table()
+
+
+def test_a_view_beyond_the_voids_that_saw_nothing_closes_the_way():
+    """The way beyond the voids stays open while its views see more than the stop threshold of the search space's
+    unknown cells: after one that saw none the choice is frontier-void's own (a bare floor has no void: the loop
+    ends), and a view that saw more opens the way again."""
+    s = Scene()
+    s.add_box((-2.0, -2.0, -0.05), (2.0, 2.0, 0.0))
+    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.3, -0.5, 0.0], [1.5, 0.5, 0.5]]))
+    cam = DepthCamera(64, 48, FOV, 3.0)
+    first = ex.look_at((0.0, -1.0, 1.0), (0.5, -0.8, 0.0))  # sees a corner of the space
+    emap.insert(cam.capture(s, first), first[:3, 3], cam.max_range)
+    assert emap.void_cell_count == 0
+    opts, m, base = ExploreOptions(), ChoiceMemory(), np.eye(4)[None]
+    c = choose_view(emap, cam, base, 0, opts, m)
+    assert c.beyond and not c.stop and m.last_beyond and c.view.expected_void == 0
+    m.last_space_seen = 0  # that view saw nothing
+    c = choose_view(emap, cam, base, 0, opts, m)
+    assert c.stop and c.stop_reason == "nothing to explore" and not m.beyond_open
+    m.last_space_seen = 1000  # a view saw plenty
+    c = choose_view(emap, cam, base, 0, opts, m)
+    assert c.beyond and m.beyond_open
