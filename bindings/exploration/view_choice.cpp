@@ -18,10 +18,10 @@ void wrap_view_choice(py::module_& m) {
                      "threshold breaks the row of low views (cleared by the next choice)")
       .def_readwrite("last_space_seen", &ChoiceMemory::last_space_seen,
                      "unknown cells of the search space the last view taken made known (InsertStats space_known; "
-                     "Explorer sets it) or None: for frontier_void, a view beyond the voids that saw no more than "
-                     "the stop threshold closes the way beyond them, a view that saw more opens it (cleared by the "
-                     "next choice)")
-      .def_readwrite("beyond_open", &ChoiceMemory::beyond_open, "frontier_void: views beyond the voids are on offer")
+                     "Explorer sets it) or None: see beyond_misses (cleared by the next choice)")
+      .def_readwrite("beyond_misses", &ChoiceMemory::beyond_misses,
+                     "frontier_void: views beyond the voids in a row that saw no more than the stop threshold of the "
+                     "search space's unknown cells; at patience none is chosen until a view sees more")
       .def_readwrite("last_beyond", &ChoiceMemory::last_beyond, "the last choice was a view beyond the voids")
       .def_property("failed_views", [](const ChoiceMemory& c) { return to_points(c.failed_views); },
                     [](ChoiceMemory& c, const py::object& p) { c.failed_views = points_from(p, "failed_views"); },
@@ -39,8 +39,9 @@ void wrap_view_choice(py::module_& m) {
       .def_readonly("aimed", &ViewChoice::aimed, "found by a look aimed at void cells")
       .def_readonly("harder", &ViewChoice::harder, "found by the looks before a low view")
       .def_readonly("beyond", &ViewChoice::beyond,
-                    "frontier_void: a view beyond the spent voids, expecting the most unknown cells of the search "
-                    "space (its expected_unknown is the utility)")
+                    "frontier_void: a view beyond the spent voids (where frontier-void's own choice would end the "
+                    "loop), expecting the most unknown cells of the search space (its expected_unknown is the "
+                    "utility)")
       .def_readonly("stop", &ViewChoice::stop, "the loop ends here")
       .def_readonly("stop_reason", &ViewChoice::stop_reason, "why it ends ('' when it goes on)")
       .def_readonly("search", &ViewChoice::search, "frontier_void: next_best_view's answer from the chosen base");

@@ -3018,12 +3018,12 @@ class ChoiceMemory:
     def __init__(self) -> None:
         ...
     @property
-    def beyond_open(self) -> bool:
+    def beyond_misses(self) -> int:
         """
-        frontier_void: views beyond the voids are on offer
+        frontier_void: views beyond the voids in a row that saw no more than the stop threshold of the search space's unknown cells; at patience none is chosen until a view sees more
         """
-    @beyond_open.setter
-    def beyond_open(self, arg0: bool) -> None:
+    @beyond_misses.setter
+    def beyond_misses(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
     def choices(self) -> int:
@@ -3052,7 +3052,7 @@ class ChoiceMemory:
     @property
     def last_space_seen(self) -> int | None:
         """
-        unknown cells of the search space the last view taken made known (InsertStats space_known; Explorer sets it) or None: for frontier_void, a view beyond the voids that saw no more than the stop threshold closes the way beyond them, a view that saw more opens it (cleared by the next choice)
+        unknown cells of the search space the last view taken made known (InsertStats space_known; Explorer sets it) or None: see beyond_misses (cleared by the next choice)
         """
     @last_space_seen.setter
     def last_space_seen(self, arg0: typing.SupportsInt | typing.SupportsIndex | None) -> None:
@@ -3090,7 +3090,7 @@ class ViewChoice:
     @property
     def beyond(self) -> bool:
         """
-        frontier_void: a view beyond the spent voids, expecting the most unknown cells of the search space (its expected_unknown is the utility)
+        frontier_void: a view beyond the spent voids (where frontier-void's own choice would end the loop), expecting the most unknown cells of the search space (its expected_unknown is the utility)
         """
     @property
     def candidates(self) -> int:

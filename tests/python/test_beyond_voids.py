@@ -79,8 +79,8 @@ def test_the_loop_looks_beyond_spent_voids():
 
 def test_a_view_beyond_the_voids_that_saw_nothing_closes_the_way():
     """The way beyond the voids stays open while its views see more than the stop threshold of the search space's
-    unknown cells: after one that saw none the choice is frontier-void's own (a bare floor has no void: the loop
-    ends), and a view that saw more opens the way again."""
+    unknown cells: after `patience` in a row that saw none the choice is frontier-void's own (a bare floor has no
+    void: the loop ends), and a view that saw more opens the way again."""
     s = Scene()
     s.add_box((-2.0, -2.0, -0.05), (2.0, 2.0, 0.0))
     emap = ExplorationMap(resolution=RES, search_space=np.array([[0.3, -0.5, 0.0], [1.5, 0.5, 0.5]]))
@@ -89,11 +89,12 @@ def test_a_view_beyond_the_voids_that_saw_nothing_closes_the_way():
     emap.insert(cam.capture(s, first), first[:3, 3], cam.max_range)
     assert emap.void_cell_count == 0
     opts, m, base = ExploreOptions(), ChoiceMemory(), np.eye(4)[None]
+    for _ in range(opts.patience):
+        c = choose_view(emap, cam, base, 0, opts, m)
+        assert c.beyond and not c.stop and m.last_beyond and c.view.expected_void == 0
+        m.last_space_seen = 0  # that view saw nothing
     c = choose_view(emap, cam, base, 0, opts, m)
-    assert c.beyond and not c.stop and m.last_beyond and c.view.expected_void == 0
-    m.last_space_seen = 0  # that view saw nothing
-    c = choose_view(emap, cam, base, 0, opts, m)
-    assert c.stop and c.stop_reason == "nothing to explore" and not m.beyond_open
+    assert c.stop and c.stop_reason == "nothing to explore" and m.beyond_misses == opts.patience
     m.last_space_seen = 1000  # a view saw plenty
     c = choose_view(emap, cam, base, 0, opts, m)
-    assert c.beyond and m.beyond_open
+    assert c.beyond and m.beyond_misses == 0

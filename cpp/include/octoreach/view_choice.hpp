@@ -52,10 +52,12 @@ struct ChoiceMemory {
   std::vector<Eigen::Vector3d> failed_views;
   /// Unknown cells of the search space the last view taken made known (InsertStats::space_known of its inserts),
   /// set by the caller after the insert like last_void_seen (Explorer::integrate adds them up); read and cleared
-  /// by the next choice. Frontier-void only: a view chosen beyond the voids (ViewChoice::beyond) that saw no more
-  /// than the stop threshold of them closes the way beyond the voids; a view that saw more opens it again.
+  /// by the next choice. Frontier-void only: see beyond_misses.
   std::optional<std::size_t> last_space_seen;
-  bool beyond_open = true;   ///< frontier-void: views beyond the voids are on offer (see last_space_seen)
+  /// frontier-void: views beyond the voids (ViewChoice::beyond) in a row that saw no more than the stop threshold
+  /// of the search space's unknown cells; at ExploreOptions::patience no view beyond the voids is chosen until a
+  /// view sees more than that (what views saw outweighs what they were expected to see)
+  int beyond_misses = 0;
   bool last_beyond = false;  ///< the last choice was a view beyond the voids
 };
 
@@ -68,8 +70,8 @@ struct ViewChoice {
   std::size_t candidates = 0, valid = 0;  ///< poses scored and of them valid (of those checked: see choose_view)
   bool aimed = false;     ///< found by a look aimed at void cells, not by the search
   bool harder = false;    ///< found by the looks before a low view (more aims, the last chance)
-  /// frontier-void: a view beyond the voids, taken where the voids are spent (no view expects more than the stop
-  /// threshold of void cells): the sampled view expecting the most unknown cells of the search space, whose
+  /// frontier-void: a view beyond the voids, taken where frontier-void's own choice would end the loop (the
+  /// voids are spent): the sampled view expecting the most unknown cells of the search space, whose
   /// expected_unknown is then the utility
   bool beyond = false;
   bool stop = false;      ///< the loop ends here (the view, when found, is a low view that need not be taken)

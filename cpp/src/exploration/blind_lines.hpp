@@ -1,6 +1,7 @@
 #pragma once
 // Internal: lines of sight that returned nothing. A view announced with expect_view whose rays, walked again
-// through the map its insert updated, still meet a void cell the insert left unknown, with no occupied cell
+// through the map its insert updated, still meet a void cell (or an unknown cell of the search space) the insert
+// left unknown, with no occupied cell
 // behind it within the camera's range either, looked along a line with nothing on it: its rays through the
 // cell ended on nothing within range (past the end of the scene, a wall beyond the range), or they would have
 // turned the cell free. Geometry does not change, so a view from the same eye, or from farther back along the
@@ -9,7 +10,8 @@
 // the eye that missed it and that eye's distance; a view counts the cell 0 when its eye lies within the angle
 // one cell spans at the cell (at the missed eye's distance, within a cell of that eye's line) and no nearer
 // than a cell less than the missed eye. A pan/tilt head, whose eye barely moves, thus stops expecting what its
-// rays cannot return; a camera that moves still may look from another side.
+// rays cannot return; a camera that moves still may look from another side. A cell with a line has had no
+// surface on it along that line: count_view takes it as holding none when it weighs whether a ray returns.
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>

@@ -239,15 +239,15 @@ ViewChoice& decide(ViewChoice& c, ChoiceMemory& memory, const ExploreOptions& op
   return c;
 }
 
-// Frontier-void's choice `low` is a low view or none: the voids are spent. The search space may still hold
-// unknown cells outside them (beside and above what the hull of the occupied cells encloses, where the paper's
-// voids end): while the way beyond the voids is open (ChoiceMemory::beyond_open), the sampled view expecting the
-// most unknown cells of the search space (the "unknown" strategy's choice, whose rays count an unknown cell outside
-// the voids only in front of a known surface) when it expects more than the stop threshold, else `low`.
-ViewChoice beyond(const ChoiceContext& ctx, ViewChoice&& low, std::uint64_t seed, double threshold) {
-  if (!ctx.memory.beyond_open) return std::move(low);
+// Frontier-void's choice would end the loop: the voids are spent. The search space may still hold unknown cells
+// outside them (beside and above what the hull of the occupied cells encloses, where the paper's voids end): while
+// the way beyond the voids is open (ChoiceMemory::beyond_misses), the sampled view expecting the most unknown cells
+// of the search space (the "unknown" strategy's choice, whose rays count an unknown cell outside the voids by the
+// chance that they return) when it expects more than the stop threshold; else none (found false).
+ViewChoice beyond(const ChoiceContext& ctx, std::uint64_t seed, double threshold) {
+  if (ctx.memory.beyond_misses >= ctx.options.patience) return ViewChoice{};
   ViewChoice c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
-  if (!c.found || c.utility <= threshold) return std::move(low);
+  if (!c.found || c.utility <= threshold) return ViewChoice{};
   c.beyond = true;
   return c;
 }
@@ -266,10 +266,10 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   // utility counts void cells: frontier-void's and random's; the other baselines' counts other cells)
   const bool void_utility = strategy == ViewStrategy::FrontierVoid || strategy == ViewStrategy::Random;
   if (void_utility && memory.last_void_seen && double(*memory.last_void_seen) > threshold) memory.low_views = 0;
-  // what a view beyond the voids saw decides whether the way stays open (any view that saw more opens it again)
+  // what views beyond the voids saw decides whether the way stays open (any view that saw more opens it again)
   if (memory.last_space_seen) {
-    if (double(*memory.last_space_seen) > threshold) memory.beyond_open = true;
-    else if (memory.last_beyond) memory.beyond_open = false;
+    if (double(*memory.last_space_seen) > threshold) memory.beyond_misses = 0;
+    else if (memory.last_beyond) ++memory.beyond_misses;
   }
   memory.last_void_seen.reset();
   memory.last_space_seen.reset();
@@ -288,8 +288,8 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
         return c;
       }
     } else if (frontier_void) {
-      c = beyond(ctx, ViewChoice{}, seed, threshold);
-      memory.last_beyond = c.beyond;
+      c = beyond(ctx, seed, threshold);
+      memory.last_beyond = c.found;
       if (c.found) return decide(c, memory, options, threshold);
     }
     c = ViewChoice{};
@@ -298,14 +298,17 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
     ++memory.choices;
     return c;
   }
-  if (frontier_void) {
-    c = frontier_void_choice(ctx, seed, last_chance, threshold);
-    if (!c.found || c.utility <= threshold) c = beyond(ctx, std::move(c), seed, threshold);
-  } else {
-    c = detail::sampled_choice(ctx, seed, strategy);
-  }
-  memory.last_beyond = c.beyond;
-  return decide(c, memory, options, threshold);
+  if (!frontier_void) return decide(c = detail::sampled_choice(ctx, seed, strategy), memory, options, threshold);
+  // frontier-void first; where its choice ends the loop, a view beyond the voids goes on (the row of low views
+  // stays full: the next choice ends the loop unless frontier-void or the way beyond finds more)
+  c = frontier_void_choice(ctx, seed, last_chance, threshold);
+  decide(c, memory, options, threshold);
+  memory.last_beyond = false;
+  if (!c.stop) return c;
+  ViewChoice b = beyond(ctx, seed, threshold);
+  if (!b.found) return c;
+  memory.last_beyond = true;
+  return b;
 }
 
 }  // namespace octoreach

@@ -37,7 +37,9 @@ RayClip void_box(const ExplorationMap& map);
 // p_void as its prior), else the geometric weight alone. With `unknown_met`, also lists every unknown
 // cell a ray met with its largest ray weight w (before seeability), that ray's unknown depth and its class.
 // With `clip`, rays end where they leave it (the void and enclosed-void figures stay those of whole rays;
-// the unknown and frontier figures count what the rays met up to there). With `cells` (made with
+// the unknown and frontier figures count what the rays met up to there; unknown figures count the search
+// space's cells only, and an unknown cell outside the voids by the chance that its ray returns at or behind
+// it: count_view). With `cells` (made with
 // void_weights' table), the cells are read through it: the same values, faster.
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void, bool learned,
@@ -47,10 +49,11 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
 
 // After an insert: each cell the view announced by expect_view expected (weight w), left unknown and
 // still met by the view's rays in the updated map (no surface seen in between) has its seeability
-// multiplied by (1 - w), and a void cell with no surface behind it within range keeps the line of sight
-// when the insert had points (`returned`; blind_lines.hpp); every announced cell the view did not count 0
-// for a line teaches the visibility curve (seen or not, at its depth and class); the announcement is
-// cleared. S is map's state; the caller holds the write lock.
+// multiplied by (1 - w), and a void cell or an unknown cell of the search space with no surface behind it
+// within range keeps the line of sight when the insert had points (`returned`; blind_lines.hpp); every
+// announced cell the view did not count 0 for a line teaches the visibility curve (seen or not, at its depth
+// and class); the announcement is cleared. S is map's state; the caller holds the write lock
+// (view_learning.cpp).
 void learn_from_missed(const ExplorationMap& map, ExplorationState& S, bool returned);
 
 // Throws std::invalid_argument naming the first bad option (or camera value).
