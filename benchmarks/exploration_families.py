@@ -69,6 +69,7 @@ def _run(a, inst, strategy, seed, oracle, cmap) -> dict:
         "ratios": [round(x, 3) for x in ex.seen_expected_ratios(r.rows)],
         "expected_seen": [[round(x.expected_void, 1), x.void_seen] for x in r.rows if x.void_seen is not None],
         "physically_invalid_views": sum(not x.physically_valid for x in r.rows),
+        "beyond_views": sum(x.beyond for x in r.rows[:-1]),  # frontier-void's views beyond the voids taken
     }
 
 

@@ -2219,6 +2219,14 @@ class ExploreOptions:
     def aimed_poses(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
+    def beyond_voids(self) -> bool:
+        """
+        frontier_void: where its own choice would end the loop, a view beyond the voids (the search space's unknown cells outside the hull of the occupied cells)
+        """
+    @beyond_voids.setter
+    def beyond_voids(self, arg0: bool) -> None:
+        ...
+    @property
     def failed_view_radius(self) -> float:
         """
         metres: no view is chosen this near the camera of a view not taken

@@ -1,5 +1,5 @@
 """Beyond the voids: the unknown cells of the search space outside the hull of the occupied cells (the layer above
-a table's objects) draw views once the voids are spent, counted only where a ray through them can return; a view
+a table's objects) draw views once the voids are spent (ExploreOptions.beyond_voids), counted only where a ray through them can return; a view
 beyond the voids that saw nothing closes the way. Coarse maps, small images."""
 import numpy as np
 
@@ -57,8 +57,9 @@ def test_an_unknown_cell_outside_the_voids_counts_only_where_its_ray_can_return(
 
 def test_the_loop_looks_beyond_spent_voids():
     """A table top with low objects and a search space reaching 0.45 m above it: the hull of what the views see
-    ends at the objects' tops, the layer above them is not void. Once the voids are spent frontier-void takes
-    views beyond them and knows nearly all of the layer before it stops by itself."""
+    ends at the objects' tops, the layer above them is not void. Once the voids are spent frontier-void with
+    beyond_voids takes views beyond them and knows nearly all of the layer before it stops by itself; without, the
+    loop ends when the voids are spent."""
     s = _table(post=False)
     s.add_box((-2.0, -2.0, -0.05), (2.0, 2.0, 0.0))  # the floor
     for x in (0.6, 0.96):
@@ -68,13 +69,17 @@ def test_the_loop_looks_beyond_spent_voids():
     s.add_box((0.82, 0.05, 0.4), (0.95, 0.2, 0.5))
     beyond = []
     cam = DepthCamera(64, 48, FOV, 3.0, noise=0.002, seed=1)
-    r = ex.explore(s, cam, ex.look_at((0.3, 0.0, 1.0), (0.8, 0.0, 0.45)), robot=True, resolution=RES,
-                   search_space=SPACE, max_views=20, max_valid_poses=20, score_size=(24, 18), aimed_poses=60,
-                   low_aimed_poses=60, last_poses=300, seed=0,
-                   on_view=lambda row, emap, info: beyond.append(bool(info.get("beyond"))))
+    runs = {}
+    for on in (False, True):
+        runs[on] = ex.explore(s, cam, ex.look_at((0.3, 0.0, 1.0), (0.8, 0.0, 0.45)), robot=True, resolution=RES,
+                              search_space=SPACE, beyond_voids=on, max_views=20, max_valid_poses=20,
+                              score_size=(24, 18), aimed_poses=60, low_aimed_poses=60, last_poses=300, seed=0,
+                              on_view=lambda row, emap, info: beyond.append(bool(info.get("beyond"))))
+    r = runs[True]
     assert r.stop_reason != "view budget", r.table()
-    assert any(beyond), r.table()
-    assert r.observed_share > 0.9, r.table()
+    assert any(beyond) and any(row.beyond for row in r.rows), r.table()
+    assert not any(row.beyond for row in runs[False].rows)
+    assert r.observed_share > 0.9 > runs[False].observed_share + 0.1, (r.table(), runs[False].table())
 
 
 def test_a_view_beyond_the_voids_that_saw_nothing_closes_the_way():
@@ -89,6 +94,9 @@ def test_a_view_beyond_the_voids_that_saw_nothing_closes_the_way():
     emap.insert(cam.capture(s, first), first[:3, 3], cam.max_range)
     assert emap.void_cell_count == 0
     opts, m, base = ExploreOptions(), ChoiceMemory(), np.eye(4)[None]
+    c = choose_view(emap, cam, base, 0, opts, m)
+    assert c.stop and c.stop_reason == "nothing to explore"  # beyond_voids is off by default
+    opts.beyond_voids, m = True, ChoiceMemory()
     for _ in range(opts.patience):
         c = choose_view(emap, cam, base, 0, opts, m)
         assert c.beyond and not c.stop and m.last_beyond and c.view.expected_void == 0

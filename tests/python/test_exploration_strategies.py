@@ -204,15 +204,19 @@ def test_min_utility_stops_early_and_says_so():
         _small_run(ex.paper_scene(1), "frontier_void", patience=0)
 
 
-def test_a_scene_without_void_ends_by_itself():
-    """A bare floor: no void cell ever, so frontier-void's views are the ones beyond the voids (the unknown
-    cells of the search space above the floor, in front of it) until none expects more than the stop threshold."""
+def test_a_scene_without_void_ends_at_once():
+    """A bare floor: no void cell ever. Frontier-void ends at once; with beyond_voids its views are the ones
+    beyond the voids (the unknown cells of the search space above the floor) until none expects more than the
+    stop threshold."""
     s = Scene()
     _floor(s)
     cam = DepthCamera(80, 60, FOV, 3.0)
     start = ex.look_at((0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
     region = np.array([[0.3, -0.5, 0.0], [1.5, 0.5, 0.5]])
     r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region)
+    assert r.stop_reason == "nothing to explore" and len(r.rows) == 1
+    assert r.rows[0].void_total == 0 and r.rows[0].expected_void == 0
+    r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region, beyond_voids=True)
     assert r.stop_reason == "nothing to explore" and len(r.rows) <= 5, r.table()
     assert all(row.void_total == 0 and row.expected_void == 0 for row in r.rows)
     assert r.observed_share > 0.9, r.table()

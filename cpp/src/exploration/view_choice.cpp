@@ -243,9 +243,10 @@ ViewChoice& decide(ViewChoice& c, ChoiceMemory& memory, const ExploreOptions& op
 // outside them (beside and above what the hull of the occupied cells encloses, where the paper's voids end): while
 // the way beyond the voids is open (ChoiceMemory::beyond_misses), the sampled view expecting the most unknown cells
 // of the search space (the "unknown" strategy's choice, whose rays count an unknown cell outside the voids by the
-// chance that they return) when it expects more than the stop threshold; else none (found false).
+// chance that they return) when it expects more than the stop threshold; else none (found false). Only with
+// ExploreOptions::beyond_voids.
 ViewChoice beyond(const ChoiceContext& ctx, std::uint64_t seed, double threshold) {
-  if (ctx.memory.beyond_misses >= ctx.options.patience) return ViewChoice{};
+  if (!ctx.options.beyond_voids || ctx.memory.beyond_misses >= ctx.options.patience) return ViewChoice{};
   ViewChoice c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
   if (!c.found || c.utility <= threshold) return ViewChoice{};
   c.beyond = true;

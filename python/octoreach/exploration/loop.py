@@ -55,6 +55,9 @@ class ViewRow:
     valid_candidates: int = 0  # of them valid (reachable, collision-free, safe)
     physically_valid: bool = True  # this view's arm pose is clear of the scene's true geometry (else not taken)
     target_points: int = 0  # points of this view's cloud on the target (explore(target=...))
+    beyond: bool = False  # the chosen next view is one beyond the voids (its utility: expected_unknown)
+    # unknown cells of the search space that the next view's insert turned known; None until it is taken
+    space_seen: Optional[int] = None
 
 
 @dataclass
@@ -123,7 +126,8 @@ def _row(view, emap, scene, region, stats, clusters, choice, t_int, t_search, po
                    pose=pose.tolist(), base=base, utility=choice.utility, expected_unknown=choice.expected_unknown,
                    expected_frontier=choice.expected_frontier, candidates=choice.candidates,
                    valid_candidates=choice.valid, physically_valid=valid,
-                   target_points=points_on(target, pts) if target is not None and pts is not None else 0)
+                   target_points=points_on(target, pts) if target is not None and pts is not None else 0,
+                   beyond=bool(choice.details.get("beyond")))
 
 
 def _seen(emap, void_before) -> int:
@@ -194,6 +198,7 @@ class _Loop:
             t_int = time.perf_counter() - t0
             if rows:
                 rows[-1].void_seen = _seen(emap, void_before) if valid else None
+                rows[-1].space_seen = int(stats.get("space_known", 0)) if valid else None
             void_before = emap.centers(emap.void_keys())
             t0 = time.perf_counter()
             nv = ex.next_view()

@@ -58,10 +58,17 @@ def coverage_after(coverage, views: int) -> float:
 
 
 def seen_expected_ratios(rows, min_expected: float = 1.0) -> list:
-    """seen / expected void cells of every view that expected at least `min_expected` cells (rows of
-    explore(); the last row's view was never taken, nor was a physically invalid one: no seen figure).
-    A random view that expects 0.01 cells and sees 300 would say nothing about the model."""
-    return [r.void_seen / r.expected_void for r in rows if r.expected_void >= min_expected and r.void_seen is not None]
+    """seen / expected cells of every view that expected at least `min_expected` cells (rows of explore(); the
+    last row's view was never taken, nor was a physically invalid one: no seen figure): void cells, or for a view
+    beyond the voids (`row.beyond`) the search space's unknown cells it was chosen for (`space_seen` /
+    `expected_unknown`). A random view that expects 0.01 cells and sees 300 would say nothing about the model."""
+    out = []
+    for r in rows:
+        beyond = getattr(r, "beyond", False)
+        seen, expected = (r.space_seen, r.expected_unknown) if beyond else (r.void_seen, r.expected_void)
+        if expected >= min_expected and seen is not None:
+            out.append(seen / expected)
+    return out
 
 
 def points_on(box, points, margin: float = 0.015) -> int:
