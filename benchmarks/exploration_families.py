@@ -59,7 +59,7 @@ def _run(a, inst, strategy, seed, oracle, cmap) -> dict:
     r = ex.explore(inst.scene, _camera(a, seed), scene_families.start_pose(), robot=True, strategy=strategy,
                    max_views=a.views, resolution=a.resolution, seed=seed, capability_map=cmap, target=inst.target,
                    search_space=inst.search_space,
-                   min_utility=a.min_utility, patience=a.patience,
+                   min_utility=a.min_utility, patience=a.patience, beyond_voids=bool(a.beyond_voids),
                    on_view=lambda row, emap, info: cover.append(oracle.share(emap)) if oracle.count else None)
     return {
         "instance": inst.seed, "seed": seed, "coverage": [round(c, 4) for c in cover], "views": len(r.rows),
@@ -197,6 +197,8 @@ def _parse(argv):
     ap.add_argument("--views", type=int, default=60, help="view budget (large: the stop rule should end the runs)")
     ap.add_argument("--min-utility", type=float, default=ex.STOP_UTILITY)
     ap.add_argument("--patience", type=int, default=ex.STOP_PATIENCE)
+    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=0,
+                    help="frontier_void: views beyond the voids where the loop would end (ExploreOptions.beyond_voids)")
     ap.add_argument("--resolution", type=float, default=0.025)
     ap.add_argument("--image", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))
     ap.add_argument("--noise", type=float, default=0.002, help="depth noise at 1 m (grows with depth^2)")
@@ -218,7 +220,8 @@ def main(argv=None) -> int:
     t_all = time.perf_counter()
     chain, cmap, cmap_s = explorer_setup(a.strategies)
     setup = {k: getattr(a, k) for k in ("instances", "first_instance", "seeds", "views", "min_utility", "patience",
-                                        "resolution", "noise", "clearance", "oracle_samples", "families", "strategies")}
+                                        "beyond_voids", "resolution", "noise", "clearance", "oracle_samples",
+                                        "families", "strategies")}
     setup.update(image=list(a.image), capability_map_s=cmap_s, code=_code_version())
     out = {"setup": setup, "oracle": {}, "summary": {}, "runs": {}}
     for fam in a.families:
