@@ -67,18 +67,17 @@ def test_the_loop_looks_beyond_spent_voids():
             s.add_box((x, y, 0.0), (x + 0.04, y + 0.04, 0.37))
     s.add_crate((0.65, -0.25, 0.4), (0.8, -0.05, 0.55), 0.02)
     s.add_box((0.82, 0.05, 0.4), (0.95, 0.2, 0.5))
-    beyond = []
     cam = DepthCamera(64, 48, FOV, 3.0, noise=0.002, seed=1)
-    runs = {}
+    runs, beyond = {}, {False: [], True: []}
     for on in (False, True):
         runs[on] = ex.explore(s, cam, ex.look_at((0.3, 0.0, 1.0), (0.8, 0.0, 0.45)), robot=True, resolution=RES,
                               search_space=SPACE, beyond_voids=on, max_views=20, max_valid_poses=20,
                               score_size=(24, 18), aimed_poses=60, low_aimed_poses=60, last_poses=300, seed=0,
-                              on_view=lambda row, emap, info: beyond.append(bool(info.get("beyond"))))
+                              on_view=lambda row, emap, info, on=on: beyond[on].append(bool(info.get("beyond"))))
     r = runs[True]
     assert r.stop_reason != "view budget", r.table()
-    assert any(beyond) and any(row.beyond for row in r.rows), r.table()
-    assert not any(row.beyond for row in runs[False].rows)
+    assert any(beyond[True]) and [row.beyond for row in r.rows] == beyond[True], r.table()
+    assert not any(beyond[False])
     assert r.observed_share > 0.9 > runs[False].observed_share + 0.1, (r.table(), runs[False].table())
 
 
@@ -106,3 +105,18 @@ def test_a_view_beyond_the_voids_that_saw_nothing_closes_the_way():
     m.last_space_seen = 1000  # a view saw plenty
     c = choose_view(emap, cam, base, 0, opts, m)
     assert c.beyond and m.beyond_misses == 0
+
+
+def test_no_view_beyond_the_voids_of_an_unbounded_search_space():
+    """A map without a search space has no bounded space to look at beyond its voids: the choice is frontier-void's
+    own, not an error."""
+    s = Scene()
+    s.add_box((-2.0, -2.0, -0.05), (2.0, 2.0, 0.0))
+    emap = ExplorationMap(resolution=RES)
+    cam = DepthCamera(64, 48, FOV, 3.0)
+    first = ex.look_at((0.0, -1.0, 1.0), (0.5, -0.8, 0.0))
+    emap.insert(cam.capture(s, first), first[:3, 3], cam.max_range)
+    opts = ExploreOptions()
+    opts.beyond_voids = True
+    c = choose_view(emap, cam, np.eye(4)[None], 0, opts, ChoiceMemory())
+    assert not c.beyond

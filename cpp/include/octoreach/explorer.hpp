@@ -53,7 +53,7 @@ class Explorer {
   /// \brief Integrates a cloud (map frame, N points) taken from `camera_pose` (camera -> map). The view is
   /// announced first (options.learn_misses: expect_view), as the loop does, and the void cells the insert took
   /// off the void set are added to memory().last_void_seen (the stop rule's evidence, read by the next
-  /// next_view). \throws std::invalid_argument for a non-finite point or a pose that is not a rigid transform;
+  /// next_view), the search space's cells it made known to memory().last_space_seen (beyond_voids' evidence). \throws std::invalid_argument for a non-finite point or a pose that is not a rigid transform;
   /// the explorer is then unchanged.
   InsertStats integrate(const std::vector<Eigen::Vector3d>& points, const Pose& camera_pose);
   /// \brief Integrates a depth image (row-major, height x width metres along the optical axis; 0 = no

@@ -56,7 +56,8 @@ class CapabilityMap;
 enum class NbvGain {
   FrontierVoid,  ///< the paper's: expected void cells (candidate cells from Algorithm 1)
   Frontiers,     ///< expected frontier cells in view (candidate cells traced back from the frontiers)
-  Unknown,       ///< expected unknown cells in view, as nbvplanner (candidates as for Frontiers)
+  Unknown,       ///< expected unknown cells of the search space in view, as nbvplanner's gain but counted only as
+                 ///< far as a ray can return (ViewGains::expected_unknown; candidates as for Frontiers)
 };
 /// \brief "frontier_void", "frontiers" or "unknown".
 const char* gain_name(NbvGain g);
@@ -300,7 +301,8 @@ ViewGainsResult view_gains(const ExplorationMap& map, const CameraIntrinsics& ca
 /// probability) are recorded with their ray weights w; the next ExplorationMap::insert multiplies the
 /// seeability s of each of them it leaves unknown by (1 - w). Every later view score counts an unknown
 /// cell with w * s, so voids that views aimed at and did not see (behind unseen surfaces, inside
-/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A void cell left
+/// solids, in gaps too narrow for the rays) stop drawing views, and the loop can end. A void cell (or an
+/// unknown cell of the search space) left
 /// unknown though the rays still meet it in the updated map, with no occupied cell behind it within range
 /// (the rays ended on nothing), also keeps the line of sight: later views from an eye within the angle one
 /// cell spans from this one, and no nearer to it, count it 0. A second call replaces the announcement.

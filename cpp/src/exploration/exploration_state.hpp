@@ -100,8 +100,8 @@ inline octomap::OcTreeKey to_octo(CellKey k) {
   return octomap::OcTreeKey(octomap::key_type(key_x(k)), octomap::key_type(key_y(k)), octomap::key_type(key_z(k)));
 }
 
-// The key box of a map's search space (every key along an unbounded axis): the cells a view's unknown figures and
-// InsertStats::space_known count.
+// The key box of a map's search space, the cells whose centre lies in it as the hull counts them (every key along
+// an unbounded axis): the cells a view's unknown figures and InsertStats::space_known count.
 struct SpaceKeys {
   std::uint32_t lo[3] = {0, 0, 0}, hi[3] = {0xffff, 0xffff, 0xffff};
   bool contains(CellKey k) const {
@@ -111,11 +111,12 @@ struct SpaceKeys {
 };
 inline SpaceKeys space_keys(const ExplorationOptions& o) {
   SpaceKeys s;
+  const double half = 32768.0 - 0.5;
   for (int a = 0; a < 3; ++a) {
     if (o.search_lo[a] > -1e8)
-      s.lo[a] = std::uint32_t(std::clamp(std::floor(o.search_lo[a] / o.resolution + 32768.0), 0.0, 65535.0));
+      s.lo[a] = std::uint32_t(std::clamp(std::ceil(o.search_lo[a] / o.resolution + half - 1e-9), 0.0, 65535.0));
     if (o.search_hi[a] < 1e8)
-      s.hi[a] = std::uint32_t(std::clamp(std::floor(o.search_hi[a] / o.resolution + 32768.0), 0.0, 65535.0));
+      s.hi[a] = std::uint32_t(std::clamp(std::floor(o.search_hi[a] / o.resolution + half + 1e-9), 0.0, 65535.0));
   }
   return s;
 }

@@ -247,6 +247,8 @@ ViewChoice& decide(ViewChoice& c, ChoiceMemory& memory, const ExploreOptions& op
 // ExploreOptions::beyond_voids.
 ViewChoice beyond(const ChoiceContext& ctx, std::uint64_t seed, double threshold) {
   if (!ctx.options.beyond_voids || ctx.memory.beyond_misses >= ctx.options.patience) return ViewChoice{};
+  const Eigen::Vector3d lo = ctx.map.options().search_lo, hi = ctx.map.options().search_hi;
+  if ((lo.array() < -1e8).any() || (hi.array() > 1e8).any()) return ViewChoice{};  // no bounded space to look at
   ViewChoice c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
   if (!c.found || c.utility <= threshold) return ViewChoice{};
   c.beyond = true;
@@ -274,6 +276,7 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   }
   memory.last_void_seen.reset();
   memory.last_space_seen.reset();
+  memory.last_beyond = false;
   const bool last_chance = memory.low_views + 1 >= options.patience;
   const bool frontier_void = strategy == ViewStrategy::FrontierVoid;
   ViewChoice c;
@@ -281,17 +284,13 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
     // frontier-void: the unknown cells of the search space beyond the voids (beyond); every strategy, while no
     // cell of the search space is known (the views so far looked past it): the view expecting the most of them
     const bool unseen = map.void_cell_count() == 0 && search_space_unseen(map);
-    if (unseen) {
-      c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
-      if (c.found && c.utility > 0) {
-        ++memory.choices;
-        memory.last_beyond = false;
-        return c;
-      }
-    } else if (frontier_void) {
-      c = beyond(ctx, seed, threshold);
-      memory.last_beyond = c.found;
-      if (c.found) return decide(c, memory, options, threshold);
+    // (neither counts in the row of low views: there is no void to count it against)
+    c = unseen ? detail::sampled_choice(ctx, seed, ViewStrategy::Unknown)
+               : frontier_void ? beyond(ctx, seed, threshold) : ViewChoice{};
+    if (c.found && c.utility > 0) {
+      ++memory.choices;
+      memory.last_beyond = c.beyond;
+      return c;
     }
     c = ViewChoice{};
     c.stop = true;
@@ -304,7 +303,6 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   // stays full: the next choice ends the loop unless frontier-void or the way beyond finds more)
   c = frontier_void_choice(ctx, seed, last_chance, threshold);
   decide(c, memory, options, threshold);
-  memory.last_beyond = false;
   if (!c.stop) return c;
   ViewChoice b = beyond(ctx, seed, threshold);
   if (!b.found) return c;

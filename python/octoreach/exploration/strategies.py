@@ -47,7 +47,7 @@ class Choice:
     base: int = 0
     candidates: int = 0  # poses scored
     valid: int = 0  # of them valid
-    details: dict = field(default_factory=dict)  # how it was found: aimed, harder (frontier_void)
+    details: dict = field(default_factory=dict)  # how it was found: aimed, harder, beyond (frontier_void)
     rank_gain: float = 0.0  # frontier_void: the gain views are ranked by (expected_gain: enclosure-weighted void cells)
     search: Optional[_core.NbvResult] = None  # frontier_void: next_best_view's answer from the chosen base
     stop: bool = False  # the loop ends here (choose_view's stop decision)
