@@ -199,9 +199,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
   // pass probability; none on a cell a ray that returned nothing has crossed, blind_lines.hpp). Outside the
   // search space the views so far are taken to have seen what there is.
   struct Pending {
-    int k[3];
+    CellKey key;
     std::uint8_t f;
-    bool in_space;
     double w;
     int depth;
   };
@@ -230,8 +229,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
         if (v) {
           met.touch(g.key[0], g.key[1], g.key[2], f, wc, depth);
         } else {
-          const CellKey k = pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2]));
-          pending.push_back({{g.key[0], g.key[1], g.key[2]}, f, space.contains(k), wc, depth});
+          pending.push_back({pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2])), f,
+                             wc, depth});
         }
         w *= v ? p_void : p;
         ++depth;
@@ -245,10 +244,9 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     }
     double through = 1.0;  // the chance that no unknown cell from here on stops the ray
     for (auto c = pending.rbegin(); c != pending.rend(); ++c) {
-      if (!surface && c->in_space &&
-          !cells.crossed_empty(pack_key(std::uint32_t(c->k[0]), std::uint32_t(c->k[1]), std::uint32_t(c->k[2]))))
-        through *= p;
-      met.touch(c->k[0], c->k[1], c->k[2], c->f, surface ? c->w : c->w * (1.0 - through), c->depth);
+      if (!surface && space.contains(c->key) && !cells.crossed_empty(c->key)) through *= p;
+      met.touch(int(key_x(c->key)), int(key_y(c->key)), int(key_z(c->key)), c->f,
+                surface ? c->w : c->w * (1.0 - through), c->depth);
     }
   }
   // A ray of the coarse grid stands for the pixels of its grid cell: at distance t its beam covers
