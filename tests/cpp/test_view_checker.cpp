@@ -1,14 +1,20 @@
 // The camera's clearance (ViewChecker::camera_clear) with the safe-view rule: an unknown cell of the search space
 // near the camera rules it out, where the search space is clipped to the box of the known cells, and that box
-// follows every insert.
+// follows every insert. The arm's check (ViewChecker::arm_clear) gives the plain check's answer.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <memory>
 #include <vector>
 
+#include <octomap/OcTree.h>
+
+#include "box_scene.hpp"
 #include "exploration/exploration_state.hpp"
 #include "exploration/view_score.hpp"
 #include "octoreach/exploration.hpp"
 #include "octoreach/next_best_view.hpp"
+#include "octoreach/robot.hpp"
 
 using namespace octoreach;
 
@@ -63,4 +69,61 @@ TEST(ViewChecker, TheClearanceIsADistanceToTheCells) {
     EXPECT_TRUE(checker.camera_clear(edge + 0.051 * u)) << u.transpose();
   }
   EXPECT_FALSE(checker.camera_clear(c));
+}
+
+// arm_clear asks FCL only about the links that have an obstacle cell in their box. Its answer is the plain check's:
+// every link the chain moves against octrees of the map's occupied cells and (safe views) of the unknown cells of
+// the search space clipped to the known box, and the robot against itself; for the test arm beside a seen box,
+// in configurations all around it.
+TEST(ViewChecker, TheArmCheckIsThePlainChecksAnswer) {
+  Scene scene;
+  auto map = test_scenes::box_with_lid_opening(
+      scene, {look_at({0.8, 0.0, 1.1}, {0.8, 0.0, 0.0}), look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2})});
+  const auto robot = Robot::from_urdf(std::string(OCTOREACH_URDF_DIR) + "/test_arm.urdf");
+  const Chain chain = robot->chain("base_link", "tool0");
+  const std::vector<int> moved = chain.moved_collision_links();
+  const Eigen::MatrixXd Q = chain.random_configurations(3000, 7);
+  for (const bool unknown : {false, true}) {
+    NbvOptions opt = NbvOptions::exploration_loop();
+    opt.chain = &chain;
+    opt.chain_base = Pose::Identity();
+    opt.chain_base.translation() = Eigen::Vector3d(0.7, -0.45, 0.0);
+    opt.unknown_is_obstacle = unknown;
+    opt.ground_is_obstacle = false;
+    Obstacles plain;
+    plain.add_octree(std::shared_ptr<const octomap::OcTree>(&map->octree(), [](const octomap::OcTree*) {}));
+    if (unknown) {
+      auto cells = std::make_shared<octomap::OcTree>(map->resolution());
+      double lo[3], hi[3];
+      map->octree().getMetricMin(lo[0], lo[1], lo[2]);
+      map->octree().getMetricMax(hi[0], hi[1], hi[2]);
+      const ExplorationOptions& mo = map->options();
+      octomap::OcTreeKey a, b;
+      ASSERT_TRUE(map->octree().coordToKeyChecked(std::max(lo[0], mo.search_lo.x()), std::max(lo[1], mo.search_lo.y()),
+                                                  std::max(lo[2], mo.search_lo.z()), a));
+      ASSERT_TRUE(map->octree().coordToKeyChecked(std::min(hi[0], mo.search_hi.x()), std::min(hi[1], mo.search_hi.y()),
+                                                  std::min(hi[2], mo.search_hi.z()), b));
+      for (unsigned z = a[2]; z <= b[2]; ++z)
+        for (unsigned y = a[1]; y <= b[1]; ++y)
+          for (unsigned x = a[0]; x <= b[0]; ++x)
+            if (map->state(pack_key(x, y, z)) == CellState::Unknown)
+              cells->updateNode(octomap::OcTreeKey(x, y, z), true);
+      ASSERT_GT(cells->size(), 0u);
+      plain.add_octree(cells);
+    }
+    auto guard = detail::read_guard(*map);
+    const detail::ViewChecker checker(*map, opt);
+    ASSERT_EQ(checker.unknown_obstacle_cells() > 0, unknown);
+    int collisions = 0;
+    for (Eigen::Index i = 0; i < Q.rows(); ++i) {
+      const Eigen::VectorXd q = Q.row(i).transpose();
+      const bool hit = robot->in_collision(chain.to_robot_configuration(q, robot->home()), plain, opt.chain_base,
+                                           /*check_self=*/true, &moved);
+      collisions += hit;
+      ASSERT_EQ(checker.arm_clear(q) == ViewStatus::ArmCollision, hit) << "unknown " << unknown << ", row " << i;
+    }
+    // both answers, often
+    EXPECT_GT(collisions, 300) << unknown;
+    EXPECT_LT(collisions, int(Q.rows()) - 300) << unknown;
+  }
 }

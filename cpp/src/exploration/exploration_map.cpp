@@ -93,8 +93,7 @@ ExplorationMap::ExplorationMap(const ExplorationOptions& options) : options_(opt
   if (options.voids_fill_search_space) {
     const double cells = detail::hull_box_cells(options.search_lo, options.search_hi, options.resolution,
                                                 options.search_lo, options.search_hi);
-    if ((options.search_lo.array() < -1e8).any() || (options.search_hi.array() > 1e8).any() ||
-        cells > double(options.max_void_box_cells))
+    if (!detail::bounded_search_space(options) || cells > double(options.max_void_box_cells))
       throw std::invalid_argument("voids_fill_search_space needs a finite search space of at most " +
                                   std::to_string(options.max_void_box_cells) + " cells, got " +
                                   detail::format_point(options.search_lo) + " to " +

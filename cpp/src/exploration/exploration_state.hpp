@@ -100,22 +100,34 @@ inline octomap::OcTreeKey to_octo(CellKey k) {
   return octomap::OcTreeKey(octomap::key_type(key_x(k)), octomap::key_type(key_y(k)), octomap::key_type(key_z(k)));
 }
 
+// A search-space bound beyond this many metres leaves that side open (ExplorationOptions' default bounds are 1e9 m).
+constexpr double kOpenSearchBound = 1e8;
+inline bool open_below(double lo) { return !(lo > -kOpenSearchBound); }
+inline bool open_above(double hi) { return !(hi < kOpenSearchBound); }
+// True when the map's search space is bounded on every side.
+inline bool bounded_search_space(const ExplorationOptions& o) {
+  for (int a = 0; a < 3; ++a)
+    if (open_below(o.search_lo[a]) || open_above(o.search_hi[a])) return false;
+  return true;
+}
+
 // The key box of a map's search space, the cells whose centre lies in it as the hull counts them (every key along
 // an unbounded axis): the cells a view's unknown figures and InsertStats::space_known count.
 struct SpaceKeys {
   std::uint32_t lo[3] = {0, 0, 0}, hi[3] = {0xffff, 0xffff, 0xffff};
-  bool contains(CellKey k) const {
-    const std::uint32_t x[3] = {key_x(k), key_y(k), key_z(k)};
-    return x[0] >= lo[0] && x[0] <= hi[0] && x[1] >= lo[1] && x[1] <= hi[1] && x[2] >= lo[2] && x[2] <= hi[2];
+  bool contains(CellKey k) const { return contains(int(key_x(k)), int(key_y(k)), int(key_z(k))); }
+  bool contains(int x, int y, int z) const {
+    return x >= int(lo[0]) && x <= int(hi[0]) && y >= int(lo[1]) && y <= int(hi[1]) && z >= int(lo[2]) &&
+           z <= int(hi[2]);
   }
 };
 inline SpaceKeys space_keys(const ExplorationOptions& o) {
   SpaceKeys s;
   const double half = 32768.0 - 0.5;
   for (int a = 0; a < 3; ++a) {
-    if (o.search_lo[a] > -1e8)
+    if (!open_below(o.search_lo[a]))
       s.lo[a] = std::uint32_t(std::clamp(std::ceil(o.search_lo[a] / o.resolution + half - 1e-9), 0.0, 65535.0));
-    if (o.search_hi[a] < 1e8)
+    if (!open_above(o.search_hi[a]))
       s.hi[a] = std::uint32_t(std::clamp(std::floor(o.search_hi[a] / o.resolution + half + 1e-9), 0.0, 65535.0));
   }
   return s;

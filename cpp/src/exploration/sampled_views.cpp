@@ -70,7 +70,7 @@ NbvGain score_gain(ViewStrategy s) {
 
 ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStrategy strategy) {
   const Eigen::Vector3d s_lo = ctx.map.options().search_lo, s_hi = ctx.map.options().search_hi;
-  if ((s_lo.array() < -1e8).any() || (s_hi.array() > 1e8).any())
+  if (!detail::bounded_search_space(ctx.map.options()))
     throw std::invalid_argument(std::string("the ") + strategy_name(strategy) + " strategy needs a finite search space");
   std::mt19937_64 rng(seed);
   ViewChoice best;

@@ -11,6 +11,7 @@
 
 #include <octomap/OcTree.h>
 
+#include "collision/detail.hpp"
 #include "exploration/cell_sets.hpp"
 #include "common/thread_pool.hpp"
 #include "exploration/exploration_state.hpp"
@@ -144,6 +145,13 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   cap_inv_ = opt.capability_base.inverse();
   cap_orient_ = opt.capability_map && opt.capability_orientations &&
                 opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9);
+  // The map's solutions seed IK when they are the chain's (the same links, the camera's optical axis as the
+  // approach axis) and its frame is the chain's base.
+  map_seeds_ = opt.chain && opt.capability_map && opt.capability_map->has_solutions() &&
+               opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9) &&
+               opt.capability_map->base_link() == opt.chain->base_link() &&
+               opt.capability_map->tip_link() == opt.chain->tip_link() &&
+               opt.capability_map->dof() == opt.chain->dof() && opt.capability_base.isApprox(opt.chain_base, 1e-12);
   const ExplorationState& S = state(map);
   if (!opt.unknown_is_obstacle || !search_key_box(S, map.options(), search_lo_, search_hi_)) {
     for (int a = 0; a < 3; ++a) search_lo_[a] = 1, search_hi_[a] = 0;  // empty
@@ -167,7 +175,7 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
     // The ground lies at or below the robot's root link (the robot stands on it) and at or below the search
     // space's floor (the space searched lies above it; -1e9: no search space): the lower of the two. A slab
     // 1 m deep with that top, 100 m across around the chain's base.
-    const double search_floor = mo.search_lo.z() > -1e8 ? mo.search_lo.z() : std::numeric_limits<double>::infinity();
+    const double search_floor = open_below(mo.search_lo.z()) ? std::numeric_limits<double>::infinity() : mo.search_lo.z();
     const double top = std::min(robot_root_.translation().z(), search_floor);
     constexpr double kSide = 100.0, kDepth = 1.0;
     Pose slab = Pose::Identity();
@@ -256,10 +264,18 @@ std::optional<Eigen::Vector3d> ViewChecker::reachable_axis(const Eigen::Vector3d
   return std::nullopt;
 }
 
+std::optional<Eigen::VectorXd> ViewChecker::map_seed(const Pose& pose) const {
+  if (!map_seeds_) return std::nullopt;
+  const CapabilityMap& m = *opt_.capability_map;
+  const Pose P = cap_inv_ * pose;
+  return m.solution(P.translation(), m.orientations().nearest(P.linear(), m.approach_axis()));
+}
+
 ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t seed_offset) const {
   IkOptions o = ik_;
   o.seed = ik_.seed + seed_offset;
-  auto q = opt_.chain->ik(base_inv_ * pose, o);
+  const std::optional<Eigen::VectorXd> start = map_seed(pose);
+  auto q = opt_.chain->ik(base_inv_ * pose, o, start ? &*start : nullptr);
   if (!q) return ViewStatus::NoIk;
   const ViewStatus st = arm_clear(*q);
   if (st != ViewStatus::Valid) return st;
@@ -268,16 +284,54 @@ ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t se
   return ViewStatus::Valid;
 }
 
+bool ViewChecker::cells_near(const Shape& shape, const Pose& world) const {
+  // The obstacles are octrees of those cells, and FCL tests only their occupied leaves, each a box of whole cells,
+  // against the shape: a box can touch it only where it meets the shape's world box, widened by 0.1 mm for the
+  // narrow phase's tolerance (1e-6 m) and the rounding of the keys.
+  constexpr double kMargin = 1e-4;
+  constexpr std::uint64_t kMaxCells = 8192;  // a larger box: FCL's own traversal decides
+  const fcl::AABBd box = world_aabb(*shape.geometry, world);
+  const double res = map_.resolution();
+  std::uint32_t lo[3], hi[3];
+  std::uint64_t cells = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double l = std::floor((box.min_[a] - kMargin) / res) + 32768.0;
+    const double h = std::floor((box.max_[a] + kMargin) / res) + 32768.0;
+    if (!(l >= 0 && h <= 65535 && l <= h)) return true;
+    lo[a] = std::uint32_t(l);
+    hi[a] = std::uint32_t(h);
+    cells *= hi[a] - lo[a] + 1;
+  }
+  if (cells > kMaxCells) return true;
+  GridReader g(state(map_).grid);
+  for (std::uint32_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::uint32_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::uint32_t x = lo[0]; x <= hi[0]; ++x) {
+        const CellKey k = pack_key(x, y, z);
+        const std::uint8_t s = g.get(k) & kStateMask;
+        if (s == std::uint8_t(CellState::Occupied)) return true;
+        if (s == std::uint8_t(CellState::Unknown) && unknown_cells_ && in_search_space(k)) return true;
+      }
+  return false;
+}
+
 ViewStatus ViewChecker::arm_clear(const Eigen::VectorXd& q) const {
   // The links the arm moves against the map's occupied (and, safe views, unknown) cells; the robot against itself.
-  if (obstacles_ || ground_) {
-    const Eigen::VectorXd q_robot = opt_.chain->to_robot_configuration(q, reference_);
-    if (obstacles_ &&
-        opt_.chain->robot().in_collision(q_robot, *obstacles_, robot_root_, /*check_self=*/true, &moved_links_))
-      return ViewStatus::ArmCollision;
-    if (ground_ && opt_.chain->robot().in_collision(q_robot, *ground_, robot_root_, false, &moved_links_))
-      return ViewStatus::ArmCollision;
+  if (!obstacles_ && !ground_) return ViewStatus::Valid;
+  const Robot& robot = opt_.chain->robot();
+  thread_local std::vector<Pose> poses;
+  robot.link_poses(opt_.chain->to_robot_configuration(q, reference_), poses);
+  if (obstacles_) {
+    // FCL only for the shapes that have one of the obstacles' cells in their box (most views' links have none).
+    for (int li : moved_links_)
+      for (const Shape& s : robot.links()[li].shapes) {
+        const Pose world = robot_root_ * poses[li] * s.origin;
+        if (cells_near(s, world) && obstacles_->collides(*s.geometry, world)) return ViewStatus::ArmCollision;
+      }
+    if (robot.in_self_collision_poses(poses)) return ViewStatus::ArmCollision;
   }
+  if (ground_ && robot.links_in_collision(poses, *ground_, robot_root_, &moved_links_))
+    return ViewStatus::ArmCollision;
   return ViewStatus::Valid;
 }
 

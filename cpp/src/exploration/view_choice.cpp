@@ -204,8 +204,8 @@ ViewChoice frontier_void_choice(const ChoiceContext& ctx, std::uint64_t seed, bo
 
 // True when the map's search space is finite and holds no known cell (no view has seen any of it).
 bool search_space_unseen(const ExplorationMap& map) {
+  if (!detail::bounded_search_space(map.options())) return false;
   const Eigen::Vector3d lo = map.options().search_lo, hi = map.options().search_hi;
-  if ((lo.array() < -1e8).any() || (hi.array() > 1e8).any()) return false;
   auto guard = detail::read_guard(map);
   const detail::MapTree& tree = detail::state(map).tree;
   return tree.begin_leafs_bbx(octomap::point3d(float(lo.x()), float(lo.y()), float(lo.z())),
@@ -247,8 +247,7 @@ ViewChoice& decide(ViewChoice& c, ChoiceMemory& memory, const ExploreOptions& op
 // ExploreOptions::beyond_voids.
 ViewChoice beyond(const ChoiceContext& ctx, std::uint64_t seed, double threshold) {
   if (!ctx.options.beyond_voids || ctx.memory.beyond_misses >= ctx.options.patience) return ViewChoice{};
-  const Eigen::Vector3d lo = ctx.map.options().search_lo, hi = ctx.map.options().search_hi;
-  if ((lo.array() < -1e8).any() || (hi.array() > 1e8).any()) return ViewChoice{};  // no bounded space to look at
+  if (!detail::bounded_search_space(ctx.map.options())) return ViewChoice{};  // no bounded space to look at
   ViewChoice c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
   if (!c.found || c.utility <= threshold) return ViewChoice{};
   c.beyond = true;

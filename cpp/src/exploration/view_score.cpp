@@ -228,7 +228,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
         const double wc = curve ? curve->weight(v, depth, w) : w;
         if (v) {
           met.touch(g.key[0], g.key[1], g.key[2], f, wc, depth);
-        } else {
+        } else if (unknown_met || space.contains(g.key[0], g.key[1], g.key[2])) {
+          // (one outside the search space counts for nothing in a score, nor in the chance of a return)
           pending.push_back({pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2])), f,
                              wc, depth});
         }
@@ -261,13 +262,13 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     if (unknown && unknown_met)
       unknown_met->push_back({k, float(w), float(n), std::uint16_t(std::min(depth, 65535)),
                               std::uint8_t((f & kVoidFlag) ? 1 : 0)});
+    if (unknown && !(f & kVoidFlag) && !space.contains(k)) return;
     // unknown cells count with their seeability (lowered by views that expected them and missed)
     const double scale = scales[(f & kVoidFlag) ? 1 : 0];
     std::uint8_t mark = 0;
     double s = unknown ? cells.seeability(k, mark) : 1.0;
     if (s > 0 && unknown && cells.blind(k, mark, o)) s = 0;  // a line that returned nothing (blind_lines.hpp)
     const double e = w * s * n * scale;
-    if (unknown && !(f & kVoidFlag) && !space.contains(k)) return;
     if (unknown) {
       ++v.unknown_cells;
       v.expected_unknown += e;

@@ -148,11 +148,18 @@ class ViewChecker {
 
  private:
   bool in_search_space(CellKey k) const;
+  // False when no cell the arm's map obstacles hold (an occupied cell; with unknown_is_obstacle, an unknown cell of
+  // the search space) lies in the world box of `shape` at `world`: then those obstacles cannot touch it.
+  bool cells_near(const Shape& shape, const Pose& world) const;
+  // The capability map's joint solution of the cell of camera pose `pose` (map frame), the first descent's start:
+  // a configuration that reaches the cell's centre lies near one that reaches the pose. None without one.
+  std::optional<Eigen::VectorXd> map_seed(const Pose& pose) const;
   const ExplorationMap& map_;
   const NbvOptions& opt_;
   IkOptions ik_;
   Pose base_inv_, cap_inv_, robot_root_ = Pose::Identity();
   bool cap_orient_ = false;
+  bool map_seeds_ = false;  // see map_seed
   std::optional<Obstacles> obstacles_;
   std::optional<Obstacles> ground_;  // ground_is_obstacle: a slab whose top is the ground (view_check.cpp)
   std::vector<int> moved_links_;     // collision links the chain moves (tested against the map and ground_)

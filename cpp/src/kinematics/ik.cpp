@@ -131,7 +131,7 @@ struct CollisionSetup {
 };
 
 // One IK call: Levenberg-Marquardt descents from the seed and from random restarts. N is the
-// chain's dof when it is known at compile time (6, 7: fixed-size matrices, no heap traffic and
+// chain's dof when it is known at compile time (1 to 8: fixed-size matrices, no heap traffic and
 // unrolled products), else Eigen::Dynamic with at most MaxDof columns (MaxDof Dynamic: any chain).
 // A solver is the per-call workspace: built, solved once, dropped.
 template <int N, int MaxDof = N>
@@ -342,8 +342,19 @@ std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o,
   check_ik_request(*this, target, o, seed);
   detail::CancellableScope cancellable;
   if (dof() == 0) return rigid_chain_ik(*this, target, o);
-  if (dof() == 7) return LmIk<7>(*this, target, o).solve(seed);
-  if (dof() == 6) return LmIk<6>(*this, target, o).solve(seed);
+  // Fixed-size solvers for the chains of heads, arms and arms on a rail (up to 8 joints): the descent's products
+  // and factorisations unrolled, with no run-time sizes. Longer chains share a solver of dynamic size.
+  switch (dof()) {
+    case 1: return LmIk<1>(*this, target, o).solve(seed);
+    case 2: return LmIk<2>(*this, target, o).solve(seed);
+    case 3: return LmIk<3>(*this, target, o).solve(seed);
+    case 4: return LmIk<4>(*this, target, o).solve(seed);
+    case 5: return LmIk<5>(*this, target, o).solve(seed);
+    case 6: return LmIk<6>(*this, target, o).solve(seed);
+    case 7: return LmIk<7>(*this, target, o).solve(seed);
+    case 8: return LmIk<8>(*this, target, o).solve(seed);
+    default: break;
+  }
   if (dof() <= 12) return LmIk<Eigen::Dynamic, 12>(*this, target, o).solve(seed);
   return LmIk<Eigen::Dynamic, Eigen::Dynamic>(*this, target, o).solve(seed);
 }
