@@ -175,7 +175,8 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
     // The ground lies at or below the robot's root link (the robot stands on it) and at or below the search
     // space's floor (the space searched lies above it; -1e9: no search space): the lower of the two. A slab
     // 1 m deep with that top, 100 m across around the chain's base.
-    const double search_floor = open_below(mo.search_lo.z()) ? std::numeric_limits<double>::infinity() : mo.search_lo.z();
+    const double search_floor =
+        open_below(mo.search_lo.z()) ? std::numeric_limits<double>::infinity() : mo.search_lo.z();
     const double top = std::min(robot_root_.translation().z(), search_floor);
     constexpr double kSide = 100.0, kDepth = 1.0;
     Pose slab = Pose::Identity();
@@ -322,7 +323,8 @@ ViewStatus ViewChecker::arm_clear(const Eigen::VectorXd& q) const {
   thread_local std::vector<Pose> poses;
   robot.link_poses(opt_.chain->to_robot_configuration(q, reference_), poses);
   if (obstacles_) {
-    // FCL only for the shapes that have one of the obstacles' cells in their box (most views' links have none).
+    // FCL only for the shapes with one of the obstacles' cells in their box: a link away from every such cell needs
+    // none.
     for (int li : moved_links_)
       for (const Shape& s : robot.links()[li].shapes) {
         const Pose world = robot_root_ * poses[li] * s.origin;
