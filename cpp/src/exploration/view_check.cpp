@@ -275,8 +275,24 @@ std::optional<Eigen::VectorXd> ViewChecker::map_seed(const Pose& pose) const {
 ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t seed_offset) const {
   IkOptions o = ik_;
   o.seed = ik_.seed + seed_offset;
-  const std::optional<Eigen::VectorXd> start = map_seed(pose);
-  auto q = opt_.chain->ik(base_inv_ * pose, o, start ? &*start : nullptr);
+  const Pose target = base_inv_ * pose;
+  std::optional<Eigen::VectorXd> q;
+  // The first random start, then (when it fails) the capability map's solution of the pose's cell before the other
+  // random starts: a first start that succeeds finds what an unseeded call finds, so the IK branches the random
+  // starts reach (some clear of the surfaces where the map's is not) stay on offer.
+  if (std::optional<Eigen::VectorXd> start = map_seed(pose); start && o.attempts > 1) {
+    IkOptions first = o;
+    first.attempts = 1;
+    q = opt_.chain->ik(target, first);
+    if (!q) {
+      IkOptions rest = o;
+      rest.attempts = o.attempts - 1;
+      rest.seed = o.seed ^ 0x5EEDULL;  // restarts other than the first start's
+      q = opt_.chain->ik(target, rest, &*start);
+    }
+  } else {
+    q = opt_.chain->ik(target, o);
+  }
   if (!q) return ViewStatus::NoIk;
   const ViewStatus st = arm_clear(*q);
   if (st != ViewStatus::Valid) return st;

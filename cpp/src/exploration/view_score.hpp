@@ -151,8 +151,8 @@ class ViewChecker {
   // False when no cell the arm's map obstacles hold (an occupied cell; with unknown_is_obstacle, an unknown cell of
   // the search space) lies in the world box of `shape` at `world`: then those obstacles cannot touch it.
   bool cells_near(const Shape& shape, const Pose& world) const;
-  // The capability map's joint solution of the cell of camera pose `pose` (map frame), the first descent's start:
-  // a configuration that reaches the cell's centre lies near one that reaches the pose. None without one.
+  // The capability map's joint solution of the cell of camera pose `pose` (map frame), a start for IK after the first
+  // random one: a configuration that reaches the cell's centre lies near one that reaches the pose. None without one.
   std::optional<Eigen::VectorXd> map_seed(const Pose& pose) const;
   const ExplorationMap& map_;
   const NbvOptions& opt_;
