@@ -12,7 +12,11 @@ other jobs), the void cells each chosen view expects (the choice's utility), and
 camera pose or both stop. `utility_ratio` is the loop's utility over the full score's (1: as good a view; the
 second look's aims and the last chance may find a better one either way).
 
-Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] > times.json
+With --reference DIR, every scene runs first with the octoreach package found in DIR (a build to compare with,
+PYTHONPATH=DIR, in a child process) and then with this one, so both see the machine in the same state; "reference"
+holds its figures.
+
+Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] [--reference DIR] > times.json
 """
 from __future__ import annotations
 
@@ -20,6 +24,7 @@ import argparse
 import copy
 import json
 import os
+import subprocess
 import sys
 import time
 
@@ -92,11 +97,24 @@ def _summary(calls: list) -> dict:
     return out
 
 
+def _reference(a, name: str) -> dict:
+    """The figures of scene `name` with the package in a.reference (a child process, PYTHONPATH=a.reference)."""
+    env = dict(os.environ, PYTHONPATH=os.path.abspath(a.reference))
+    cmd = [sys.executable, os.path.abspath(__file__), "--views", str(a.views), "--instances", str(a.instances),
+           "--seed", str(a.seed), "--scenes", name]
+    got = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
+    if got.returncode != 0:
+        raise RuntimeError(f"the reference run of {name} failed:\n{got.stderr[-2000:]}")
+    return json.loads(got.stdout)["scenes"][name]
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--views", type=int, default=40)
     ap.add_argument("--instances", type=int, default=1, help="instances per scene family")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--scenes", default="", help="comma-separated scene names to run (default: all)")
+    ap.add_argument("--reference", default="", help="a directory holding the octoreach package to compare with")
     a = ap.parse_args(argv)
     _, chain = ex.explorer_robot()
     cmap = ex.explorer_capability_map(chain)
@@ -105,19 +123,35 @@ def main(argv=None) -> int:
     for fam in scene_families.FAMILIES:
         for inst in scene_families.family_instances(fam, a.instances):
             scenes.append((inst.name, inst.scene, scene_families.start_pose(), inst.search_space))
+    if a.scenes:
+        wanted = a.scenes.split(",")
+        unknown = sorted(set(wanted) - {s[0] for s in scenes})
+        if unknown:
+            ap.error(f"no scene named {', '.join(unknown)}; the scenes are {', '.join(s[0] for s in scenes)}")
+        scenes = [s for s in scenes if s[0] in wanted]
     out = {"views": a.views, "cores": os.cpu_count(), "load_average": list(os.getloadavg()), "scenes": {}}
+    if a.reference:
+        out["reference"] = {"path": os.path.abspath(a.reference), "scenes": {}}
     every = []
     Explorer.next_view = _timed(every)
     for name, scene, start, space in scenes:
+        if a.reference:
+            ref = out["reference"]["scenes"][name] = _reference(a, name)
+            print(f"# {name} (reference): wall median loop {ref['loop']['wall']['median']:.3f}", file=sys.stderr,
+                  flush=True)
         first = len(every)
         cam = DepthCamera(320, 240, np.deg2rad(58.0), 4.0, seed=a.seed)
         r = ex.explore(scene, cam, start, robot=True, capability_map=cmap, search_space=space, max_views=a.views,
                        resolution=0.025, seed=a.seed)
         s = _summary(every[first:])
-        out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows))
+        out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows),
+                                   loop_wall=[c["loop"][0] for c in every[first:]])
         print(f"# {name}: {s['choices']} choices, wall median loop {s['loop']['wall']['median']:.3f} "
               f"full {s['full']['wall']['median']:.3f}, same view {s['same_view']}", file=sys.stderr, flush=True)
     out["all"] = _summary(every)
+    if a.reference:
+        walls = [w for sc in out["reference"]["scenes"].values() for w in sc["loop_wall"]]
+        out["reference"]["all_loop_wall"] = _stats(walls)
     out["load_average_after"] = list(os.getloadavg())
     print(json.dumps(out, indent=1))
     return 0
