@@ -26,7 +26,8 @@ void wrap_surface(py::module_& m) {
       .def("add_box", [](Surface& s, const Eigen::Vector3d& size, const py::object& pose) {
              s.add_box(size, pose_from(pose));
            }, py::arg("size"), py::arg("pose"), "Adds an obstacle box (extents, 4x4 centre pose in the world frame).")
-      .def("add_legs", &Surface::add_legs, py::arg("width") = 0.05, "Adds a leg under each vertex down to the floor.")
+      .def("add_legs", &Surface::add_legs, py::arg("width") = 0.05, "Adds a leg under each vertex down to the floor: a box `width` by `width` across, its sides\n"
+           "along the world axes, its centre `width` from the vertex towards the polygon's centre.")
       .def_property_readonly("vertices", [](const Surface& s) {
         RowMatrixXd v(s.vertices().size(), 3);
         for (std::size_t i = 0; i < s.vertices().size(); ++i) v.row(i) = s.vertices()[i].transpose();

@@ -1281,7 +1281,8 @@ class Surface:
         """
     def add_legs(self, width: typing.SupportsFloat | typing.SupportsIndex = 0.05) -> None:
         """
-        Adds a leg under each vertex down to the floor.
+        Adds a leg under each vertex down to the floor: a box `width` by `width` across, its sides
+        along the world axes, its centre `width` from the vertex towards the polygon's centre.
         """
     def contains(self, points: typing.Any) -> numpy.typing.NDArray[numpy.bool]:
         """
@@ -3011,6 +3012,8 @@ def find_camera_link(robot: Robot) -> CameraLink:
     """
     The robot's head camera link: the links named like a camera on one rigid body (on the head when they are
     on several), else the end of the head; ValueError naming the candidates and asking for the link otherwise.
+    The planner's inspect actions use its position. Its axes are the URDF's: a camera link often looks along +x,
+    so an exploration chain ends at the camera's optical frame (+z forward), named as in the URDF.
     """
 def self_collision_report(robot: Robot, options: typing.Any = None, progress: typing.Any = False, **kwargs) -> SelfCollisionReport:
     """

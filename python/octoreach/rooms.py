@@ -49,6 +49,7 @@ _SURFACE_KEYS = {"name", "rectangle", "vertices", "thickness", "legs", "boxes", 
 _RECTANGLE_KEYS = {"size", "height", "x", "y", "yaw"}
 _SHELF_KEYS = {"name", "size", "boards", "x", "y", "yaw", "thickness", "panels"}
 _ROOM_KEYS = {"surfaces", "shelves", *_SHAPE_ENTRIES}
+_KINDS = {"surfaces": "surface", "shelves": "shelf", **{k: kind for k, (_, kind) in _SHAPE_ENTRIES.items()}}
 
 
 class Room:
@@ -205,8 +206,10 @@ class Room:
     # ------------------------------------------------------------------ entries
     def _claim(self, name: str, where: str, kind: str | None = None) -> None:
         if name in self._owner:
-            raise ValueError(f"{where}: the name {name!r} is already used by a {self._owner[name]}")
-        self._owner[name] = kind or where.split("[")[0]
+            raise ValueError(f"{where}: the name {name!r} is already used by a {self._owner[name]} of this room "
+                             "(every surface, shelf and obstacle needs a name of its own)")
+        key = where.split("[")[0]
+        self._owner[name] = kind or _KINDS.get(key, key)
 
     def _grow(self, where: str, surfaces: int = 0, obstacles: int = 0) -> None:
         """Counts new surfaces and obstacles against limits.MAX_SURFACES and MAX_OBSTACLES (before adding them)."""

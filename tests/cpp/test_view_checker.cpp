@@ -1,6 +1,6 @@
 // The camera's clearance (ViewChecker::camera_clear) with the safe-view rule: an unknown cell of the search space
-// near the camera rules it out, where the search space is clipped to the box of the known cells, and that box
-// follows every insert. The arm's check (ViewChecker::arm_clear) gives the plain check's answer.
+// near the camera rules it out, those no insert has reached too. The arm's check (ViewChecker::arm_clear) gives the
+// plain check's answer.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -28,22 +28,28 @@ bool clear_at(const ExplorationMap& map, const Eigen::Vector3d& p) {
 
 }  // namespace
 
-TEST(ViewChecker, TheSearchSpacesKnownBoxFollowsEveryInsert) {
+TEST(ViewChecker, EveryUnknownCellOfTheSearchSpaceCounts) {
   ExplorationOptions o;
   o.resolution = 0.05;
   o.search_lo = {-3.0, -3.0, 0.0};
   o.search_hi = {3.0, 3.0, 2.0};
   ExplorationMap map(o);
-  const Eigen::Vector3d origin(0.0, 0.0, 0.5), far(1.5, 1.5, 1.0);
-  map.insert({{0.3, 0.0, 0.5}, {0.0, 0.3, 0.5}}, origin, 4.0);
-  ASSERT_EQ(map.state(map.key_of(far)), CellState::Unknown);
-  // outside the box of the known cells an unknown cell does not count (an unbounded space would hold infinitely
-  // many)
-  EXPECT_TRUE(clear_at(map, far));
-  // rays that widen the known box past `far` without meeting it: `far` is an unknown cell of the search space
-  map.insert({{1.8, 0.0, 1.2}, {0.0, 1.8, 1.2}}, origin, 4.0);
-  ASSERT_EQ(map.state(map.key_of(far)), CellState::Unknown);
+  const Eigen::Vector3d origin(0.0, 0.0, 0.5), far(1.5, 1.5, 1.0), outside(3.5, 0.0, 1.0);
+  // before any insert every cell of the search space is unknown: no camera in it is clear, one outside it is
   EXPECT_FALSE(clear_at(map, far));
+  EXPECT_FALSE(clear_at(map, origin));
+  EXPECT_TRUE(clear_at(map, outside));
+  // a wall at x = 2 seen from the origin: the rays clear a wide fan of cells in front of it
+  std::vector<Eigen::Vector3d> wall;
+  for (double y = -1.0; y <= 1.0; y += 0.02)
+    for (double z = 0.0; z <= 1.5; z += 0.02) wall.emplace_back(2.0, y, z);
+  map.insert(wall, origin, 4.0);
+  ASSERT_EQ(map.state(map.key_of(far)), CellState::Unknown);
+  // beyond the box of the cells an insert has reached (|y| > 1), an unknown cell of the search space still counts
+  EXPECT_FALSE(clear_at(map, far));
+  // inside the fan, more than the margin from every unknown cell
+  EXPECT_TRUE(clear_at(map, Eigen::Vector3d(0.8, 0.0, 0.5)));
+  EXPECT_TRUE(clear_at(map, outside));
 }
 
 // min_distance is a distance to the nearest point of an occupied cell (the surface may lie anywhere in it): a camera

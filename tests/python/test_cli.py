@@ -109,3 +109,24 @@ def test_malformed_polygon_files(tmp_path, maps):
     r = run("surface", "--urdf", URDF, "--arms", cap, "--polygon", tmp_path / "missing.json", "--out",
             tmp_path / "x.orsm", "--quiet")
     assert r.returncode == 2 and "cannot read polygon file" in r.stderr
+
+
+def test_a_reader_that_stops_early_is_no_error(maps):
+    """`octoreach ... | head -1`: the reader closes the pipe; the command stops quietly with status 0."""
+    _, _, smap = maps
+    script = Path(sys.executable).with_name("octoreach")
+    command = [str(script)] if script.is_file() else [sys.executable, "-m", "octoreach.cli"]
+    # more lines than a pipe holds (64 kB), so the command writes after the reader has gone
+    p = subprocess.Popen(command + ["query", str(smap)] + ["--pose", "0.5", "0", "0", "0"] * 3000,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    p.stdout.readline()
+    p.stdout.close()  # before the command has written the rest
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=120) == 0, err
+    assert "error" not in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("value", ["0", "-0.1", "nan", "inf", "five"])
+def test_a_resolution_must_be_a_length(value):
+    r = run("surface", "--urdf", URDF, "--table", 0.6, 0.4, 0.4, "--resolution", value, "--quiet")
+    assert r.returncode == 2 and "--resolution" in r.stderr and "metres" in r.stderr, r.stderr

@@ -79,3 +79,22 @@ def test_a_replayed_recording_gives_the_views_explore_took(tmp_path):
         np.testing.assert_allclose(view.camera_pose, pose, atol=1e-9)
     assert proposed[-1].stop and proposed[-1].stop_reason == result.stop_reason
     assert result.stop_reason != "view budget", result.table()  # the defaults stop by themselves
+
+
+@pytest.mark.parametrize("first", ["nothing", "an empty cloud"])
+def test_before_anything_is_seen_no_camera_stands_in_the_search_space(first):
+    """Safe views: every cell of the search space no insert has reached is unknown, so a view asked for before a
+    capture (or after one that returned no point) puts the camera outside the search space, never in it."""
+    scene = ex.closed_box_scene("+z", 0.16)
+    region = ex.scene_region(scene)
+    robot, chain = ex.explorer_robot()
+    e = ex.Explorer(replay_exploration.camera(), region, robot=robot, chain=chain, base_pose=np.eye(4),
+                    resolution=0.05, max_valid_poses=20)
+    start = ex.look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))
+    if first == "an empty cloud":
+        e.integrate(np.zeros((0, 3)), start)
+    view = e.next_view()
+    assert not view.stop and view.camera_pose is not None  # a view from outside, into the unseen search space
+    eye = view.camera_pose[:3, 3]
+    margin = 0.05  # NbvOptions.unknown_margin
+    assert np.any(eye < region[0] - margin) or np.any(eye > region[1] + margin), (eye, region)

@@ -20,7 +20,8 @@ struct CameraLink {
 /// joints); when they sit on several bodies, only the bodies on the head count (a link named head or neck, or moved
 /// by an SRDF group named head, among the body's ancestors). One body left: its first camera link (parents
 /// first). No camera link at all: the end of the head (the head-named body with no head-named body below it),
-/// when there is one.
+/// when there is one. The planner's inspect actions use the link's position; its axes are the URDF's (a camera link
+/// often looks along +x), so an exploration chain ends at the camera's optical frame (+z forward) instead.
 /// \throws std::invalid_argument naming the candidates and asking for the link when none or several remain
 CameraLink find_camera_link(const Robot& robot);
 

@@ -27,7 +27,9 @@ class Surface {
 
   /// \brief Adds an obstacle box (extents `size`, centre pose in the world frame).
   void add_box(const Eigen::Vector3d& size, const Pose& pose);
-  /// \brief Adds four legs of the given width under the polygon's corners (for rectangular tables).
+  /// \brief Adds a leg under each corner of the polygon, down to the floor (for rectangular tables): a box `width`
+  /// by `width` across, its sides along the world axes, its centre `width` from the corner towards the polygon's
+  /// centre (along the diagonal of a rectangle).
   void add_legs(double width = 0.05);
 
   const std::vector<Eigen::Vector3d>& vertices() const { return vertices_; }

@@ -28,9 +28,25 @@ namespace detail {
 
 namespace {
 
-// Key box of the search space, clipped to the bounding box of the known cells (an unbounded search
-// space would otherwise hold infinitely many unknown cells). False when it is empty.
-bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, std::uint32_t lo[3], std::uint32_t hi[3]) {
+// The key of coordinate x along an axis, clamped into the key range.
+std::uint32_t clamped_key(const MapTree& tree, double x) {
+  octomap::key_type k;
+  if (tree.coordToKeyChecked(x, k)) return k;
+  return x < 0 ? 0 : 0xffff;
+}
+
+// Key box of the search space: the cells that hold a point of it (every key along an unbounded axis).
+void space_key_box(const MapTree& tree, const ExplorationOptions& o, std::uint32_t lo[3], std::uint32_t hi[3]) {
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = open_below(o.search_lo[a]) ? 0 : clamped_key(tree, o.search_lo[a]);
+    hi[a] = open_above(o.search_hi[a]) ? 0xffff : clamped_key(tree, o.search_hi[a]);
+  }
+}
+
+// The key box space_lo..space_hi clipped to the bounding box of the known cells (an unbounded search space would
+// otherwise hold infinitely many unknown cells). False when it is empty.
+bool search_key_box(const ExplorationState& s, const std::uint32_t space_lo[3], const std::uint32_t space_hi[3],
+                    std::uint32_t lo[3], std::uint32_t hi[3]) {
   if (s.tree.size() == 0) return false;
   double b[6];
   {
@@ -43,10 +59,9 @@ bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, std:
     std::copy(s.tree_bounds, s.tree_bounds + 6, b);
   }
   for (int a = 0; a < 3; ++a) {
-    double l = std::max(b[a], o.search_lo[a]), h = std::min(b[a + 3], o.search_hi[a]);
-    if (l > h) return false;
-    lo[a] = s.tree.coordToKey(l);
-    hi[a] = s.tree.coordToKey(h);
+    lo[a] = std::max<std::uint32_t>(space_lo[a], s.tree.coordToKey(b[a]));
+    hi[a] = std::min<std::uint32_t>(space_hi[a], s.tree.coordToKey(b[a + 3]));
+    if (lo[a] > hi[a]) return false;
   }
   return true;
 }
@@ -143,17 +158,19 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   ik_.approach_axis = Eigen::Vector3d::UnitZ();
   base_inv_ = opt.chain_base.inverse();
   cap_inv_ = opt.capability_base.inverse();
-  cap_orient_ = opt.capability_map && opt.capability_orientations &&
-                opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9);
-  // The map's solutions seed IK when they are the chain's (the same links, the camera's optical axis as the
-  // approach axis) and its frame is the chain's base.
-  map_seeds_ = opt.chain && opt.capability_map && opt.capability_map->has_solutions() &&
-               opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9) &&
+  // The map's directions are the camera's optical axis (+z of the tip frame) when its approach axis is +z.
+  const bool optical_axis =
+      opt.capability_map && opt.capability_map->approach_axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-9);
+  cap_orient_ = optical_axis && opt.capability_orientations;
+  // The map's solutions seed IK when they are the chain's (the same links, the optical axis as the approach
+  // axis) and its frame is the chain's base.
+  map_seeds_ = optical_axis && opt.chain && opt.capability_map->has_solutions() &&
                opt.capability_map->base_link() == opt.chain->base_link() &&
                opt.capability_map->tip_link() == opt.chain->tip_link() &&
                opt.capability_map->dof() == opt.chain->dof() && opt.capability_base.isApprox(opt.chain_base, 1e-12);
   const ExplorationState& S = state(map);
-  if (!opt.unknown_is_obstacle || !search_key_box(S, map.options(), search_lo_, search_hi_)) {
+  space_key_box(S.tree, map.options(), space_lo_, space_hi_);
+  if (!opt.unknown_is_obstacle || !search_key_box(S, space_lo_, space_hi_, search_lo_, search_hi_)) {
     for (int a = 0; a < 3; ++a) search_lo_[a] = 1, search_hi_[a] = 0;  // empty
   }
   if (!opt.chain || !opt.arm_collisions) return;
@@ -196,10 +213,16 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
 
 ViewChecker::~ViewChecker() = default;
 
-bool ViewChecker::in_search_space(CellKey k) const {
-  return key_x(k) >= search_lo_[0] && key_x(k) <= search_hi_[0] && key_y(k) >= search_lo_[1] &&
-         key_y(k) <= search_hi_[1] && key_z(k) >= search_lo_[2] && key_z(k) <= search_hi_[2];
+namespace {
+
+bool in_box(CellKey k, const std::uint32_t lo[3], const std::uint32_t hi[3]) {
+  return key_x(k) >= lo[0] && key_x(k) <= hi[0] && key_y(k) >= lo[1] && key_y(k) <= hi[1] && key_z(k) >= lo[2] &&
+         key_z(k) <= hi[2];
 }
+
+}  // namespace
+
+bool ViewChecker::in_search_space(CellKey k) const { return in_box(k, search_lo_, search_hi_); }
 
 bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
   const double res = map_.resolution();
@@ -212,7 +235,7 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
   GridReader g(state(map_).grid);
   const std::uint8_t own = g.get(c) & kStateMask;
   if (own == std::uint8_t(CellState::Occupied)) return false;
-  if (own == std::uint8_t(CellState::Unknown) && opt_.unknown_is_obstacle && in_search_space(c)) return false;
+  if (own == std::uint8_t(CellState::Unknown) && opt_.unknown_is_obstacle && in_box(c, space_lo_, space_hi_)) return false;
   // A cell is within a margin of the camera when any point of it is: the map knows only that a surface (or unseen
   // space) lies somewhere in the cell, so this is the rule that keeps the margin to every surface the cells allow,
   // at any cell size. The whole cube of cells around the camera's cell would keep it up to sqrt(3) times the margin
@@ -233,7 +256,7 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
         if (!neighbour(c, dx, dy, dz, nb)) continue;
         const std::uint8_t s = g.get(nb) & kStateMask;
         if (s == std::uint8_t(CellState::Occupied) && d2 < occ2) return false;
-        if (s == std::uint8_t(CellState::Unknown) && d2 < unk2 && in_search_space(nb)) return false;
+        if (s == std::uint8_t(CellState::Unknown) && d2 < unk2 && in_box(nb, space_lo_, space_hi_)) return false;
       }
   return true;
 }
@@ -308,15 +331,14 @@ bool ViewChecker::cells_near(const Shape& shape, const Pose& world) const {
   constexpr double kMargin = 1e-4;
   constexpr std::uint64_t kMaxCells = 8192;  // a larger box: FCL's own traversal decides
   const fcl::AABBd box = world_aabb(*shape.geometry, world);
-  const double res = map_.resolution();
+  const MapTree& tree = state(map_).tree;
   std::uint32_t lo[3], hi[3];
   std::uint64_t cells = 1;
   for (int a = 0; a < 3; ++a) {
-    const double l = std::floor((box.min_[a] - kMargin) / res) + 32768.0;
-    const double h = std::floor((box.max_[a] + kMargin) / res) + 32768.0;
-    if (!(l >= 0 && h <= 65535 && l <= h)) return true;
-    lo[a] = std::uint32_t(l);
-    hi[a] = std::uint32_t(h);
+    const double l = box.min_[a] - kMargin, h = box.max_[a] + kMargin;
+    if (!(l <= h)) return true;  // not a box (NaN): FCL's own check decides
+    lo[a] = clamped_key(tree, l);  // (no cell lies beyond the key range)
+    hi[a] = clamped_key(tree, h);
     cells *= hi[a] - lo[a] + 1;
   }
   if (cells > kMaxCells) return true;

@@ -124,7 +124,7 @@ class ViewChecker {
   ViewChecker(const ExplorationMap& map, const NbvOptions& opt);
   ~ViewChecker();
   // Camera cell free, no point of an occupied cell within min_distance of it, and (unknown_is_obstacle) no point of
-  // an unknown cell of the search space within unknown_margin.
+  // an unknown cell of the search space within unknown_margin (a cell no insert has reached is unknown).
   bool camera_clear(const Eigen::Vector3d& p) const;
   // The capability map's verdict on the pose's (voxel, optical axis) cell (true without one or when
   // its approach axis is not the camera's +z).
@@ -167,6 +167,9 @@ class ViewChecker {
   std::size_t unknown_cells_ = 0;
   Eigen::VectorXd reference_;
   std::uint32_t search_lo_[3], search_hi_[3];  // key box of the search space (clipped to the known cells)
+  // The key box of the whole search space: the camera's margin counts every unknown cell of it, those beyond the
+  // known cells too (before the first insert every cell is one).
+  std::uint32_t space_lo_[3], space_hi_[3];
 };
 
 }  // namespace octoreach::detail

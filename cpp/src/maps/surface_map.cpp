@@ -78,7 +78,9 @@ void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
     throw std::invalid_argument("theta_bins must be in [1, " + std::to_string(limits::kThetaBins) + "], got " +
                                 std::to_string(o.theta_bins));
   const double res = o.resolution == 0 ? cap.resolution() : o.resolution;
-  if (!(res > 0) || !std::isfinite(res)) throw std::invalid_argument("resolution must be positive");
+  if (!(res > 0) || !std::isfinite(res))
+    throw std::invalid_argument("resolution must be a number of metres above 0 (0 or None: the capability map's), got " +
+                                detail::format_number(o.resolution));
   // Not strict, unlike the point map: poses are evaluated at heights clipped into the range, so
   // (0, 0) is one exact height (a robot on the floor).
   if (!std::isfinite(o.z_min) || !std::isfinite(o.z_max))

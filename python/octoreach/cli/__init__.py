@@ -33,16 +33,41 @@ def main(argv=None) -> int:
         with warnings.catch_warnings():
             warnings.showwarning = _one_line
             return args.func(args)
+    except BrokenPipeError as e:
+        if _stdout_closed():  # the reader of the output went away (`octoreach ... | head`): not an error of ours
+            return 0
+        return _input_error(e)
     except _INPUT_ERRORS as e:
-        message = " ".join(str(e.args[0] if isinstance(e, KeyError) and e.args else e).split())
-        print(f"octoreach: error: {message[:2000] or type(e).__name__}", file=sys.stderr)
-        return 2
+        return _input_error(e)
     except MemoryError:
         print("octoreach: error: out of memory (an input larger than this machine can hold?)", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("octoreach: interrupted", file=sys.stderr)
         return 130
+
+
+def _input_error(e: BaseException) -> int:
+    message = " ".join(str(e.args[0] if isinstance(e, KeyError) and e.args else e).split())
+    print(f"octoreach: error: {message[:2000] or type(e).__name__}", file=sys.stderr)
+    return 2
+
+
+def _stdout_closed() -> bool:
+    """True when standard output is a pipe whose reader has gone (the pipe reports an error to a poll); then it is
+    pointed at /dev/null, so that the interpreter's own flush at exit does not fail again."""
+    import os
+    import select
+
+    try:
+        poll = select.poll()
+        poll.register(sys.stdout.fileno(), select.POLLOUT)
+        closed = any(event & select.POLLERR for _, event in poll.poll(0))
+    except (OSError, ValueError, AttributeError):  # no file descriptor (a captured stream)
+        return False
+    if closed:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    return closed
 
 
 __all__ = ["build_parser", "main"]

@@ -46,6 +46,17 @@ def angle(text: str) -> float:
         raise argparse.ArgumentTypeError(f"not an angle: {text!r} (radians, or degrees as e.g. 90deg)") from None
 
 
+def metres(text: str) -> float:
+    """A length on the command line: a finite number of metres above 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number of metres: {text!r}") from None
+    if not (np.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"must be a number of metres above 0, got {text!r}")
+    return value
+
+
 def robot_spec(args) -> dict:
     """How a cluster's workers load the robot of --robot/--urdf (they check its model hash)."""
     import os
@@ -89,11 +100,11 @@ def arm_args(sp, many=False):
     sp.add_argument("--approach-axis", type=float, nargs=3, metavar=("X", "Y", "Z"),
                     help="tool axis that approaches the object, tip frame (default: inferred from the gripper)")
     if many:
-        sp.add_argument("--resolution", type=float, default=None,
+        sp.add_argument("--resolution", type=metres, default=None,
                         help="grid of base positions and surface points in m (default: the capability map's; a map "
                              f"built from an arm name uses {defaults.resolution})")
     else:
-        sp.add_argument("--resolution", type=float, default=defaults.resolution,
+        sp.add_argument("--resolution", type=metres, default=defaults.resolution,
                         help=f"voxel edge in m (default {defaults.resolution})")
     sp.add_argument("--directions", type=int, default=defaults.directions,
                     help=f"approach directions (default {defaults.directions})")
