@@ -133,3 +133,32 @@ TEST(ViewChecker, TheArmCheckIsThePlainChecksAnswer) {
     EXPECT_LT(collisions, int(Q.rows()) - 300) << unknown;
   }
 }
+
+// A bounded search space's unknown cells are the arm's obstacles before any insert too: every cell of it is one.
+TEST(ViewChecker, BeforeAnyInsertTheArmKeepsOutOfABoundedSearchSpace) {
+  ExplorationOptions o;
+  o.resolution = 0.05;
+  o.search_lo = {0.3, -0.3, 0.0};
+  o.search_hi = {0.9, 0.3, 0.6};
+  ExplorationMap map(o);
+  const auto robot = Robot::from_urdf(std::string(OCTOREACH_URDF_DIR) + "/test_arm.urdf");
+  const Chain chain = robot->chain("base_link", "tool0");
+  const Eigen::MatrixXd Q = chain.random_configurations(500, 3);
+  for (const bool unknown : {false, true}) {
+    NbvOptions opt = NbvOptions::exploration_loop();
+    opt.chain = &chain;
+    opt.unknown_is_obstacle = unknown;
+    opt.ground_is_obstacle = false;
+    auto guard = detail::read_guard(map);
+    const detail::ViewChecker checker(map, opt);
+    EXPECT_EQ(checker.unknown_obstacle_cells(), unknown ? std::size_t(13 * 13 * 13) : std::size_t(0));
+    int collisions = 0;
+    for (Eigen::Index i = 0; i < Q.rows(); ++i) {
+      const Eigen::VectorXd q = Q.row(i).transpose();
+      if (robot->in_self_collision(chain.to_robot_configuration(q, robot->home()))) continue;
+      collisions += checker.arm_clear(q) == ViewStatus::ArmCollision;
+    }
+    if (unknown) EXPECT_GT(collisions, 20);  // the arm reaches into the box in front of it
+    else EXPECT_EQ(collisions, 0);          // nothing else to touch
+  }
+}

@@ -165,9 +165,11 @@ struct NbvOptions {
   double unknown_pass_probability = -1.0;
   /// Safe views: unknown cells inside the map's search space (ExplorationOptions::search_lo/hi)
   /// count as obstacles for the arm's collision check (with arm_collisions) and the camera must sit
-  /// in observed-free space: no unknown cell of the search space within unknown_margin of it. Unknown
-  /// cells outside the search space (the robot's own body, space the camera never looks at) are not
-  /// obstacles.
+  /// in observed-free space: no unknown cell of the search space within unknown_margin of it. A cell no
+  /// insert has reached is unknown (before the first insert, every cell of the search space); for the arm, a
+  /// search space unbounded along some axis counts only those within the box of the cells inserts have
+  /// reached. Unknown cells outside the search space (the robot's own body, space the camera never looks at)
+  /// are not obstacles.
   bool unknown_is_obstacle = true;
   double unknown_margin = 0.05;  ///< metres around the camera that no unknown cell may reach into
   /// With a chain and arm_collisions: the ground is an obstacle for the links the chain moves (the links it

@@ -43,10 +43,16 @@ void space_key_box(const MapTree& tree, const ExplorationOptions& o, std::uint32
   }
 }
 
-// The key box space_lo..space_hi clipped to the bounding box of the known cells (an unbounded search space would
-// otherwise hold infinitely many unknown cells). False when it is empty.
-bool search_key_box(const ExplorationState& s, const std::uint32_t space_lo[3], const std::uint32_t space_hi[3],
-                    std::uint32_t lo[3], std::uint32_t hi[3]) {
+// The key box of the search space's cells whose unknown ones are the arm's obstacles: space_lo..space_hi when the
+// search space is bounded, else clipped to the bounding box of the known cells (an unbounded search space would
+// hold infinitely many unknown cells). False when it is empty.
+bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, const std::uint32_t space_lo[3],
+                    const std::uint32_t space_hi[3], std::uint32_t lo[3], std::uint32_t hi[3]) {
+  if (bounded_search_space(o)) {
+    std::copy(space_lo, space_lo + 3, lo);
+    std::copy(space_hi, space_hi + 3, hi);
+    return true;
+  }
   if (s.tree.size() == 0) return false;
   double b[6];
   {
@@ -170,7 +176,7 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
                opt.capability_map->dof() == opt.chain->dof() && opt.capability_base.isApprox(opt.chain_base, 1e-12);
   const ExplorationState& S = state(map);
   space_key_box(S.tree, map.options(), space_lo_, space_hi_);
-  if (!opt.unknown_is_obstacle || !search_key_box(S, space_lo_, space_hi_, search_lo_, search_hi_)) {
+  if (!opt.unknown_is_obstacle || !search_key_box(S, map.options(), space_lo_, space_hi_, search_lo_, search_hi_)) {
     for (int a = 0; a < 3; ++a) search_lo_[a] = 1, search_hi_[a] = 0;  // empty
   }
   if (!opt.chain || !opt.arm_collisions) return;
@@ -202,9 +208,9 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
     ground_.emplace();
     ground_->add_box(Eigen::Vector3d(kSide, kSide, kDepth), slab);
   }
-  if (S.tree.size() == 0) return;
   // The map's occupied cells (the tree is not copied: the map outlives the search).
-  obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
+  if (S.tree.size() != 0)
+    obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
   if (opt.unknown_is_obstacle && search_lo_[0] <= search_hi_[0]) {
     std::tie(unknown_tree_, unknown_cells_) = unknown_cells_tree(S, map.resolution(), search_lo_, search_hi_);
     if (unknown_cells_) obstacles_->add_octree(unknown_tree_);
