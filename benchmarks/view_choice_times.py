@@ -30,6 +30,7 @@ import time
 
 import numpy as np
 
+import octoreach
 from octoreach import DepthCamera
 from octoreach import exploration as ex
 from octoreach.exploration import strategies
@@ -99,13 +100,18 @@ def _summary(calls: list) -> dict:
 
 def _reference(a, name: str) -> dict:
     """The figures of scene `name` with the package in a.reference (a child process, PYTHONPATH=a.reference)."""
-    env = dict(os.environ, PYTHONPATH=os.path.abspath(a.reference))
+    root = os.path.abspath(a.reference)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH", "")) if p))
     cmd = [sys.executable, os.path.abspath(__file__), "--views", str(a.views), "--instances", str(a.instances),
            "--seed", str(a.seed), "--scenes", name]
     got = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
     if got.returncode != 0:
         raise RuntimeError(f"the reference run of {name} failed:\n{got.stderr[-2000:]}")
-    return json.loads(got.stdout)["scenes"][name]
+    out = json.loads(got.stdout)
+    if not os.path.abspath(out["octoreach"]).startswith(root + os.sep):
+        raise RuntimeError(f"the reference run imported octoreach from {out['octoreach']}, not from {root} (an "
+                           "editable install's finder comes first?)")
+    return out["scenes"][name]
 
 
 def main(argv=None) -> int:
@@ -124,12 +130,13 @@ def main(argv=None) -> int:
         for inst in scene_families.family_instances(fam, a.instances):
             scenes.append((inst.name, inst.scene, scene_families.start_pose(), inst.search_space))
     if a.scenes:
-        wanted = a.scenes.split(",")
+        wanted = [w.strip() for w in a.scenes.split(",") if w.strip()]
         unknown = sorted(set(wanted) - {s[0] for s in scenes})
         if unknown:
             ap.error(f"no scene named {', '.join(unknown)}; the scenes are {', '.join(s[0] for s in scenes)}")
         scenes = [s for s in scenes if s[0] in wanted]
-    out = {"views": a.views, "cores": os.cpu_count(), "load_average": list(os.getloadavg()), "scenes": {}}
+    out = {"views": a.views, "cores": os.cpu_count(), "load_average": list(os.getloadavg()),
+           "octoreach": os.path.dirname(octoreach.__file__), "scenes": {}}
     if a.reference:
         out["reference"] = {"path": os.path.abspath(a.reference), "scenes": {}}
     every = []

@@ -319,13 +319,10 @@ def test_nbv_options_object_and_keywords_are_one_thing():
 
 
 def _unknown_cells_of_search_space(emap, region):
-    """Centres of the unknown cells of the search space within the bounding box of the known cells (the
-    cells unknown_is_obstacle turns into obstacles), found cell by cell with ExplorationMap.state."""
+    """Centres of the unknown cells of a bounded search space (every cell that shares volume with it: the cells
+    unknown_is_obstacle turns into obstacles), found cell by cell with ExplorationMap.state."""
     res = emap.resolution
-    known = np.vstack([emap.cells("free"), emap.cells("occupied")])
-    lo = np.maximum(region[0], known.min(axis=0) - res / 2)
-    hi = np.minimum(region[1], known.max(axis=0) + res / 2)
-    axes = [np.arange(np.floor(lo[i] / res) + 0.5, np.floor(hi[i] / res) + 1.0) * res for i in range(3)]
+    axes = [(np.arange(np.floor(region[0][i] / res), np.ceil(region[1][i] / res)) + 0.5) * res for i in range(3)]
     pts = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
     return pts[emap.state(pts) == 0]
 

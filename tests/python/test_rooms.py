@@ -265,7 +265,8 @@ def test_every_shape_kind_of_a_room_is_an_obstacle_and_seen(tmp_path):
     ({"shelves": [{"name": "s", "size": [1, 0.3], "boards": [0.5], "bords": [1]}]}, "unknown key 'bords'"),
     ({"surfaces": [{"name": "t", "rectangle": {"size": [1, 1], "height": 0.7}, "vertices": [[0, 0, 0]]}]},
      "exactly one of"),
-    ({"boxes": [{"name": "w", "size": [1, 1, 1]}, {"name": "w", "size": [1, 1, 1]}]}, "already used"),
+    ({"boxes": [{"name": "w", "size": [1, 1, 1]}, {"name": "w", "size": [1, 1, 1]}]},
+     r"boxes\[1\]: the name 'w' is already used by a box of this room"),
 ])
 def test_scene_errors_name_the_key(tmp_path, scene, message):
     path = tmp_path / "bad.json"
@@ -369,3 +370,13 @@ def test_a_surfaces_boxes_and_legs_keep_their_names():
     assert "bench/drawers" in names and "bench/box" in names and "surface_box" not in names
     assert [n for n in room.obstacles(without="bench").names if n.startswith("island/")] == \
         [f"island/leg_{k}" for k in range(1, 5)]
+
+
+def test_a_name_clash_in_code_names_the_entry_holding_the_name():
+    room = rooms.Room()
+    room.add_table("desk", 1.0, 0.6, 0.75)
+    with pytest.raises(ValueError, match="'desk' is already used by a surface of this room"):
+        room.add_cylinder("desk", 0.1, 0.5, (0, 0, 0.25))
+    room.add_cylinder("bin", 0.1, 0.5, (1, 1, 0.25))
+    with pytest.raises(ValueError, match="'bin' is already used by a cylinder of this room"):
+        room.add_box("bin", (1, 1, 1), (2, 2, 0.5))

@@ -399,3 +399,11 @@ def test_an_obstacle_out_of_the_arms_reach_changes_no_value(arm_setup):
     (c0, v0), (c1, v1) = sm.voxels(), far.voxels()
     assert np.array_equal(c0, c1) and np.array_equal(v0, v1)
     assert far.stats["arm_rejections"] == sm.stats["arm_rejections"]
+
+
+@pytest.mark.parametrize("resolution", [-0.1, float("nan"), float("inf")])
+def test_a_resolution_that_is_no_length_names_the_value(arm_setup, resolution):
+    robot, cap, table, _ = arm_setup
+    with pytest.raises(ValueError, match=r"resolution must be a number of metres above 0 \(0 or None: the capability "
+                                         r"map's\), got (-0\.1|nan|inf)"):
+        octoreach.SurfaceMap.build(robot, cap, table, resolution=resolution, progress=False)

@@ -167,8 +167,8 @@ struct NbvOptions {
   /// count as obstacles for the arm's collision check (with arm_collisions) and the camera must sit
   /// in observed-free space: no unknown cell of the search space within unknown_margin of it. A cell no
   /// insert has reached is unknown (before the first insert, every cell of the search space); for the arm, a
-  /// search space unbounded along some axis counts only those within the box of the cells inserts have
-  /// reached. Unknown cells outside the search space (the robot's own body, space the camera never looks at)
+  /// search space unbounded along some axis, or of more than 10^7 cells, counts only those within the box of
+  /// the cells inserts have reached. The search space's cells are those that share volume with it. Unknown cells outside the search space (the robot's own body, space the camera never looks at)
   /// are not obstacles.
   bool unknown_is_obstacle = true;
   double unknown_margin = 0.05;  ///< metres around the camera that no unknown cell may reach into

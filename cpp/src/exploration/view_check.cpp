@@ -28,29 +28,39 @@ namespace detail {
 
 namespace {
 
-// The key of coordinate x along an axis, clamped into the key range.
-std::uint32_t clamped_key(const MapTree& tree, double x) {
-  octomap::key_type k;
-  if (tree.coordToKeyChecked(x, k)) return k;
-  return x < 0 ? 0 : 0xffff;
+// The key of the cell that holds coordinate x along an axis (OctoMap's: floor(x / res) + 32768), clamped into the
+// key range; in doubles, so that a coordinate far outside the map cannot overflow an integer.
+std::uint32_t clamped_key(double x, double res) {
+  return std::uint32_t(std::clamp(std::floor(x / res) + 32768.0, 0.0, 65535.0));
 }
 
-// Key box of the search space: the cells that hold a point of it (every key along an unbounded axis).
-void space_key_box(const MapTree& tree, const ExplorationOptions& o, std::uint32_t lo[3], std::uint32_t hi[3]) {
+// Key box of the search space: the cells that share volume with it (a cell that only touches a face is out), every
+// key along an unbounded axis. Empty (lo > hi on some axis) for a space thinner than a cell between two faces.
+void space_key_box(double res, const ExplorationOptions& o, std::int64_t lo[3], std::int64_t hi[3]) {
   for (int a = 0; a < 3; ++a) {
-    lo[a] = open_below(o.search_lo[a]) ? 0 : clamped_key(tree, o.search_lo[a]);
-    hi[a] = open_above(o.search_hi[a]) ? 0xffff : clamped_key(tree, o.search_hi[a]);
+    lo[a] = open_below(o.search_lo[a]) ? 0 : clamped_key(o.search_lo[a], res);
+    hi[a] = open_above(o.search_hi[a]) ? 0xffff
+                                       : std::int64_t(std::clamp(std::ceil(o.search_hi[a] / res) - 1.0 + 32768.0,
+                                                                 -1.0, 65535.0));
   }
 }
 
-// The key box of the search space's cells whose unknown ones are the arm's obstacles: space_lo..space_hi when the
-// search space is bounded, else clipped to the bounding box of the known cells (an unbounded search space would
-// hold infinitely many unknown cells). False when it is empty.
-bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, const std::uint32_t space_lo[3],
-                    const std::uint32_t space_hi[3], std::uint32_t lo[3], std::uint32_t hi[3]) {
-  if (bounded_search_space(o)) {
-    std::copy(space_lo, space_lo + 3, lo);
-    std::copy(space_hi, space_hi + 3, hi);
+// A bounded search space's box of more cells than this is clipped to the known cells for the arm's obstacles, as an
+// unbounded one is: turning the box's unknown cells into an octree takes about 0.3 s per million cells (before the
+// first insert, when all are unknown), at every map version.
+constexpr double kArmBoxCells = 1e7;
+
+// The key box of the search space's cells whose unknown ones are the arm's obstacles: the whole box when the
+// search space is bounded (and not larger than kArmBoxCells), else clipped to the bounding box of the known cells
+// (an unbounded search space would hold infinitely many unknown cells). False when it is empty.
+bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, const std::int64_t space_lo[3],
+                    const std::int64_t space_hi[3], std::uint32_t lo[3], std::uint32_t hi[3]) {
+  for (int a = 0; a < 3; ++a)
+    if (space_lo[a] > space_hi[a]) return false;
+  double cells = 1;
+  for (int a = 0; a < 3; ++a) cells *= double(space_hi[a] - space_lo[a] + 1);
+  if (bounded_search_space(o) && cells <= kArmBoxCells) {
+    for (int a = 0; a < 3; ++a) lo[a] = std::uint32_t(space_lo[a]), hi[a] = std::uint32_t(space_hi[a]);
     return true;
   }
   if (s.tree.size() == 0) return false;
@@ -65,9 +75,11 @@ bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, cons
     std::copy(s.tree_bounds, s.tree_bounds + 6, b);
   }
   for (int a = 0; a < 3; ++a) {
-    lo[a] = std::max<std::uint32_t>(space_lo[a], s.tree.coordToKey(b[a]));
-    hi[a] = std::min<std::uint32_t>(space_hi[a], s.tree.coordToKey(b[a + 3]));
-    if (lo[a] > hi[a]) return false;
+    const std::int64_t l = std::max<std::int64_t>(space_lo[a], s.tree.coordToKey(b[a]));
+    const std::int64_t h = std::min<std::int64_t>(space_hi[a], s.tree.coordToKey(b[a + 3]));
+    if (l > h) return false;
+    lo[a] = std::uint32_t(l);
+    hi[a] = std::uint32_t(h);
   }
   return true;
 }
@@ -175,7 +187,7 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
                opt.capability_map->tip_link() == opt.chain->tip_link() &&
                opt.capability_map->dof() == opt.chain->dof() && opt.capability_base.isApprox(opt.chain_base, 1e-12);
   const ExplorationState& S = state(map);
-  space_key_box(S.tree, map.options(), space_lo_, space_hi_);
+  space_key_box(map.resolution(), map.options(), space_lo_, space_hi_);
   if (!opt.unknown_is_obstacle || !search_key_box(S, map.options(), space_lo_, space_hi_, search_lo_, search_hi_)) {
     for (int a = 0; a < 3; ++a) search_lo_[a] = 1, search_hi_[a] = 0;  // empty
   }
@@ -221,14 +233,15 @@ ViewChecker::~ViewChecker() = default;
 
 namespace {
 
-bool in_box(CellKey k, const std::uint32_t lo[3], const std::uint32_t hi[3]) {
-  return key_x(k) >= lo[0] && key_x(k) <= hi[0] && key_y(k) >= lo[1] && key_y(k) <= hi[1] && key_z(k) >= lo[2] &&
-         key_z(k) <= hi[2];
+template <class T>
+bool in_box(CellKey k, const T lo[3], const T hi[3]) {
+  const T x = T(key_x(k)), y = T(key_y(k)), z = T(key_z(k));
+  return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
 }
 
 }  // namespace
 
-bool ViewChecker::in_search_space(CellKey k) const { return in_box(k, search_lo_, search_hi_); }
+bool ViewChecker::in_arm_box(CellKey k) const { return in_box(k, search_lo_, search_hi_); }
 
 bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
   const double res = map_.resolution();
@@ -337,14 +350,14 @@ bool ViewChecker::cells_near(const Shape& shape, const Pose& world) const {
   constexpr double kMargin = 1e-4;
   constexpr std::uint64_t kMaxCells = 8192;  // a larger box: FCL's own traversal decides
   const fcl::AABBd box = world_aabb(*shape.geometry, world);
-  const MapTree& tree = state(map_).tree;
+  const double res = map_.resolution();
   std::uint32_t lo[3], hi[3];
   std::uint64_t cells = 1;
   for (int a = 0; a < 3; ++a) {
     const double l = box.min_[a] - kMargin, h = box.max_[a] + kMargin;
     if (!(l <= h)) return true;  // not a box (NaN): FCL's own check decides
-    lo[a] = clamped_key(tree, l);  // (no cell lies beyond the key range)
-    hi[a] = clamped_key(tree, h);
+    lo[a] = clamped_key(l, res);  // (no cell lies beyond the key range)
+    hi[a] = clamped_key(h, res);
     cells *= hi[a] - lo[a] + 1;
   }
   if (cells > kMaxCells) return true;
@@ -355,7 +368,7 @@ bool ViewChecker::cells_near(const Shape& shape, const Pose& world) const {
         const CellKey k = pack_key(x, y, z);
         const std::uint8_t s = g.get(k) & kStateMask;
         if (s == std::uint8_t(CellState::Occupied)) return true;
-        if (s == std::uint8_t(CellState::Unknown) && unknown_cells_ && in_search_space(k)) return true;
+        if (s == std::uint8_t(CellState::Unknown) && unknown_cells_ && in_arm_box(k)) return true;
       }
   return false;
 }

@@ -32,7 +32,9 @@ def main(argv=None) -> int:
     try:
         with warnings.catch_warnings():
             warnings.showwarning = _one_line
-            return args.func(args)
+            code = args.func(args)
+            sys.stdout.flush()  # here, not at the interpreter's exit: a reader that has gone shows in this try
+            return code
     except BrokenPipeError as e:
         if _stdout_closed():  # the reader of the output went away (`octoreach ... | head`): not an error of ours
             return 0

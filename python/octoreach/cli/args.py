@@ -53,7 +53,7 @@ def metres(text: str) -> float:
     except ValueError:
         raise argparse.ArgumentTypeError(f"not a number of metres: {text!r}") from None
     if not (np.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"must be a number of metres above 0, got {text!r}")
+        raise argparse.ArgumentTypeError(f"must be a finite number of metres above 0, got {text!r}")
     return value
 
 

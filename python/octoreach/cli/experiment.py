@@ -1,7 +1,7 @@
 """`octoreach experiment`: the papers' experiments (tidy-up with surface maps, exploration with frontier voids)."""
 from __future__ import annotations
 
-from .args import load_robot, robot_args
+from .args import load_robot, metres, robot_args
 
 
 def _cmd_experiment(args) -> int:
@@ -47,7 +47,7 @@ def add_commands(sub):
     sp.add_argument("--objects", type=int, nargs="+", default=[1, 2, 3, 4], help="tidy-up: Table I object counts (default 1 2 3 4)")
     sp.add_argument("--scenes", nargs="+", help="tidy-up: scenes of the scene table (default all: paper chairs corners "
                     "shelf l_table narrow)")
-    sp.add_argument("--resolution", type=float, default=0.1, help="tidy-up: map resolution in m (default 0.1)")
+    sp.add_argument("--resolution", type=metres, default=0.1, help="tidy-up: map resolution in m (default 0.1)")
     sp.add_argument("--directions", type=int, help="tidy-up: capability-map directions (default 100, the experiment's)")
     sp.add_argument("--budget", type=int, default=8, help="tidy-up: sampled poses per surface and task (default 8)")
     robot_args(sp)  # tidy-up: any robot with an arm and a camera (default: the paper's PR2)
