@@ -206,9 +206,9 @@ class Room:
     # ------------------------------------------------------------------ entries
     def _claim(self, name: str, where: str, kind: str | None = None) -> None:
         if name in self._owner:
-            kind = self._owner[name]
-            article = "an" if kind[0] in "aeiou" else "a"
-            raise ValueError(f"{where}: the name {name!r} is already used by {article} {kind} of this room "
+            owner = self._owner[name]
+            article = "an" if owner[0] in "aeiou" else "a"
+            raise ValueError(f"{where}: the name {name!r} is already used by {article} {owner} of this room "
                              "(every surface, shelf and obstacle needs a name of its own)")
         key = where.split("[")[0]
         self._owner[name] = kind or _KINDS.get(key, key)

@@ -111,10 +111,13 @@ inline bool bounded_search_space(const ExplorationOptions& o) {
   return true;
 }
 
-// The key box of a map's search space, the cells whose centre lies in it as the hull counts them (every key along
-// an unbounded axis): the cells a view's unknown figures and InsertStats::space_known count.
+// A box of cell keys, lo..hi on each axis (every key by default; empty when lo > hi on some axis). space_keys gives
+// a map's search space as the hull counts it, the cells whose centre lies in it (every key along an unbounded
+// axis): the cells a view's unknown figures and InsertStats::space_known count.
 struct SpaceKeys {
   std::uint32_t lo[3] = {0, 0, 0}, hi[3] = {0xffff, 0xffff, 0xffff};
+  static SpaceKeys none() { return SpaceKeys{{1, 1, 1}, {0, 0, 0}}; }
+  bool empty() const { return lo[0] > hi[0] || lo[1] > hi[1] || lo[2] > hi[2]; }
   bool contains(CellKey k) const { return contains(int(key_x(k)), int(key_y(k)), int(key_z(k))); }
   bool contains(int x, int y, int z) const {
     return x >= int(lo[0]) && x <= int(hi[0]) && y >= int(lo[1]) && y <= int(hi[1]) && z >= int(lo[2]) &&

@@ -35,14 +35,17 @@ std::uint32_t clamped_key(double x, double res) {
 }
 
 // Key box of the search space: the cells that share volume with it (a cell that only touches a face is out), every
-// key along an unbounded axis. Empty (lo > hi on some axis) for a space thinner than a cell between two faces.
-void space_key_box(double res, const ExplorationOptions& o, std::int64_t lo[3], std::int64_t hi[3]) {
+// key along an unbounded axis. Empty for a space thinner than a cell between two faces.
+SpaceKeys space_cells(double res, const ExplorationOptions& o) {
+  SpaceKeys box;
   for (int a = 0; a < 3; ++a) {
-    lo[a] = open_below(o.search_lo[a]) ? 0 : clamped_key(o.search_lo[a], res);
-    hi[a] = open_above(o.search_hi[a]) ? 0xffff
-                                       : std::int64_t(std::clamp(std::ceil(o.search_hi[a] / res) - 1.0 + 32768.0,
-                                                                 -1.0, 65535.0));
+    if (!open_below(o.search_lo[a])) box.lo[a] = clamped_key(o.search_lo[a], res);
+    if (open_above(o.search_hi[a])) continue;
+    const double top = std::ceil(o.search_hi[a] / res) - 1.0 + 32768.0;  // (below the key range: no cell)
+    if (top < 0) return SpaceKeys::none();
+    box.hi[a] = std::uint32_t(std::min(top, 65535.0));
   }
+  return box;
 }
 
 // A bounded search space's box of more cells than this is clipped to the known cells for the arm's obstacles, as an
@@ -50,20 +53,15 @@ void space_key_box(double res, const ExplorationOptions& o, std::int64_t lo[3], 
 // first insert, when all are unknown), at every map version.
 constexpr double kArmBoxCells = 1e7;
 
-// The key box of the search space's cells whose unknown ones are the arm's obstacles: the whole box when the
-// search space is bounded (and not larger than kArmBoxCells), else clipped to the bounding box of the known cells
-// (an unbounded search space would hold infinitely many unknown cells). False when it is empty.
-bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, const std::int64_t space_lo[3],
-                    const std::int64_t space_hi[3], std::uint32_t lo[3], std::uint32_t hi[3]) {
-  for (int a = 0; a < 3; ++a)
-    if (space_lo[a] > space_hi[a]) return false;
+// The key box of the search space's cells whose unknown ones are the arm's obstacles: the whole of `space` (the
+// search space's cells) when the search space is bounded and not larger than kArmBoxCells, else `space` clipped to
+// the bounding box of the known cells (an unbounded search space would hold infinitely many unknown cells).
+SpaceKeys arm_cells(const ExplorationState& s, const ExplorationOptions& o, const SpaceKeys& space) {
+  if (space.empty()) return space;
   double cells = 1;
-  for (int a = 0; a < 3; ++a) cells *= double(space_hi[a] - space_lo[a] + 1);
-  if (bounded_search_space(o) && cells <= kArmBoxCells) {
-    for (int a = 0; a < 3; ++a) lo[a] = std::uint32_t(space_lo[a]), hi[a] = std::uint32_t(space_hi[a]);
-    return true;
-  }
-  if (s.tree.size() == 0) return false;
+  for (int a = 0; a < 3; ++a) cells *= double(space.hi[a]) - double(space.lo[a]) + 1.0;
+  if (bounded_search_space(o) && cells <= kArmBoxCells) return space;
+  if (s.tree.size() == 0) return SpaceKeys::none();
   double b[6];
   {
     std::lock_guard<std::mutex> lock(s.cache_mutex);
@@ -74,14 +72,12 @@ bool search_key_box(const ExplorationState& s, const ExplorationOptions& o, cons
     }
     std::copy(s.tree_bounds, s.tree_bounds + 6, b);
   }
+  SpaceKeys box;
   for (int a = 0; a < 3; ++a) {
-    const std::int64_t l = std::max<std::int64_t>(space_lo[a], s.tree.coordToKey(b[a]));
-    const std::int64_t h = std::min<std::int64_t>(space_hi[a], s.tree.coordToKey(b[a + 3]));
-    if (l > h) return false;
-    lo[a] = std::uint32_t(l);
-    hi[a] = std::uint32_t(h);
+    box.lo[a] = std::max<std::uint32_t>(space.lo[a], s.tree.coordToKey(b[a]));
+    box.hi[a] = std::min<std::uint32_t>(space.hi[a], s.tree.coordToKey(b[a + 3]));
   }
-  return true;
+  return box;
 }
 
 // The unknown cells of the key box lo..hi as an octree, and their count: made once per map version (every
@@ -187,10 +183,8 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
                opt.capability_map->tip_link() == opt.chain->tip_link() &&
                opt.capability_map->dof() == opt.chain->dof() && opt.capability_base.isApprox(opt.chain_base, 1e-12);
   const ExplorationState& S = state(map);
-  space_key_box(map.resolution(), map.options(), space_lo_, space_hi_);
-  if (!opt.unknown_is_obstacle || !search_key_box(S, map.options(), space_lo_, space_hi_, search_lo_, search_hi_)) {
-    for (int a = 0; a < 3; ++a) search_lo_[a] = 1, search_hi_[a] = 0;  // empty
-  }
+  space_ = space_cells(map.resolution(), map.options());
+  arm_box_ = opt.unknown_is_obstacle ? arm_cells(S, map.options(), space_) : SpaceKeys::none();
   if (!opt.chain || !opt.arm_collisions) return;
   const Robot& robot = opt.chain->robot();
   obstacles_.emplace();  // with no cell known yet, the arm is still checked against itself
@@ -223,25 +217,13 @@ ViewChecker::ViewChecker(const ExplorationMap& map, const NbvOptions& opt) : map
   // The map's occupied cells (the tree is not copied: the map outlives the search).
   if (S.tree.size() != 0)
     obstacles_->add_octree(std::shared_ptr<const octomap::OcTree>(&map.octree(), [](const octomap::OcTree*) {}));
-  if (opt.unknown_is_obstacle && search_lo_[0] <= search_hi_[0]) {
-    std::tie(unknown_tree_, unknown_cells_) = unknown_cells_tree(S, map.resolution(), search_lo_, search_hi_);
+  if (!arm_box_.empty()) {
+    std::tie(unknown_tree_, unknown_cells_) = unknown_cells_tree(S, map.resolution(), arm_box_.lo, arm_box_.hi);
     if (unknown_cells_) obstacles_->add_octree(unknown_tree_);
   }
 }
 
 ViewChecker::~ViewChecker() = default;
-
-namespace {
-
-template <class T>
-bool in_box(CellKey k, const T lo[3], const T hi[3]) {
-  const T x = T(key_x(k)), y = T(key_y(k)), z = T(key_z(k));
-  return x >= lo[0] && x <= hi[0] && y >= lo[1] && y <= hi[1] && z >= lo[2] && z <= hi[2];
-}
-
-}  // namespace
-
-bool ViewChecker::in_arm_box(CellKey k) const { return in_box(k, search_lo_, search_hi_); }
 
 bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
   const double res = map_.resolution();
@@ -254,7 +236,7 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
   GridReader g(state(map_).grid);
   const std::uint8_t own = g.get(c) & kStateMask;
   if (own == std::uint8_t(CellState::Occupied)) return false;
-  if (own == std::uint8_t(CellState::Unknown) && opt_.unknown_is_obstacle && in_box(c, space_lo_, space_hi_)) return false;
+  if (own == std::uint8_t(CellState::Unknown) && opt_.unknown_is_obstacle && space_.contains(c)) return false;
   // A cell is within a margin of the camera when any point of it is: the map knows only that a surface (or unseen
   // space) lies somewhere in the cell, so this is the rule that keeps the margin to every surface the cells allow,
   // at any cell size. The whole cube of cells around the camera's cell would keep it up to sqrt(3) times the margin
@@ -275,7 +257,7 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
         if (!neighbour(c, dx, dy, dz, nb)) continue;
         const std::uint8_t s = g.get(nb) & kStateMask;
         if (s == std::uint8_t(CellState::Occupied) && d2 < occ2) return false;
-        if (s == std::uint8_t(CellState::Unknown) && d2 < unk2 && in_box(nb, space_lo_, space_hi_)) return false;
+        if (s == std::uint8_t(CellState::Unknown) && d2 < unk2 && space_.contains(nb)) return false;
       }
   return true;
 }
@@ -368,7 +350,7 @@ bool ViewChecker::cells_near(const Shape& shape, const Pose& world) const {
         const CellKey k = pack_key(x, y, z);
         const std::uint8_t s = g.get(k) & kStateMask;
         if (s == std::uint8_t(CellState::Occupied)) return true;
-        if (s == std::uint8_t(CellState::Unknown) && unknown_cells_ && in_arm_box(k)) return true;
+        if (s == std::uint8_t(CellState::Unknown) && unknown_cells_ && arm_box_.contains(k)) return true;
       }
   return false;
 }

@@ -9,6 +9,7 @@
 #include "octoreach/capability_map.hpp"
 #include "octoreach/collision.hpp"
 #include "octoreach/next_best_view.hpp"
+#include "exploration/exploration_state.hpp"
 #include "exploration/void_enclosure.hpp"
 
 namespace octomap {
@@ -147,7 +148,6 @@ class ViewChecker {
   std::size_t unknown_obstacle_cells() const { return unknown_cells_; }
 
  private:
-  bool in_arm_box(CellKey k) const;
   // False when no cell the arm's map obstacles hold (an occupied cell; with unknown_is_obstacle, an unknown cell of
   // the search space) lies in the world box of `shape` at `world`: then those obstacles cannot touch it.
   bool cells_near(const Shape& shape, const Pose& world) const;
@@ -166,12 +166,12 @@ class ViewChecker {
   std::shared_ptr<octomap::OcTree> unknown_tree_;
   std::size_t unknown_cells_ = 0;
   Eigen::VectorXd reference_;
-  // The key box whose unknown cells are the arm's obstacles (view_check.cpp, search_key_box): the search space's, or
-  // for an unbounded (or very large) one, clipped to the known cells.
-  std::uint32_t search_lo_[3], search_hi_[3];
   // The key box of the whole search space: the camera's margin counts every unknown cell of it, those beyond the
   // known cells too (before the first insert every cell is one).
-  std::int64_t space_lo_[3], space_hi_[3];
+  SpaceKeys space_;
+  // The key box whose unknown cells are the arm's obstacles (view_check.cpp, arm_cells): space_, or for an unbounded
+  // (or very large) search space, space_ clipped to the known cells; empty without unknown_is_obstacle.
+  SpaceKeys arm_box_ = SpaceKeys::none();
 };
 
 }  // namespace octoreach::detail
