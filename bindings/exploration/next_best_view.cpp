@@ -111,8 +111,9 @@ void wrap_search(py::module_& m) {
         "taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,\n"
         "+z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.\n"
         "capability_map (a CapabilityMap of that arm) with capability_base (4x4 map base link -> map) prunes\n"
-        "candidate cells whose voxel has reachability index <= min_reachability before any IK, and with\n"
-        "capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.\n"
+        "candidate cells where each of the 8 voxels around them has reachability index <= min_reachability before\n"
+        "any IK, and with capability_orientations skips IK for sampled poses whose optical axis none of the 8 cells\n"
+        "around them reaches (CapabilityLookup.any: the map says no only where it is sure).\n"
         "arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.");
 }
 

@@ -50,9 +50,10 @@ CapabilityLookup lookup_arg(const py::object& lookup) {
     const std::string name = lookup.cast<std::string>();
     if (name == "vote") return CapabilityLookup::vote;
     if (name == "nearest_cell") return CapabilityLookup::nearest_cell;
-    throw std::invalid_argument("lookup must be 'vote' or 'nearest_cell', got '" + name + "'");
+    if (name == "any") return CapabilityLookup::any;
+    throw std::invalid_argument("lookup must be 'vote', 'nearest_cell' or 'any', got '" + name + "'");
   }
-  throw py::type_error("lookup must be a CapabilityLookup, 'vote', 'nearest_cell' or None, got " +
+  throw py::type_error("lookup must be a CapabilityLookup, 'vote', 'nearest_cell', 'any' or None, got " +
                        std::string(py::str(py::type::of(lookup).attr("__name__"))));
 }
 
@@ -60,9 +61,11 @@ void wrap_lookup(py::module_& m) {
   py::enum_<CapabilityLookup>(m, "CapabilityLookup",
       "How CapabilityMap.reachable answers a pose from the cells. nearest_cell: the voxel holding the position.\n"
       "vote: the 8 voxel centres around the position weighted trilinearly; reachable when the reachable ones\n"
-      "weigh at least one half (equal to nearest_cell at voxel centres).")
+      "weigh at least one half (equal to nearest_cell at voxel centres). any: reachable when any of those 8\n"
+      "is; no only where every cell around the pose says no (for pruning ahead of IK).")
       .value("nearest_cell", CapabilityLookup::nearest_cell)
-      .value("vote", CapabilityLookup::vote);
+      .value("vote", CapabilityLookup::vote)
+      .value("any", CapabilityLookup::any);
 }
 
 void wrap_queries(py::class_<CapabilityMap>& cls) {

@@ -788,8 +788,10 @@ class CapabilityLookup:
     """
     How CapabilityMap.reachable answers a pose from the cells. nearest_cell: the voxel holding the position.
     vote: the 8 voxel centres around the position weighted trilinearly; reachable when the reachable ones
-    weigh at least one half (equal to nearest_cell at voxel centres).
+    weigh at least one half (equal to nearest_cell at voxel centres). any: reachable when any of those 8
+    is; no only where every cell around the pose says no (for pruning ahead of IK).
     """
+    any: typing.ClassVar[CapabilityLookup]
     nearest_cell: typing.ClassVar[CapabilityLookup]
     vote: typing.ClassVar[CapabilityLookup]
     @property
@@ -2788,8 +2790,9 @@ def next_best_view(map: ExplorationMap, camera: typing.Any, options: typing.Any 
     taking cell centres (N, 3) and returning (N,) bools. With chain (its tip is the camera frame,
     +z forward) and chain_base (4x4 chain base -> map), a pose counts only if IK reaches it.
     capability_map (a CapabilityMap of that arm) with capability_base (4x4 map base link -> map) prunes
-    candidate cells whose voxel has reachability index <= min_reachability before any IK, and with
-    capability_orientations skips IK for sampled poses whose (voxel, optical axis) cell it marks unreachable.
+    candidate cells where each of the 8 voxels around them has reachability index <= min_reachability before
+    any IK, and with capability_orientations skips IK for sampled poses whose optical axis none of the 8 cells
+    around them reaches (CapabilityLookup.any: the map says no only where it is sure).
     arm_collisions (with chain): IK solutions whose links touch an occupied cell are rejected.
     """
 def ranks_before(a: ViewCandidate, b: ViewCandidate, by: str = 'expected_gain') -> bool:

@@ -188,7 +188,7 @@ TEST(CapabilityMap, PlainLookupsReadTheRecords) {
   std::vector<double> rows(16 * n);
   std::vector<Pose> poses(n);
   std::vector<int> dir(n);
-  std::vector<char> stored(n), vote(n), tie(n);
+  std::vector<char> stored(n), vote(n), tie(n), any(n);
   for (int i = 0; i < n; ++i) {
     Eigen::Vector3d p;
     for (int a = 0; a < 3; ++a) p[a] = lo[a] - 2 * r + u(rng) * (hi[a] - lo[a] + 4 * r);
@@ -204,35 +204,63 @@ TEST(CapabilityMap, PlainLookupsReadTheRecords) {
     std::uint32_t recs[8];
     double w[8], yes = 0;
     m.corners(p, recs, w);
-    for (int k = 0; k < 8; ++k) yes += recs[k] != DenseIndex::kNone && m.record_has(recs[k], o) ? w[k] : 0.0;
+    for (int k = 0; k < 8; ++k) {
+      const bool has = recs[k] != DenseIndex::kNone && m.record_has(recs[k], o);
+      yes += has ? w[k] : 0.0;
+      any[i] |= has;  // any: one of the 8 records (with weight 0 too: a pose on a voxel face)
+    }
     vote[i] = yes >= 0.5;
     tie[i] = std::abs(yes - 0.5) <= 1e-9;
     Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(rows.data() + 16 * i) = T.matrix();
   }
   EXPECT_GT(std::count(vote.begin(), vote.end(), 1), n / 50);  // the poses test both answers
   EXPECT_GT(std::count(vote.begin(), vote.end(), 0), n / 50);
+  int any_not_vote = 0;  // any says yes wherever the vote does, and where some cell around disagrees with it
+  for (int i = 0; i < n; ++i) {
+    if (vote[i] && !tie[i]) EXPECT_TRUE(any[i]) << i;
+    any_not_vote += any[i] && !vote[i];
+  }
+  EXPECT_GT(any_not_vote, n / 100);
   std::unique_ptr<bool[]> out(new bool[n]);
   ASSERT_TRUE(CapabilityMapTestAccess::has_grid(m));
   std::vector<char> grid_vote;  // the grid's votes, which the records' must equal, ties included
   for (const char* path : {"grid", "records"}) {
     SCOPED_TRACE(path);
-    std::vector<char> by_pose_vote(n), by_pose_nearest(n);
+    std::vector<char> by_pose_vote(n), by_pose_nearest(n), by_pose_any(n);
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d p = poses[i].translation();
       EXPECT_EQ(m.reachable(p, dir[i], CapabilityLookup::nearest_cell), bool(stored[i])) << p.transpose();
       if (!tie[i]) EXPECT_EQ(m.reachable(p, dir[i], CapabilityLookup::vote), bool(vote[i])) << p.transpose();
       by_pose_vote[i] = m.reachable(poses[i], CapabilityLookup::vote);
       by_pose_nearest[i] = m.reachable(poses[i], CapabilityLookup::nearest_cell);
+      by_pose_any[i] = m.reachable(poses[i], CapabilityLookup::any);
+      EXPECT_EQ(m.reachable(p, dir[i], CapabilityLookup::any), bool(any[i])) << p.transpose();
+      EXPECT_EQ(bool(by_pose_any[i]), bool(any[i])) << i;
       EXPECT_EQ(bool(by_pose_nearest[i]), bool(stored[i])) << i;
       if (!tie[i]) EXPECT_EQ(bool(by_pose_vote[i]), bool(vote[i])) << i;
     }
     for (auto [lookup, expected] : {std::make_pair(CapabilityLookup::vote, &by_pose_vote),
-                                    std::make_pair(CapabilityLookup::nearest_cell, &by_pose_nearest)}) {
+                                    std::make_pair(CapabilityLookup::nearest_cell, &by_pose_nearest),
+                                    std::make_pair(CapabilityLookup::any, &by_pose_any)}) {
       m.reachable(rows.data(), n, out.get(), lookup);  // batched answers equal single ones
       for (int i = 0; i < n; ++i) EXPECT_EQ(out[i], bool((*expected)[i])) << i;
     }
     if (grid_vote.empty()) grid_vote = by_pose_vote;
     EXPECT_TRUE(grid_vote == by_pose_vote);
+    // positions far outside the map, and outside the octree's keys: no from every lookup, one pose or a batch
+    std::vector<double> far(rows.begin(), rows.begin() + 16 * 4);
+    const double edge = 32768.0 * r;
+    const double places[4][3] = {{1e6, 0, 0}, {edge, 0, 0}, {-edge - r, 0, 0}, {0, 0, edge - 0.5 * r}};
+    for (int i = 0; i < 4; ++i)
+      for (int a = 0; a < 3; ++a) far[16 * i + 4 * a + 3] = places[i][a];
+    for (CapabilityLookup lookup : {CapabilityLookup::vote, CapabilityLookup::nearest_cell, CapabilityLookup::any}) {
+      m.reachable(far.data(), 4, out.get(), lookup);
+      for (int i = 0; i < 4; ++i) {
+        EXPECT_FALSE(out[i]) << i;
+        EXPECT_FALSE(m.reachable(Pose(Eigen::Map<Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(far.data() + 16 * i)
+                                          .eval()), lookup)) << i;
+      }
+    }
     std::vector<double> bad = rows;
     bad[16 * 1234 + 5] = std::nan("");
     bad[16 * 3000 + 2] = std::nan("");  // a later group too: the first bad row is named

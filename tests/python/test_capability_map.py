@@ -288,6 +288,29 @@ def test_default_lookup_is_the_vote(cmap):
         cmap.reachable(poses[:2], lookup=3)
 
 
+def test_the_any_lookup_says_no_only_where_every_cell_around_does(cmap):
+    """lookup="any": yes when one of the 8 voxel centres around the position holds the pose's cell (brute force
+    as numpy_vote), so it says yes wherever the vote does; a no is certain for the map."""
+    rng = np.random.default_rng(6)
+    lo, hi = cmap.bounds
+    poses = random_poses(lo - cmap.resolution, hi + cmap.resolution, 20000, rng)
+    r = cmap.resolution
+    i0 = np.floor(poses[:, :3, 3] / r - 0.5)
+    expected = np.zeros(len(poses), bool)
+    q = poses.copy()
+    for d in np.ndindex(2, 2, 2):
+        q[:, :3, 3] = (i0 + np.asarray(d) + 0.5) * r
+        expected |= cmap.reachable(q, lookup="nearest_cell")
+    got = cmap.reachable(poses, lookup="any")
+    np.testing.assert_array_equal(got, expected)
+    np.testing.assert_array_equal(cmap.reachable(poses, lookup=octoreach.CapabilityLookup.any), got)
+    weight, vote = numpy_vote(cmap, poses)
+    assert not (vote & ~got).any()
+    assert (got & ~vote).mean() > 0.01  # where the cells around disagree
+    for i in range(200):
+        assert cmap.reachable(poses[i:i + 1], lookup="any")[0] == got[i]
+
+
 def test_vote_agrees_with_ik_at_least_as_well_as_the_nearest_cell(chain):
     """Coarse map (0.1 m, 24 directions) against IK at the exact pose: the vote is at least as right."""
     m = build(chain, resolution=0.1, directions=24)

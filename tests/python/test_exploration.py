@@ -190,16 +190,19 @@ def test_capability_map_prunes_view_cells_and_ik_stays_the_final_check():
     assert pruned.candidate_cells + pruned.capability_pruned == plain.candidate_cells
     assert pruned.best_pose is not None
     inv = np.linalg.inv(base)
+    r = cmap.resolution
     for v in pruned.ranked:
         p_arm = (inv @ v.pose)[:3, 3]
-        assert cmap.reachability(p_arm[None, :])[0] > 0
+        # a cell is pruned only where none of the 8 voxels around it reaches any orientation
+        around = (np.floor(p_arm / r - 0.5) + np.array(list(np.ndindex(2, 2, 2))) + 0.5) * r
+        assert (cmap.reachability(around) > 0).any()
         assert v.q is not None and len(v.q) == chain.dof  # IK still settled the pose
-    # with the orientation check, poses whose (voxel, optical axis) cell is unreachable skip IK;
-    # every pose kept still has its IK solution and lies in a reachable (voxel, direction) cell
+    # with the orientation check, poses whose optical axis no cell around them reaches (lookup "any") skip IK;
+    # every pose kept still has its IK solution
     fast = next_best_view(emap, cam, capability_map=cmap, capability_base=base, **kw)
     assert fast.capability_rejected > 0 and fast.best_pose is not None
     for v in fast.ranked:
-        assert v.q is not None and cmap.reachable((inv @ v.pose)[None])[0]
+        assert v.q is not None and cmap.reachable((inv @ v.pose)[None], lookup="any")[0]
     # an arm standing 10 m away reaches none of the cells
     far = base.copy()
     far[:3, 3] += (10.0, 0.0, 0.0)
@@ -207,6 +210,39 @@ def test_capability_map_prunes_view_cells_and_ik_stays_the_final_check():
     assert none.candidate_cells == 0 and none.best_pose is None
     with pytest.raises(ValueError):
         next_best_view(emap, cam, capability_map=cmap, min_reachability=1.5)
+
+
+def test_the_capability_map_rejects_a_view_only_where_every_cell_around_it_does():
+    """A coarse map's vote drops poses between its cells that IK reaches: the view checks ask the map's "any"
+    lookup, so a pose with a reachable cell around it goes on to IK and only one with none is not_reachable."""
+    from octoreach import CapabilityMap
+
+    robot, chain = ex.explorer_robot()
+    base = robot.link_poses(robot.home())[chain.base_link]
+    cmap = CapabilityMap.build(chain, resolution=0.15, directions=20, approach_axis=(0.0, 0.0, 1.0), progress=False)
+    rng = np.random.default_rng(4)
+    lo, hi = cmap.bounds
+    arm = np.array([ex.look_at(e, e + d) for e, d in zip(rng.uniform(lo, hi, (3000, 3)), rng.normal(size=(3000, 3)))])
+    vote, anyc = cmap.reachable(arm), cmap.reachable(arm, lookup="any")
+    own_voxel_empty = cmap.reachability(arm[:, :3, 3]) == 0
+    between = np.flatnonzero(anyc & ~vote)[:40]
+    beside = np.flatnonzero(anyc & own_voxel_empty)[:20]  # the voxel holding the camera reaches nothing
+    outside = np.flatnonzero(~anyc)[:40]
+    assert len(between) == 40 and len(beside) == 20 and len(outside) == 40
+    emap = ExplorationMap(resolution=0.05)
+    cam = DepthCamera(40, 30, FOV, 3.0)
+    kw = dict(capability_map=cmap, capability_base=base, chain=chain, chain_base=base, unknown_is_obstacle=False,
+              arm_collisions=False)
+    world = base @ arm
+    got = np.array(score_views(emap, cam, world[between], **kw).status)
+    assert set(got) <= {"valid", "no_ik"}
+    # the descents from the solutions of the cells around the poses reach every one that IK with 40 random
+    # restarts reaches (free of self-collision: the view check here checks no collision at all)
+    _, truth = chain.ik_batch(arm[between], mode="approach", approach_axis=(0.0, 0.0, 1.0), attempts=40,
+                              position_tolerance=1e-3, orientation_tolerance=1e-2, self_collision=True, rng_seed=1)
+    assert truth.sum() >= 4 and (got[truth] == "valid").all()
+    assert set(score_views(emap, cam, world[beside], **kw).status) <= {"valid", "no_ik"}
+    assert set(score_views(emap, cam, world[outside], **kw).status) == {"not_reachable"}
 
 
 def test_views_whose_arm_touches_occupied_cells_are_rejected():

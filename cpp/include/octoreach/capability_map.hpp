@@ -53,7 +53,10 @@ struct CapabilityMapOptions {
 /// that cell's answer, and between centres the boundary follows the cells' boundary instead of the
 /// voxel faces' staircase (on the PR2 arm at 0.05 m it agrees with IK at the exact pose more often
 /// than even IK at the nearest cell, the ceiling of any nearest-cell rule: benchmarks/capability_map.py).
-enum class CapabilityLookup { nearest_cell, vote };
+/// any: reachable when any of those 8 cells is. The map's "maybe": it says no only where every cell
+/// around the pose does, so a pruning step ahead of an exact check (IK) keeps the poses where the cells
+/// disagree, which a coarse map's vote would drop (the exploration's view search prunes with it).
+enum class CapabilityLookup { nearest_cell, vote, any };
 
 /// The lookup of CapabilityMap::reachable() when none is given (defined here only).
 inline constexpr CapabilityLookup kDefaultCapabilityLookup = CapabilityLookup::vote;
@@ -160,6 +163,8 @@ class CapabilityMap {
   std::int64_t record_at(const Eigen::Vector3d& p, Eigen::Vector3d* centre = nullptr) const;
   /// \brief True when orientation o is reachable in voxel record `rec`.
   bool record_has(std::uint32_t rec, int o) const { return bit(rec, o); }
+  /// \brief Reachability index D of voxel record `rec` (0 for DenseIndex::kNone).
+  double record_reachability(std::uint32_t rec) const { return rec == DenseIndex::kNone ? 0.0 : d_[rec]; }
   /// \brief The stored solution (dof floats) of (record, orientation), or nullptr.
   const float* record_solution(std::uint32_t rec, int o) const;
   /// \brief True when cell (record, orientation) is mixed (its centre is not reachable, a pose in it is).
@@ -241,6 +246,10 @@ class CapabilityMap {
   bool vote_corners_(const octomap::OcTreeKey& low, const double frac[3], int o) const;
   /// CapabilityLookup::nearest_cell of orientation o at p (o in range).
   bool nearest_cell_(const Eigen::Vector3d& p, int o) const;
+  /// CapabilityLookup::any from the lower corner's key (corner_grid's answer).
+  bool any_corner_(const octomap::OcTreeKey& low, int o) const;
+  /// The lookup of orientation o at p (o in range).
+  bool lookup_(const Eigen::Vector3d& p, int o, CapabilityLookup lookup) const;
   void finish_();  // builds the query tables once the tree and records are complete
   void build_grid_();
   /// The plain lookups' grid: the bit index of orientation o at grid position (x, y, z), each inside grid_dim_.
@@ -285,6 +294,13 @@ class CapabilityMap {
   // records answer) when it would take more than kGridBytes.
   std::vector<std::uint64_t> grid_;
   int grid_lo_[3] = {0, 0, 0}, grid_dim_[3] = {0, 0, 0};
+  // One bit per voxel of grid_'s box (grid_index_ of orientation 0): the voxel holds a reachable orientation. A
+  // batch skips the orientation of a pose whose voxels (its own, or the 8 around it) hold none.
+  std::vector<std::uint64_t> grid_any_;
+  bool grid_any_bit_(int x, int y, int z) const {
+    const std::size_t i = grid_index_(0, x, y, z);
+    return (grid_any_[i >> 6] >> (i & 63)) & 1ULL;
+  }
   MapProvenance provenance_;
   std::string base_link_, tip_link_;
   int dof_ = 0;

@@ -9,8 +9,8 @@
 ///    safe-view rule either), up to the sensor range and the workspace's edge (stopping at any other
 ///    cell), adding the void's volume to every cell.
 /// 3. Cells outside the sensor's workspace are pruned: a box, a sphere, a user callback and/or a
-///    capability map of the arm carrying the sensor (cells whose voxel has a reachability index
-///    at or below a threshold go). The arm's IK stays the final check of each pose (step 4).
+///    capability map of the arm carrying the sensor (cells where each of the 8 voxels around them has a
+///    reachability index at or below a threshold go). The arm's IK stays the final check of each pose (step 4).
 /// 4. At the cells of highest utility, camera orientations are sampled around the mean direction
 ///    back along the vectors that reached the cell; each is scored by casting a coarse grid of rays
 ///    through the camera frustum (view_score.cpp: the visibility model below). A pose counts when
@@ -150,12 +150,13 @@ struct NbvOptions {
   /// this near the image centre; the aim solver's own tolerance is 1 mrad).
   double look_at_tolerance = 0.1;
   /// Capability map of the arm carrying the camera (positions in its base link frame): candidate
-  /// cells whose voxel has reachability index D <= min_reachability are pruned before any IK.
+  /// cells where each of the 8 voxels around them has reachability index D <= min_reachability are pruned
+  /// before any IK (the map says no only where it is sure; IK decides between its voxels).
   const CapabilityMap* capability_map = nullptr;
   Pose capability_base = Pose::Identity();  ///< capability map base link frame -> map frame
-  double min_reachability = 0.0;            ///< keep cells with D > this (0: any reachable orientation)
-  /// Also skip IK for sampled poses whose (voxel, optical-axis direction) cell the capability map
-  /// marks unreachable (only when the map's approach axis is the camera's +z).
+  double min_reachability = 0.0;            ///< keep cells with a voxel around them of D > this (0: any reachable orientation)
+  /// Also skip IK for sampled poses whose optical axis none of the 8 cells around them reaches
+  /// (CapabilityLookup::any; only when the map's approach axis is the camera's +z).
   bool capability_orientations = true;
   /// What the views are ranked by (and, for Frontiers / Unknown, where candidate cells come from).
   NbvGain gain = NbvGain::FrontierVoid;

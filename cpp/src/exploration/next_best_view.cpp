@@ -183,7 +183,8 @@ std::vector<UtilityCell> accumulate(const ExplorationMap& map, const std::vector
 }
 
 // Step 3a: keeps the cells inside the workspace where the capability map (if any) reaches some
-// orientation (Zacharias et al.: a cell is a sensor position only there).
+// orientation in one of the 8 voxels around them (Zacharias et al.: a cell is a sensor position only there;
+// between the map's voxels IK decides).
 void prune_by_workspace(const ExplorationMap& map, const NbvOptions& opt, std::vector<UtilityCell>& cells,
                         NbvResult& r) {
   std::vector<Eigen::Vector3d> pos(cells.size());

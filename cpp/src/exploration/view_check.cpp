@@ -263,7 +263,7 @@ bool ViewChecker::camera_clear(const Eigen::Vector3d& p) const {
 }
 
 bool ViewChecker::axis_reachable(const Pose& pose) const {
-  return !cap_orient_ || opt_.capability_map->reachable(cap_inv_ * pose);
+  return !cap_orient_ || opt_.capability_map->reachable(cap_inv_ * pose, CapabilityLookup::any);
 }
 
 std::vector<Eigen::Vector3d> ViewChecker::turned_axes(const Eigen::Vector3d& axis, double max_turn) const {
@@ -296,15 +296,43 @@ std::optional<Eigen::VectorXd> ViewChecker::map_seed(const Pose& pose) const {
   return m.solution(P.translation(), m.orientations().nearest(P.linear(), m.approach_axis()));
 }
 
+std::vector<Eigen::VectorXd> ViewChecker::between_cells_seeds(const Pose& pose) const {
+  if (!map_seeds_ || !cap_orient_) return {};
+  const CapabilityMap& m = *opt_.capability_map;
+  const Pose P = cap_inv_ * pose;
+  if (m.reachable(P, CapabilityLookup::vote)) return {};
+  const int o = m.orientations().nearest(P.linear(), m.approach_axis());
+  std::uint32_t records[8];
+  double weights[8];
+  m.corners(P.translation(), records, weights);
+  std::vector<std::pair<double, const float*>> found;
+  for (int k = 0; k < 8; ++k)
+    if (records[k] != DenseIndex::kNone)
+      if (const float* q = m.record_solution(records[k], o)) found.emplace_back(-weights[k], q);
+  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Eigen::VectorXd> out;
+  for (const auto& f : found) out.push_back(Eigen::Map<const Eigen::VectorXf>(f.second, m.dof()).cast<double>());
+  return out;
+}
+
 ViewStatus ViewChecker::reach(Pose& pose, Eigen::VectorXd& q_out, std::size_t seed_offset) const {
   IkOptions o = ik_;
   o.seed = ik_.seed + seed_offset;
   const Pose target = base_inv_ * pose;
   std::optional<Eigen::VectorXd> q;
-  // The first random start, then (when it fails) the capability map's solution of the pose's cell before the other
-  // random starts: a first start that succeeds finds what an unseeded call finds, so the IK branches the random
-  // starts reach (some clear of the surfaces where the map's is not) stay on offer.
-  if (std::optional<Eigen::VectorXd> start = map_seed(pose); start && o.attempts > 1) {
+  // Between the map's cells where its vote says no (the cells around the pose disagree): one descent from each
+  // reachable cell's solution, nearest first, up to ik.attempts descents, decides, as CertifiedLookup does. Random
+  // restarts there cost a failed descent each for poses the arm mostly cannot reach.
+  const std::vector<Eigen::VectorXd> between = between_cells_seeds(pose);
+  if (!between.empty()) {
+    IkOptions one = o;
+    one.attempts = 1;
+    const std::size_t tries = std::min(between.size(), std::size_t(std::max(1, o.attempts)));
+    for (std::size_t i = 0; i < tries && !q; ++i) q = opt_.chain->ik(target, one, &between[i]);
+  } else if (std::optional<Eigen::VectorXd> start = map_seed(pose); start && o.attempts > 1) {
+    // The first random start, then (when it fails) the capability map's solution of the pose's cell before the
+    // other random starts: a first start that succeeds finds what an unseeded call finds, so the IK branches the
+    // random starts reach (some clear of the surfaces where the map's is not) stay on offer.
     IkOptions first = o;
     first.attempts = 1;
     q = opt_.chain->ik(target, first);

@@ -85,9 +85,16 @@ void score_view(const ExplorationMap& map, const CameraIntrinsics& cam, const Nb
 std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen::Vector3d>& pos);
 
 // The capability map's verdict on a camera position p (map frame; `to_arm` the inverse of opt.capability_base): true
-// without a map, else when the voxel holding p has D > opt.min_reachability.
+// without a map, else when one of the 8 voxels around p (CapabilityMap::corners) has D > opt.min_reachability; as
+// CapabilityLookup::any, a no only where the map is sure: IK decides between the voxels.
 inline bool position_reachable(const NbvOptions& opt, const Pose& to_arm, const Eigen::Vector3d& p) {
-  return !opt.capability_map || opt.capability_map->reachability(to_arm * p) > opt.min_reachability;
+  if (!opt.capability_map) return true;
+  std::uint32_t records[8];
+  double weights[8];
+  opt.capability_map->corners(to_arm * p, records, weights);
+  for (const std::uint32_t r : records)
+    if (opt.capability_map->record_reachability(r) > opt.min_reachability) return true;
+  return false;
 }
 
 // score_views(map, cam, poses, opt, false) for a choice by `key`, with opt.rescore_best = n > 0 unless the chain
@@ -127,8 +134,9 @@ class ViewChecker {
   // Camera cell free, no point of an occupied cell within min_distance of it, and (unknown_is_obstacle) no point of
   // an unknown cell of the search space within unknown_margin (a cell no insert has reached is unknown).
   bool camera_clear(const Eigen::Vector3d& p) const;
-  // The capability map's verdict on the pose's (voxel, optical axis) cell (true without one or when
-  // its approach axis is not the camera's +z).
+  // The capability map's verdict on the pose's optical axis at its position, CapabilityLookup::any (a no only
+  // where every cell around the pose says no: IK decides where they disagree); true without a map or when its
+  // approach axis is not the camera's +z.
   bool axis_reachable(const Pose& pose) const;
   // The capability map's directions (map frame) at most `max_turn` radians from `axis` (unit, map frame),
   // nearest first; none without a capability map that checks axes (see axis_reachable).
@@ -154,6 +162,10 @@ class ViewChecker {
   // The capability map's joint solution of the cell of camera pose `pose` (map frame), a start for IK after the first
   // random one: a configuration that reaches the cell's centre lies near one that reaches the pose. None without one.
   std::optional<Eigen::VectorXd> map_seed(const Pose& pose) const;
+  // For a pose the capability map's vote rules out though a cell around it is reachable (axis_reachable let it
+  // through): the joint solutions of the reachable cells among the 8 around it (CapabilityMap::corners), the
+  // largest trilinear weight first. Empty for a pose the vote admits, and without the map's solutions.
+  std::vector<Eigen::VectorXd> between_cells_seeds(const Pose& pose) const;
   const ExplorationMap& map_;
   const NbvOptions& opt_;
   IkOptions ik_;

@@ -1,4 +1,4 @@
-// The plain lookups of a capability map (CapabilityLookup vote and nearest cell, one pose or a batch) and the
+// The plain lookups of a capability map (CapabilityLookup vote, nearest cell and any, one pose or a batch) and the
 // reachable-bit grid they read; the records, solutions and files are capability_map.cpp's.
 #include "octoreach/capability_map.hpp"
 
@@ -18,6 +18,7 @@ constexpr std::size_t kGridBytes = std::size_t(64) << 20;
 
 void CapabilityMap::build_grid_() {
   grid_.clear();
+  grid_any_.clear();
   int lo[3], hi[3];
   if (!index_.key_box(lo, hi)) return;  // (index_ is built first)
   std::size_t bits = static_cast<std::size_t>(orientations_.size());
@@ -28,14 +29,16 @@ void CapabilityMap::build_grid_() {
     bits *= static_cast<std::size_t>(grid_dim_[a]);
   }
   grid_.assign((bits + 63) / 64, 0);
+  grid_any_.assign((bits / static_cast<std::size_t>(orientations_.size()) + 63) / 64, 0);
   for (auto it = tree_->begin_leafs(), end = tree_->end_leafs(); it != end; ++it) {
     if (it->payload == DenseIndex::kNone) continue;
     const std::uint64_t* w = bits_.data() + static_cast<std::size_t>(it->payload) * words_;
+    const int x = it.getKey()[0] - grid_lo_[0], y = it.getKey()[1] - grid_lo_[1], z = it.getKey()[2] - grid_lo_[2];
     for (int k = 0; k < words_; ++k)
       for (std::uint64_t b = w[k]; b; b &= b - 1) {
-        const std::size_t i = grid_index_(64 * k + __builtin_ctzll(b), it.getKey()[0] - grid_lo_[0],
-                                          it.getKey()[1] - grid_lo_[1], it.getKey()[2] - grid_lo_[2]);
+        const std::size_t i = grid_index_(64 * k + __builtin_ctzll(b), x, y, z), v = grid_index_(0, x, y, z);
         grid_[i >> 6] |= 1ULL << (i & 63);
+        grid_any_[v >> 6] |= 1ULL << (v & 63);
       }
   }
 }
@@ -141,19 +144,49 @@ bool CapabilityMap::nearest_cell_(const Eigen::Vector3d& p, int o) const {
   return grid_bit_(o, g[0], g[1], g[2]);
 }
 
+bool CapabilityMap::any_corner_(const octomap::OcTreeKey& low, int o) const {
+  if (!grid_.empty()) {
+    int g[3];
+    for (int a = 0; a < 3; ++a) {
+      g[a] = low[a] - grid_lo_[a];
+      if (g[a] < 0 || g[a] + 1 >= grid_dim_[a]) return false;  // (as vote_corners_: the grid's rim is empty)
+    }
+    for (int k = 0; k < 8; ++k)
+      if (grid_bit_(o, g[0] + (k & 1), g[1] + ((k >> 1) & 1), g[2] + ((k >> 2) & 1))) return true;
+    return false;
+  }
+  for (int k = 0; k < 8; ++k) {
+    octomap::OcTreeKey key = low;
+    for (int a = 0; a < 3; ++a) key[a] = static_cast<octomap::key_type>(key[a] + ((k >> a) & 1));
+    const std::uint32_t r = record_of_key(key);
+    if (r != DenseIndex::kNone && bit(r, o)) return true;
+  }
+  return false;
+}
+
+bool CapabilityMap::lookup_(const Eigen::Vector3d& p, int o, CapabilityLookup lookup) const {
+  switch (lookup) {
+    case CapabilityLookup::vote: return vote_(p, o);
+    case CapabilityLookup::any: {
+      octomap::OcTreeKey low;
+      double frac[3];
+      return corner_grid(p, resolution_, low, frac) && any_corner_(low, o);
+    }
+    case CapabilityLookup::nearest_cell: break;
+  }
+  return nearest_cell_(p, o);
+}
+
 bool CapabilityMap::reachable(const Eigen::Vector3d& p, int orientation, CapabilityLookup lookup) const {
   if (orientation < 0 || orientation >= orientations_.size())
     throw std::invalid_argument("orientation index " + std::to_string(orientation) + " out of range [0, " +
                                 std::to_string(orientations_.size()) + ")");
-  if (lookup == CapabilityLookup::vote) return vote_(p, orientation);
-  return nearest_cell_(p, orientation);
+  return lookup_(p, orientation, lookup);
 }
 
 bool CapabilityMap::reachable(const Pose& T, CapabilityLookup lookup) const {
   check_rigid(T, "pose");
-  const int o = orientations_.nearest(T.linear(), approach_axis_);
-  if (lookup == CapabilityLookup::vote) return vote_(T.translation(), o);
-  return nearest_cell_(T.translation(), o);
+  return lookup_(T.translation(), orientations_.nearest(T.linear(), approach_axis_), lookup);
 }
 
 void CapabilityMap::reachability(const double* points, std::size_t n, double* out) const {
@@ -170,17 +203,17 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
       Eigen::Matrix3d R;
       R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
       const int o = orientations_.nearest(R, approach_axis_);
-      const Eigen::Vector3d p(m[3], m[7], m[11]);
-      out[i] = lookup == CapabilityLookup::vote ? vote_(p, o) : nearest_cell_(p, o);
+      out[i] = lookup_(Eigen::Vector3d(m[3], m[7], m[11]), o, lookup);
     });
     return;
   }
-  // In groups: every pose's orientation and corners first, its grid words prefetched, then the lookups.
+  // In groups: every pose's corners (or voxel) and orientation first, its grid words prefetched, then the lookups.
   constexpr std::size_t kGroup = 32;
   // OrientationSet::nearest's own steps with its normalised axis made once: a single roll needs only the
   // direction of the approach axis.
   const Eigen::Vector3d axis = approach_axis_.normalized();
   const bool one_roll = orientations_.rolls() == 1;
+  const bool by_corners = lookup != CapabilityLookup::nearest_cell;
   detail::batch_lookup_valid_groups(poses, n, 16, "pose", "", kGroup,
                                     [&](std::size_t i0, std::size_t i1, const bool* valid) {
     int o[kGroup];
@@ -192,11 +225,8 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
       keyed[k] = false;
       if (!valid[k]) continue;
       const double* m = poses + 16 * i;
-      Eigen::Matrix3d R;
-      R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
-      o[k] = one_roll ? orientations_.nearest_direction(R * axis) : orientations_.nearest(R, approach_axis_);
-      // vote: the lower of the 8 corners (the grid words of its x and x + 1 planes); nearest cell: the voxel
-      keyed[k] = lookup == CapabilityLookup::vote
+      // vote and any: the lower of the 8 corners (the grid words of its x and x + 1 planes); nearest cell: the voxel
+      keyed[k] = by_corners
                      ? corner_grid(Eigen::Vector3d(m[3], m[7], m[11]), resolution_, low[k], frac[k])
                      : tree_->coordToKeyChecked(m[3], m[7], m[11], low[k]);
       if (!keyed[k]) continue;
@@ -204,15 +234,20 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
       bool inside = true;
       for (int a = 0; a < 3; ++a) {
         g[a] = low[k][a] - grid_lo_[a];
-        inside &= g[a] >= 0 && g[a] < grid_dim_[a];
+        // the voxel, or both corners along the axis, in the grid's box (its rim is empty: vote_corners_)
+        inside &= g[a] >= 0 && g[a] + int(by_corners) < grid_dim_[a];
       }
-      if (!inside) {
-        keyed[k] &= lookup == CapabilityLookup::vote;  // a nearest cell outside the grid is a no; a vote checks its corners
-        continue;
-      }
+      bool held = inside && grid_any_bit_(g[0], g[1], g[2]);  // a voxel that can answer yes
+      for (int c = 1; by_corners && inside && !held && c < 8; ++c)
+        held = grid_any_bit_(g[0] + (c & 1), g[1] + ((c >> 1) & 1), g[2] + ((c >> 2) & 1));
+      keyed[k] = held;  // else no: the orientation is not needed
+      if (!held) continue;
+      Eigen::Matrix3d R;
+      R << m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10];
+      o[k] = one_roll ? orientations_.nearest_direction(R * axis) : orientations_.nearest(R, approach_axis_);
       const std::size_t b = grid_index_(o[k], g[0], g[1], g[2]);
       __builtin_prefetch(grid_.data() + (b >> 6));
-      if (lookup == CapabilityLookup::vote && g[0] + 1 < grid_dim_[0])
+      if (by_corners)
         __builtin_prefetch(grid_.data() + ((b + static_cast<std::size_t>(grid_dim_[1]) * grid_dim_[2]) >> 6));
     }
     for (std::size_t i = i0; i < i1; ++i) {
@@ -220,6 +255,8 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
       if (!valid[k]) continue;
       if (lookup == CapabilityLookup::vote) {
         out[i] = keyed[k] && vote_corners_(low[k], frac[k], o[k]);
+      } else if (lookup == CapabilityLookup::any) {
+        out[i] = keyed[k] && any_corner_(low[k], o[k]);
       } else {
         out[i] = keyed[k] && grid_bit_(o[k], low[k][0] - grid_lo_[0], low[k][1] - grid_lo_[1], low[k][2] - grid_lo_[2]);
       }
