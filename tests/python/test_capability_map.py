@@ -245,19 +245,25 @@ def random_poses(lo, hi, n, rng):
     return T
 
 
-def numpy_vote(m, poses):
-    """The vote lookup by brute force: the 8 voxel centres around each position asked by nearest cell with
-    the pose's rotation, weighted trilinearly; yes when the reachable ones weigh at least one half."""
+def corner_answers(m, poses):
+    """For each of the 8 voxel centres around each position: its trilinear weights (N,) and the nearest-cell
+    answers (N,) of the poses moved there with their rotations."""
     r = m.resolution
     g = poses[:, :3, 3] / r - 0.5
     i0 = np.floor(g)
     f = g - i0
-    vote = np.zeros(len(poses))
     q = poses.copy()
     for d in np.ndindex(2, 2, 2):
-        w = np.prod(np.where(np.asarray(d, dtype=bool), f, 1 - f), axis=1)
         q[:, :3, 3] = (i0 + np.asarray(d) + 0.5) * r
-        vote += w * m.reachable(q, lookup="nearest_cell")
+        yield np.prod(np.where(np.asarray(d, dtype=bool), f, 1 - f), axis=1), m.reachable(q, lookup="nearest_cell")
+
+
+def numpy_vote(m, poses):
+    """The vote lookup by brute force: the 8 voxel centres around each position asked by nearest cell with
+    the pose's rotation, weighted trilinearly; yes when the reachable ones weigh at least one half."""
+    vote = np.zeros(len(poses))
+    for w, yes in corner_answers(m, poses):
+        vote += w * yes
     return vote, vote >= 0.5
 
 
@@ -294,13 +300,9 @@ def test_the_any_lookup_says_no_only_where_every_cell_around_does(cmap):
     rng = np.random.default_rng(6)
     lo, hi = cmap.bounds
     poses = random_poses(lo - cmap.resolution, hi + cmap.resolution, 20000, rng)
-    r = cmap.resolution
-    i0 = np.floor(poses[:, :3, 3] / r - 0.5)
     expected = np.zeros(len(poses), bool)
-    q = poses.copy()
-    for d in np.ndindex(2, 2, 2):
-        q[:, :3, 3] = (i0 + np.asarray(d) + 0.5) * r
-        expected |= cmap.reachable(q, lookup="nearest_cell")
+    for _, yes in corner_answers(cmap, poses):
+        expected |= yes
     got = cmap.reachable(poses, lookup="any")
     np.testing.assert_array_equal(got, expected)
     np.testing.assert_array_equal(cmap.reachable(poses, lookup=octoreach.CapabilityLookup.any), got)

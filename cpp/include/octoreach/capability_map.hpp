@@ -246,8 +246,8 @@ class CapabilityMap {
   bool vote_corners_(const octomap::OcTreeKey& low, const double frac[3], int o) const;
   /// CapabilityLookup::nearest_cell of orientation o at p (o in range).
   bool nearest_cell_(const Eigen::Vector3d& p, int o) const;
-  /// CapabilityLookup::any from the lower corner's key (corner_grid's answer).
-  bool any_corner_(const octomap::OcTreeKey& low, int o) const;
+  /// CapabilityLookup::any from the lower corner's key and the fractions (corner_grid's answer).
+  bool any_corner_(const octomap::OcTreeKey& low, const double frac[3], int o) const;
   /// The lookup of orientation o at p (o in range).
   bool lookup_(const Eigen::Vector3d& p, int o, CapabilityLookup lookup) const;
   void finish_();  // builds the query tables once the tree and records are complete

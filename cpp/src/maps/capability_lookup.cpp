@@ -34,12 +34,17 @@ void CapabilityMap::build_grid_() {
     if (it->payload == DenseIndex::kNone) continue;
     const std::uint64_t* w = bits_.data() + static_cast<std::size_t>(it->payload) * words_;
     const int x = it.getKey()[0] - grid_lo_[0], y = it.getKey()[1] - grid_lo_[1], z = it.getKey()[2] - grid_lo_[2];
+    bool held = false;
     for (int k = 0; k < words_; ++k)
       for (std::uint64_t b = w[k]; b; b &= b - 1) {
-        const std::size_t i = grid_index_(64 * k + __builtin_ctzll(b), x, y, z), v = grid_index_(0, x, y, z);
+        const std::size_t i = grid_index_(64 * k + __builtin_ctzll(b), x, y, z);
         grid_[i >> 6] |= 1ULL << (i & 63);
-        grid_any_[v >> 6] |= 1ULL << (v & 63);
+        held = true;
       }
+    if (held) {
+      const std::size_t v = grid_index_(0, x, y, z);
+      grid_any_[v >> 6] |= 1ULL << (v & 63);
+    }
   }
 }
 
@@ -144,7 +149,7 @@ bool CapabilityMap::nearest_cell_(const Eigen::Vector3d& p, int o) const {
   return grid_bit_(o, g[0], g[1], g[2]);
 }
 
-bool CapabilityMap::any_corner_(const octomap::OcTreeKey& low, int o) const {
+bool CapabilityMap::any_corner_(const octomap::OcTreeKey& low, const double frac[3], int o) const {
   if (!grid_.empty()) {
     int g[3];
     for (int a = 0; a < 3; ++a) {
@@ -156,8 +161,8 @@ bool CapabilityMap::any_corner_(const octomap::OcTreeKey& low, int o) const {
     return false;
   }
   for (int k = 0; k < 8; ++k) {
-    octomap::OcTreeKey key = low;
-    for (int a = 0; a < 3; ++a) key[a] = static_cast<octomap::key_type>(key[a] + ((k >> a) & 1));
+    octomap::OcTreeKey key;
+    corner(low, frac, k, key);  // (every corner counts, whatever its weight)
     const std::uint32_t r = record_of_key(key);
     if (r != DenseIndex::kNone && bit(r, o)) return true;
   }
@@ -170,7 +175,7 @@ bool CapabilityMap::lookup_(const Eigen::Vector3d& p, int o, CapabilityLookup lo
     case CapabilityLookup::any: {
       octomap::OcTreeKey low;
       double frac[3];
-      return corner_grid(p, resolution_, low, frac) && any_corner_(low, o);
+      return corner_grid(p, resolution_, low, frac) && any_corner_(low, frac, o);
     }
     case CapabilityLookup::nearest_cell: break;
   }
@@ -256,7 +261,7 @@ void CapabilityMap::reachable(const double* poses, std::size_t n, bool* out, Cap
       if (lookup == CapabilityLookup::vote) {
         out[i] = keyed[k] && vote_corners_(low[k], frac[k], o[k]);
       } else if (lookup == CapabilityLookup::any) {
-        out[i] = keyed[k] && any_corner_(low[k], o[k]);
+        out[i] = keyed[k] && any_corner_(low[k], frac[k], o[k]);
       } else {
         out[i] = keyed[k] && grid_bit_(o[k], low[k][0] - grid_lo_[0], low[k][1] - grid_lo_[1], low[k][2] - grid_lo_[2]);
       }
