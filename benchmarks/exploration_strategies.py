@@ -91,7 +91,7 @@ def _run(a, scene, target, strategy, seed, oracle, cmap, chain):
     r = ex.explore(scene, _camera(a, seed), ex.look_at(*START), robot=True, strategy=strategy, max_views=a.views,
                    resolution=a.resolution, seed=seed, capability_map=cmap, target=target, min_utility=a.min_utility,
                    patience=a.patience, enclosure_power=a.enclosure_power, unexposed_weight=a.unexposed_weight,
-                   second_look=not a.no_second_look,
+                   second_look=not a.no_second_look, beyond_voids=bool(a.beyond_voids),
                    ground_is_obstacle=bool(a.ground_is_obstacle),
                    score_size=tuple(a.score) if a.score else None, on_view=on_view)
     views = len(r.rows)
@@ -190,7 +190,7 @@ def _markdown(summary, strategies):
 
 
 # Settings that only frontier_void reads: a baselines file may differ in them (and in its code).
-FRONTIER_VOID_ONLY = {"enclosure_power", "unexposed_weight", "second_look"}
+FRONTIER_VOID_ONLY = {"enclosure_power", "unexposed_weight", "second_look", "beyond_voids"}
 
 
 def _same_run(new_cov, old_run, lower_threshold: bool) -> bool:
@@ -324,6 +324,8 @@ def main(argv=None) -> int:
                     help="frontier_void: void cells with no observed free neighbour count with this factor (1: the paper's count)")
     ap.add_argument("--no-second-look", action="store_true",
                     help="frontier_void: stop on next_best_view's answer alone (no aimed poses when it is low)")
+    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=0,
+                    help="frontier_void: views beyond the voids (ExploreOptions.beyond_voids)")
     ap.add_argument("--ground-is-obstacle", type=int, choices=(0, 1),
                     default=int(ex.ExploreOptions().search.ground_is_obstacle),
                     help="1: the ground is an obstacle for the arm's moved links (all strategies; default: the preset's)")
@@ -351,7 +353,7 @@ def main(argv=None) -> int:
         ap.error("--seeds and --views must be >= 1, --generated and --first-seed >= 0")
     t_all = time.perf_counter()
     chain, cmap, cmap_s = explorer_setup(a.strategies)
-    out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "enclosure_power": a.enclosure_power, "unexposed_weight": a.unexposed_weight, "second_look": not a.no_second_look, "ground_is_obstacle": bool(a.ground_is_obstacle), "resolution_m": a.resolution, "image": list(a.image),
+    out = {"setup": {"seeds": a.seeds, "first_seed": a.first_seed, "views": a.views, "min_utility": a.min_utility, "patience": a.patience, "enclosure_power": a.enclosure_power, "unexposed_weight": a.unexposed_weight, "second_look": not a.no_second_look, "beyond_voids": bool(a.beyond_voids), "ground_is_obstacle": bool(a.ground_is_obstacle), "resolution_m": a.resolution, "image": list(a.image),
                      "noise_at_1m": a.noise, "max_incidence_deg": a.max_incidence, "strategies": a.strategies, "capability_map_s": cmap_s,
                      "oracle_samples": 2 * a.oracle_samples, "note": "shared 2-core machine: timings are noisy",
                      "code": _code_version()},

@@ -39,9 +39,9 @@ void wrap_view_choice(py::module_& m) {
       .def_readonly("aimed", &ViewChoice::aimed, "found by a look aimed at void cells")
       .def_readonly("harder", &ViewChoice::harder, "found by the looks before a low view")
       .def_readonly("beyond", &ViewChoice::beyond,
-                    "frontier_void: a view beyond the spent voids (where frontier-void's own choice would end the "
-                    "loop), expecting the most unknown cells of the search space (its expected_unknown is the "
-                    "utility)")
+                    "frontier_void (beyond_voids): a view beyond the voids, expecting the most unknown cells of the "
+                    "search space (its expected_unknown is the utility): more than frontier-void's view expects "
+                    "void cells, or where frontier-void's own choice would end the loop")
       .def_readonly("stop", &ViewChoice::stop, "the loop ends here")
       .def_readonly("stop_reason", &ViewChoice::stop_reason, "why it ends ('' when it goes on)")
       .def_readonly("search", &ViewChoice::search, "frontier_void: next_best_view's answer from the chosen base");

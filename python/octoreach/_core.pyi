@@ -2224,7 +2224,7 @@ class ExploreOptions:
     @property
     def beyond_voids(self) -> bool:
         """
-        frontier_void: where its own choice would end the loop, a view beyond the voids (the search space's unknown cells outside the hull of the occupied cells)
+        frontier_void: a view beyond the voids (the search space's unknown cells outside the hull of the occupied cells) where it expects more of them than frontier-void's view expects void cells, and where frontier-void's choice would end the loop
         """
     @beyond_voids.setter
     def beyond_voids(self, arg0: bool) -> None:
@@ -3104,7 +3104,7 @@ class ViewChoice:
     @property
     def beyond(self) -> bool:
         """
-        frontier_void: a view beyond the spent voids (where frontier-void's own choice would end the loop), expecting the most unknown cells of the search space (its expected_unknown is the utility)
+        frontier_void (beyond_voids): a view beyond the voids, expecting the most unknown cells of the search space (its expected_unknown is the utility): more than frontier-void's view expects void cells, or where frontier-void's own choice would end the loop
         """
     @property
     def candidates(self) -> int:

@@ -70,9 +70,9 @@ struct ViewChoice {
   std::size_t candidates = 0, valid = 0;  ///< poses scored and of them valid (of those checked: see choose_view)
   bool aimed = false;     ///< found by a look aimed at void cells, not by the search
   bool harder = false;    ///< found by the looks before a low view (more aims, the last chance)
-  /// frontier-void: a view beyond the voids, taken where frontier-void's own choice would end the loop (the
-  /// voids are spent): the sampled view expecting the most unknown cells of the search space, whose
-  /// expected_unknown is then the utility
+  /// frontier-void (ExploreOptions::beyond_voids): a view beyond the voids, the sampled view expecting the most
+  /// unknown cells of the search space, whose expected_unknown is then the utility; taken where it expects more
+  /// of them than frontier-void's view expects void cells, or where frontier-void's own choice would end the loop
   bool beyond = false;
   bool stop = false;      ///< the loop ends here (the view, when found, is a low view that need not be taken)
   std::string stop_reason;  ///< "nothing to explore", "no valid view", "utility 0", "utility below min_utility"

@@ -239,8 +239,8 @@ ViewChoice& decide(ViewChoice& c, ChoiceMemory& memory, const ExploreOptions& op
   return c;
 }
 
-// Frontier-void's choice would end the loop: the voids are spent. The search space may still hold unknown cells
-// outside them (beside and above what the hull of the occupied cells encloses, where the paper's voids end): while
+// A view beyond the voids: the search space may hold unknown cells outside them (beside and above what the hull of
+// the occupied cells encloses, where the paper's voids end), which frontier-void's gain leaves out: while
 // the way beyond the voids is open (ChoiceMemory::beyond_misses), the sampled view expecting the most unknown cells
 // of the search space (the "unknown" strategy's choice, whose rays count an unknown cell outside the voids by the
 // chance that they return) when it expects more than the stop threshold; else none (found false). Only with
@@ -298,13 +298,15 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
     return c;
   }
   if (!frontier_void) return decide(c = detail::sampled_choice(ctx, seed, strategy), memory, options, threshold);
-  // frontier-void first; where its choice ends the loop, a view beyond the voids goes on (the row of low views
-  // stays full: the next choice ends the loop unless frontier-void or the way beyond finds more)
+  // frontier-void first; a view beyond the voids is taken where it expects more unknown cells of the search space
+  // than frontier-void's view expects void cells (both are cells the view would make known; the voids' view also
+  // makes known cells outside them, which its utility leaves out, so a tie keeps it), and where frontier-void's
+  // choice ends the loop (the row of low views stays full: the next choice ends the loop unless frontier-void or
+  // the way beyond finds more)
   c = frontier_void_choice(ctx, seed, last_chance, threshold);
   decide(c, memory, options, threshold);
-  if (!c.stop) return c;
   ViewChoice b = beyond(ctx, seed, threshold);
-  if (!b.found) return c;
+  if (!b.found || (!c.stop && b.utility <= c.utility)) return c;
   memory.last_beyond = true;
   return b;
 }
