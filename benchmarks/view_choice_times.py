@@ -16,7 +16,7 @@ With --reference DIR, every scene runs first with the octoreach package found in
 PYTHONPATH=DIR, in a child process) and then with this one, so both see the machine in the same state; "reference"
 holds its figures.
 
-Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] [--reference DIR] > times.json
+Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] [--reference DIR] [--beyond-voids 1] > times.json
 """
 from __future__ import annotations
 
@@ -103,7 +103,7 @@ def _reference(a, name: str) -> dict:
     root = os.path.abspath(a.reference)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH", "")) if p))
     cmd = [sys.executable, os.path.abspath(__file__), "--views", str(a.views), "--instances", str(a.instances),
-           "--seed", str(a.seed), "--scenes", name]
+           "--seed", str(a.seed), "--scenes", name, "--beyond-voids", str(a.beyond_voids)]
     got = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
     if got.returncode != 0:
         raise RuntimeError(f"the reference run of {name} failed:\n{got.stderr[-2000:]}")
@@ -121,6 +121,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--scenes", default="", help="comma-separated scene names to run (default: all)")
     ap.add_argument("--reference", default="", help="a directory holding the octoreach package to compare with")
+    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=0,
+                    help="frontier_void: views beyond the voids (ExploreOptions.beyond_voids)")
     a = ap.parse_args(argv)
     _, chain = ex.explorer_robot()
     cmap = ex.explorer_capability_map(chain)
@@ -135,7 +137,7 @@ def main(argv=None) -> int:
         if unknown:
             ap.error(f"no scene named {', '.join(unknown)}; the scenes are {', '.join(s[0] for s in scenes)}")
         scenes = [s for s in scenes if s[0] in wanted]
-    out = {"views": a.views, "cores": os.cpu_count(), "load_average": list(os.getloadavg()),
+    out = {"views": a.views, "beyond_voids": bool(a.beyond_voids), "cores": os.cpu_count(), "load_average": list(os.getloadavg()),
            "octoreach": os.path.dirname(octoreach.__file__), "scenes": {}}
     if a.reference:
         out["reference"] = {"path": os.path.abspath(a.reference), "scenes": {}}
@@ -149,7 +151,7 @@ def main(argv=None) -> int:
         first = len(every)
         cam = DepthCamera(320, 240, np.deg2rad(58.0), 4.0, seed=a.seed)
         r = ex.explore(scene, cam, start, robot=True, capability_map=cmap, search_space=space, max_views=a.views,
-                       resolution=0.025, seed=a.seed)
+                       resolution=0.025, seed=a.seed, beyond_voids=bool(a.beyond_voids))
         s = _summary(every[first:])
         out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows),
                                    loop_wall=[c["loop"][0] for c in every[first:]])
