@@ -270,6 +270,8 @@ def _combine(a) -> int:
     replaces an earlier one's); summaries recomputed. The setups must agree but for the scenes,
     strategies and seeds (checked: a mix of code or settings is no record)."""
     parts = [json.load(open(f)) for f in a.combine]
+    for p in parts:
+        p["setup"].setdefault("beyond_voids", False)  # records from before the flag ran without the option
     ignore = {"scenes", "strategies", "seeds", "first_seed", "capability_map_s", "note"}
     for f, p in zip(a.combine[1:], parts[1:]):
         diff = sorted(k for k in set(p["setup"]) | set(parts[0]["setup"])

@@ -103,7 +103,7 @@ def _reference(a, name: str) -> dict:
     root = os.path.abspath(a.reference)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH", "")) if p))
     cmd = [sys.executable, os.path.abspath(__file__), "--views", str(a.views), "--instances", str(a.instances),
-           "--seed", str(a.seed), "--scenes", name, "--beyond-voids", str(a.beyond_voids)]
+           "--seed", str(a.seed), "--scenes", name] + (["--beyond-voids", "1"] if a.beyond_voids else [])
     got = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
     if got.returncode != 0:
         raise RuntimeError(f"the reference run of {name} failed:\n{got.stderr[-2000:]}")
@@ -151,7 +151,7 @@ def main(argv=None) -> int:
         first = len(every)
         cam = DepthCamera(320, 240, np.deg2rad(58.0), 4.0, seed=a.seed)
         r = ex.explore(scene, cam, start, robot=True, capability_map=cmap, search_space=space, max_views=a.views,
-                       resolution=0.025, seed=a.seed, beyond_voids=bool(a.beyond_voids))
+                       resolution=0.025, seed=a.seed, **({"beyond_voids": True} if a.beyond_voids else {}))
         s = _summary(every[first:])
         out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows),
                                    loop_wall=[c["loop"][0] for c in every[first:]])

@@ -201,9 +201,10 @@ void wrap_explore_options(py::module_& m) {
       .def_readwrite("last_distance", &E::last_distance, "(min, max) metres from a last-chance eye to its void cell")
       .def_readwrite("max_ray_cells", &E::max_ray_cells, "last chance: void cells the rays leave from, at most")
       .def_readwrite("beyond_voids", &E::beyond_voids,
-                     "frontier_void: a view beyond the voids (the search space's unknown cells outside the hull of "
-                     "the occupied cells) where it expects more of them than frontier-void's view expects void "
-                     "cells, and where frontier-void's choice would end the loop")
+                     "frontier_void: a view beyond the voids (toward the search space's unknown cells outside the "
+                     "hull of the occupied cells) where it expects more unknown cells of the search space (voids "
+                     "included) than frontier-void's view expects void cells, and where frontier-void's choice "
+                     "would end the loop")
       .def("validate", &E::validate, "ValueError naming the first bad setting (the search's: by the search).")
       .def("__copy__", [](const E& o) { return E(o); })
       .def("__deepcopy__", [](const E& o, const py::dict&) { return E(o); }, py::arg("memo"));

@@ -2224,7 +2224,7 @@ class ExploreOptions:
     @property
     def beyond_voids(self) -> bool:
         """
-        frontier_void: a view beyond the voids (the search space's unknown cells outside the hull of the occupied cells) where it expects more of them than frontier-void's view expects void cells, and where frontier-void's choice would end the loop
+        frontier_void: a view beyond the voids (toward the search space's unknown cells outside the hull of the occupied cells) where it expects more unknown cells of the search space (voids included) than frontier-void's view expects void cells, and where frontier-void's choice would end the loop
         """
     @beyond_voids.setter
     def beyond_voids(self, arg0: bool) -> None:
@@ -3082,7 +3082,7 @@ class ChoiceMemory:
     @property
     def low_views(self) -> int:
         """
-        chosen views in a row with utility <= min_utility
+        choices in a row with utility <= min_utility (frontier-void's, also where a view beyond the voids was taken)
         """
     @low_views.setter
     def low_views(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

@@ -1,6 +1,6 @@
 """Beyond the voids: the unknown cells of the search space outside the hull of the occupied cells (the layer above
-a table's objects) draw views (ExploreOptions.beyond_voids) where a view expects more of them than frontier-void's
-view expects void cells, and once the voids are spent, counted only where a ray through them can return; a view
+a table's objects) draw views (ExploreOptions.beyond_voids) where a view expects more unknown cells of the search
+space (voids included) than frontier-void's view expects void cells, and once the voids are spent, counted only where a ray through them can return; a view
 beyond the voids that saw nothing closes the way. Coarse maps, small images."""
 import numpy as np
 
@@ -84,9 +84,9 @@ def test_the_loop_looks_beyond_spent_voids():
 
 def test_a_view_beyond_the_voids_competes_with_the_voids_view_at_every_choice():
     """While voids remain, beyond_voids takes the view beyond them (the unknown strategy's sampled choice, the same
-    seed) where it expects more unknown cells of the search space than frontier-void's view expects void cells, and
-    frontier-void's view otherwise: a small crate under a tall layer (the layer wins) and a large crate under a
-    thin one (its void wins)."""
+    seed) where it expects more unknown cells of the search space (voids included) than frontier-void's view expects
+    void cells, and frontier-void's view otherwise: a small crate under a tall layer (the layer wins) and a large
+    crate under a thin one (its void wins). The memory says which was taken; the choice counts once."""
     setups = {"layer": ((0.65, -0.25, 0.4), (0.8, -0.05, 0.55), [[0.55, -0.35, 0.35], [1.05, 0.35, 0.85]]),
               "void": ((0.62, -0.28, 0.4), (0.98, 0.28, 0.58), [[0.6, -0.3, 0.4], [1.0, 0.3, 0.65]])}
     taken = {}
@@ -101,11 +101,13 @@ def test_a_view_beyond_the_voids_competes_with_the_voids_view_at_every_choice():
         opts, base = ExploreOptions(), np.eye(4)[None]
         voids_view = choose_view(emap, cam, base, 0, opts, ChoiceMemory())
         unknown_view = choose_view(emap, cam, base, 0, opts, ChoiceMemory(), "unknown")
-        opts.beyond_voids = True
-        c = choose_view(emap, cam, base, 0, opts, ChoiceMemory())
+        opts.beyond_voids, m = True, ChoiceMemory()
+        c = choose_view(emap, cam, base, 0, opts, m)
+        assert m.choices == 1 and m.last_beyond == c.beyond and m.beyond_misses == 0
         assert voids_view.found and not voids_view.stop and unknown_view.found and not c.stop
         threshold = opts.stop_threshold(cam, RES)
         assert c.beyond == (unknown_view.utility > max(voids_view.utility, threshold)), name
+        assert m.low_views == (voids_view.utility <= threshold)  # the row counts frontier-void's utility
         chosen = unknown_view if c.beyond else voids_view
         assert np.allclose(c.view.pose, chosen.view.pose) and c.utility == chosen.utility, name
         taken[name] = c.beyond

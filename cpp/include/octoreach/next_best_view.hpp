@@ -407,9 +407,10 @@ struct ExploreOptions {
   int last_poses = 4000;            ///< last chance: poses kept from those rays
   std::pair<double, double> last_distance{0.15, 1.0};  ///< metres from a last-chance eye to its void cell
   int max_ray_cells = 4096;         ///< last chance: void cells the rays leave from (at most; drawn at random)
-  /// frontier_void: a view beyond the voids (the unknown cells of the search space outside the hull of the
-  /// occupied cells; ViewChoice::beyond) where it expects more of them than frontier-void's view expects void
-  /// cells, and where frontier-void's own choice would end the loop. Off: the paper's voids only, and the loop
+  /// frontier_void: a view beyond the voids (toward the unknown cells of the search space outside the hull of the
+  /// occupied cells; ViewChoice::beyond) where it expects more unknown cells of the search space (void cells
+  /// included) than frontier-void's view expects void cells, and where frontier-void's own choice would end the
+  /// loop. Off: the paper's voids only, and the loop
   /// ends when they are spent; on, a table top's layer above the objects is seen, at the price of views spent on
   /// the rest of the search space.
   bool beyond_voids = false;

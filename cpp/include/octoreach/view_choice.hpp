@@ -40,7 +40,7 @@ struct ViewSites {
 /// \brief What the loop remembers between choices (plain data, copyable).
 struct ChoiceMemory {
   int choices = 0;    ///< views chosen so far
-  int low_views = 0;  ///< chosen views in a row whose utility was <= min_utility
+  int low_views = 0;  ///< choices in a row whose utility was <= min_utility (frontier-void's, also where a view beyond the voids was taken)
   /// Void cells the last view taken took off the void set (InsertStats::void_removed of its inserts: cells it
   /// turned known, and rarely cells the hull's numerical merging left out), set by the caller after the insert
   /// (Explorer::integrate adds them up): for frontier-void and random, whose utility counts void cells, a low
@@ -93,7 +93,9 @@ struct ViewChoice {
 /// score_views checks a pose). With options.search.rescore_best = n > 0 (and a chain that does more than aim its
 /// camera), each aimed look scores its poses with the coarse grid first and checks IK in that order until n are
 /// valid, those n scored in full (`valid` counts the valid ones among the poses checked); more than 16 n poses
-/// are ranked first with every fourth ray and go through those steps in chunks of 16 n in that order.
+/// are ranked first with every fourth ray and go through those steps in chunks of 16 n in that order. With
+/// options.beyond_voids, frontier-void's view gives way to a view beyond the voids (ViewChoice::beyond; memory's
+/// last_beyond, beyond_misses) where that expects more unknown cells of the search space than it expects void cells.
 /// \throws std::invalid_argument for bad options, sites or a current index out of range.
 ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera, const ViewSites& sites,
                        int current, const ExploreOptions& options, ChoiceMemory& memory,

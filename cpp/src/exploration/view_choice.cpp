@@ -299,14 +299,15 @@ ViewChoice choose_view(const ExplorationMap& map, const CameraIntrinsics& camera
   }
   if (!frontier_void) return decide(c = detail::sampled_choice(ctx, seed, strategy), memory, options, threshold);
   // frontier-void first; a view beyond the voids is taken where it expects more unknown cells of the search space
-  // than frontier-void's view expects void cells (both are cells the view would make known; the voids' view also
-  // makes known cells outside them, which its utility leaves out, so a tie keeps it), and where frontier-void's
-  // choice ends the loop (the row of low views stays full: the next choice ends the loop unless frontier-void or
-  // the way beyond finds more)
+  // (void cells included) than frontier-void's view expects void cells: both are cells the view would make known,
+  // and frontier-void's view also makes known cells outside the voids, which its utility leaves out, so a tie
+  // keeps it. That covers the choices that end the loop (their view expects at most the threshold, a view beyond
+  // more); the row of low views counts frontier-void's utility, so after such a choice it stays full and the next
+  // one ends the loop unless frontier-void or the way beyond finds more.
   c = frontier_void_choice(ctx, seed, last_chance, threshold);
   decide(c, memory, options, threshold);
   ViewChoice b = beyond(ctx, seed, threshold);
-  if (!b.found || (!c.stop && b.utility <= c.utility)) return c;
+  if (!b.found || b.utility <= c.utility) return c;
   memory.last_beyond = true;
   return b;
 }
