@@ -158,3 +158,38 @@ def test_capability_map_of_a_sound_arm_does_not_warn(own):
         cap = octoreach.CapabilityMap.build_for_arm(robot, octoreach.find_arms(robot)[0], resolution=0.1,
                                                     directions=50, progress=False)
     assert cap.warning == ""
+
+
+PLANAR_ARM = """<robot name="planar">
+  <link name="base"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <link name="upper"><collision><origin xyz="0.15 0 0"/><geometry><box size="0.3 0.05 0.05"/></geometry></collision></link>
+  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><origin xyz="0 0 0.3"/>
+    <axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
+  <link name="fore"><collision><origin xyz="0.125 0 0"/><geometry><box size="0.25 0.04 0.04"/></geometry></collision></link>
+  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/><origin xyz="0.3 0 0"/>
+    <axis xyz="0 1 0"/><limit lower="-2.2" upper="2.2" effort="1" velocity="1"/></joint>
+  <link name="hand"/>
+  <joint name="wrist_roll" type="revolute"><parent link="fore"/><child link="hand"/><origin xyz="0.25 0 0"/>
+    <axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def test_a_reach_thinner_than_a_voxel_warns_and_gives_no_surface_map(tmp_path):
+    """An arm with no joint that turns it about the vertical reaches one plane (y = 0 of its base), which no
+    voxel centre lies on: the map holds mixed cells only. The build says why in one MapWarning, and a surface map
+    of it is an error naming the map, not a map of zeros or a complaint about joint solutions."""
+    path = tmp_path / "planar.urdf"
+    path.write_text(PLANAR_ARM)
+    robot = Robot.from_urdf(str(path))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cap = octoreach.CapabilityMap.build_for_arm(robot, ("base", "hand", (1.0, 0.0, 0.0)), resolution=0.1,
+                                                    directions=50, progress=False)
+    ours = [w for w in caught if issubclass(w.category, octoreach.MapWarning)]
+    assert cap.stats["reachable_cells"] == 0 and cap.stats["mixed_cells"] > 0 and cap.voxel_count > 0
+    assert len(ours) == 1 and str(ours[0].message) == cap.warning
+    assert "no voxel centre is reachable" in cap.warning and "single plane" in cap.warning
+    table = octoreach.Surface.rectangle(0.4, 0.3, 0.3)
+    for check_arm in (True, False):
+        with pytest.raises(ValueError, match="base -> hand reaches no voxel"):
+            octoreach.SurfaceMap.build(robot, cap, table, check_arm=check_arm)
