@@ -11,7 +11,9 @@ void wrap_view_choice(py::module_& m) {
                            "What the exploration loop remembers between choices of a view (plain data, copyable).")
       .def(py::init<>())
       .def_readwrite("choices", &ChoiceMemory::choices, "views chosen so far")
-      .def_readwrite("low_views", &ChoiceMemory::low_views, "choices in a row with utility <= min_utility (frontier-void's, also where a view beyond the voids was taken)")
+      .def_readwrite("low_views", &ChoiceMemory::low_views,
+                     "choices in a row with utility <= min_utility (frontier-void's utility, also where a view "
+                     "beyond the voids was taken instead)")
       .def_readwrite("last_void_seen", &ChoiceMemory::last_void_seen,
                      "void cells the last view taken took off the void set (InsertStats void_removed; Explorer "
                      "sets it) or None: for frontier_void and random, a low view that saw more than the stop "

@@ -3082,7 +3082,7 @@ class ChoiceMemory:
     @property
     def low_views(self) -> int:
         """
-        choices in a row with utility <= min_utility (frontier-void's, also where a view beyond the voids was taken)
+        choices in a row with utility <= min_utility (frontier-void's utility, also where a view beyond the voids was taken instead)
         """
     @low_views.setter
     def low_views(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

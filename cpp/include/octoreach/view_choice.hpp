@@ -40,7 +40,9 @@ struct ViewSites {
 /// \brief What the loop remembers between choices (plain data, copyable).
 struct ChoiceMemory {
   int choices = 0;    ///< views chosen so far
-  int low_views = 0;  ///< choices in a row whose utility was <= min_utility (frontier-void's, also where a view beyond the voids was taken)
+  /// Choices in a row whose utility was <= min_utility (frontier-void's utility, also where a view beyond the
+  /// voids was taken instead).
+  int low_views = 0;
   /// Void cells the last view taken took off the void set (InsertStats::void_removed of its inserts: cells it
   /// turned known, and rarely cells the hull's numerical merging left out), set by the caller after the insert
   /// (Explorer::integrate adds them up): for frontier-void and random, whose utility counts void cells, a low
