@@ -1,7 +1,8 @@
 """Beyond the voids: the unknown cells of the search space outside the hull of the occupied cells (the layer above
 a table's objects) draw views (ExploreOptions.beyond_voids) where a view expects more unknown cells of the search
-space (voids included) than frontier-void's view expects void cells, and once the voids are spent, counted only where a ray through them can return; a view
-beyond the voids that saw nothing closes the way. Coarse maps, small images."""
+space (voids included) than frontier-void's view expects void cells, and once the voids are spent, counted only
+where a ray through them can return; a view beyond the voids that saw nothing closes the way. Coarse maps, small
+images."""
 import numpy as np
 
 from octoreach import DepthCamera, ExplorationMap, ExploreOptions, Scene, view_gains

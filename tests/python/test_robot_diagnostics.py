@@ -12,7 +12,7 @@ import octoreach
 from octoreach import Robot, arm_report, camera_link, find_camera_link, robots, self_collision_report
 from octoreach.cli import main
 
-from own_robot import urdf
+from own_robot import _joint, _link, box, urdf
 
 
 @pytest.fixture(scope="module")
@@ -160,18 +160,16 @@ def test_capability_map_of_a_sound_arm_does_not_warn(own):
     assert cap.warning == ""
 
 
-PLANAR_ARM = """<robot name="planar">
-  <link name="base"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
-  <link name="upper"><collision><origin xyz="0.15 0 0"/><geometry><box size="0.3 0.05 0.05"/></geometry></collision></link>
-  <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/><origin xyz="0 0 0.3"/>
-    <axis xyz="0 1 0"/><limit lower="-1.5" upper="1.5" effort="1" velocity="1"/></joint>
-  <link name="fore"><collision><origin xyz="0.125 0 0"/><geometry><box size="0.25 0.04 0.04"/></geometry></collision></link>
-  <joint name="elbow" type="revolute"><parent link="upper"/><child link="fore"/><origin xyz="0.3 0 0"/>
-    <axis xyz="0 1 0"/><limit lower="-2.2" upper="2.2" effort="1" velocity="1"/></joint>
-  <link name="hand"/>
-  <joint name="wrist_roll" type="revolute"><parent link="fore"/><child link="hand"/><origin xyz="0.25 0 0"/>
-    <axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-</robot>"""
+def _planar_arm() -> str:
+    """Two pitch joints and a wrist roll on a box: nothing turns the arm about the vertical."""
+    parts = [_link("base", box(0.2, 0.2, 0.2), (0, 0, 0.1)),
+             _link("upper", box(0.3, 0.05, 0.05), (0.15, 0, 0)),
+             _joint("shoulder", "revolute", "base", "upper", (0, 0, 0.3), (0, 1, 0), (-1.5, 1.5)),
+             _link("fore", box(0.25, 0.04, 0.04), (0.125, 0, 0)),
+             _joint("elbow", "revolute", "upper", "fore", (0.3, 0, 0), (0, 1, 0), (-2.2, 2.2)),
+             _link("hand"),
+             _joint("wrist_roll", "revolute", "fore", "hand", (0.25, 0, 0), (1, 0, 0), (-3.0, 3.0))]
+    return '<?xml version="1.0"?>\n<robot name="planar">\n' + "".join(parts) + "</robot>\n"
 
 
 def test_a_reach_thinner_than_a_voxel_warns_and_gives_no_surface_map(tmp_path):
@@ -179,7 +177,7 @@ def test_a_reach_thinner_than_a_voxel_warns_and_gives_no_surface_map(tmp_path):
     voxel centre lies on: the map holds mixed cells only. The build says why in one MapWarning, and a surface map
     of it is an error naming the map, not a map of zeros or a complaint about joint solutions."""
     path = tmp_path / "planar.urdf"
-    path.write_text(PLANAR_ARM)
+    path.write_text(_planar_arm())
     robot = Robot.from_urdf(str(path))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

@@ -26,21 +26,22 @@ std::string percent(double share) {
 }  // namespace
 
 std::string capability_map_warning(const CapabilityMap& cap) {
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<double> values;
-  cap.voxels(centres, values);
   const std::string arm = "capability map of " + cap.base_link() + " -> " + cap.tip_link();
+  const bool none_reachable = cap.stats().voxels == 0;  // voxels with a reachable cell
   // Voxel records but none reachable: every record holds mixed cells only (the arm's configurations land in
   // them, IK at their centres fails), the mark of a reach thinner than a voxel.
-  if (values.empty() && cap.voxel_count() > 0)
+  if (none_reachable && cap.voxel_count() > 0)
     return arm + ": no voxel centre is reachable, though the arm's configurations reach " +
            std::to_string(cap.voxel_count()) + " voxels: its reach is thinner than a voxel (an arm of " +
            std::to_string(cap.dof()) + " joints; one with no joint that turns it about the vertical reaches a "
            "single plane), so IK at the voxel centres fails: check the joint axes, or give the arm the joints it lacks";
-  if (values.empty())
+  if (none_reachable)
     return arm + ": no voxel is reachable: check the arm's joint limits, its collision model (`octoreach robot` "
                  "counts its self-collisions) and the reference posture";
   if (cap.dof() < 6) return "";
+  std::vector<Eigen::Vector3d> centres;
+  std::vector<double> values;
+  cap.voxels(centres, values);
   const double best = *std::max_element(values.begin(), values.end());
   if (best >= kFewDirections) return "";
   return arm + ": its best voxel reaches only " + percent(best) + " of the approach directions (a 6-DOF wrist "

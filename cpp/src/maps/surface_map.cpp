@@ -71,10 +71,7 @@ std::pair<double, double> target_heights_in_arm(const SurfaceBuild& b, const Sur
 }
 
 void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<double> values;
-  cap.voxels(centres, values);
-  if (values.empty())
+  if (cap.stats().voxels == 0)
     throw std::invalid_argument("the capability map of " + cap.base_link() + " -> " + cap.tip_link() +
                                 " reaches no voxel (its warning says why): no surface map to build from it");
   if (o.check_arm && !cap.has_solutions())
