@@ -12,6 +12,7 @@ import octoreach
 from octoreach import Robot, arm_report, camera_link, find_camera_link, robots, self_collision_report
 from octoreach.cli import main
 
+from octoreach.testing.reach_truth import check_poses, ik_truth
 from own_robot import _joint, _link, box, urdf
 
 
@@ -191,3 +192,25 @@ def test_a_reach_thinner_than_a_voxel_warns_and_gives_no_surface_map(tmp_path):
     for check_arm in (True, False):
         with pytest.raises(ValueError, match="base -> hand reaches no voxel"):
             octoreach.SurfaceMap.build(robot, cap, table, check_arm=check_arm)
+
+
+def test_the_certified_lookup_answers_an_arm_whose_reach_is_thinner_than_a_voxel(tmp_path):
+    """The planar arm's map reaches no voxel centre, but its mixed cells keep the configurations that landed in
+    them: the certified lookup answers by IK from those and agrees with saturated IK, where the plain lookup says
+    no everywhere. The map still counts as keeping its solutions (it was built with them)."""
+    path = tmp_path / "planar.urdf"
+    path.write_text(_planar_arm())
+    robot = Robot.from_urdf(str(path))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", octoreach.MapWarning)
+        cap = octoreach.CapabilityMap.build_for_arm(robot, ("base", "hand", (1.0, 0.0, 0.0)), resolution=0.1,
+                                                    directions=50, progress=False)
+    assert cap.stats["reachable_cells"] == 0 and cap.has_solutions
+    assert "CertifiedLookup" in cap.warning
+    chain = robot.chain("base", "hand")
+    poses, known = check_poses(robot, chain, cap.reference, 200, seed=3)
+    truth = ik_truth(chain, poses, (1.0, 0.0, 0.0), cap.reference, known=known)
+    assert truth.reachable.sum() >= 100  # the poses of collision-free configurations
+    certified = np.asarray(octoreach.CertifiedLookup(cap, robot).reachable(poses))
+    assert np.array_equal(certified, truth.reachable)
+    assert not np.asarray(cap.reachable(poses)).any()

@@ -139,7 +139,9 @@ class CapabilityMap {
   bool reachable(const Eigen::Vector3d& p, int orientation, CapabilityLookup lookup) const;
   /// \brief The stored joint solution of cell (p, orientation), if the map kept solutions.
   std::optional<Eigen::VectorXd> solution(const Eigen::Vector3d& p, int orientation) const;
-  bool has_solutions() const { return !solutions_.empty(); }
+  /// \brief True when the map keeps the joint solutions of its cells (built with keep_solutions, saved with them),
+  /// also where no cell is reachable (its mixed cells' configurations are then all it holds).
+  bool has_solutions() const { return keeps_solutions_; }
   /// \brief True when the map marks its mixed cells (maps of files older than format 2 do not).
   bool has_cell_data() const { return cell_data_; }
   /// \brief True when the map keeps a CellQuality per reachable cell (built with solutions, format 2).
@@ -278,6 +280,7 @@ class CapabilityMap {
   int words_ = 4;                        // uint64 words per voxel record
   std::vector<std::uint64_t> bits_;      // records x words_
   std::vector<std::uint64_t> sol_offset_;  // per record: first solution row
+  bool keeps_solutions_ = false;         // built with keep_solutions / loaded from a file with solutions
   std::vector<float> solutions_;         // rows of dof_ floats, in record/bit order
   std::vector<float> d_;                 // per record: reachability index D
   bool cell_data_ = false;               // mixed cells marked, their configurations and the quality kept

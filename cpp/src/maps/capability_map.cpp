@@ -28,6 +28,7 @@ void CapabilityMap::set_parameters_(const CapabilityMapOptions& o) {
   approach_axis_ = o.approach_axis.normalized();
   self_collision_ = o.self_collision;
   seed_ = o.seed;
+  keeps_solutions_ = o.keep_solutions;
   exhaustive_ = o.exhaustive;
   block_size_ = std::max(0, o.block_size);
   position_tolerance_ = o.position_tolerance;

@@ -123,6 +123,7 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   if (h.count("reference")) m.reference_ = header_reference(h, path);
   m.block_size_ = h.count("block_size") ? static_cast<int>(std::clamp<long long>(header_int(h, "block_size", path), 0, 1 << 20)) : 0;
   bool sols = header_int(h, "solutions", path) != 0;
+  m.keeps_solutions_ = sols;
   m.orientations_ = OrientationSet::sphere(dirs, rolls, sym);
   if (m.orientations_.directions() != dirs) throw FileError("'" + path + "' has an inconsistent direction count");
   const int O = m.orientations_.size();

@@ -34,7 +34,9 @@ std::string capability_map_warning(const CapabilityMap& cap) {
     return arm + ": no voxel centre is reachable, though the arm's configurations reach " +
            std::to_string(cap.voxel_count()) + " voxels: its reach is thinner than a voxel (an arm of " +
            std::to_string(cap.dof()) + " joints; one with no joint that turns it about the vertical reaches a "
-           "single plane), so IK at the voxel centres fails: check the joint axes, or give the arm the joints it lacks";
+           "single plane), so IK at the voxel centres fails and the map's own lookups answer no everywhere: "
+           "CertifiedLookup(map, robot) answers its poses by IK from the configurations the map keeps; or check the "
+           "joint axes, or give the arm the joints it lacks";
   if (none_reachable)
     return arm + ": no voxel is reachable: check the arm's joint limits, its collision model (`octoreach robot` "
                  "counts its self-collisions) and the reference posture";
