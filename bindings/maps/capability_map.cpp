@@ -185,7 +185,8 @@ void wrap_capability_map(py::module_& m) {
   wrap_queries(cls);
   def_map_identity<CapabilityMap>(cls);
   cls.attr("DEFAULT_LOOKUP") = kDefaultCapabilityLookup;
-  cls.attr("FEW_DIRECTIONS") = kFewDirections;  // the warning's threshold (map_warnings.hpp)
+  cls.attr("FEW_DIRECTIONS") = kFewDirections;  // the warnings' thresholds (map_warnings.hpp)
+  cls.attr("MIXED_PER_REACHABLE") = kMixedPerReachable;
   cls.def_property_readonly("resolution", &CapabilityMap::resolution)
       .def_property_readonly("orientations", &CapabilityMap::orientations)
       .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)

@@ -194,6 +194,47 @@ def test_a_reach_thinner_than_a_voxel_warns_and_gives_no_surface_map(tmp_path):
             octoreach.SurfaceMap.build(robot, cap, table, check_arm=check_arm)
 
 
+def _five_joint_arm() -> str:
+    """A hobby arm: a base turning about the vertical, three pitch joints and a wrist roll."""
+    parts = [_link("base", box(0.15, 0.15, 0.1), (0, 0, 0.05)),
+             _link("turret"),
+             _joint("yaw", "revolute", "base", "turret", (0, 0, 0.1), (0, 0, 1), (-2.8, 2.8)),
+             _link("upper", box(0.25, 0.04, 0.04), (0.125, 0, 0)),
+             _joint("shoulder", "revolute", "turret", "upper", (0, 0, 0.05), (0, 1, 0), (-1.5, 1.5)),
+             _link("fore", box(0.2, 0.035, 0.035), (0.1, 0, 0)),
+             _joint("elbow", "revolute", "upper", "fore", (0.25, 0, 0), (0, 1, 0), (-2.0, 2.0)),
+             _link("wrist"),
+             _joint("wrist_pitch", "revolute", "fore", "wrist", (0.2, 0, 0), (0, 1, 0), (-1.6, 1.6)),
+             _link("hand"),
+             _joint("wrist_roll", "revolute", "wrist", "hand", (0.06, 0, 0), (1, 0, 0), (-3.0, 3.0))]
+    return '<?xml version="1.0"?>\n<robot name="hobby">\n' + "".join(parts) + "</robot>\n"
+
+
+def test_a_map_with_more_mixed_cells_than_reachable_ones_warns_and_names_the_certified_lookup(tmp_path):
+    """Five joints reach a thin set of (position, direction) pairs: most cells the arm's configurations land in are
+    mixed, the plain lookups miss most of the arm's reach, and the build says so once, naming the lookup that
+    answers those cells; the certified lookup agrees with saturated IK where the plain one misses."""
+    path = tmp_path / "hobby.urdf"
+    path.write_text(_five_joint_arm())
+    robot = Robot.from_urdf(str(path))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cap = octoreach.CapabilityMap.build_for_arm(robot, ("base", "hand", (1.0, 0.0, 0.0)), resolution=0.1,
+                                                    directions=50, progress=False)
+    ours = [w for w in caught if issubclass(w.category, octoreach.MapWarning)]
+    s = cap.stats
+    assert 0 < s["reachable_cells"] < s["mixed_cells"]
+    assert len(ours) == 1 and str(ours[0].message) == cap.warning
+    assert "mixed cells" in cap.warning and "CertifiedLookup" in cap.warning
+    chain = robot.chain("base", "hand")
+    poses, known = check_poses(robot, chain, cap.reference, 200, seed=5)
+    truth = ik_truth(chain, poses, (1.0, 0.0, 0.0), cap.reference, known=known)
+    certified = np.asarray(octoreach.CertifiedLookup(cap, robot).reachable(poses))
+    plain = np.asarray(cap.reachable(poses))
+    assert (certified == truth.reachable).mean() >= 0.99
+    assert (plain == truth.reachable).mean() < 0.8
+
+
 def test_the_certified_lookup_answers_an_arm_whose_reach_is_thinner_than_a_voxel(tmp_path):
     """The planar arm's map reaches no voxel centre, but its mixed cells keep the configurations that landed in
     them: the certified lookup answers by IK from those and agrees with saturated IK, where the plain lookup says

@@ -30,9 +30,11 @@ const CapabilityMap& usable(const CapabilityMap& map, const Robot& robot) {
         ": rebuild it with arms.capability_map(robot, arm, ...) (keep_solutions=True, the default) and save it with "
         "save(path, with_solutions=True)");
   if (map.model_hash() != 0 && robot.model_hash() != map.model_hash())
-    throw std::invalid_argument("the capability map was built for another robot model than '" + robot.name() +
-                                "' (model hashes differ: another URDF or allowed-collision matrix): pass the robot "
-                                "the map was built for, or build a map for this one");
+    throw std::invalid_argument(
+        "the capability map was built for another robot model than '" + robot.name() +
+        "' (model hashes differ: another URDF or allowed-collision matrix; robots.from_urdf samples the allowed "
+        "collisions of a robot without a complete SRDF, Robot.from_urdf does not): pass the robot the map was built "
+        "for, or build a map for this one");
   return map;
 }
 

@@ -32,24 +32,32 @@ std::string capability_map_warning(const CapabilityMap& cap) {
   // them, IK at their centres fails), the mark of a reach thinner than a voxel.
   if (none_reachable && cap.voxel_count() > 0)
     return arm + ": no voxel centre is reachable, though the arm's configurations reach " +
-           std::to_string(cap.voxel_count()) + " voxels: its reach is thinner than a voxel (an arm of " +
-           std::to_string(cap.dof()) + " joints; one with no joint that turns it about the vertical reaches a "
-           "single plane), so IK at the voxel centres fails and the map's own lookups answer no everywhere: "
-           "CertifiedLookup(map, robot) answers its poses by IK from the configurations the map keeps; or check the "
-           "joint axes, or give the arm the joints it lacks";
+           std::to_string(cap.voxel_count()) + " voxels: its reach is thinner than a cell, in position or in "
+           "direction (an arm of " + std::to_string(cap.dof()) + " joints; one with no joint that turns it about the "
+           "vertical reaches a single plane, one that holds its tool in one direction, as a SCARA pointing down, "
+           "reaches no direction's centre), so IK at the cell centres fails and the map's own lookups answer no "
+           "everywhere: CertifiedLookup(map, robot) answers its poses by IK from the configurations the map keeps; "
+           "or check the joint axes and the approach axis, or give the arm the joints it lacks";
   if (none_reachable)
     return arm + ": no voxel is reachable: check the arm's joint limits, its collision model (`octoreach robot` "
                  "counts its self-collisions) and the reference posture";
-  if (cap.dof() < 6) return "";
-  std::vector<Eigen::Vector3d> centres;
-  std::vector<double> values;
-  cap.voxels(centres, values);
-  const double best = *std::max_element(values.begin(), values.end());
-  if (best >= kFewDirections) return "";
-  return arm + ": its best voxel reaches only " + percent(best) + " of the approach directions (a 6-DOF wrist "
-         "turning +-90 degrees reaches " + percent(kFewDirections) + "): self-collision (`octoreach robot` shows how "
-         "often the arm collides with itself and which links), joint limits or an approach axis that is not the "
-         "tool's (--approach-axis) block the wrist";
+  if (cap.dof() >= 6) {
+    std::vector<Eigen::Vector3d> centres;
+    std::vector<double> values;
+    cap.voxels(centres, values);
+    const double best = *std::max_element(values.begin(), values.end());
+    if (best < kFewDirections)
+      return arm + ": its best voxel reaches only " + percent(best) + " of the approach directions (a 6-DOF wrist "
+             "turning +-90 degrees reaches " + percent(kFewDirections) + "): self-collision (`octoreach robot` shows "
+             "how often the arm collides with itself and which links), joint limits or an approach axis that is not "
+             "the tool's (--approach-axis) block the wrist";
+  }
+  const std::size_t mixed = cap.stats().mixed_cells, reachable = cap.stats().reachable_cells;
+  if (static_cast<double>(mixed) <= kMixedPerReachable * static_cast<double>(reachable)) return "";
+  return arm + ": the arm's configurations land in " + std::to_string(mixed) + " cells whose centre IK does not "
+         "reach (mixed cells), more than twice the " + std::to_string(reachable) + " it reaches: its reach is thin in "
+         "position or direction (few joints, narrow joint ranges), so the plain lookups (map.reachable) miss much of "
+         "it: CertifiedLookup(map, robot) answers the mixed cells by IK";
 }
 
 namespace detail {
