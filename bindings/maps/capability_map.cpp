@@ -23,7 +23,8 @@ void wrap_options(py::module_& m) {
   py::class_<O> cls(m, "CapabilityMapOptions", "Build parameters of a capability map (defaults defined once, in C++).");
   cls.def(py::init<>())
       .def_readwrite("resolution", &O::resolution, "Voxel edge (m).")
-      .def_readwrite("directions", &O::directions, "Approach directions on the sphere.")
+      .def_readwrite("directions", &O::directions,
+                     "Approach directions on the sphere, rounded to the nearest multiple of the symmetry (4: 50 gives 52).")
       .def_readwrite("rolls", &O::rolls, "Rolls per direction (1: any roll).")
       .def_readwrite("symmetry", &O::symmetry, "z symmetry of the direction set.")
       .def_readwrite("approach_axis", &O::approach_axis, "Tool axis that approaches the object (tool frame).")

@@ -679,7 +679,7 @@ class CapabilityMapOptions:
     @property
     def directions(self) -> int:
         """
-        Approach directions on the sphere.
+        Approach directions on the sphere, rounded to the nearest multiple of the symmetry (4: 50 gives 52).
         """
     @directions.setter
     def directions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

@@ -24,7 +24,7 @@ struct VoxelCellData;
 /// \brief Build parameters of a capability map.
 struct CapabilityMapOptions {
   double resolution = 0.05;                                  ///< voxel edge (m)
-  int directions = 200;                                      ///< approach directions on the sphere
+  int directions = 200;                                      ///< approach directions (nearest multiple of `symmetry`)
   int rolls = 1;                                             ///< rolls per direction (1: any roll)
   int symmetry = 4;                                          ///< z symmetry of the direction set
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tool axis that approaches the object
