@@ -193,7 +193,9 @@ void wrap_capability_map(py::module_& m) {
       .def_property_readonly("approach_axis", &CapabilityMap::approach_axis)
       .def_property_readonly("base_link", &CapabilityMap::base_link)
       .def_property_readonly("tip_link", &CapabilityMap::tip_link)
-      .def_property_readonly("has_solutions", &CapabilityMap::has_solutions)
+      .def_property_readonly("has_solutions", &CapabilityMap::has_solutions,
+                             "True when the map keeps joint solutions (built with keep_solutions, saved with them),\n"
+                             "also where no cell is reachable.")
       .def_property_readonly("has_cell_data", &CapabilityMap::has_cell_data,
                              "True when the map marks its mixed cells (format 2; CertifiedLookup needs it).")
       .def_property_readonly("has_quality", &CapabilityMap::has_quality,
@@ -207,8 +209,10 @@ void wrap_capability_map(py::module_& m) {
       .def_property_readonly("voxel_count", &CapabilityMap::voxel_count)
       .def_property_readonly("stats", [](const CapabilityMap& cm) { return stats_dict(cm.stats()); })
       .def_property_readonly("warning", &capability_map_warning,
-                             "One line when the map looks suspicious (its best voxel reaches few approach directions:\n"
-                             "something blocks the wrist), with what to try; '' otherwise. Builds emit it as a MapWarning.")
+                             "One line when the map looks suspicious, with what to try; '' otherwise: no reachable voxel\n"
+                             "(a reach thinner than a cell), a best voxel reaching few approach directions (something\n"
+                             "blocks the wrist), or more than MIXED_PER_REACHABLE mixed cells per reachable one (the plain\n"
+                             "lookups miss much of the reach). Builds emit it as a MapWarning.")
       .def_property_readonly("parameters", [](const CapabilityMap& cm) { return to_dict(cm.parameters()); })
       .def("__repr__", [](const CapabilityMap& cm) {
         return "<octoreach.CapabilityMap " + cm.robot_name() + " '" + cm.base_link() + "' -> '" + cm.tip_link() +

@@ -931,7 +931,10 @@ class CapabilityMap:
         """
     @property
     def has_solutions(self) -> bool:
-        ...
+        """
+        True when the map keeps joint solutions (built with keep_solutions, saved with them),
+        also where no cell is reachable.
+        """
     @property
     def model_hash(self) -> int:
         """
@@ -969,8 +972,10 @@ class CapabilityMap:
     @property
     def warning(self) -> str:
         """
-        One line when the map looks suspicious (its best voxel reaches few approach directions:
-        something blocks the wrist), with what to try; '' otherwise. Builds emit it as a MapWarning.
+        One line when the map looks suspicious, with what to try; '' otherwise: no reachable voxel
+        (a reach thinner than a cell), a best voxel reaching few approach directions (something
+        blocks the wrist), or more than MIXED_PER_REACHABLE mixed cells per reachable one (the plain
+        lookups miss much of the reach). Builds emit it as a MapWarning.
         """
     @property
     def has_cell_data(self) -> bool:

@@ -72,7 +72,7 @@ def capability_mismatch(m, fields: dict, robot=None) -> str | None:
     problem = _first(checks, header)
     if problem is None and bool(options.get("keep_solutions", True)) != bool(m.has_solutions):
         problem = f"the map {'has' if m.has_solutions else 'lacks'} joint solutions, the key asks otherwise"
-    if problem is None and robot is not None and m.has_solutions and m.voxel_count:
+    if problem is None and robot is not None and m.has_solutions and m.stats["reachable_cells"]:
         problem = _solutions_mismatch(m, robot)
     return problem
 

@@ -18,10 +18,11 @@ class CapabilityMap;
 inline constexpr double kFewDirections = 0.5;
 
 /// \brief Mixed cells per reachable cell above which a capability map warns that its plain lookups miss much of
-/// the arm's reach. Why two: then fewer than a third of the cells the arm's configurations land in are reachable at
-/// their centre, so the 8 cells around a reachable pose are rarely half reachable, which the vote needs (the 5-joint
-/// so101 arm: 13 mixed cells per reachable one at 0.05 m, its plain lookups miss 41 % of the check poses; the 6- and
-/// 7-joint arms of the panel: 0.05 to 0.4).
+/// the arm's reach. Why two: above it fewer than a third of the cells the arm's configurations land in are
+/// reachable at their centre, where the plain lookups are measured to fail: the 5-joint so101 arm has 13 mixed cells
+/// per reachable one at 0.05 m and its plain lookups agree with IK on 56-59 % of the check poses, the 6- and 7-joint
+/// arms of the panel have 0.05 to 0.4 and agree on 89-97 %; between them, the tests' own 6-joint arm (1.3 at 0.1 m
+/// and 50 directions, 88 %) stays under it.
 inline constexpr double kMixedPerReachable = 2.0;
 
 /// \brief Share of its best grasp share (over every height) that an arm must keep at a surface's height. Why

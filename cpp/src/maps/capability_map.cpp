@@ -203,7 +203,7 @@ const CellQuality* CapabilityMap::record_quality(std::uint32_t rec, int o) const
 }
 
 void CapabilityMap::require_quality(const std::string& what) const {
-  if (!quality_.empty()) return;
+  if (has_quality()) return;  // (a map of mixed cells only holds no quality and answers none)
   throw std::invalid_argument(
       what + " needs the quality of the map's cells, which this map does not hold (" +
       (has_solutions() ? "its file was written by an older octoreach" : "it was built or saved without joint solutions") +

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "octoreach/capability_map.hpp"
+#include "common/format.hpp"
 #include "maps/surface_warning.hpp"
 
 namespace octoreach {
@@ -27,6 +28,9 @@ std::string percent(double share) {
 
 std::string capability_map_warning(const CapabilityMap& cap) {
   const std::string arm = "capability map of " + cap.base_link() + " -> " + cap.tip_link();
+  // The certified lookup needs the map's joint solutions.
+  const std::string certified = cap.has_solutions() ? "CertifiedLookup(map, robot)"
+                                                    : "CertifiedLookup(map, robot) (after a build with keep_solutions=True)";
   const bool none_reachable = cap.stats().voxels == 0;  // voxels with a reachable cell
   // Voxel records but none reachable: every record holds mixed cells only (the arm's configurations land in
   // them, IK at their centres fails), the mark of a reach thinner than a voxel.
@@ -36,7 +40,7 @@ std::string capability_map_warning(const CapabilityMap& cap) {
            "direction (an arm of " + std::to_string(cap.dof()) + " joints; one with no joint that turns it about the "
            "vertical reaches a single plane, one that holds its tool in one direction, as a SCARA pointing down, "
            "reaches no direction's centre), so IK at the cell centres fails and the map's own lookups answer no "
-           "everywhere: CertifiedLookup(map, robot) answers its poses by IK from the configurations the map keeps; "
+           "everywhere: " + certified + " answers its poses by IK from the configurations the map keeps; "
            "or check the joint axes and the approach axis, or give the arm the joints it lacks";
   if (none_reachable)
     return arm + ": no voxel is reachable: check the arm's joint limits, its collision model (`octoreach robot` "
@@ -55,9 +59,10 @@ std::string capability_map_warning(const CapabilityMap& cap) {
   const std::size_t mixed = cap.stats().mixed_cells, reachable = cap.stats().reachable_cells;
   if (static_cast<double>(mixed) <= kMixedPerReachable * static_cast<double>(reachable)) return "";
   return arm + ": the arm's configurations land in " + std::to_string(mixed) + " cells whose centre IK does not "
-         "reach (mixed cells), more than twice the " + std::to_string(reachable) + " it reaches: its reach is thin in "
-         "position or direction (few joints, narrow joint ranges), so the plain lookups (map.reachable) miss much of "
-         "it: CertifiedLookup(map, robot) answers the mixed cells by IK";
+         "reach (mixed cells), more than " + detail::format_number(kMixedPerReachable) + " times the " +
+         std::to_string(reachable) + " it reaches: its reach is thin in position or direction (few joints, narrow "
+         "joint ranges), so the plain lookups (map.reachable) and surface maps, which read only the reachable cells, "
+         "miss much of it: " + certified + " answers the mixed cells by IK";
 }
 
 namespace detail {
