@@ -24,9 +24,13 @@ void wrap_options(py::module_& m) {
   cls.def(py::init<>())
       .def_readwrite("resolution", &O::resolution, "Voxel edge (m).")
       .def_readwrite("directions", &O::directions,
-                     "Approach directions on the sphere, rounded to the nearest multiple of the symmetry (4: 50 gives 52).")
+                     "Approach directions on the sphere, rounded to the nearest multiple of the symmetry\n"
+                     "(4: 50 gives 52).")
       .def_readwrite("rolls", &O::rolls, "Rolls per direction (1: any roll).")
       .def_readwrite("symmetry", &O::symmetry, "z symmetry of the direction set.")
+      .def_readwrite("poles", &O::poles,
+                     "Also the directions straight up and down (+z, -z of the base link): for a tool held vertical\n"
+                     "(a SCARA's), which no direction of the spiral points along exactly. Recorded in files.")
       .def_readwrite("approach_axis", &O::approach_axis, "Tool axis that approaches the object (tool frame).")
       .def_readwrite("self_collision", &O::self_collision, "Solutions must be free of self-collision.")
       .def_readwrite("seed", &O::seed)
@@ -209,10 +213,11 @@ void wrap_capability_map(py::module_& m) {
       .def_property_readonly("voxel_count", &CapabilityMap::voxel_count)
       .def_property_readonly("stats", [](const CapabilityMap& cm) { return stats_dict(cm.stats()); })
       .def_property_readonly("warning", &capability_map_warning,
-                             "One line when the map looks suspicious, with what to try; '' otherwise: no reachable voxel\n"
-                             "(a reach thinner than a cell), a best voxel reaching few approach directions (something\n"
-                             "blocks the wrist), or more than MIXED_PER_REACHABLE mixed cells per reachable one (the plain\n"
-                             "lookups miss much of the reach). Builds emit it as a MapWarning.")
+                             "One line when the map looks suspicious, with what to try; '' otherwise: no\n"
+                             "reachable voxel (a reach thinner than a cell), a best voxel reaching few approach\n"
+                             "directions (something blocks the wrist), or more than MIXED_PER_REACHABLE mixed cells\n"
+                             "per reachable one (the plain lookups miss much of the reach). Builds emit it as a\n"
+                             "MapWarning.")
       .def_property_readonly("parameters", [](const CapabilityMap& cm) { return to_dict(cm.parameters()); })
       .def("__repr__", [](const CapabilityMap& cm) {
         return "<octoreach.CapabilityMap " + cm.robot_name() + " '" + cm.base_link() + "' -> '" + cm.tip_link() +

@@ -7,7 +7,9 @@ namespace octoreach::py_bindings {
 void wrap_orientation_set(py::module_& m) {
   py::class_<OrientationSet>(m, "OrientationSet",
       "Evenly spread approach directions on the sphere, times rolls about each (index = direction * rolls + roll).")
-      .def_static("sphere", &OrientationSet::sphere, py::arg("count") = 200, py::arg("rolls") = 1, py::arg("symmetry") = 4)
+      .def_static("sphere", &OrientationSet::sphere, py::arg("count") = 200, py::arg("rolls") = 1,
+                  py::arg("symmetry") = 4, py::arg("poles") = false)
+      .def_property_readonly("poles", &OrientationSet::poles, "True when the set holds the directions along +z and -z.")
       .def_property_readonly("directions", [](const OrientationSet& s) {
         Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> d(s.directions(), 3);
         for (int i = 0; i < s.directions(); ++i) d.row(i) = s.direction(i).transpose();

@@ -36,7 +36,8 @@ void wrap_options(py::module_& m) {
 }
 
 // SurfaceMap.build: `arm` is a CapabilityMap, or an arm whose capability map is built first with
-// `directions`, `seed` and `approach_axis` (the only capability-map keywords), at the surface map's resolution.
+// `directions`, `poles`, `seed` and `approach_axis` (the only capability-map keywords), at the surface map's
+// resolution.
 std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, const Surface& surface,
                                   const py::object& options, const py::object& progress, const py::kwargs& kw) {
   CapabilityMapOptions co;
@@ -46,6 +47,7 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
     std::string key = py::str(item.first);
     if (key == "approach_axis") approach_axis = py::reinterpret_borrow<py::object>(item.second);
     else if (key == "directions") co.directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
+    else if (key == "poles") co.poles = cast_arg<bool>(item.second, "SurfaceMap.build(): keyword 'poles'", "a bool");
     else if (key == "seed") co.seed = cast_arg<std::uint64_t>(item.second, "SurfaceMap.build(): keyword 'seed'", "an int");
     else rest[item.first] = item.second;
   }
@@ -103,7 +105,8 @@ void wrap_surface_map(py::module_& m) {
   cls.def_static("build", &build, py::arg("robot"), py::arg("arm"), py::arg("surface"), py::arg("options") = py::none(),
                   py::arg("progress") = true,
                   "Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])\n"
-                  "tuple whose capability map is built first (keywords directions and seed; at `resolution`, default\n"
+                  "tuple whose capability map is built first (keywords directions, poles and seed; at `resolution`,\n"
+                  "default "
                   "CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,\n"
                   "theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.\n"
                   "The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.\n"

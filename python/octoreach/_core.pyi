@@ -552,7 +552,7 @@ class OrientationSet:
     Evenly spread approach directions on the sphere, times rolls about each (index = direction * rolls + roll).
     """
     @staticmethod
-    def sphere(count: typing.SupportsInt | typing.SupportsIndex = 200, rolls: typing.SupportsInt | typing.SupportsIndex = 1, symmetry: typing.SupportsInt | typing.SupportsIndex = 4) -> OrientationSet:
+    def sphere(count: typing.SupportsInt | typing.SupportsIndex = 200, rolls: typing.SupportsInt | typing.SupportsIndex = 1, symmetry: typing.SupportsInt | typing.SupportsIndex = 4, poles: bool = False) -> OrientationSet:
         ...
     def __len__(self) -> int:
         ...
@@ -570,6 +570,11 @@ class OrientationSet:
     def directions(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"]:
         """
         (K, 3) unit approach directions.
+        """
+    @property
+    def poles(self) -> bool:
+        """
+        True when the set holds the directions along +z and -z.
         """
     @property
     def rolls(self) -> int:
@@ -721,6 +726,15 @@ class CapabilityMapOptions:
         """
     @orientation_tolerance.setter
     def orientation_tolerance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def poles(self) -> bool:
+        """
+        Also the directions straight up and down (+z, -z of the base link): for a tool held vertical
+        (a SCARA's), which no direction of the spiral points along exactly. Recorded in files.
+        """
+    @poles.setter
+    def poles(self, arg0: bool) -> None:
         ...
     @property
     def position_tolerance(self) -> float:
@@ -1451,8 +1465,8 @@ class SurfaceMap:
     def build(robot: Robot, arm: typing.Any, surface: Surface, options: typing.Any = None, progress: typing.Any = True, **kwargs) -> SurfaceMap:
         """
         Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])
-        tuple whose capability map is built first (keywords directions and seed; at `resolution`, default
-        CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,
+        tuple whose capability map is built first (keywords directions, poles and seed; at `resolution`,
+        default CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,
         theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.
         The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.
         `obstacles` (Obstacles: walls, other surfaces, meshes, OctoMaps) are checked against body and arm. `reference` fixes the joints off the arm

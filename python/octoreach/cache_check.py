@@ -68,7 +68,8 @@ def capability_mismatch(m, fields: dict, robot=None) -> str | None:
         if name in header and value is not None and not (name == "fk_samples" and value == 0):
             checks[name] = value
     if isinstance(options.get("directions"), int):  # the sphere's count may exceed the one asked for (50 -> 52)
-        checks["directions"] = _directions(options["directions"], options.get("rolls", 1), options.get("symmetry", 4))
+        checks["directions"] = _directions(options["directions"], options.get("rolls", 1), options.get("symmetry", 4),
+                                           bool(options.get("poles", False)))
     problem = _first(checks, header)
     if problem is None and bool(options.get("keep_solutions", True)) != bool(m.has_solutions):
         problem = f"the map {'has' if m.has_solutions else 'lacks'} joint solutions, the key asks otherwise"
@@ -78,11 +79,11 @@ def capability_mismatch(m, fields: dict, robot=None) -> str | None:
 
 
 @functools.lru_cache(maxsize=64)
-def _directions(directions: int, rolls: int, symmetry: int) -> int:
+def _directions(directions: int, rolls: int, symmetry: int, poles: bool = False) -> int:
     """How many directions the orientation set of these options has (what a map header records)."""
     from ._core import OrientationSet
 
-    return int(len(OrientationSet.sphere(directions, rolls, symmetry).directions))
+    return int(len(OrientationSet.sphere(directions, rolls, symmetry, poles).directions))
 
 
 def _probe_points(m) -> np.ndarray:

@@ -143,10 +143,7 @@ def test_capability_map_of_a_blocked_wrist_warns_once(bad_elbow):
     says so in one MapWarning naming what to try; a healthy arm's build says nothing."""
     bad = Robot.from_urdf(str(bad_elbow))
     (arm,) = octoreach.find_arms(bad)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        cap = octoreach.CapabilityMap.build_for_arm(bad, arm, resolution=0.1, directions=50, progress=False)
-    ours = [w for w in caught if issubclass(w.category, octoreach.MapWarning)]
+    cap, ours = _map_and_warnings(bad, arm)
     assert cap.warning and len(ours) == 1 and str(ours[0].message) == cap.warning
     assert "`octoreach robot`" in cap.warning and "approach directions" in cap.warning
     _, d = cap.voxels()
@@ -162,7 +159,23 @@ def test_capability_map_of_a_sound_arm_does_not_warn(own):
     assert cap.warning == ""
 
 
-def _planar_arm() -> str:
+def _own_urdf(tmp_path, name: str, parts: list[str]) -> tuple:
+    """(path, Robot) of a URDF of `parts` written under tmp_path."""
+    path = tmp_path / f"{name}.urdf"
+    path.write_text(f'<?xml version="1.0"?>\n<robot name="{name}">\n' + "".join(parts) + "</robot>\n")
+    return path, Robot.from_urdf(str(path))
+
+
+def _map_and_warnings(robot, arm, **options) -> tuple:
+    """(capability map at 0.1 m and 50 directions, the MapWarnings its build emitted)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        cap = octoreach.CapabilityMap.build_for_arm(robot, arm, resolution=0.1, directions=50, progress=False,
+                                                    **options)
+    return cap, [w for w in caught if issubclass(w.category, octoreach.MapWarning)]
+
+
+def _planar_arm() -> list[str]:
     """Two pitch joints and a wrist roll on a box: nothing turns the arm about the vertical."""
     parts = [_link("base", box(0.2, 0.2, 0.2), (0, 0, 0.1)),
              _link("upper", box(0.3, 0.05, 0.05), (0.15, 0, 0)),
@@ -171,21 +184,15 @@ def _planar_arm() -> str:
              _joint("elbow", "revolute", "upper", "fore", (0.3, 0, 0), (0, 1, 0), (-2.2, 2.2)),
              _link("hand"),
              _joint("wrist_roll", "revolute", "fore", "hand", (0.25, 0, 0), (1, 0, 0), (-3.0, 3.0))]
-    return '<?xml version="1.0"?>\n<robot name="planar">\n' + "".join(parts) + "</robot>\n"
+    return parts
 
 
 def test_a_reach_thinner_than_a_voxel_warns_and_gives_no_surface_map(tmp_path):
     """An arm with no joint that turns it about the vertical reaches one plane (y = 0 of its base), which no
     voxel centre lies on: the map holds mixed cells only. The build says why in one MapWarning, and a surface map
     of it is an error naming the map, not a map of zeros or a complaint about joint solutions."""
-    path = tmp_path / "planar.urdf"
-    path.write_text(_planar_arm())
-    robot = Robot.from_urdf(str(path))
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        cap = octoreach.CapabilityMap.build_for_arm(robot, ("base", "hand", (1.0, 0.0, 0.0)), resolution=0.1,
-                                                    directions=50, progress=False)
-    ours = [w for w in caught if issubclass(w.category, octoreach.MapWarning)]
+    _, robot = _own_urdf(tmp_path, "planar", _planar_arm())
+    cap, ours = _map_and_warnings(robot, ("base", "hand", (1.0, 0.0, 0.0)))
     assert cap.stats["reachable_cells"] == 0 and cap.stats["mixed_cells"] > 0 and cap.voxel_count > 0
     assert len(ours) == 1 and str(ours[0].message) == cap.warning
     assert "no voxel centre is reachable" in cap.warning and "single plane" in cap.warning
@@ -195,7 +202,7 @@ def test_a_reach_thinner_than_a_voxel_warns_and_gives_no_surface_map(tmp_path):
             octoreach.SurfaceMap.build(robot, cap, table, check_arm=check_arm)
 
 
-def _five_joint_arm() -> str:
+def _five_joint_arm() -> list[str]:
     """A hobby arm: a base turning about the vertical, three pitch joints and a wrist roll."""
     parts = [_link("base", box(0.15, 0.15, 0.1), (0, 0, 0.05)),
              _link("turret"),
@@ -208,21 +215,15 @@ def _five_joint_arm() -> str:
              _joint("wrist_pitch", "revolute", "fore", "wrist", (0.2, 0, 0), (0, 1, 0), (-1.6, 1.6)),
              _link("hand"),
              _joint("wrist_roll", "revolute", "wrist", "hand", (0.06, 0, 0), (1, 0, 0), (-3.0, 3.0))]
-    return '<?xml version="1.0"?>\n<robot name="hobby">\n' + "".join(parts) + "</robot>\n"
+    return parts
 
 
 def test_a_map_with_more_mixed_cells_than_reachable_ones_warns_and_names_the_certified_lookup(tmp_path):
     """Five joints reach a thin set of (position, direction) pairs: most cells the arm's configurations land in are
     mixed, the plain lookups miss most of the arm's reach, and the build says so once, naming the lookup that
     answers those cells; the certified lookup agrees with saturated IK where the plain one misses."""
-    path = tmp_path / "hobby.urdf"
-    path.write_text(_five_joint_arm())
-    robot = Robot.from_urdf(str(path))
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        cap = octoreach.CapabilityMap.build_for_arm(robot, ("base", "hand", (1.0, 0.0, 0.0)), resolution=0.1,
-                                                    directions=50, progress=False)
-    ours = [w for w in caught if issubclass(w.category, octoreach.MapWarning)]
+    _, robot = _own_urdf(tmp_path, "hobby", _five_joint_arm())
+    cap, ours = _map_and_warnings(robot, ("base", "hand", (1.0, 0.0, 0.0)))
     s = cap.stats
     assert 0 < s["reachable_cells"] < s["mixed_cells"]
     assert len(ours) == 1 and str(ours[0].message) == cap.warning
@@ -236,13 +237,66 @@ def test_a_map_with_more_mixed_cells_than_reachable_ones_warns_and_names_the_cer
     assert (plain & truth.reachable).sum() < 0.5 * truth.reachable.sum()  # the plain lookup misses most of them
 
 
+def _scara() -> list[str]:
+    """Two arm joints and a tool roll about the vertical and a quill sliding along it: the tool always points down."""
+    parts = [_link("base", box(0.2, 0.2, 0.4), (0, 0, 0.2)),
+             _link("arm1", box(0.3, 0.08, 0.05), (0.15, 0, 0)),
+             _joint("j1", "revolute", "base", "arm1", (0, 0, 0.45), (0, 0, 1), (-2.5, 2.5)),
+             _link("arm2", box(0.25, 0.07, 0.05), (0.125, 0, 0)),
+             _joint("j2", "revolute", "arm1", "arm2", (0.3, 0, 0.06), (0, 0, 1), (-2.5, 2.5)),
+             _link("quill", box(0.03, 0.03, 0.3), (0, 0, 0.15)),
+             _joint("j3", "prismatic", "arm2", "quill", (0.25, 0, -0.3), (0, 0, 1), (0.0, 0.25)),
+             _link("tool"),
+             _joint("j4", "revolute", "quill", "tool", (0, 0, 0), (0, 0, 1), (-3.0, 3.0))]
+    return parts
+
+
+def test_a_scara_gets_a_map_with_the_poles_of_the_direction_set(tmp_path):
+    """A SCARA's tool points straight down, along no direction of the spiral: its map reaches no cell and the
+    warning says so; with poles=True the set holds -z, the plain lookup answers the tool poses of its configurations,
+    a surface map builds, and a saved map keeps its poles."""
+    path, robot = _own_urdf(tmp_path, "scara", _scara())
+    arm = ("base", "tool", (0.0, 0.0, -1.0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", octoreach.MapWarning)
+        spiral = octoreach.CapabilityMap.build_for_arm(robot, arm, resolution=0.05, directions=50, progress=False)
+    assert spiral.stats["reachable_cells"] == 0 and "poles=True" in spiral.warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", octoreach.MapWarning)
+        cap = octoreach.CapabilityMap.build_for_arm(robot, arm, resolution=0.05, directions=50, poles=True,
+                                                    progress=False)
+    directions = cap.orientations.directions
+    assert cap.orientations.poles and len(directions) == 50 and cap.stats["reachable_cells"] > 0
+    assert np.allclose(directions[-2:], [[0, 0, 1], [0, 0, -1]])
+    chain = robot.chain("base", "tool")
+    poses, known = check_poses(robot, chain, cap.reference, 400, seed=1)
+    truth = ik_truth(chain, poses, (0.0, 0.0, -1.0), cap.reference, known=known).reachable
+    plain = np.asarray(cap.reachable(poses))
+    certified = np.asarray(octoreach.CertifiedLookup(cap, robot).reachable(poses))
+    assert (plain[known] == truth[known]).mean() >= 0.8 and (plain == truth).mean() >= 0.9
+    assert (certified == truth).mean() >= 0.99
+    table = octoreach.Surface.rectangle(0.3, 0.2, 0.3)
+    smap = octoreach.SurfaceMap.build(robot, cap, table, progress=False)
+    from_arm = octoreach.SurfaceMap.build(robot, arm, table, resolution=0.05, directions=50, poles=True, progress=False)
+    assert smap.max_reachability > 0 and from_arm.max_reachability == smap.max_reachability
+    cap.save(str(tmp_path / "scara.map"), with_solutions=True)
+    loaded = octoreach.CapabilityMap.load(str(tmp_path / "scara.map"))
+    assert loaded.orientations.poles and loaded.parameters["poles"] == "1"
+    assert np.array_equal(loaded.orientations.directions, directions)
+    assert "poles" not in spiral.parameters  # files of maps without them are as before
+    out = tmp_path / "cli.orcm"
+    assert main(["capability", "--urdf", str(path), "--base", "base", "--tip", "tool", "--approach-axis", "0", "0",
+                 "-1", "--poles", "--resolution", "0.05", "--directions", "50", "--quiet", "--no-cache",
+                 "--out", str(out)]) == 0
+    from_cli = octoreach.CapabilityMap.load(str(out))
+    assert from_cli.orientations.poles and from_cli.stats["reachable_cells"] == cap.stats["reachable_cells"]
+
+
 def test_the_certified_lookup_answers_an_arm_whose_reach_is_thinner_than_a_voxel(tmp_path):
     """The planar arm's map reaches no voxel centre, but its mixed cells keep the configurations that landed in
     them: the certified lookup answers by IK from those and agrees with saturated IK, where the plain lookup says
     no everywhere. The map still counts as keeping its solutions (it was built with them)."""
-    path = tmp_path / "planar.urdf"
-    path.write_text(_planar_arm())
-    robot = Robot.from_urdf(str(path))
+    _, robot = _own_urdf(tmp_path, "planar", _planar_arm())
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", octoreach.MapWarning)
         cap = octoreach.CapabilityMap.build_for_arm(robot, ("base", "hand", (1.0, 0.0, 0.0)), resolution=0.1,

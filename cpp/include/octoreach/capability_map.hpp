@@ -27,6 +27,9 @@ struct CapabilityMapOptions {
   int directions = 200;                                      ///< approach directions (nearest multiple of `symmetry`)
   int rolls = 1;                                             ///< rolls per direction (1: any roll)
   int symmetry = 4;                                          ///< z symmetry of the direction set
+  /// Also the directions straight up and down (+z, -z of the base link): for a tool held vertical (a SCARA's,
+  /// a palletiser's), which no direction of the spiral points along exactly. Recorded in files.
+  bool poles = false;
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tool axis that approaches the object
   bool self_collision = true;                                ///< solutions must be free of self-collision
   Eigen::VectorXd reference;  ///< robot configuration off the chain (empty: default_reference(robot, chain))

@@ -23,9 +23,11 @@ class OrientationSet {
   static constexpr std::int64_t kMaxDirections = limits::kDirections;
   static constexpr int kMaxRolls = limits::kRolls;
   /// \brief Evenly spread set of about `count` directions (rounded to a multiple of `symmetry`); built in
-  /// O(count log count). \throws std::invalid_argument for count outside [1, kMaxDirections], rolls outside
-  /// [1, kMaxRolls] or symmetry outside [1, 64].
-  static OrientationSet sphere(std::int64_t count = 200, int rolls = 1, int symmetry = 4);
+  /// O(count log count). With `poles`, the two directions along +z and -z follow the spiral, which then holds
+  /// about count - 2 (a tool held vertical, as a SCARA's, points along one of them exactly; the spiral never
+  /// does). \throws std::invalid_argument for count outside [1, kMaxDirections], rolls outside [1, kMaxRolls] or
+  /// symmetry outside [1, 64].
+  static OrientationSet sphere(std::int64_t count = 200, int rolls = 1, int symmetry = 4, bool poles = false);
   /// \brief Set from explicit unit directions (normalised here); symmetry 1.
   static OrientationSet from_directions(const std::vector<Eigen::Vector3d>& directions, int rolls = 1);
 
@@ -34,6 +36,8 @@ class OrientationSet {
   /// \brief Number of orientations (directions x rolls).
   int size() const { return directions() * rolls_; }
   int symmetry() const { return symmetry_; }
+  /// \brief True when the set holds the directions along +z and -z after its spiral (sphere(..., poles)).
+  bool poles() const { return poles_; }
   const Eigen::Vector3d& direction(int i) const { return dirs_.at(i); }
   const std::vector<Eigen::Vector3d>& all_directions() const { return dirs_; }
 
@@ -58,6 +62,7 @@ class OrientationSet {
   std::vector<Eigen::Vector3d> dirs_;
   int rolls_ = 1;
   int symmetry_ = 1;
+  bool poles_ = false;
   std::vector<std::vector<int>> neighbours_;
   std::vector<std::vector<int>> rotated_;  // [k][i]
   // Cube-map table: for each face cell the candidate directions that can be nearest, one flat array

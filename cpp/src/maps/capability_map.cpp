@@ -59,7 +59,7 @@ CapabilityMap CapabilityMap::shell_(const Chain& chain, const CapabilityMapOptio
   const Robot& robot = chain.robot();
   CapabilityMap m;
   m.set_parameters_(o);
-  m.orientations_ = OrientationSet::sphere(o.directions, o.rolls, o.symmetry);
+  m.orientations_ = OrientationSet::sphere(o.directions, o.rolls, o.symmetry, o.poles);
   m.provenance_ = MapProvenance::of(robot);
   m.base_link_ = chain.base_link();
   m.tip_link_ = chain.tip_link();
@@ -291,6 +291,7 @@ std::vector<std::pair<std::string, std::string>> CapabilityMap::parameters() con
           {"jacobian_rank", std::to_string(jacobian_rank_)},
           {"reference", detail::format_vector(reference_)},
           {"octoreach_version", version()}});
+  if (orientations_.poles()) p.emplace_back("poles", "1");  // (absent: the files of maps without them unchanged)
   return p;
 }
 

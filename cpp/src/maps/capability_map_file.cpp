@@ -124,7 +124,8 @@ CapabilityMap CapabilityMap::load(const std::string& path) {
   m.block_size_ = h.count("block_size") ? static_cast<int>(std::clamp<long long>(header_int(h, "block_size", path), 0, 1 << 20)) : 0;
   bool sols = header_int(h, "solutions", path) != 0;
   m.keeps_solutions_ = sols;
-  m.orientations_ = OrientationSet::sphere(dirs, rolls, sym);
+  const bool poles = h.count("poles") && header_int(h, "poles", path) != 0;
+  m.orientations_ = OrientationSet::sphere(dirs, rolls, sym, poles);
   if (m.orientations_.directions() != dirs) throw FileError("'" + path + "' has an inconsistent direction count");
   const int O = m.orientations_.size();
   m.words_ = (O + 63) / 64;

@@ -29,8 +29,8 @@ std::string percent(double share) {
 std::string capability_map_warning(const CapabilityMap& cap) {
   const std::string arm = "capability map of " + cap.base_link() + " -> " + cap.tip_link();
   // The certified lookup needs the map's joint solutions.
-  const std::string certified = cap.has_solutions() ? "CertifiedLookup(map, robot)"
-                                                    : "CertifiedLookup(map, robot) (after a build with keep_solutions=True)";
+  const std::string certified =
+      std::string("CertifiedLookup(map, robot)") + (cap.has_solutions() ? "" : " (after a build with keep_solutions=True)");
   const bool none_reachable = cap.stats().voxels == 0;  // voxels with a reachable cell
   // Voxel records but none reachable: every record holds mixed cells only (the arm's configurations land in
   // them, IK at their centres fails), the mark of a reach thinner than a voxel.
@@ -39,9 +39,10 @@ std::string capability_map_warning(const CapabilityMap& cap) {
            std::to_string(cap.voxel_count()) + " voxels: its reach is thinner than a cell, in position or in "
            "direction (an arm of " + std::to_string(cap.dof()) + " joints; one with no joint that turns it about the "
            "vertical reaches a single plane, one that holds its tool in one direction, as a SCARA pointing down, "
-           "reaches no direction's centre), so IK at the cell centres fails and the map's own lookups answer no "
-           "everywhere: " + certified + " answers its poses by IK from the configurations the map keeps; "
-           "or check the joint axes and the approach axis, or give the arm the joints it lacks";
+           "reaches no direction's centre" + (cap.orientations().poles() ? "" : " unless the map has poles=True") +
+           "), so IK at the cell centres fails and the map's own lookups answer no everywhere: " + certified +
+           " answers its poses by IK from the configurations the map keeps; or check the joint axes and the "
+           "approach axis, or give the arm the joints it lacks";
   if (none_reachable)
     return arm + ": no voxel is reachable: check the arm's joint limits, its collision model (`octoreach robot` "
                  "counts its self-collisions) and the reference posture";

@@ -85,7 +85,7 @@ Eigen::Matrix3d align(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
 
 }  // namespace
 
-OrientationSet OrientationSet::sphere(std::int64_t count, int rolls, int symmetry) {
+OrientationSet OrientationSet::sphere(std::int64_t count, int rolls, int symmetry, bool poles) {
   if (count < 1 || count > kMaxDirections)
     throw std::invalid_argument("direction count must be in [1, " + std::to_string(kMaxDirections) + "], got " +
                                 std::to_string(count));
@@ -95,7 +95,9 @@ OrientationSet OrientationSet::sphere(std::int64_t count, int rolls, int symmetr
   OrientationSet s;
   s.rolls_ = rolls;
   s.symmetry_ = symmetry;
-  const int per_wedge = int(std::max<std::int64_t>(1, (count + symmetry / 2) / symmetry));
+  s.poles_ = poles;
+  const std::int64_t spiral = poles ? count - 2 : count;  // the poles come on top of the spiral
+  const int per_wedge = int(std::max<std::int64_t>(1, (spiral + symmetry / 2) / symmetry));
   // Fibonacci spiral over the sphere, compressed into one azimuth wedge of 2 pi / symmetry:
   // equal-area in z, golden-ratio spacing in azimuth within the wedge.
   const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
@@ -109,6 +111,10 @@ OrientationSet OrientationSet::sphere(std::int64_t count, int rolls, int symmetr
       double p = phi + k * wedge;
       s.dirs_.emplace_back(r * std::cos(p), r * std::sin(p), z);
     }
+  }
+  if (poles) {  // fixed by every turn about z: the symmetry holds
+    s.dirs_.emplace_back(0.0, 0.0, 1.0);
+    s.dirs_.emplace_back(0.0, 0.0, -1.0);
   }
   s.finalize_();
   return s;

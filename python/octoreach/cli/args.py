@@ -108,6 +108,8 @@ def arm_args(sp, many=False):
                         help=f"voxel edge in m (default {defaults.resolution})")
     sp.add_argument("--directions", type=int, default=defaults.directions,
                     help=f"approach directions (default {defaults.directions})")
+    sp.add_argument("--poles", action="store_true",
+                    help="also the directions straight up and down: for a tool held vertical (a SCARA)")
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sp.add_argument("--quiet", action="store_true", help="no progress bar")
     sp.add_argument("--octovis", help="also write a colour octree (.ot) for octovis")

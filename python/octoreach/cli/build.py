@@ -56,10 +56,11 @@ def _cmd_capability(args) -> int:
 
         cap = cluster.build_capability_split(robot, arm, cluster=args.cluster, block_size=args.block_size or 16,
                                              cache=cache, progress=not args.quiet, robot_spec=robot_spec(args),
-                                             resolution=args.resolution, directions=args.directions, seed=args.seed)
+                                             resolution=args.resolution, directions=args.directions, poles=args.poles,
+                                             seed=args.seed)
     else:
-        cap = arms.capability_map(robot, arm, resolution=args.resolution, directions=args.directions, seed=args.seed,
-                                  block_size=args.block_size, progress=not args.quiet, cache=cache)
+        cap = arms.capability_map(robot, arm, resolution=args.resolution, directions=args.directions, poles=args.poles,
+                                  seed=args.seed, block_size=args.block_size, progress=not args.quiet, cache=cache)
     cap.save(args.out, with_solutions=args.with_solutions)
     if args.octovis:
         cap.export_octovis(args.octovis)
@@ -93,8 +94,8 @@ def _cmd_surface(args) -> int:
         from .. import arms
 
         sources = [s if isinstance(s, CapabilityMap) else
-                   arms.capability_map(robot, s, directions=args.directions, seed=args.seed, progress=not args.quiet,
-                                       **grid) for s in sources]
+                   arms.capability_map(robot, s, directions=args.directions, poles=args.poles, seed=args.seed,
+                                       progress=not args.quiet, **grid) for s in sources]
         for folder in (args.out, args.plot, args.octovis):
             if folder:
                 os.makedirs(folder, exist_ok=True)
@@ -102,7 +103,7 @@ def _cmd_surface(args) -> int:
         obstacles = obstacles_of()
         maps = [SurfaceMap.build(robot, source, surface, theta_bins=args.theta_bins, **grid,
                                  z_range=(args.z, args.z), obstacles=obstacles, directions=args.directions,
-                                 seed=args.seed, progress=not args.quiet) for source in sources]
+                                 poles=args.poles, seed=args.seed, progress=not args.quiet) for source in sources]
         del obstacles
         smap = maps[0] if len(maps) == 1 else SurfaceMap.combine(maps, args.combine)
         if smap.voxel_count == 0:
