@@ -29,8 +29,8 @@ std::string percent(double share) {
 std::string capability_map_warning(const CapabilityMap& cap) {
   const std::string arm = "capability map of " + cap.base_link() + " -> " + cap.tip_link();
   // The certified lookup needs the map's joint solutions.
-  const std::string certified =
-      std::string("CertifiedLookup(map, robot)") + (cap.has_solutions() ? "" : " (after a build with keep_solutions=True)");
+  const std::string certified = std::string("CertifiedLookup(map, robot)") +
+                                (cap.has_solutions() ? "" : " (after a build with keep_solutions=True)");
   const bool none_reachable = cap.stats().voxels == 0;  // voxels with a reachable cell
   // Voxel records but none reachable: every record holds mixed cells only (the arm's configurations land in
   // them, IK at their centres fails), the mark of a reach thinner than a voxel.
