@@ -25,7 +25,7 @@ void wrap_options(py::module_& m) {
       .def_readwrite("resolution", &O::resolution, "Voxel edge (m).")
       .def_readwrite("directions", &O::directions,
                      "Approach directions on the sphere, rounded to the nearest multiple of the symmetry\n"
-                     "(4: 50 gives 52).")
+                     "(4: 50 gives 52; with poles the spiral takes two fewer and the poles come on top: 200 gives 202).")
       .def_readwrite("rolls", &O::rolls, "Rolls per direction (1: any roll).")
       .def_readwrite("symmetry", &O::symmetry, "z symmetry of the direction set.")
       .def_readwrite("poles", &O::poles,

@@ -43,11 +43,15 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
   CapabilityMapOptions co;
   py::kwargs rest;
   py::object approach_axis = py::none();
+  bool poles_given = false;
   for (auto item : kw) {
     std::string key = py::str(item.first);
     if (key == "approach_axis") approach_axis = py::reinterpret_borrow<py::object>(item.second);
     else if (key == "directions") co.directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
-    else if (key == "poles") co.poles = cast_arg<bool>(item.second, "SurfaceMap.build(): keyword 'poles'", "a bool");
+    else if (key == "poles") {
+      co.poles = cast_arg<bool>(item.second, "SurfaceMap.build(): keyword 'poles'", "a bool");
+      poles_given = true;
+    }
     else if (key == "seed") co.seed = cast_arg<std::uint64_t>(item.second, "SurfaceMap.build(): keyword 'seed'", "an int");
     else rest[item.first] = item.second;
   }
@@ -57,6 +61,10 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
       throw std::invalid_argument("approach_axis: the capability map fixes the approach axis; give an arm name or "
                                   "tuple to build one with another axis");
     const CapabilityMap& cap = arm.cast<const CapabilityMap&>();
+    if (poles_given && co.poles != cap.orientations().poles())
+      throw std::invalid_argument(std::string("poles=") + (co.poles ? "True" : "False") +
+                                  ": the capability map was built " + (cap.orientations().poles() ? "with" : "without") +
+                                  " poles and fixes its directions; give an arm name or tuple to build one with them");
     ProgressCallback cb = progress_arg(progress, "surface map");
     std::shared_ptr<SurfaceMap> map;
     {

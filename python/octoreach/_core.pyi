@@ -684,7 +684,8 @@ class CapabilityMapOptions:
     @property
     def directions(self) -> int:
         """
-        Approach directions on the sphere, rounded to the nearest multiple of the symmetry (4: 50 gives 52).
+        Approach directions on the sphere, rounded to the nearest multiple of the symmetry
+        (4: 50 gives 52; with poles the spiral takes two fewer and the poles come on top: 200 gives 202).
         """
     @directions.setter
     def directions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

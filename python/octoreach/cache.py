@@ -114,6 +114,8 @@ def capability_key_fields(robot: Robot, arm: Arm, options: CapabilityMapOptions)
     fields = options_fields(options)
     for ignored in ("threads", "approach_axis"):
         fields.pop(ignored, None)
+    if not fields.get("poles"):  # off: the keys of maps without poles stay what they were
+        fields.pop("poles", None)
     return {"kind": "capability", "robot": robot.name, "model_hash": int(robot.model_hash), "arm": arm_fields(arm),
             "options": fields}
 

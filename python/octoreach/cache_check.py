@@ -70,6 +70,9 @@ def capability_mismatch(m, fields: dict, robot=None) -> str | None:
     if isinstance(options.get("directions"), int):  # the sphere's count may exceed the one asked for (50 -> 52)
         checks["directions"] = _directions(options["directions"], options.get("rolls", 1), options.get("symmetry", 4),
                                            bool(options.get("poles", False)))
+    if "poles" in options:  # recorded only when on
+        checks["poles"] = bool(options["poles"])
+        header = {**header, "poles": header.get("poles", "0")}
     problem = _first(checks, header)
     if problem is None and bool(options.get("keep_solutions", True)) != bool(m.has_solutions):
         problem = f"the map {'has' if m.has_solutions else 'lacks'} joint solutions, the key asks otherwise"

@@ -176,7 +176,7 @@ class Room:
         return scene
 
     def surface_maps(self, robot: Robot, arm, progress=True, directions: int | None = None, seed: int = 0,
-                     **kwargs) -> dict[str, SurfaceMap]:
+                     poles: bool | None = None, **kwargs) -> dict[str, SurfaceMap]:
         """One surface map per surface, each built with every other obstacle of the room. `arm` is a CapabilityMap
         with solutions, an arm name or a (base, tip[, approach_axis]) tuple (its capability map is built once,
         at `resolution`); other keywords set SurfaceMapOptions fields."""
@@ -194,7 +194,12 @@ class Room:
                 cap_kwargs["resolution"] = kwargs["resolution"]
             if directions is not None:
                 cap_kwargs["directions"] = directions
+            if poles is not None:
+                cap_kwargs["poles"] = poles
             arm = arms.capability_map(robot, arm, progress=progress, **cap_kwargs)
+        elif poles is not None and bool(poles) != arm.orientations.poles:
+            raise ValueError(f"poles={poles}: the capability map was built {'with' if arm.orientations.poles else 'without'}"
+                             " poles and fixes its directions; give an arm name or tuple to build one with them")
         return {name: SurfaceMap.build(robot, arm, surface, obstacles=self.obstacles(without=name), progress=progress,
                                        **kwargs)
                 for name, surface in self._surfaces.items()}

@@ -279,6 +279,12 @@ def test_a_scara_gets_a_map_with_the_poles_of_the_direction_set(tmp_path):
     smap = octoreach.SurfaceMap.build(robot, cap, table, progress=False)
     from_arm = octoreach.SurfaceMap.build(robot, arm, table, resolution=0.05, directions=50, poles=True, progress=False)
     assert smap.max_reachability > 0 and from_arm.max_reachability == smap.max_reachability
+    with pytest.raises(ValueError, match="built without poles"):  # a map fixes its directions: no silent drop
+        octoreach.SurfaceMap.build(robot, spiral, table, poles=True, progress=False)
+    room = octoreach.Room()
+    room.add_surface("table", [[-0.15, -0.1, 0.3], [0.15, -0.1, 0.3], [0.15, 0.1, 0.3], [-0.15, 0.1, 0.3]])
+    assert room.surface_maps(robot, arm, resolution=0.05, directions=50, poles=True,
+                             progress=False)["table"].max_reachability > 0
     cap.save(str(tmp_path / "scara.map"), with_solutions=True)
     loaded = octoreach.CapabilityMap.load(str(tmp_path / "scara.map"))
     assert loaded.orientations.poles and loaded.parameters["poles"] == "1"

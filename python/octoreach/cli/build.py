@@ -103,7 +103,8 @@ def _cmd_surface(args) -> int:
         obstacles = obstacles_of()
         maps = [SurfaceMap.build(robot, source, surface, theta_bins=args.theta_bins, **grid,
                                  z_range=(args.z, args.z), obstacles=obstacles, directions=args.directions,
-                                 poles=args.poles, seed=args.seed, progress=not args.quiet) for source in sources]
+                                 seed=args.seed, progress=not args.quiet, **({"poles": True} if args.poles else {}))
+                for source in sources]
         del obstacles
         smap = maps[0] if len(maps) == 1 else SurfaceMap.combine(maps, args.combine)
         if smap.voxel_count == 0:
