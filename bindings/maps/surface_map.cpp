@@ -43,11 +43,14 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
   CapabilityMapOptions co;
   py::kwargs rest;
   py::object approach_axis = py::none();
-  bool poles_given = false;
+  bool poles_given = false, directions_given = false;
   for (auto item : kw) {
     std::string key = py::str(item.first);
     if (key == "approach_axis") approach_axis = py::reinterpret_borrow<py::object>(item.second);
-    else if (key == "directions") co.directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
+    else if (key == "directions") {
+      co.directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
+      directions_given = true;
+    }
     else if (key == "poles") {
       co.poles = cast_arg<bool>(item.second, "SurfaceMap.build(): keyword 'poles'", "a bool");
       poles_given = true;
@@ -61,10 +64,17 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
       throw std::invalid_argument("approach_axis: the capability map fixes the approach axis; give an arm name or "
                                   "tuple to build one with another axis");
     const CapabilityMap& cap = arm.cast<const CapabilityMap&>();
-    if (poles_given && co.poles != cap.orientations().poles())
+    // The map fixes its directions: keywords that ask for others are errors, not silently dropped.
+    const OrientationSet& set = cap.orientations();
+    if (poles_given && co.poles != set.poles())
       throw std::invalid_argument(std::string("poles=") + (co.poles ? "True" : "False") +
-                                  ": the capability map was built " + (cap.orientations().poles() ? "with" : "without") +
+                                  ": the capability map was built " + (set.poles() ? "with" : "without") +
                                   " poles and fixes its directions; give an arm name or tuple to build one with them");
+    if (directions_given &&
+        OrientationSet::sphere(co.directions, set.rolls(), set.symmetry(), set.poles()).directions() != set.directions())
+      throw std::invalid_argument("directions=" + std::to_string(co.directions) + ": the capability map holds " +
+                                  std::to_string(set.directions()) + " directions and fixes them; give an arm name "
+                                  "or tuple to build one with another count");
     ProgressCallback cb = progress_arg(progress, "surface map");
     std::shared_ptr<SurfaceMap> map;
     {
@@ -114,8 +124,8 @@ void wrap_surface_map(py::module_& m) {
                   py::arg("progress") = true,
                   "Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])\n"
                   "tuple whose capability map is built first (keywords directions, poles and seed; at `resolution`,\n"
-                  "default "
-                  "CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,\n"
+                  "default CapabilityMapOptions().resolution; a given map fixes its directions, and directions= or\n"
+                  "poles= asking for others raise). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,\n"
                   "theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.\n"
                   "The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.\n"
                   "`obstacles` (Obstacles: walls, other surfaces, meshes, OctoMaps) are checked against body and arm. `reference` fixes the joints off the arm\n"

@@ -1467,7 +1467,8 @@ class SurfaceMap:
         """
         Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])
         tuple whose capability map is built first (keywords directions, poles and seed; at `resolution`,
-        default CapabilityMapOptions().resolution). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,
+        default CapabilityMapOptions().resolution; a given map fixes its directions, and directions= or
+        poles= asking for others raise). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,
         theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.
         The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.
         `obstacles` (Obstacles: walls, other surfaces, meshes, OctoMaps) are checked against body and arm. `reference` fixes the joints off the arm

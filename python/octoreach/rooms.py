@@ -197,9 +197,8 @@ class Room:
             if poles is not None:
                 cap_kwargs["poles"] = poles
             arm = arms.capability_map(robot, arm, progress=progress, **cap_kwargs)
-        elif poles is not None and bool(poles) != arm.orientations.poles:
-            raise ValueError(f"poles={poles}: the capability map was built {'with' if arm.orientations.poles else 'without'}"
-                             " poles and fixes its directions; give an arm name or tuple to build one with them")
+        else:  # a map fixes its directions: SurfaceMap.build refuses keywords that ask for others
+            kwargs.update({k: v for k, v in (("directions", directions), ("poles", poles)) if v is not None})
         return {name: SurfaceMap.build(robot, arm, surface, obstacles=self.obstacles(without=name), progress=progress,
                                        **kwargs)
                 for name, surface in self._surfaces.items()}

@@ -281,6 +281,10 @@ def test_a_scara_gets_a_map_with_the_poles_of_the_direction_set(tmp_path):
     assert smap.max_reachability > 0 and from_arm.max_reachability == smap.max_reachability
     with pytest.raises(ValueError, match="built without poles"):  # a map fixes its directions: no silent drop
         octoreach.SurfaceMap.build(robot, spiral, table, poles=True, progress=False)
+    with pytest.raises(ValueError, match="holds 50 directions"):
+        octoreach.SurfaceMap.build(robot, cap, table, directions=200, progress=False)
+    assert octoreach.SurfaceMap.build(robot, cap, table, directions=50, poles=True,  # what the map has: accepted
+                                      progress=False).max_reachability == smap.max_reachability
     room = octoreach.Room()
     room.add_surface("table", [[-0.15, -0.1, 0.3], [0.15, -0.1, 0.3], [0.15, 0.1, 0.3], [-0.15, 0.1, 0.3]])
     assert room.surface_maps(robot, arm, resolution=0.05, directions=50, poles=True,

@@ -107,7 +107,7 @@ def arm_args(sp, many=False):
         sp.add_argument("--resolution", type=metres, default=defaults.resolution,
                         help=f"voxel edge in m (default {defaults.resolution})")
     sp.add_argument("--directions", type=int, default=defaults.directions,
-                    help=f"approach directions (default {defaults.directions})")
+                    help=f"approach directions (default {defaults.directions}; a map file has its own)")
     sp.add_argument("--poles", action="store_true",
                     help="also the directions straight up and down: for a tool held vertical (a SCARA)")
     sp.add_argument("--seed", type=int, default=0, help="random seed (default 0)")

@@ -68,6 +68,16 @@ def _cmd_capability(args) -> int:
     return 0
 
 
+def _capability_keywords(args, source) -> dict:
+    """The capability-map keywords of SurfaceMap.build: an arm's map is built with them; a map file fixes its own
+    directions and seed, and --poles against one built without them is an error."""
+    from .._core import CapabilityMap
+
+    if isinstance(source, CapabilityMap):
+        return {"poles": True} if args.poles else {}
+    return {"directions": args.directions, "poles": args.poles, "seed": args.seed}
+
+
 def _cmd_surface(args) -> int:
     import os
 
@@ -102,8 +112,8 @@ def _cmd_surface(args) -> int:
     for name, stem, surface, obstacles_of in surfaces:
         obstacles = obstacles_of()
         maps = [SurfaceMap.build(robot, source, surface, theta_bins=args.theta_bins, **grid,
-                                 z_range=(args.z, args.z), obstacles=obstacles, directions=args.directions,
-                                 seed=args.seed, progress=not args.quiet, **({"poles": True} if args.poles else {}))
+                                 z_range=(args.z, args.z), obstacles=obstacles, progress=not args.quiet,
+                                 **_capability_keywords(args, source))
                 for source in sources]
         del obstacles
         smap = maps[0] if len(maps) == 1 else SurfaceMap.combine(maps, args.combine)
