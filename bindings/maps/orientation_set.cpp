@@ -9,6 +9,8 @@ void wrap_orientation_set(py::module_& m) {
       "Evenly spread approach directions on the sphere, times rolls about each (index = direction * rolls + roll).")
       .def_static("sphere", &OrientationSet::sphere, py::arg("count") = 200, py::arg("rolls") = 1,
                   py::arg("symmetry") = 4, py::arg("poles") = false)
+      .def_static("sphere_directions", &OrientationSet::sphere_directions, py::arg("count"), py::arg("symmetry") = 4,
+                  py::arg("poles") = false, "Number of directions sphere(count, ..., symmetry, poles) holds.")
       .def_property_readonly("poles", &OrientationSet::poles, "True when the set holds the directions along +z and -z.")
       .def_property_readonly("directions", [](const OrientationSet& s) {
         Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> d(s.directions(), 3);

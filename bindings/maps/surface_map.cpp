@@ -1,4 +1,6 @@
 // SurfaceMap and its build options.
+#include <optional>
+
 #include "maps/convert.hpp"
 #include "octoreach/capability_map.hpp"
 #include "octoreach/map_warnings.hpp"
@@ -43,18 +45,13 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
   CapabilityMapOptions co;
   py::kwargs rest;
   py::object approach_axis = py::none();
-  bool poles_given = false, directions_given = false;
+  std::optional<int> directions;  // given: the capability map built must have them, a given one must match
+  std::optional<bool> poles;
   for (auto item : kw) {
     std::string key = py::str(item.first);
     if (key == "approach_axis") approach_axis = py::reinterpret_borrow<py::object>(item.second);
-    else if (key == "directions") {
-      co.directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
-      directions_given = true;
-    }
-    else if (key == "poles") {
-      co.poles = cast_arg<bool>(item.second, "SurfaceMap.build(): keyword 'poles'", "a bool");
-      poles_given = true;
-    }
+    else if (key == "directions") directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
+    else if (key == "poles") poles = cast_arg<bool>(item.second, "SurfaceMap.build(): keyword 'poles'", "a bool");
     else if (key == "seed") co.seed = cast_arg<std::uint64_t>(item.second, "SurfaceMap.build(): keyword 'seed'", "an int");
     else rest[item.first] = item.second;
   }
@@ -66,13 +63,12 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
     const CapabilityMap& cap = arm.cast<const CapabilityMap&>();
     // The map fixes its directions: keywords that ask for others are errors, not silently dropped.
     const OrientationSet& set = cap.orientations();
-    if (poles_given && co.poles != set.poles())
-      throw std::invalid_argument(std::string("poles=") + (co.poles ? "True" : "False") +
+    if (poles && *poles != set.poles())
+      throw std::invalid_argument(std::string("poles=") + (*poles ? "True" : "False") +
                                   ": the capability map was built " + (set.poles() ? "with" : "without") +
                                   " poles and fixes its directions; give an arm name or tuple to build one with them");
-    if (directions_given &&
-        OrientationSet::sphere(co.directions, set.rolls(), set.symmetry(), set.poles()).directions() != set.directions())
-      throw std::invalid_argument("directions=" + std::to_string(co.directions) + ": the capability map holds " +
+    if (directions && OrientationSet::sphere_directions(*directions, set.symmetry(), set.poles()) != set.directions())
+      throw std::invalid_argument("directions=" + std::to_string(*directions) + ": the capability map holds " +
                                   std::to_string(set.directions()) + " directions and fixes them; give an arm name "
                                   "or tuple to build one with another count");
     ProgressCallback cb = progress_arg(progress, "surface map");
@@ -85,6 +81,8 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
     return map;
   }
   Arm a = arm_from(robot, arm, approach_axis);
+  if (directions) co.directions = *directions;
+  if (poles) co.poles = *poles;
   if (o.resolution != 0) co.resolution = o.resolution;
   co.reference = o.reference;
   ProgressCallback cap_cb = progress_arg(progress, "capability map"), cb = progress_arg(progress, "surface map");

@@ -554,6 +554,11 @@ class OrientationSet:
     @staticmethod
     def sphere(count: typing.SupportsInt | typing.SupportsIndex = 200, rolls: typing.SupportsInt | typing.SupportsIndex = 1, symmetry: typing.SupportsInt | typing.SupportsIndex = 4, poles: bool = False) -> OrientationSet:
         ...
+    @staticmethod
+    def sphere_directions(count: typing.SupportsInt | typing.SupportsIndex, symmetry: typing.SupportsInt | typing.SupportsIndex = 4, poles: bool = False) -> int:
+        """
+        Number of directions sphere(count, ..., symmetry, poles) holds.
+        """
     def __len__(self) -> int:
         ...
     def nearest_direction(self, d: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"]) -> int:

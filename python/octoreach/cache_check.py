@@ -15,10 +15,11 @@ millisecond per hit (a header read and a handful of FK calls; no walk over the v
 """
 from __future__ import annotations
 
-import functools
 import math
 
 import numpy as np
+
+from ._core import OrientationSet
 
 _PROBES = 4  # grid points per axis inside the map's bounds, of which the best few are checked by FK
 _CHECKED = 3  # stored solutions checked by FK
@@ -68,8 +69,8 @@ def capability_mismatch(m, fields: dict, robot=None) -> str | None:
         if name in header and value is not None and not (name == "fk_samples" and value == 0):
             checks[name] = value
     if isinstance(options.get("directions"), int):  # the sphere's count may exceed the one asked for (50 -> 52)
-        checks["directions"] = _directions(options["directions"], options.get("rolls", 1), options.get("symmetry", 4),
-                                           bool(options.get("poles", False)))
+        checks["directions"] = OrientationSet.sphere_directions(options["directions"], options.get("symmetry", 4),
+                                                                bool(options.get("poles", False)))
     if "poles" in options:  # recorded only when on
         checks["poles"] = bool(options["poles"])
         header = {**header, "poles": header.get("poles", "0")}
@@ -79,14 +80,6 @@ def capability_mismatch(m, fields: dict, robot=None) -> str | None:
     if problem is None and robot is not None and m.has_solutions and m.stats["reachable_cells"]:
         problem = _solutions_mismatch(m, robot)
     return problem
-
-
-@functools.lru_cache(maxsize=64)
-def _directions(directions: int, rolls: int, symmetry: int, poles: bool = False) -> int:
-    """How many directions the orientation set of these options has (what a map header records)."""
-    from ._core import OrientationSet
-
-    return int(len(OrientationSet.sphere(directions, rolls, symmetry, poles).directions))
 
 
 def _probe_points(m) -> np.ndarray:

@@ -28,6 +28,9 @@ class OrientationSet {
   /// does). \throws std::invalid_argument for count outside [1, kMaxDirections], rolls outside [1, kMaxRolls] or
   /// symmetry outside [1, 64].
   static OrientationSet sphere(std::int64_t count = 200, int rolls = 1, int symmetry = 4, bool poles = false);
+  /// \brief Number of directions sphere(count, rolls, symmetry, poles) holds, without building the set.
+  /// \throws std::invalid_argument for count outside [1, kMaxDirections] or symmetry outside [1, 64].
+  static int sphere_directions(std::int64_t count, int symmetry = 4, bool poles = false);
   /// \brief Set from explicit unit directions (normalised here); symmetry 1.
   static OrientationSet from_directions(const std::vector<Eigen::Vector3d>& directions, int rolls = 1);
 

@@ -85,19 +85,25 @@ Eigen::Matrix3d align(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
 
 }  // namespace
 
-OrientationSet OrientationSet::sphere(std::int64_t count, int rolls, int symmetry, bool poles) {
+int OrientationSet::sphere_directions(std::int64_t count, int symmetry, bool poles) {
   if (count < 1 || count > kMaxDirections)
     throw std::invalid_argument("direction count must be in [1, " + std::to_string(kMaxDirections) + "], got " +
                                 std::to_string(count));
+  if (symmetry < 1 || symmetry > 64) throw std::invalid_argument("symmetry must be in [1, 64]");
+  const std::int64_t spiral = poles ? count - 2 : count;  // the poles come on top of the spiral
+  const int per_wedge = int(std::max<std::int64_t>(1, (spiral + symmetry / 2) / symmetry));
+  return per_wedge * symmetry + (poles ? 2 : 0);
+}
+
+OrientationSet OrientationSet::sphere(std::int64_t count, int rolls, int symmetry, bool poles) {
+  const int directions = sphere_directions(count, symmetry, poles);  // (checks count and symmetry)
   if (rolls < 1 || rolls > kMaxRolls)
     throw std::invalid_argument("rolls must be in [1, " + std::to_string(kMaxRolls) + "], got " + std::to_string(rolls));
-  if (symmetry < 1 || symmetry > 64) throw std::invalid_argument("symmetry must be in [1, 64]");
   OrientationSet s;
   s.rolls_ = rolls;
   s.symmetry_ = symmetry;
   s.poles_ = poles;
-  const std::int64_t spiral = poles ? count - 2 : count;  // the poles come on top of the spiral
-  const int per_wedge = int(std::max<std::int64_t>(1, (spiral + symmetry / 2) / symmetry));
+  const int per_wedge = (directions - (poles ? 2 : 0)) / symmetry;
   // Fibonacci spiral over the sphere, compressed into one azimuth wedge of 2 pi / symmetry:
   // equal-area in z, golden-ratio spacing in azimuth within the wedge.
   const double golden = (std::sqrt(5.0) - 1.0) / 2.0;
