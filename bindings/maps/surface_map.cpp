@@ -47,12 +47,13 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
   py::object approach_axis = py::none();
   std::optional<int> directions;  // given: the capability map built must have them, a given one must match
   std::optional<bool> poles;
+  std::optional<std::uint64_t> seed;
   for (auto item : kw) {
     std::string key = py::str(item.first);
     if (key == "approach_axis") approach_axis = py::reinterpret_borrow<py::object>(item.second);
     else if (key == "directions") directions = cast_arg<int>(item.second, "SurfaceMap.build(): keyword 'directions'", "an int");
     else if (key == "poles") poles = cast_arg<bool>(item.second, "SurfaceMap.build(): keyword 'poles'", "a bool");
-    else if (key == "seed") co.seed = cast_arg<std::uint64_t>(item.second, "SurfaceMap.build(): keyword 'seed'", "an int");
+    else if (key == "seed") seed = cast_arg<std::uint64_t>(item.second, "SurfaceMap.build(): keyword 'seed'", "an int");
     else rest[item.first] = item.second;
   }
   SurfaceMapOptions o = options_from<SurfaceMapOptions>(options, rest, "SurfaceMap.build");
@@ -71,6 +72,10 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
       throw std::invalid_argument("directions=" + std::to_string(*directions) + ": the capability map holds " +
                                   std::to_string(set.directions()) + " directions and fixes them; give an arm name "
                                   "or tuple to build one with another count");
+    if (seed && *seed != cap.seed())
+      throw std::invalid_argument("seed=" + std::to_string(*seed) + ": the capability map was built with seed " +
+                                  std::to_string(cap.seed()) + " and fixes its cells; give an arm name or tuple to "
+                                  "build one with another seed");
     ProgressCallback cb = progress_arg(progress, "surface map");
     std::shared_ptr<SurfaceMap> map;
     {
@@ -83,6 +88,7 @@ std::shared_ptr<SurfaceMap> build(const Robot& robot, const py::object& arm, con
   Arm a = arm_from(robot, arm, approach_axis);
   if (directions) co.directions = *directions;
   if (poles) co.poles = *poles;
+  if (seed) co.seed = *seed;
   if (o.resolution != 0) co.resolution = o.resolution;
   co.reference = o.reference;
   ProgressCallback cap_cb = progress_arg(progress, "capability map"), cb = progress_arg(progress, "surface map");
@@ -122,8 +128,8 @@ void wrap_surface_map(py::module_& m) {
                   py::arg("progress") = true,
                   "Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])\n"
                   "tuple whose capability map is built first (keywords directions, poles and seed; at `resolution`,\n"
-                  "default CapabilityMapOptions().resolution; a given map fixes its directions, and directions= or\n"
-                  "poles= asking for others raise). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,\n"
+                  "default CapabilityMapOptions().resolution; a given map fixes its directions and seed, and\n"
+                  "directions=, poles= or seed= asking for others raise). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,\n"
                   "theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.\n"
                   "The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.\n"
                   "`obstacles` (Obstacles: walls, other surfaces, meshes, OctoMaps) are checked against body and arm. `reference` fixes the joints off the arm\n"

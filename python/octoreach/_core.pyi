@@ -883,7 +883,7 @@ class CapabilityMap:
     Capability map of an arm: for each voxel around the chain's base link, the reachable orientations.
     """
     extension: typing.ClassVar[str] = '.orcm'
-    format_version: typing.ClassVar[int] = 1
+    format_version: typing.ClassVar[int] = 3
     kind: typing.ClassVar[str] = 'capability'
     DEFAULT_LOOKUP: typing.ClassVar[CapabilityLookup]
     @staticmethod
@@ -1472,7 +1472,7 @@ class SurfaceMap:
         """
         Surface map of `arm`: a CapabilityMap with solutions, or an arm name or (base, tip[, approach_axis])
         tuple whose capability map is built first (keywords directions, poles and seed; at `resolution`,
-        default CapabilityMapOptions().resolution; a given map fixes its directions, and directions= or
+        default CapabilityMapOptions().resolution; a given map fixes its directions and seed, and directions=, seed= or
         poles= asking for others raise). Other keywords set SurfaceMapOptions fields. Base poses (x, y, z,
         theta) are of `reference_frame` (default the root link, e.g. base_footprint), world frame.
         The robot stands on the floor (z_range (0, 0), the default); give z_range=(lo, hi) for a floating base.

@@ -175,7 +175,7 @@ class Room:
         scene.add_obstacles(self.obstacles())
         return scene
 
-    def surface_maps(self, robot: Robot, arm, progress=True, directions: int | None = None, seed: int = 0,
+    def surface_maps(self, robot: Robot, arm, progress=True, directions: int | None = None, seed: int | None = None,
                      poles: bool | None = None, **kwargs) -> dict[str, SurfaceMap]:
         """One surface map per surface, each built with every other obstacle of the room. `arm` is a CapabilityMap
         with solutions, an arm name or a (base, tip[, approach_axis]) tuple (its capability map is built once,
@@ -189,7 +189,7 @@ class Room:
         if not isinstance(arm, CapabilityMap):
             from . import arms
 
-            cap_kwargs = {"seed": seed}
+            cap_kwargs = {} if seed is None else {"seed": seed}
             if kwargs.get("resolution"):
                 cap_kwargs["resolution"] = kwargs["resolution"]
             if directions is not None:
@@ -197,8 +197,8 @@ class Room:
             if poles is not None:
                 cap_kwargs["poles"] = poles
             arm = arms.capability_map(robot, arm, progress=progress, **cap_kwargs)
-        else:  # a map fixes its directions: SurfaceMap.build refuses keywords that ask for others
-            kwargs.update({k: v for k, v in (("directions", directions), ("poles", poles)) if v is not None})
+        else:  # a map fixes its directions and seed: SurfaceMap.build refuses keywords that ask for others
+            kwargs.update({k: v for k, v in (("directions", directions), ("poles", poles), ("seed", seed)) if v is not None})
         return {name: SurfaceMap.build(robot, arm, surface, obstacles=self.obstacles(without=name), progress=progress,
                                        **kwargs)
                 for name, surface in self._surfaces.items()}

@@ -48,9 +48,9 @@ TEST(MapRoom, RecordedSavedAndChecked) {
   EXPECT_EQ(loaded.room().surface_count(), sm->room().surface_count());
   EXPECT_TRUE(loaded.room().body_collides(Eigen::Vector4d(-0.5, 0.0, 0.0, 0.0)));
   EXPECT_EQ(map_kinds()[2].format_version, 2);
-  EXPECT_EQ(map_kinds()[0].format_version, 2);  // capability maps: mixed cells and quality
+  EXPECT_EQ(map_kinds()[0].format_version, 3);  // capability maps: 2 (mixed cells and quality), 3 with poles
   EXPECT_EQ(map_kinds()[1].format_version, 1);  // point maps: unchanged payload
-  EXPECT_EQ(map_format_version(), 2);
+  EXPECT_EQ(map_format_version(), 3);
 
   PoseSamplerOptions po;
   po.seed = 3;

@@ -2,6 +2,7 @@
 map build holds still, the camera link, and the one-line warnings of suspicious map builds; `octoreach robot`
 prints them. The robot is written here (own_robot.py): mobile base, torso lift, 6-DOF arm, pan/tilt head, no SRDF."""
 from __future__ import annotations
+import struct
 
 import warnings
 
@@ -283,17 +284,26 @@ def test_a_scara_gets_a_map_with_the_poles_of_the_direction_set(tmp_path):
         octoreach.SurfaceMap.build(robot, spiral, table, poles=True, progress=False)
     with pytest.raises(ValueError, match="holds 50 directions"):
         octoreach.SurfaceMap.build(robot, cap, table, directions=200, progress=False)
-    assert octoreach.SurfaceMap.build(robot, cap, table, directions=50, poles=True,  # what the map has: accepted
+    with pytest.raises(ValueError, match="built with seed 0"):  # the map's cells come from its own seed
+        octoreach.SurfaceMap.build(robot, cap, table, seed=7, progress=False)
+    assert octoreach.SurfaceMap.build(robot, cap, table, directions=50, poles=True, seed=0,  # the map's own: accepted
                                       progress=False).max_reachability == smap.max_reachability
     room = octoreach.Room()
     room.add_surface("table", [[-0.15, -0.1, 0.3], [0.15, -0.1, 0.3], [0.15, 0.1, 0.3], [-0.15, 0.1, 0.3]])
     assert room.surface_maps(robot, arm, resolution=0.05, directions=50, poles=True,
                              progress=False)["table"].max_reachability > 0
+    with pytest.raises(ValueError, match="built with seed 0"):
+        room.surface_maps(robot, cap, seed=7, progress=False)
     cap.save(str(tmp_path / "scara.map"), with_solutions=True)
     loaded = octoreach.CapabilityMap.load(str(tmp_path / "scara.map"))
     assert loaded.orientations.poles and loaded.parameters["poles"] == "1"
     assert np.array_equal(loaded.orientations.directions, directions)
     assert "poles" not in spiral.parameters  # files of maps without them are as before
+    # A file with poles is format version 3, which an older octoreach refuses (it would read the spiral without
+    # the poles); the others stay version 2.
+    spiral.save(str(tmp_path / "spiral.map"))
+    version = {name: struct.unpack("<I", (tmp_path / name).read_bytes()[14:18])[0] for name in ("scara.map", "spiral.map")}
+    assert version == {"scara.map": 3, "spiral.map": 2} and octoreach.CapabilityMap.format_version == 3
     out = tmp_path / "cli.orcm"
     assert main(["capability", "--urdf", str(path), "--base", "base", "--tip", "tool", "--approach-axis", "0", "0",
                  "-1", "--poles", "--resolution", "0.05", "--directions", "50", "--quiet", "--no-cache",

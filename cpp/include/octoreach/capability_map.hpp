@@ -101,9 +101,13 @@ class CapabilityMap {
   /// \brief The kind tag of its files (map_files.hpp) and their usual extension.
   static constexpr char kKind[] = "capability";
   static constexpr char kExtension[] = ".orcm";
-  /// \brief The map file format version its files are written in: 2, as its payload may hold the mixed cells
-  /// and the quality per cell (header "cell_data"); version 1 files load without them.
-  static constexpr std::uint32_t kFormatVersion = 2;
+  /// \brief The newest map file format version its files are written in: 3 for a map whose direction set holds
+  /// the poles (CapabilityMapOptions::poles), which an older octoreach would read without them; the others in
+  /// kFormatVersionWithoutPoles. Version 1 files load without the mixed cells and the quality per cell.
+  static constexpr std::uint32_t kFormatVersion = 3;
+  /// \brief The version of the files of maps without the poles: 2, as the payload may hold the mixed cells and
+  /// the quality per cell (header "cell_data").
+  static constexpr std::uint32_t kFormatVersionWithoutPoles = 2;
 
   /// \brief Builds the map: forward-kinematics sampling finds candidate cells and IK seeds, IK at
   /// the voxel centres settles them, and a flood fill over neighbouring cells finds the rest.
@@ -213,6 +217,8 @@ class CapabilityMap {
   double position_tolerance() const { return position_tolerance_; }
   double orientation_tolerance() const { return orientation_tolerance_; }
   bool self_collision() const { return self_collision_; }
+  /// \brief The seed of its forward-kinematics samples and IK restarts (CapabilityMapOptions::seed).
+  std::uint64_t seed() const { return seed_; }
   const std::string& base_link() const { return base_link_; }
   const std::string& tip_link() const { return tip_link_; }
   int dof() const { return dof_; }

@@ -16,7 +16,8 @@ namespace octoreach {
 
 /// \brief The registry of map kinds: one alternative per kind a map file can hold. A map class joins it
 /// with its kind tag `kKind` (written in its files' header), file extension `kExtension` and the file format
-/// version it writes `kFormatVersion` (every version up to map_format_version() is read), a static
+/// version it writes `kFormatVersion` (the newest, where its files differ by content; every version up to
+/// map_format_version() is read), a static
 /// `load(path)`, `save(path)` and `provenance()`.
 using AnyMap = std::variant<CapabilityMap, InversePointMap, SurfaceMap>;
 
@@ -24,7 +25,7 @@ using AnyMap = std::variant<CapabilityMap, InversePointMap, SurfaceMap>;
 struct MapKind {
   std::string tag;
   std::string extension;
-  int format_version = 1;  ///< the map file format version its files are written in
+  int format_version = 1;  ///< the newest map file format version its files are written in
 };
 
 /// \brief Every kind of the registry, in the order of AnyMap's alternatives.

@@ -64,7 +64,7 @@ void CapabilityMap::save(const std::string& path, bool with_solutions) const {
   } else {
     w.put(std::uint8_t{0});
   }
-  detail::write_map_file(path, kKind, h, w.bytes, kFormatVersion);
+  detail::write_map_file(path, kKind, h, w.bytes, orientations_.poles() ? kFormatVersion : kFormatVersionWithoutPoles);
 }
 
 CapabilityMap CapabilityMap::load(const std::string& path) {

@@ -13,6 +13,9 @@
 //   uint32 section count; per section: uint32 name length, name, uint64 raw size, uint64 compressed size,
 //   uint32 CRC-32 of name and compressed bytes, compressed bytes (zlib)
 // A version 1 file is a version 2 file without the section count: both are read.
+// Format version 3 is version 2 for readers that know the capability map header's "poles" (a direction set that
+// also holds straight up and down): only capability maps with poles are written in it, so that an older reader
+// refuses them instead of rebuilding their direction set without the poles.
 // Saves go through detail::write_file_atomically (temporary file, fsync, rename).
 #include <cstdint>
 #include <cstring>
@@ -30,7 +33,7 @@
 namespace octoreach::detail {
 
 /// The newest map file format version this library reads and writes (every older one is read too).
-constexpr std::uint32_t kFormatVersion = 2;
+constexpr std::uint32_t kFormatVersion = 3;
 /// The first format version (no sections).
 constexpr std::uint32_t kFirstFormatVersion = 1;
 /// Named sections of a version 2 map file.
