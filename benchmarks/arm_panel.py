@@ -2,7 +2,8 @@
 """Capability maps of a panel of arms against saturated IK: agreement, false positives, false negatives.
 
 Arms: twelve arms of example-robot-data (PANEL; ``--hold-out`` adds arms the lookups were never tuned on,
-``--arms robot:arm,...`` picks any). Each map is the one users build: ``arms.capability_map(robot, arm,
+``--arms robot:arm,...`` picks any: a robot robots.load knows, or the path of your own URDF, ending in .urdf, loaded
+with robots.from_urdf; the arm a name or base_link/tip_link, e.g. ``--arms my_arm.urdf:base_link/tool0``). Each map is the one users build: ``arms.capability_map(robot, arm,
 resolution=...)`` (the arm's approach axis and default reference posture, 200 directions, any roll, joint
 solutions kept); its build CPU seconds (user + system of this process) are reported.
 
@@ -13,7 +14,8 @@ reachable when it came from a collision-free configuration or saturated IK reach
 restarts, approach mode (any roll about the arm's approach axis), self-collision checked at the arm's
 reference posture, the map's tolerances (1 mm, 0.01 rad) (octoreach.testing.reach_truth). The rounds in which
 poses were first reached show the saturation; ``truth.ik_missed_known`` counts the poses IK missed although a
-configuration reaches them. Truths are cached in ``benchmarks/out/panel_truth`` (they do not depend on the map).
+configuration reaches them. Truths are cached in ``benchmarks/out/panel_truth`` (beside this script, wherever it
+runs from; ``--truth-cache``): they do not depend on the map.
 
 Lookups: every CapabilityLookup of ``map.reachable`` and the certified lookup (``CertifiedLookup``: the map
 where it is sure, IK where it is not), with the share of poses the certified lookup sent to IK and its mean
@@ -79,9 +81,10 @@ def shares(answer: np.ndarray, truth: np.ndarray) -> dict:
 def load_arm(robot_name: str, arm_name: str):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # SRDF entries of other variants (talos) are left out, as MoveIt does
-        robot = robots.load(robot_name)
-    arm = octoreach.Arm.resolve(robot, arm_name)
-    return robot, arm, robot.chain(arm.base_link, arm.tip_link), arms.default_reference(robot, arm_name)
+        robot = robots.from_urdf(Path(robot_name)) if robot_name.endswith(".urdf") else robots.load(robot_name)
+    spec = tuple(arm_name.split("/")) if "/" in arm_name else arm_name  # base_link/tip_link: the arm by its links
+    arm = octoreach.Arm.resolve(robot, spec)
+    return robot, arm, robot.chain(arm.base_link, arm.tip_link), arms.default_reference(robot, spec)
 
 
 def truth_of(robot, arm, chain, reference, n: int, seed: int, cache_dir: Path):
@@ -187,8 +190,10 @@ def certified_figures(cmap, robot, chain, reference, poses, truth) -> dict:
     return out
 
 
-def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, progress, map_cache=None) -> list[dict]:
-    robot, arm, chain, reference = load_arm(robot_name, arm_name)
+def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, progress, map_cache=None,
+            loaded=None) -> list[dict]:
+    """The rows of one arm; `loaded`: load_arm's answer when the caller has it."""
+    robot, arm, chain, reference = loaded or load_arm(robot_name, arm_name)
     t0 = time.perf_counter()
     poses, truth, cached = truth_of(robot, arm, chain, reference, n, seed, cache_dir)
     base = {"robot": robot_name, "arm": arm_name, "chain": [arm.base_link, arm.tip_link], "dof": chain.dof,
@@ -197,7 +202,7 @@ def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, 
     rows = []
     for res in resolutions:
         c0, w0 = cpu_seconds(), time.perf_counter()
-        cmap = arms.capability_map(robot, arm_name, resolution=res, progress=progress, cache=map_cache)
+        cmap = arms.capability_map(robot, arm, resolution=res, progress=progress, cache=map_cache)
         row = dict(base, resolution_m=res, build={"cpu_seconds": round(cpu_seconds() - c0, 2), "map_cache": map_cache,
                                                   "wall_seconds": round(time.perf_counter() - w0, 2),
                                                   **{k: int(v) for k, v in cmap.stats.items() if k != "seconds"}})
@@ -238,7 +243,7 @@ def markdown_table(rows: list[dict]) -> str:
 def parse_arms(text: str) -> list[tuple[str, str]]:
     out = []
     for item in text.split(","):
-        robot, _, arm = item.strip().partition(":")
+        robot, _, arm = item.strip().rpartition(":")
         if not robot or not arm:
             raise SystemExit(f"--arms takes robot:arm items separated by commas, got {item!r}")
         out.append((robot, arm))
@@ -253,7 +258,7 @@ def main(argv=None) -> int:
     ap.add_argument("--poses", type=int, default=4000, help="check poses per arm (half FK, half box)")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--diagnose", action="store_true", help="split the nearest-cell errors by cause")
-    ap.add_argument("--truth-cache", type=Path, default=Path("benchmarks/out/panel_truth"))
+    ap.add_argument("--truth-cache", type=Path, default=Path(__file__).resolve().parent / "out" / "panel_truth")
     ap.add_argument("--table", default="", help="also write the markdown table to this file")
     ap.add_argument("--jsonl", default="", help="also append each arm's figures to this file as they come")
     ap.add_argument("--map-cache", default=None,
@@ -261,11 +266,19 @@ def main(argv=None) -> int:
                          "then those of a load)")
     ap.add_argument("--progress", action="store_true")
     args = ap.parse_args(argv)
+    if args.poses < 2:
+        ap.error(f"--poses must be at least 2 (half from forward kinematics, half uniform), got {args.poses}")
     panel = args.arms or (HOLD_OUT if args.hold_out else PANEL)
+    loaded = []
+    for robot_name, arm_name in panel:  # every arm first: a wrong one stops the run before any work
+        try:
+            loaded.append(load_arm(robot_name, arm_name))
+        except (ValueError, OSError) as e:  # a wrong robot, URDF or arm: its message, not a traceback
+            ap.error(f"--arms {robot_name}:{arm_name}: {e}")
     rows = []
-    for robot_name, arm_name in panel:
+    for (robot_name, arm_name), arm_loaded in zip(panel, loaded):
         new = run_arm(robot_name, arm_name, args.resolutions, args.poses, args.seed, args.truth_cache, args.diagnose,
-                      args.progress, args.map_cache)
+                      args.progress, args.map_cache, arm_loaded)
         rows += new
         if args.jsonl:
             with open(args.jsonl, "a") as f:

@@ -546,6 +546,21 @@ def test_visibility_model_expects_what_the_view_sees_when_nothing_hides_in_the_u
     assert clear.expected_void == pytest.approx(seen, rel=1e-3) and emap.void_cell_count == 0
 
 
+def test_space_outside_the_search_space_hides_nothing_from_a_view():
+    """Before any capture has reached it, the space between a camera and the search space is unknown but outside
+    the search space: the view is taken to see through it (a head whose first capture returned no point, looking at
+    the sky, must still expect the table). A camera farther back along the same line expects about as much: its
+    rays stand for more cells each and meet fewer."""
+    space = np.array([[0.8, -0.3, 0.0], [1.4, 0.3, 0.4]])
+    emap = ExplorationMap(resolution=0.025, search_space=space)
+    cam = DepthCamera(48, 36, FOV, 4.0)
+    near = view_gains(emap, cam, ex.look_at((0.0, 0.0, 0.2), (1.1, 0.0, 0.2)), pass_probability=0.5)
+    far = view_gains(emap, cam, ex.look_at((-0.8, 0.0, 0.2), (1.1, 0.0, 0.2)), pass_probability=0.5)
+    assert near.unknown_cells > 100 and far.unknown_cells > 100
+    # not worn down by the 32 unknown cells outside the search space in front of it
+    assert far.expected_unknown > 0.5 * near.expected_unknown > 100
+
+
 def test_a_view_in_front_of_an_opening_outside_the_search_space_is_found():
     """A closed box opens towards the robot (-x) just inside the search space; the first view, from above,
     saw the box's top and the floor in front of it but not the space the camera needs in front of the

@@ -156,11 +156,9 @@ def test_the_joints_off_the_chain_stand_at_the_given_reference(head):
     assert runs["home"].stop_reason == "no valid view" and "arm_collision" in runs["home"].stop_message
     assert runs["folded"].stop_reason not in ("no valid view", "view budget"), runs["folded"].table()
     assert len(runs["folded"].rows) > len(runs["home"].rows)
-    e = ex.Explorer(_camera(), region, robot=robot, chain=chain, base_pose=np.eye(4), reference=np.zeros(3),
+    with pytest.raises(ValueError, match="reference must be a vector of 11"):  # when made, not at the first view
+        ex.Explorer(_camera(), region, robot=robot, chain=chain, base_pose=np.eye(4), reference=np.zeros(3),
                     **SETTINGS)
-    e.integrate(_camera().capture(scene, start), start)
-    with pytest.raises(ValueError, match="reference must hold the robot's"):
-        e.next_view()
 
 
 def test_score_views_aims_a_head_at_what_each_pose_looks_at(head):
@@ -208,3 +206,22 @@ def test_a_chain_without_joints_is_refused_when_the_explorer_is_made(head):
         with pytest.raises(ValueError, match="chain camera_link -> camera_optical_frame has no movable joint"):
             ex.Explorer(_camera(), ex.scene_region(_table_scene()), robot=robot, chain=fixed, base_pose=np.eye(4),
                         capability_map=capability_map)
+
+
+def test_the_chain_may_be_named_by_its_links_and_a_bad_chain_or_target_is_refused(head):
+    robot, chain = head
+    scene = _table_scene()
+    region = ex.scene_region(scene)
+    by_pair = ex.Explorer(_camera(), region, robot=robot, chain=("base_footprint", "camera_optical_frame"), **SETTINGS)
+    by_name = ex.Explorer(_camera(), region, robot=robot, chain="camera_optical_frame", **SETTINGS)  # from the root
+    assert robot.root_link == "base_footprint"
+    for e in (by_pair, by_name):
+        assert (e.chain.base_link, e.chain.dof) == (chain.base_link, chain.dof)
+    with pytest.raises(ValueError, match="pass the robot too"):
+        ex.Explorer(_camera(), region, chain="camera_optical_frame")
+    with pytest.raises(TypeError, match="chain must be a Chain"):
+        ex.Explorer(_camera(), region, robot=robot, chain=3)
+    start = chain.fk(chain.aim(np.array([0.8, 0.0, 0.45])))
+    with pytest.raises(ValueError, match="lo <= hi"):
+        ex.explore(scene, _camera(), start, robot=robot, chain=chain, search_space=region,
+                   target=[[0.9, 0.1, 0.5], [0.8, 0.0, 0.6]], **SETTINGS)

@@ -19,7 +19,9 @@
 ///    `max_valid_poses` valid poses, ranked by the expected gain of NbvOptions::gain.
 ///
 /// Visibility model: a ray's geometric weight starts at 1 and is multiplied by p after each unknown
-/// cell it passes, the probability that an unknown cell lets the ray through: learned by the map from
+/// cell it passes (a void cell, or an unknown cell of the search space: outside it the views so far
+/// are taken to have seen what there is, so space no capture has reached there hides nothing), the
+/// probability that an unknown cell lets the ray through: learned by the map from
 /// what earlier rays did (ExplorationMap::void_pass_probability for void cells,
 /// ExplorationMap::pass_probability for the other unknown cells), or fixed for both by
 /// NbvOptions::unknown_pass_probability. With learned p (the default), the weight of a cell at

@@ -225,16 +225,22 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
       }
       if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
+        const bool inside = v || space.contains(g.key[0], g.key[1], g.key[2]);
         const double wc = curve ? curve->weight(v, depth, w) : w;
         if (v) {
           met.touch(g.key[0], g.key[1], g.key[2], f, wc, depth);
-        } else if (unknown_met || space.contains(g.key[0], g.key[1], g.key[2])) {
+        } else if (unknown_met || inside) {
           // (one outside the search space counts for nothing in a score, nor in the chance of a return)
           pending.push_back({pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2])), f,
                              wc, depth});
         }
-        w *= v ? p_void : p;
-        ++depth;
+        // Outside the search space the views so far are taken to have seen what there is: such a cell lets the ray
+        // through (else a view over space no capture has reached, as after a first capture that returned nothing,
+        // would expect nothing of the search space behind it).
+        if (inside) {
+          w *= v ? p_void : p;
+          ++depth;
+        }
       } else if (f & kFrontierFlag) {
         met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(0, depth, w) : w, depth);
       }

@@ -16,7 +16,20 @@ from .strategies import Choice, _choice_of, check_strategy, stop_message
 
 def carrier(robot, chain, base_pose):
     """(robot, chain, base_pose) of the arm that carries the camera: `robot=True` is the explorer, another
-    robot needs `chain`; a chain without a base pose stands at the origin; robot None when not given."""
+    robot needs `chain` (a Chain, or with a robot its (base link, camera link) names or the camera link's name,
+    from the robot's root link); a chain without a base pose stands at the origin; robot None when not given."""
+    if isinstance(chain, (str, tuple, list)) and robot is not True:  # (robot=True: the explorer's own chain)
+        if not isinstance(robot, _core.Robot):
+            raise ValueError(f"chain={chain!r} names links: pass the robot too (robot=Robot.from_urdf(...)), or a "
+                             "Chain (robot.chain(base_link, camera_link))")
+        links = (robot.root_link, chain) if isinstance(chain, str) else tuple(chain)
+        if len(links) != 2 or not all(isinstance(x, str) for x in links):
+            raise ValueError("chain must be a Chain, a (base link, camera link) pair or a camera link name, "
+                             f"got {chain!r}")
+        chain = robot.chain(*links)
+    elif chain is not None and robot is not True and not isinstance(chain, _core.Chain):
+        raise TypeError(f"chain must be a Chain (robot.chain(base_link, camera_link)), a (base link, camera link) pair "
+                        f"or a camera link name, got {type(chain).__name__}")
     rob = None
     if robot is True or (robot is not None and chain is None):
         rob, chain = explorer_robot() if robot is True else (robot, None)
@@ -66,7 +79,8 @@ class Explorer:
     """An exploration session (see the module).
 
     `camera`: a DepthCamera or CameraIntrinsics. `search_space` ((2, 3) lo, hi): the region to explore. The camera
-    is carried by `chain` (tip = camera frame, +z its optical axis) of `robot` (robot=True: urdf/explorer.urdf;
+    is carried by `chain` (tip = camera frame, +z its optical axis; a Chain, or a (base link, camera link) pair or the
+    camera link's name, from the root link, of the robot given) of `robot` (robot=True: urdf/explorer.urdf;
     any Robot, e.g. Robot.from_urdf(path)), whose base stands at `base_pose` (4x4 chain base -> map; with robot=True
     the pose of its base_footprint) and may drive to any of `base_moves`; without a chain it moves freely in the
     search's workspace. A chain of fewer than 5 joints (a pan/tilt head, a torso lift under it) cannot place its
@@ -88,6 +102,8 @@ class Explorer:
         self.robot, self.chain, base_pose = carrier(robot, chain, base_pose)
         self.bases = base_list(self.chain, base_pose, base_moves)
         search = opts.search
+        if self.chain is not None and search.reference is not None:  # now, not at the first next_view()
+            self.chain.to_robot_configuration(np.zeros(self.chain.dof), search.reference)
         search.chain, search.capability_map = self.chain, capability(capability_map, self.chain)
         free = search.workspace_sphere is None and search.workspace_box is None and search.workspace is None
         reach = arm_reach(self.chain, search.seed) if self.chain is not None and free else 0.0

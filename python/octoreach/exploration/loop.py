@@ -154,7 +154,8 @@ def explore(scene: Scene, camera: DepthCamera, start_pose, options: Optional[Exp
     for `patience` views in a row (the low views are taken), or after max_views views. By default it stops
     by itself: min_utility None is ExploreOptions.stop_threshold (score rays x cell / sensor range expected
     void cells) for 3 views; min_utility=0, patience=1 (ExploreOptions.paper_stop()) is the paper's rule.
-    The camera is carried by `chain` (tip = camera frame, +z forward) whose base sits at `base_pose`
+    The camera is carried by `chain` (tip = camera frame, +z forward; a Chain, or with `robot` a (base link, camera
+    link) pair or the camera link's name) whose base sits at `base_pose`
     (4x4 chain base -> world), or moves freely inside the search's workspace. `robot=True` uses
     urdf/explorer.urdf (standing at `base_pose`, the pose of its base_footprint); pass `robot=` with
     `chain=` for another robot. `base_moves` (4x4 chain base poses): each view also searches from them and

@@ -77,6 +77,9 @@ def points_on(box, points, margin: float = 0.015) -> int:
     box = np.asarray(box, float)
     if box.shape != (2, 3):
         raise ValueError(f"target must be a (2, 3) box (lo, hi rows), got shape {box.shape}")
+    if not np.all(np.isfinite(box)) or np.any(box[0] > box[1]):
+        raise ValueError(f"target must be a finite box with lo <= hi in every axis, got lo {box[0].tolist()}, "
+                         f"hi {box[1].tolist()}")
     p = np.asarray(points, float).reshape(-1, 3)
     lo, hi = box[0] - margin, box[1] + margin
     lo[2] = box[0][2] + margin
