@@ -25,6 +25,10 @@ more poses per check pose, the exact position with the direction of the nearest 
 centre with that direction (the cell itself), and splits the nearest-cell lookup's disagreements into
 orientation binning, voxel boundary, build misses and the truth's own misses.
 
+``--colliding N`` also checks the certified lookup on N tool poses of random configurations in self-collision (the
+check poses above take only collision-free ones), with its default and with ``collided_branch_seeds=0``: poses
+near self-collision, often reachable free by another configuration than the stored ones lead to.
+
 Prints one JSON document; ``--table PATH`` also writes the markdown table the docs include.
 """
 from __future__ import annotations
@@ -157,6 +161,25 @@ def diagnose(cmap, chain, arm, reference, poses, truth, seed: int) -> dict:
     }
 
 
+def colliding_poses(robot, chain, reference, n: int, seed: int) -> np.ndarray:
+    """Tool poses of up to n random configurations in self-collision (the joints off the chain at `reference`)."""
+    found = []
+    for k in range(10):  # an arm that seldom collides gives fewer
+        Q = chain.random_configurations(20 * n, seed + 1000 + k)
+        found += [q for q in Q if robot.in_self_collision(chain.to_robot_configuration(q, reference))]
+        if len(found) >= n:
+            break
+    return chain.fk_batch(np.array(found[:n])) if found else np.zeros((0, 4, 4))
+
+
+def colliding_figures(cmap, robot, reference, poses, truth) -> dict:
+    """The certified lookup on tool poses of configurations in self-collision, and without the collided budget."""
+    out = {"poses": len(poses), "truth_reachable_percent": round(100 * float(truth.mean()), 3)}
+    for name, kw in (("certified", {}), ("collided_branch_seeds_0", {"collided_branch_seeds": 0})):
+        out[name] = shares(octoreach.CertifiedLookup(cmap, robot, reference=reference, **kw).reachable(poses), truth)
+    return out
+
+
 def certified_figures(cmap, robot, chain, reference, poses, truth) -> dict:
     """The certified lookup's answers and cost on the check poses and on uniform random poses in the map box."""
     if not hasattr(octoreach, "CertifiedLookup"):
@@ -191,9 +214,14 @@ def certified_figures(cmap, robot, chain, reference, poses, truth) -> dict:
 
 
 def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, progress, map_cache=None,
-            loaded=None) -> list[dict]:
-    """The rows of one arm; `loaded`: load_arm's answer when the caller has it."""
+            loaded=None, colliding=0) -> list[dict]:
+    """The rows of one arm; `loaded`: load_arm's answer when the caller has it; `colliding`: poses near
+    self-collision to check too."""
     robot, arm, chain, reference = loaded or load_arm(robot_name, arm_name)
+    if colliding:
+        near = colliding_poses(robot, chain, reference, colliding, seed)
+        near_truth = reach_truth.ik_truth(chain, near, arm.approach_axis, reference, None, TRUTH_ROUNDS,
+                                          TRUTH_ATTEMPTS, seed).reachable if len(near) else np.zeros(0, bool)
     t0 = time.perf_counter()
     poses, truth, cached = truth_of(robot, arm, chain, reference, n, seed, cache_dir)
     base = {"robot": robot_name, "arm": arm_name, "chain": [arm.base_link, arm.tip_link], "dof": chain.dof,
@@ -214,6 +242,8 @@ def run_arm(robot_name, arm_name, resolutions, n, seed, cache_dir, do_diagnose, 
             row["lookups"]["certified"] = cert
         if do_diagnose:
             row["diagnosis"] = diagnose(cmap, chain, arm, reference, poses, truth, seed)
+        if colliding and len(near):
+            row["colliding"] = colliding_figures(cmap, robot, reference, near, near_truth)
         rows.append(row)
         print(f"{robot_name}:{arm_name} {res} m: " + ", ".join(
             f"{k} {v['agreement_percent']:.2f}%" for k, v in row["lookups"].items()), file=sys.stderr)
@@ -264,6 +294,9 @@ def main(argv=None) -> int:
     ap.add_argument("--map-cache", default=None,
                     help="a map cache directory (octoreach.cache): maps built once serve reruns (build figures are "
                          "then those of a load)")
+    ap.add_argument("--colliding", type=int, default=0, metavar="N",
+                    help="also check the certified lookup on N tool poses of configurations in self-collision, with "
+                         "and without its collided branch budget (collided_branch_seeds=0)")
     ap.add_argument("--progress", action="store_true")
     args = ap.parse_args(argv)
     if args.poses < 2:
@@ -278,7 +311,7 @@ def main(argv=None) -> int:
     rows = []
     for (robot_name, arm_name), arm_loaded in zip(panel, loaded):
         new = run_arm(robot_name, arm_name, args.resolutions, args.poses, args.seed, args.truth_cache, args.diagnose,
-                      args.progress, args.map_cache, arm_loaded)
+                      args.progress, args.map_cache, arm_loaded, args.colliding)
         rows += new
         if args.jsonl:
             with open(args.jsonl, "a") as f:

@@ -22,12 +22,16 @@ void wrap_certified_lookup(py::module_& m) {
       .def_readwrite("max_iterations", &O::max_iterations, "Iterations per descent.")
       .def_readwrite("branch_seeds", &O::branch_seeds,
                      "Configurations of other IK branches tried at most when the seeds fail (0: none), from the cells\n"
-                     "around the corners, each more than 1 rad from every configuration tried in some joint.");
+                     "around the corners, each more than 1 rad from every configuration tried in some joint.")
+      .def_readwrite("collided_branch_seeds", &O::collided_branch_seeds,
+                     "Configurations of other branches tried at most (instead of branch_seeds) once a descent reached\n"
+                     "the pose in self-collision: another branch often reaches it free.");
   py::class_<CertifiedLookup>(m, "CertifiedLookup",
       "Reachability of tool poses from a capability map where the cells around a pose agree, and from IK at the\n"
       "exact pose where they do not (the pose lies where the reachable set ends between the cells, or in a mixed\n"
       "cell; where the descents from the cells' configurations fail, configurations of other IK branches stored\n"
-      "around them are tried too: branch_seeds). Needs a map built with solutions by this version; keeps the map\n"
+      "around them are tried too: branch_seeds; collided_branch_seeds once a descent reached the pose in\n"
+      "self-collision). Needs a map built with solutions by this version; keeps the map\n"
       "alive.")
       .def(py::init([](const CapabilityMap& map, const Robot& robot, const py::object& reference,
                        const py::object& options, const py::kwargs& kw) {

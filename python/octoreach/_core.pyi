@@ -836,6 +836,15 @@ class CertifiedLookupOptions:
     def branch_seeds(self, arg0: int) -> None:
         ...
     @property
+    def collided_branch_seeds(self) -> int:
+        """
+        Configurations of other branches tried at most (instead of branch_seeds) once a descent reached
+        the pose in self-collision: another branch often reaches it free.
+        """
+    @collided_branch_seeds.setter
+    def collided_branch_seeds(self, arg0: int) -> None:
+        ...
+    @property
     def max_iterations(self) -> int:
         """
         Iterations per descent.
@@ -856,7 +865,8 @@ class CertifiedLookup:
     Reachability of tool poses from a capability map where the cells around a pose agree, and from IK at the
     exact pose where they do not (the pose lies where the reachable set ends between the cells, or in a mixed
     cell; where the descents from the cells' configurations fail, configurations of other IK branches stored
-    around them are tried too: branch_seeds). Needs a map built with solutions by this version; keeps the map
+    around them are tried too: branch_seeds; collided_branch_seeds once a descent reached the pose in
+    self-collision). Needs a map built with solutions by this version; keeps the map
     alive.
     """
     def __init__(self, map: CapabilityMap, robot: Robot, reference: typing.Any = None, options: typing.Any = None, **kwargs) -> None:

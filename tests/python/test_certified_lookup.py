@@ -149,6 +149,33 @@ def test_certified_answers_equal_ik_on_boundary_cells(check, chain, robot, cmap,
     assert (answer == truth.reachable[boundary]).mean() >= 0.98
 
 
+def test_a_pose_reached_in_self_collision_gets_more_branches():
+    """Tool poses of configurations in self-collision (the UR5's: its own test arm seldom collides): often reachable
+    free by another configuration, which the stored configurations around them, collision-free themselves, do not
+    lead to. After a descent that reached the pose in collision the lookup tries collided_branch_seeds other
+    branches instead of branch_seeds: it says yes to every pose the smaller budget does and to more, each with a
+    collision-free solution of the pose."""
+    ur5 = robots.load("ur5")
+    arm = octoreach.Arm.resolve(ur5, "arm")
+    chain = ur5.chain(arm.base_link, arm.tip_link)
+    ref = np.asarray(octoreach.arms.default_reference(ur5, "arm"))
+    cmap = octoreach.arms.capability_map(ur5, "arm", resolution=RES, directions=DIRS, progress=False)
+    Q = chain.random_configurations(2000, 7)
+    colliding = np.array([q for q in Q if ur5.in_self_collision(chain.to_robot_configuration(q, ref))])
+    poses = chain.fk_batch(colliding)
+    fewer = octoreach.CertifiedLookup(cmap, ur5, collided_branch_seeds=0)
+    more = octoreach.CertifiedLookup(cmap, ur5)
+    a, b = np.asarray(fewer.reachable(poses)), np.asarray(more.reachable(poses))
+    assert len(poses) > 200 and np.all(b[a]) and b.sum() > a.sum()
+    axis = np.asarray(cmap.approach_axis)
+    for i in np.flatnonzero(b & ~a):
+        q = more.solution(poses[i])
+        F = chain.fk(q)
+        assert np.linalg.norm(F[:3, 3] - poses[i][:3, 3]) <= 1e-3 + 1e-9
+        assert np.arccos(np.clip((F[:3, :3] @ axis) @ (poses[i][:3, :3] @ axis), -1, 1)) <= 1e-2 + 1e-9
+        assert chain.within_limits(q) and not ur5.in_self_collision(chain.to_robot_configuration(q, ref))
+
+
 def test_certified_does_not_depend_on_threads(check, poses_and_truth):
     poses, _ = poses_and_truth
     np.testing.assert_array_equal(check.reachable(poses, threads=1), check.reachable(poses, threads=2))
@@ -174,6 +201,8 @@ def test_certified_bad_input(check, robot, cmap):
         octoreach.CertifiedLookup(cmap, robot, seeds=0)
     with pytest.raises(ValueError, match="branch_seeds"):
         octoreach.CertifiedLookup(cmap, robot, branch_seeds=-1)
+    with pytest.raises(ValueError, match="collided_branch_seeds must be at least 0"):
+        octoreach.CertifiedLookup(cmap, robot, collided_branch_seeds=-1)
     with pytest.raises(ValueError, match="reference configuration entry 0 is not finite"):
         octoreach.CertifiedLookup(cmap, robot, reference=np.full(robot.dof, np.nan))
     # the options are fixed when the lookup is made: changing the copy it returns changes nothing

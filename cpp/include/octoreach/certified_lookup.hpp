@@ -24,6 +24,11 @@ struct CertifiedLookupOptions {
   /// two direction spacings of the pose's, nearest first, each more than 1 rad (1 m for a prismatic joint) from
   /// every configuration tried in some joint.
   int branch_seeds = 4;
+  /// Configurations of other branches tried at most (instead of branch_seeds) when a descent reached the pose in
+  /// self-collision: the pose lies where the arm's collision-free configurations end, and another branch or elbow
+  /// posture often reaches it free, which the nearby stored configurations, collision-free themselves, do not lead
+  /// to. A descent that does not reach the pose says nothing of collisions and keeps branch_seeds.
+  int collided_branch_seeds = 16;
 };
 
 /// \brief The certified lookup: a pose's answer comes from the map where the cells around it agree, and from
@@ -37,7 +42,8 @@ struct CertifiedLookupOptions {
 /// map's criteria (tolerances, approach axis, self-collision at the reference posture). A yes from IK is a
 /// solution; the map's cells decide only where they agree. When those descents fail, the pose may lie in another
 /// IK branch (elbow or wrist flipped) than every configuration the corners store: a few configurations of other
-/// branches stored in the cells around them are tried too (CertifiedLookupOptions::branch_seeds). Needs a map
+/// branches stored in the cells around them are tried too (CertifiedLookupOptions::branch_seeds; more,
+/// collided_branch_seeds, once a descent reached the pose in self-collision). Needs a map
 /// built with solutions by this version (CapabilityMap::has_cell_data()). The map must outlive the lookup. Const
 /// and thread-safe.
 class CertifiedLookup {
@@ -73,12 +79,18 @@ class CertifiedLookup {
   bool answer(const Pose& T, Eigen::VectorXd* solution) const;
   // The cells around T; for mixed cells, up to options_.seeds stored configurations, nearest first.
   Cells cells(const Pose& T, const float** seeds, int& n_seeds) const;
-  // IK from up to options_.branch_seeds configurations of other branches than `tried` (see the options).
-  bool other_branches(const Pose& T, const float* const* tried, int n_tried, Eigen::VectorXd* solution) const;
+  // One descent from q0; true with a collision-free solution. `collided`: set when the descent reached the pose
+  // in collision.
+  bool descend(const Pose& T, const Eigen::VectorXd& q0, Eigen::VectorXd* solution, bool& collided) const;
+  // IK from up to options_.branch_seeds configurations of other branches than `tried`, collided_branch_seeds once
+  // a descent reached the pose in collision (see the options).
+  bool other_branches(const Pose& T, const float* const* tried, int n_tried, Eigen::VectorXd* solution,
+                      bool collided) const;
 
   const CapabilityMap& map_;
   Chain chain_;
-  IkOptions ik_;
+  IkOptions ik_;       // the map's criteria
+  IkOptions reach_ik_;  // the same without the collision check: a descent's solution is then checked by itself
   CertifiedLookupOptions options_;
 };
 

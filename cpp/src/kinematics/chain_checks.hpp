@@ -1,5 +1,6 @@
 #pragma once
-// Internal: the joint-vector size check shared by the chain's kinematics (chain.cpp) and IK (ik.cpp).
+// Internal: the joint-vector size check shared by the chain's kinematics (chain.cpp) and IK (ik.cpp), and
+// IK's collision check of a solution.
 
 #include <algorithm>
 #include <cmath>
@@ -35,5 +36,11 @@ inline double shift_by_turns(double q, double lo, double hi, double eps) {
   }
   return q;
 }
+
+/// True when IK with options `o` would reject the solution `sol` (within the limits) for a collision: with
+/// the obstacles, or (check_self_collision) with itself, the pairs the chain never moves included when
+/// check_fixed_pairs. The same check and per-thread witnesses as Chain::ik: a caller that ran a single-attempt IK
+/// without collision checks and checks its solution here gets IK's answer, and learns why it failed.
+bool ik_solution_collides(const Chain& c, const Eigen::VectorXd& sol, const IkOptions& o);
 
 }  // namespace octoreach::detail

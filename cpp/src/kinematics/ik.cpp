@@ -113,6 +113,20 @@ struct CollisionSetup {
     return s;
   }
 
+  // Obstacles and self-collision of a solution of chain `c` (its joint vector `sol`), as IK checks them.
+  // `fixed_state` caches the pairs the chain never moves: -1 unknown (checked here), 0 free, 1 colliding.
+  bool collides(const Chain& c, const Eigen::VectorXd& sol, const IkOptions& o, int& fixed_state) {
+    const Robot& r = c.robot();
+    for (int i = 0; i < c.dof(); ++i) full[c.robot_indices()[i]] = sol[i];  // the rest stays at the reference
+    place(r, full);
+    if (o.obstacles &&
+        r.links_in_collision(poses, *o.obstacles, o.base_pose, o.obstacle_links.empty() ? nullptr : &o.obstacle_links))
+      return true;
+    if (!o.check_self_collision) return false;
+    if (fixed_state < 0) fixed_state = r.in_self_collision_poses(poses, fixed_pairs) ? 1 : 0;
+    return fixed_state == 1 || self.collides(r, poses, full);
+  }
+
   // Link poses at the robot configuration `full`, which differs from the reference only in the chain.
   void place(const Robot& robot, const Eigen::VectorXd& full) {
     for (int ji : moved) {
@@ -298,20 +312,7 @@ class LmIk {
   // never moves are checked once per call, at the first solution that gets this far.
   bool accept(const Eigen::VectorXd& sol) {
     if (!c_.within_limits(sol, 1e-9)) return false;
-    if (!need_full_) return true;
-    const Robot& robot = c_.robot();
-    CollisionSetup& s = *setup_;
-    for (int i = 0; i < n_; ++i) s.full[c_.robot_indices()[i]] = sol[i];  // the rest stays at the reference
-    s.place(robot, s.full);
-    if (o_.obstacles && robot.links_in_collision(s.poses, *o_.obstacles, o_.base_pose,
-                                                 o_.obstacle_links.empty() ? nullptr : &o_.obstacle_links))
-      return false;
-    if (o_.check_self_collision) {
-      if (fixed_state_ < 0) fixed_state_ = robot.in_self_collision_poses(s.poses, s.fixed_pairs) ? 1 : 0;
-      if (fixed_state_ == 1) return false;
-      if (s.self.collides(robot, s.poses, s.full)) return false;
-    }
-    return true;
+    return !need_full_ || !setup_->collides(c_, sol, o_, fixed_state_);
   }
 
   const Chain& c_;
@@ -337,6 +338,16 @@ class LmIk {
 };
 
 }  // namespace
+
+namespace detail {
+
+bool ik_solution_collides(const Chain& c, const Eigen::VectorXd& sol, const IkOptions& o) {
+  if (!o.check_self_collision && !o.obstacles) return false;
+  int fixed_state = o.check_fixed_pairs ? -1 : 0;
+  return CollisionSetup::of(c, o.reference.size() ? o.reference : c.robot().home()).collides(c, sol, o, fixed_state);
+}
+
+}  // namespace detail
 
 std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) const {
   check_ik_request(*this, target, o, seed);

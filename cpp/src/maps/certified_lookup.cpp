@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "octoreach/arm.hpp"
+#include "kinematics/chain_checks.hpp"
 #include "maps/batch.hpp"
 
 namespace octoreach {
@@ -48,6 +49,9 @@ CertifiedLookup::CertifiedLookup(const CapabilityMap& map, const Robot& robot, c
                                 std::to_string(options.seeds));
   if (options.branch_seeds < 0)
     throw std::invalid_argument("branch_seeds must be at least 0, got " + std::to_string(options.branch_seeds));
+  if (options.collided_branch_seeds < 0)
+    throw std::invalid_argument("collided_branch_seeds must be at least 0, got " +
+                                std::to_string(options.collided_branch_seeds));
   if (options.max_iterations < 1)
     throw std::invalid_argument("max_iterations must be at least 1, got " + std::to_string(options.max_iterations));
   if (chain_.dof() != map.dof())
@@ -71,6 +75,8 @@ CertifiedLookup::CertifiedLookup(const CapabilityMap& map, const Robot& robot, c
       throw std::invalid_argument("the reference posture puts links the chain does not move in self-collision");
     ik_.check_fixed_pairs = false;
   }
+  reach_ik_ = ik_;
+  reach_ik_.check_self_collision = false;
 }
 
 CertifiedLookup::Cells CertifiedLookup::cells(const Pose& T, const float** seeds, int& n_seeds) const {
@@ -122,19 +128,32 @@ bool CertifiedLookup::answer(const Pose& T, Eigen::VectorXd* solution) const {
   const Cells verdict = cells(T, seeds, n);
   if (verdict != Cells::mixed) return verdict == Cells::reachable;
   Eigen::VectorXd q0(chain_.dof());
+  bool collided = false;
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < chain_.dof(); ++j) q0[j] = seeds[i][j];
-    if (auto q = chain_.ik(T, ik_, &q0)) {
-      if (solution) *solution = *q;
-      return true;
-    }
+    if (descend(T, q0, solution, collided)) return true;
   }
-  return other_branches(T, seeds, n, solution);
+  return other_branches(T, seeds, n, solution, collided);
+}
+
+// A single-attempt IK with the collision check is the descent, then the check of its solution: split, so that a
+// solution that collides is known as such.
+bool CertifiedLookup::descend(const Pose& T, const Eigen::VectorXd& q0, Eigen::VectorXd* solution,
+                              bool& collided) const {
+  auto q = chain_.ik(T, reach_ik_, &q0);
+  if (!q) return false;
+  if (ik_.check_self_collision && detail::ik_solution_collides(chain_, *q, ik_)) {
+    collided = true;
+    return false;
+  }
+  if (solution) *solution = *q;
+  return true;
 }
 
 bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, int n_tried,
-                                     Eigen::VectorXd* solution) const {
-  if (options_.branch_seeds == 0) return false;
+                                     Eigen::VectorXd* solution, bool collided) const {
+  auto budget = [&] { return collided ? std::max(options_.branch_seeds, options_.collided_branch_seeds) : options_.branch_seeds; };
+  if (budget() == 0) return false;
   const CapabilityMap& m = map_;
   const OrientationSet& set = m.orientations();
   const Eigen::Vector3d& axis = m.approach_axis();
@@ -197,7 +216,7 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
   Eigen::VectorXd q0(dof);
   int descents = 0;
   for (const Candidate& c : candidates) {
-    if (descents >= options_.branch_seeds) break;
+    if (descents >= budget()) break;
     const float* q = m.record_solution(c.rec, c.o);
     if (!q) q = m.record_mixed_solution(c.rec, c.o);
     if (!q) continue;
@@ -218,10 +237,7 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
     used.push_back(q);
     ++descents;
     for (int j = 0; j < dof; ++j) q0[j] = q[j];
-    if (auto sol = chain_.ik(T, ik_, &q0)) {
-      if (solution) *solution = *sol;
-      return true;
-    }
+    if (descend(T, q0, solution, collided)) return true;
   }
   return false;
 }
