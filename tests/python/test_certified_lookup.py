@@ -154,7 +154,7 @@ def test_a_pose_reached_in_self_collision_gets_more_branches():
     free by another configuration, which the stored configurations around them, collision-free themselves, do not
     lead to. After a descent that reached the pose in collision the lookup tries collided_branch_seeds other
     branches instead of branch_seeds: it says yes to every pose the smaller budget does and to more, each with a
-    collision-free solution of the pose."""
+    collision-free solution of the pose; branch_seeds=0 still tries no other branch."""
     ur5 = robots.load("ur5")
     arm = octoreach.Arm.resolve(ur5, "arm")
     chain = ur5.chain(arm.base_link, arm.tip_link)
@@ -167,6 +167,8 @@ def test_a_pose_reached_in_self_collision_gets_more_branches():
     more = octoreach.CertifiedLookup(cmap, ur5)
     a, b = np.asarray(fewer.reachable(poses)), np.asarray(more.reachable(poses))
     assert len(poses) > 200 and np.all(b[a]) and b.sum() > a.sum()
+    corners_only = [octoreach.CertifiedLookup(cmap, ur5, branch_seeds=0, collided_branch_seeds=c) for c in (0, 16)]
+    np.testing.assert_array_equal(*(c.reachable(poses) for c in corners_only))  # branch_seeds 0: no other branch
     axis = np.asarray(cmap.approach_axis)
     for i in np.flatnonzero(b & ~a):
         q = more.solution(poses[i])

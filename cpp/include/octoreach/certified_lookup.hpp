@@ -27,7 +27,8 @@ struct CertifiedLookupOptions {
   /// Configurations of other branches tried at most (instead of branch_seeds) when a descent reached the pose in
   /// self-collision: the pose lies where the arm's collision-free configurations end, and another branch or elbow
   /// posture often reaches it free, which the nearby stored configurations, collision-free themselves, do not lead
-  /// to. A descent that does not reach the pose says nothing of collisions and keeps branch_seeds.
+  /// to. A descent that does not reach the pose says nothing of collisions and keeps branch_seeds; branch_seeds 0
+  /// tries no other branch either way.
   int collided_branch_seeds = 16;
 };
 

@@ -152,8 +152,10 @@ bool CertifiedLookup::descend(const Pose& T, const Eigen::VectorXd& q0, Eigen::V
 
 bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, int n_tried,
                                      Eigen::VectorXd* solution, bool collided) const {
-  auto budget = [&] { return collided ? std::max(options_.branch_seeds, options_.collided_branch_seeds) : options_.branch_seeds; };
-  if (budget() == 0) return false;
+  if (options_.branch_seeds == 0) return false;  // no other branches at all
+  auto budget = [&] {
+    return collided ? std::max(options_.branch_seeds, options_.collided_branch_seeds) : options_.branch_seeds;
+  };
   const CapabilityMap& m = map_;
   const OrientationSet& set = m.orientations();
   const Eigen::Vector3d& axis = m.approach_axis();
