@@ -24,6 +24,8 @@ void wrap_arm(py::module_& m) {
                   }, py::arg("robot"), py::arg("base_link"), py::arg("tip_link"), py::arg("approach_axis") = py::none(),
                   "The arm base_link -> tip_link; the approach axis inferred from the gripper unless given.")
       .def("with_approach_axis", &Arm::with_approach_axis, py::arg("approach_axis"))
+      .def_property_readonly_static("NOT_FOUND", [](const py::object&) { return std::string(kNoArmFound); },
+                                    "Why find_arms finds no arm on a robot, as the errors that say so put it.")
       .def_readonly("base_link", &Arm::base_link)
       .def_readonly("tip_link", &Arm::tip_link)
       .def_readonly("approach_axis", &Arm::approach_axis)

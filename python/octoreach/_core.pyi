@@ -593,6 +593,7 @@ class Arm:
     was found (source). Arm.named / Arm.from_links / find_arms find them; the reference posture of the
     joints it does not move is default_reference(robot, robot.chain(arm.base_link, arm.tip_link)).
     """
+    NOT_FOUND: typing.ClassVar[str]  # why find_arms finds no arm on a robot, as the errors that say so put it
     @staticmethod
     def from_links(robot: Robot, base_link: str, tip_link: str, approach_axis: typing.Any = None) -> Arm:
         """

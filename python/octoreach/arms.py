@@ -30,10 +30,8 @@ def default_arm(robot: Robot) -> str:
     if len(names) == 1:
         return names[0]
     if not names:
-        raise ValueError(f"robot {robot.name!r} has no arm that could be found (no SRDF arm group, and no branch ends "
-                         "in finger joints or a link named like a tool frame: tool0, tcp, grasp, ee_link, eef, gripper, "
-                         "hand, flange...): give one by its links "
-                         "(--base LINK --tip LINK)")
+        raise ValueError(f"robot {robot.name!r} has no arm that could be found ({Arm.NOT_FOUND}): give one by its "
+                         "links (--base LINK --tip LINK)")
     raise ValueError(f"robot {robot.name!r} has {len(names)} arms ({', '.join(sorted(names))}): choose with --arm "
                      "(or --arms, several are combined)")
 

@@ -386,11 +386,10 @@ Arm Arm::named(const Robot& robot, const std::string& name) {
   std::string known;
   for (const Arm& a : arms) known += (known.empty() ? "" : ", ") + quoted(a.name) + " (" + a.base_link + " -> " + a.tip_link + ")";
   throw std::invalid_argument("robot " + quoted(robot.name()) + " has no arm " + quoted(name) + detail::did_you_mean(name, names) +
-                              " Its arms: " + (known.empty() ? "none found (no SRDF arm group, and no branch ends in finger joints or a link "
-                                                                "named like a tool frame: tool0, tcp, grasp, ee_link, "
-                                                                "eef, gripper, hand, flange...); give the arm by its "
-                                                                "links: (base_link, tip_link)"
-                                                              : known));
+                              " Its arms: " +
+                              (known.empty() ? std::string("none found (") + kNoArmFound +
+                                                   "); give the arm by its links: (base_link, tip_link)"
+                                             : known));
 }
 
 }  // namespace octoreach

@@ -82,6 +82,11 @@ struct CollisionSetup {
            tip == c.tip_link() && reference.size() == ref.size() && reference == ref;
   }
 
+  // The set-up of the reference IK options `o` check at (their reference, else the robot's home).
+  static CollisionSetup& of(const Chain& c, const IkOptions& o) {
+    return of(c, o.reference.size() ? o.reference : c.robot().home());
+  }
+
   static CollisionSetup& of(const Chain& c, const Eigen::VectorXd& reference) {
     // The last few set-ups of this thread, so that a caller alternating between arms keeps what their
     // hinge pairs measured; the least recently used one makes room.
@@ -162,7 +167,7 @@ class LmIk {
     approach_tip_ = o.approach_axis.normalized();
     approach_goal_ = target.linear() * approach_tip_;
     need_full_ = o.check_self_collision || o.obstacles;
-    if (need_full_) setup_ = &CollisionSetup::of(c_, o.reference.size() ? o.reference : c_.robot().home());
+    if (need_full_) setup_ = &CollisionSetup::of(c_, o);
     fixed_state_ = o.check_fixed_pairs ? -1 : 0;
   }
 
@@ -344,7 +349,7 @@ namespace detail {
 bool ik_solution_collides(const Chain& c, const Eigen::VectorXd& sol, const IkOptions& o) {
   if (!o.check_self_collision && !o.obstacles) return false;
   int fixed_state = o.check_fixed_pairs ? -1 : 0;
-  return CollisionSetup::of(c, o.reference.size() ? o.reference : c.robot().home()).collides(c, sol, o, fixed_state);
+  return CollisionSetup::of(c, o).collides(c, sol, o, fixed_state);
 }
 
 }  // namespace detail
