@@ -59,9 +59,7 @@ ApproachAxis infer_approach_axis(const Robot& robot, const std::string& base_lin
 /// inferred are left out.
 std::vector<Arm> find_arms(const Robot& robot);
 /// \brief Why find_arms() finds no arm on a robot, in the words of the errors that say so.
-inline constexpr char kNoArmFound[] =
-    "no SRDF arm group, and no branch ends in finger joints or a link named like a tool frame: tool0, tcp, grasp, "
-    "ee_link, eef, gripper, hand, flange...";
+extern const char kNoArmFound[];
 
 /// \brief Names of find_arms(robot), sorted.
 std::vector<std::string> arm_names(const Robot& robot);

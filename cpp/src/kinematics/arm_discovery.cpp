@@ -14,6 +14,10 @@
 #include "robot/link_names.hpp"
 
 namespace octoreach {
+
+const char kNoArmFound[] =
+    "no SRDF arm group, and no branch ends in finger joints or a link named like a tool frame: tool0, tcp, grasp, "
+    "ee_link, eef, gripper, hand, flange...";
 namespace {
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
