@@ -275,25 +275,30 @@ def test_a_missed_view_lowers_the_seeability_of_what_it_expected_unless_a_seen_s
 
 
 def test_expected_void_against_the_void_cells_a_view_turns_known():
-    """A crate seen only from low at its sides: its inside is one void, empty in reality. A camera above
-    it casts the score grid's rays through the void to the crate's floor. With unknown space transparent
-    (p = 1) the expected count is the count of void cells those rays cross, so it equals what a capture
-    along the same rays turns known; the learned p (< 1) expects less (the void's far cells are weighted
-    down), and a fixed p between scales the count between the two."""
+    """A pipe seen only from its sides and from behind, with a wall behind its far end: its inside is void, empty
+    in reality. A camera in front of its near end casts the score grid's rays (one per pixel) through the void to
+    the wall. With unknown space transparent (p = 1) the expected count is the count of void cells those rays
+    cross that end on a known surface, so it equals what a capture along the same rays turns known; the learned
+    p (< 1) expects less (the void's far cells are weighted down), and a fixed p between scales the count between
+    the two."""
     from octoreach import _core
 
     s = Scene()
     _floor(s)
-    s.add_crate((0.6, -0.2, 0.0), (1.0, 0.2, 0.3), 0.02)
-    emap = ExplorationMap(resolution=RES, search_space=np.array([[0.5, -0.3, 0.0], [1.1, 0.3, 0.35]]))
-    low = DepthCamera(160, 120, FOV, 4.0)
-    for eye in ((0.0, 0.0, 0.2), (0.8, -0.9, 0.2), (0.8, 0.9, 0.2), (1.6, 0.0, 0.2)):
-        T = ex.look_at(eye, (0.8, 0.0, 0.15))
-        emap.insert(low.capture(s, T), T[:3, 3], 4.0)
+    for lo, hi in (((0.6, -0.15, 0.38), (1.0, 0.15, 0.4)), ((0.6, -0.15, 0.1), (1.0, 0.15, 0.12)),
+                   ((0.6, -0.15, 0.1), (1.0, -0.13, 0.4)), ((0.6, 0.13, 0.1), (1.0, 0.15, 0.4))):
+        s.add_box(lo, hi)
+    s.add_box((1.6, -1.0, 0.0), (1.62, 1.0, 1.0))
+    emap = ExplorationMap(resolution=0.03, search_space=np.array([[0.5, -0.3, 0.0], [1.1, 0.3, 0.5]]))
+    low = DepthCamera(160, 120, FOV, 3.0)
+    for eye, at in (((0.8, -0.9, 0.3), (0.8, 0.0, 0.25)), ((0.8, 0.9, 0.3), (0.8, 0.0, 0.25)),
+                    ((1.3, -0.6, 0.3), (1.6, 0.0, 0.25)), ((1.3, 0.6, 0.3), (1.6, 0.0, 0.25))):
+        T = ex.look_at(eye, at)
+        emap.insert(low.capture(s, T), T[:3, 3], 3.0)
     assert emap.void_cell_count > 50
-    w, h = 48, 36
-    T = ex.look_at((0.8, 0.0, 0.9), (0.8, 0.0, 0.0))
-    cam = DepthCamera(w, h, FOV, 4.0)
+    w, h = 80, 60
+    T = ex.look_at((0.2, 0.0, 0.25), (0.8, 0.0, 0.25))
+    cam = DepthCamera(w, h, FOV, 3.0)
 
     def gains(p):
         return _core.score_views(emap, cam, np.array([T]), score_width=w, score_height=h, unknown_is_obstacle=False,
@@ -303,7 +308,7 @@ def test_expected_void_against_the_void_cells_a_view_turns_known():
     before = emap.centers(emap.void_keys())
     emap.insert(cam.capture(s, T), T[:3, 3], 4.0)
     seen = int(np.count_nonzero(emap.state(before) != 0))
-    assert clear.void_cells[0] > 50 and clear.expected_void[0] == pytest.approx(clear.void_cells[0])
+    assert clear.void_cells[0] > 1000 and clear.expected_void[0] <= clear.void_cells[0]
     assert seen == pytest.approx(clear.expected_void[0], rel=0.05), (seen, clear.expected_void[0])
     assert learned.pass_probability < 1.0
     assert 0 < learned.expected_void[0] < clear.expected_void[0]

@@ -30,7 +30,11 @@
 /// inserts turned known, non-increasing in d, blended with the geometric weight as the prior (worth
 /// 30 cells per depth). Unknown space is not a medium of independent cells (an empty box lets rays
 /// through all the way, a solid stops them at once), so the geometric weight alone under-expected
-/// what views saw (median seen/expected 2.35). The ray stops at the first occupied cell. A cell met
+/// what views saw (median seen/expected 2.35). The ray stops at the first occupied cell. A depth camera
+/// clears only the cells in front of the surface a ray returns from, so an unknown cell, void or not,
+/// also counts with the chance that its ray returns at or behind it: 1 when the ray ends on an occupied
+/// cell, else the chance that an unknown cell from there on holds a surface (1 - p each); the hull that
+/// makes a cell void is no surface (between objects on a table it holds open air). A cell met
 /// by several rays counts once, with the largest weight: its expected visibility, times the cell's
 /// seeability (1 unless views announced with expect_view expected it and missed, see there). Free
 /// cells do not reduce the weight.
@@ -164,7 +168,8 @@ struct NbvOptions {
   NbvGain gain = NbvGain::FrontierVoid;
   /// p of the visibility model: the chance that an unknown cell lets a ray through. < 0: learned by
   /// the map (ExplorationMap::void_pass_probability() for void cells, pass_probability() for the
-  /// others); in [0, 1]: fixed for both (1: unknown space is transparent, the raw counts).
+  /// others); in [0, 1]: fixed for both (1: unknown space is transparent, a ray returns only from a known
+  /// surface).
   double unknown_pass_probability = -1.0;
   /// Safe views: unknown cells inside the map's search space (ExplorationOptions::search_lo/hi)
   /// count as obstacles for the arm's collision check (with arm_collisions) and the camera must sit
@@ -208,11 +213,12 @@ struct ViewGains {
   std::size_t void_cells = 0;     ///< distinct void cells met before the first occupied cell (raw)
   std::size_t unknown_cells = 0;  ///< distinct unknown cells of the search space met (void cells included; raw)
   std::size_t frontier_cells = 0; ///< distinct frontier cells met (raw)
-  double expected_void = 0;       ///< void cells weighted by their expected visibility
-  /// unknown cells of the search space weighted likewise (void cells included), each outside the voids also by
-  /// the chance that its ray returns at or behind it (a depth camera clears only the cells in front of what a ray
-  /// returns from): 1 when the ray ends on an occupied cell, else the chance that an unknown cell of the search
-  /// space from there on (not crossed by a ray that returned nothing) holds a surface, 1 - p each
+  /// void cells weighted by their expected visibility, each also by the chance that its ray returns at or behind
+  /// it (a depth camera clears only the cells in front of what a ray returns from): 1 when the ray ends on an
+  /// occupied cell, else the chance that an unknown cell of the voids or the search space from there on (not
+  /// crossed by a ray that returned nothing) holds a surface, 1 - p each
+  double expected_void = 0;
+  /// unknown cells of the search space weighted likewise (void cells included)
   double expected_unknown = 0;
   double expected_frontier = 0;   ///< frontier cells weighted likewise
   /// expected_void with each void cell also weighted by its enclosure (NbvOptions::enclosure_power;

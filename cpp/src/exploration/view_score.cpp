@@ -73,17 +73,17 @@ namespace detail {
 
 namespace {
 
-// The part of the ray o + t dir (dir unit), t in [0, range], that can meet a cell of `clip`: its length up to
-// the exit (plus half a cell, so the exit cell is walked), or -1 when it misses the box.
-double clipped_length(const RayClip& clip, double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
-                      double range) {
+// The part of the ray o + t dir (dir unit), t in [0, range], that can meet a cell of the box [lo, hi]: its length up
+// to the exit (plus half a cell, so the exit cell is walked), or -1 when it misses the box.
+double clipped_length(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double res, const Eigen::Vector3d& o,
+                      const Eigen::Vector3d& dir, double range) {
   double t0 = 0, t1 = range;
   for (int i = 0; i < 3; ++i) {
     if (dir[i] == 0) {
-      if (o[i] < clip.lo[i] || o[i] > clip.hi[i]) return -1;
+      if (o[i] < lo[i] || o[i] > hi[i]) return -1;
       continue;
     }
-    double a = (clip.lo[i] - o[i]) / dir[i], b = (clip.hi[i] - o[i]) / dir[i];
+    double a = (lo[i] - o[i]) / dir[i], b = (hi[i] - o[i]) / dir[i];
     if (a > b) std::swap(a, b);
     t0 = std::max(t0, a);
     t1 = std::min(t1, b);
@@ -106,6 +106,18 @@ RayClip void_box(const ExplorationMap& map) {
   const Eigen::Vector3d clo = S.center(pack_key(lo[0], lo[1], lo[2])), chi = S.center(pack_key(hi[0], hi[1], hi[2]));
   c.lo = clo.array() - half;
   c.hi = chi.array() + half;
+  // the reach: the cell cache's blocks (every known cell lies in one) and the search space, where bounded
+  std::uint32_t blo[3] = {0xffff, 0xffff, 0xffff}, bhi[3] = {0, 0, 0};
+  S.grid.for_each_block([&](CellKey b, const StateGrid::Block&) {
+    const std::uint32_t x[3] = {key_x(b), key_y(b), key_z(b)};
+    for (int a = 0; a < 3; ++a) blo[a] = std::min(blo[a], x[a] << 4), bhi[a] = std::max(bhi[a], (x[a] << 4) | 15u);
+  });
+  const Eigen::Vector3d rlo = S.center(pack_key(blo[0], blo[1], blo[2])), rhi = S.center(pack_key(bhi[0], bhi[1], bhi[2]));
+  const ExplorationOptions& o = map.options();
+  for (int a = 0; a < 3; ++a) {
+    if (!open_below(o.search_lo[a])) c.reach_lo[a] = std::min({rlo[a] - half, o.search_lo[a], c.lo[a]});
+    if (!open_above(o.search_hi[a])) c.reach_hi[a] = std::max({rhi[a] + half, o.search_hi[a], c.hi[a]});
+  }
   return c;
 }
 
@@ -158,6 +170,7 @@ const std::vector<Eigen::Vector3d>& grid_rays(const CameraIntrinsics& cam, int s
 struct ViewRays {
   std::vector<Eigen::Vector3d> dirs;
   std::vector<double> lengths;
+  std::vector<double> reach;  // how far each ray is walked (at least its length): the clip's reach, else the range
   std::int64_t klo[3], n[3];
 };
 
@@ -168,12 +181,17 @@ void view_rays(const CameraIntrinsics& cam, const Pose& pose, int sw, int sh, do
   const std::vector<Eigen::Vector3d>& rays = grid_rays(cam, sw, sh);
   v.dirs.resize(rays.size());
   v.lengths.assign(rays.size(), cam.max_range);
+  v.reach.assign(rays.size(), cam.max_range);
   // key box of the frustum (every walked cell lies within a cell of a ray's end points)
   Eigen::Vector3d lo = o, hi = o;
   for (std::size_t r = 0; r < rays.size(); ++r) {
     const Eigen::Vector3d d = R * rays[r];
     v.dirs[r] = d;
-    if (clip) v.lengths[r] = clipped_length(*clip, res, o, d.normalized(), cam.max_range);
+    if (clip) {
+      v.lengths[r] = clipped_length(clip->lo, clip->hi, res, o, d.normalized(), cam.max_range);
+      v.reach[r] = std::max(v.lengths[r], clipped_length(clip->reach_lo, clip->reach_hi, res, o, d.normalized(),
+                                                         cam.max_range));
+    }
     if (v.lengths[r] < 0) continue;
     Eigen::Vector3d e = o + d.normalized() * v.lengths[r];
     lo = lo.cwiseMin(e);
@@ -192,11 +210,12 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
                      const Cells& cells, bool weighted, std::vector<ExpectedCell>* unknown_met,
                      const SpaceKeys& space) {
   Met met(rays.klo, rays.n);
-  // A depth camera clears only the cells in front of the surface a ray returns from. Void cells lie inside the
-  // hull of the occupied cells, enclosed by surfaces: they count as they are met. An unknown cell outside them
+  // A depth camera clears only the cells in front of the surface a ray returns from. An unknown cell, void or not,
   // counts with the chance that its ray returns at or behind it: 1 when the ray ends on an occupied cell, else the
-  // chance that an unknown cell of the search space from there on holds a surface (1 - p each, where p is the
-  // pass probability; none on a cell a ray that returned nothing has crossed, blind_lines.hpp). Outside the
+  // chance that an unknown cell of the search space or of the voids from there on holds a surface (1 - p each,
+  // where p is the pass probability of its class; none on a cell a ray that returned nothing has crossed,
+  // blind_lines.hpp). The hull that makes a cell void is not a surface: between tall objects on a table it holds
+  // open air, and a ray through it that meets no surface behind returns nothing and clears nothing. Outside the
   // search space the views so far are taken to have seen what there is.
   struct Pending {
     CellKey key;
@@ -210,9 +229,14 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     if (rays.lengths[r] < 0) continue;  // misses the clip box
     double w = 1.0;  // the geometric weight: the product of the pass probabilities so far
     int depth = 0;   // unknown cells crossed so far
-    // walk_cells' walk, reading the cell cache block by block (a new block only where the ray crosses into one)
+    // walk_cells' walk, reading the cell cache block by block (a new block only where the ray crosses into one).
+    // Cells count up to the clip (`counted`, in key units); past it the walk goes on, while a counted cell waits
+    // for it, only to learn whether the ray returns: a whole ray's chance, so clipped and whole rays agree.
     GridRay g;
-    if (!key_unit_ray(res, o, rays.dirs[r], rays.lengths[r], g)) continue;
+    if (!key_unit_ray(res, o, rays.dirs[r], rays.reach[r], g)) continue;
+    const double counted = rays.lengths[r] / res;
+    double entry = 0;      // the ray parameter at which it entered the current cell
+    double behind = 1.0;   // past the clip: the chance that no unknown cell there stops the ray
     const StateGrid::Block* block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
     pending.clear();
     bool surface = false;  // the ray ends on an occupied cell
@@ -223,14 +247,19 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
         surface = true;
         break;
       }
-      if (s == std::uint8_t(CellState::Unknown)) {
+      if (entry > counted) {
+        if (pending.empty()) break;  // nothing counted waits for the rest of the ray
+        if (s == std::uint8_t(CellState::Unknown)) {
+          const bool v = f & kVoidFlag;
+          const CellKey k = pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2]));
+          if ((v || space.contains(k)) && !cells.crossed_empty(k)) behind *= v ? p_void : p;
+        }
+      } else if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
         const bool inside = v || space.contains(g.key[0], g.key[1], g.key[2]);
         const double wc = curve ? curve->weight(v, depth, w) : w;
-        if (v) {
-          met.touch(g.key[0], g.key[1], g.key[2], f, wc, depth);
-        } else if (unknown_met || inside) {
-          // (one outside the search space counts for nothing in a score, nor in the chance of a return)
+        if (unknown_met || inside) {
+          // (one outside the search space and the voids counts for nothing in a score, nor in the chance of a return)
           pending.push_back({pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2])), f,
                              wc, depth});
         }
@@ -245,13 +274,15 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
         met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(0, depth, w) : w, depth);
       }
       const int dim = g.axis();
+      entry = g.t[dim];
       if (g.t[dim] > g.length || !g.advance(dim)) break;
       if ((g.key[dim] >> 4) != ((g.key[dim] - g.step[dim]) >> 4))
         block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
     }
-    double through = 1.0;  // the chance that no unknown cell from here on stops the ray
+    double through = behind;  // the chance that no unknown cell from here on stops the ray
     for (auto c = pending.rbegin(); c != pending.rend(); ++c) {
-      if (!surface && space.contains(c->key) && !cells.crossed_empty(c->key)) through *= p;
+      const bool v = c->f & kVoidFlag;
+      if (!surface && (v || space.contains(c->key)) && !cells.crossed_empty(c->key)) through *= v ? p_void : p;
       met.touch(int(key_x(c->key)), int(key_y(c->key)), int(key_z(c->key)), c->f,
                 surface ? c->w : c->w * (1.0 - through), c->depth);
     }

@@ -2,6 +2,7 @@
 // Internal: the visibility model of a view (view_score.cpp), the checks that make a camera pose a view
 // (view_check.cpp) and the aimed looks' scoring (score_views.cpp), shared by next_best_view and score_views.
 #include <algorithm>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -27,9 +28,14 @@ class ScoreCells;
 // void cell beyond) and a ray that misses it is not walked. Empty: no void cell at all.
 struct RayClip {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = -Eigen::Vector3d::Ones();
+  // Past the clip a ray is walked only to learn what ends it (an occupied cell, or an unknown cell of the search
+  // space or the voids); outside this box there is neither, so the walk ends where the ray leaves it.
+  Eigen::Vector3d reach_lo = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
+  Eigen::Vector3d reach_hi = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   bool empty() const { return (hi.array() < lo.array()).any(); }
 };
-// The box of the map's void cells (the caller holds the map's lock).
+// The box of the map's void cells, and the box of its known cells and search space as the reach (the caller holds
+// the map's lock).
 RayClip void_box(const ExplorationMap& map);
 
 // view_gains without taking the map's lock: the caller holds it (pool workers of next_best_view must
@@ -37,10 +43,10 @@ RayClip void_box(const ExplorationMap& map);
 // `learned`: ray weights from the map's learned visibility curve (with the geometric weight of p and
 // p_void as its prior), else the geometric weight alone. With `unknown_met`, also lists every unknown
 // cell a ray met with its largest ray weight w (before seeability), that ray's unknown depth and its class.
-// With `clip`, rays end where they leave it (the void and enclosed-void figures stay those of whole rays;
-// the unknown and frontier figures count what the rays met up to there; unknown figures count the search
-// space's cells only, and an unknown cell outside the voids by the chance that its ray returns at or behind
-// it: count_view). With `cells` (made with
+// With `clip`, cells count up to where rays leave it and the rest of a ray only says whether it returns (the
+// void and enclosed-void figures stay those of whole rays; the unknown and frontier figures count what the rays
+// met up to there; unknown figures count the search space's cells only, and every unknown cell counts by the
+// chance that its ray returns at or behind it: count_view). With `cells` (made with
 // void_weights' table), the cells are read through it: the same values, faster.
 ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics& cam, const Pose& pose, int sw, int sh,
                               double p, double p_void, bool learned,
