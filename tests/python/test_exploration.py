@@ -568,6 +568,28 @@ def test_visibility_model_expects_what_the_view_sees_when_nothing_hides_in_the_u
     assert seen == pytest.approx(clear.expected_void, rel=0.05)
 
 
+def test_clipped_rays_learn_whether_they_return_as_whole_rays():
+    """Frontier-void's score clips its rays to the box of the void cells and walks them on past it, counting
+    nothing, only to learn whether they return: the same figures as whole rays (view_gains). A pipe seen from its
+    sides and from behind, no wall behind it: rays through its far opening meet only unknown cells of the search
+    space, whose top (0.5 m) cuts a 3 cm cell, so the search space's cells reach above it."""
+    scene = _pipe_scene(back_wall=False)
+    emap = ExplorationMap(resolution=0.03, search_space=np.array([[0.5, -0.3, 0.0], [1.1, 0.3, 0.5]]))
+    survey_cam = DepthCamera(160, 120, FOV, 3.0)
+    for eye, at in (((0.8, -0.9, 0.3), (0.8, 0, 0.25)), ((0.8, 0.9, 0.3), (0.8, 0, 0.25)),
+                    ((1.3, -0.6, 0.3), (1.6, 0, 0.25)), ((1.3, 0.6, 0.3), (1.6, 0, 0.25))):
+        T = ex.look_at(eye, at)
+        emap.insert(survey_cam.capture(scene, T), T[:3, 3], survey_cam.max_range)
+    cam = DepthCamera(80, 60, FOV, 3.0)
+    front = ex.look_at((0.2, 0.0, 0.25), (0.8, 0.0, 0.25))
+    for p in (1.0, 0.9, None):
+        whole = view_gains(emap, cam, front, 80, 60, pass_probability=p)
+        clipped = score_views(emap, cam, front[None], score_width=80, score_height=60, unknown_is_obstacle=False,
+                              unknown_pass_probability=p)
+        assert whole.void_cells > 1000 and clipped.void_cells[0] == whole.void_cells
+        assert clipped.expected_void[0] == pytest.approx(whole.expected_void, rel=1e-9), p
+
+
 def test_space_outside_the_search_space_hides_nothing_from_a_view():
     """Before any capture has reached it, the space between a camera and the search space is unknown but outside
     the search space: the view is taken to see through it (a head whose first capture returned no point, looking at

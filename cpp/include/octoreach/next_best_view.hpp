@@ -33,8 +33,9 @@
 /// what views saw (median seen/expected 2.35). The ray stops at the first occupied cell. A depth camera
 /// clears only the cells in front of the surface a ray returns from, so an unknown cell, void or not,
 /// also counts with the chance that its ray returns at or behind it: 1 when the ray ends on an occupied
-/// cell, else the chance that an unknown cell from there on holds a surface (1 - p each); the hull that
-/// makes a cell void is no surface (between objects on a table it holds open air). A cell met
+/// cell, else the chance that a void cell or an unknown cell of the search space from there on holds a
+/// surface (1 - p for each, p of its class; none for a cell a ray that returned nothing has crossed); the
+/// hull that makes a cell void is no surface (between objects on a table it holds open air). A cell met
 /// by several rays counts once, with the largest weight: its expected visibility, times the cell's
 /// seeability (1 unless views announced with expect_view expected it and missed, see there). Free
 /// cells do not reduce the weight.
@@ -216,7 +217,7 @@ struct ViewGains {
   /// void cells weighted by their expected visibility, each also by the chance that its ray returns at or behind
   /// it (a depth camera clears only the cells in front of what a ray returns from): 1 when the ray ends on an
   /// occupied cell, else the chance that an unknown cell of the voids or the search space from there on (not
-  /// crossed by a ray that returned nothing) holds a surface, 1 - p each
+  /// crossed by a ray that returned nothing) holds a surface, 1 - p_void for a void cell and 1 - p for another
   double expected_void = 0;
   /// unknown cells of the search space weighted likewise (void cells included)
   double expected_unknown = 0;

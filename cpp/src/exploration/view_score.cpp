@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -112,11 +113,16 @@ RayClip void_box(const ExplorationMap& map) {
     const std::uint32_t x[3] = {key_x(b), key_y(b), key_z(b)};
     for (int a = 0; a < 3; ++a) blo[a] = std::min(blo[a], x[a] << 4), bhi[a] = std::max(bhi[a], (x[a] << 4) | 15u);
   });
-  const Eigen::Vector3d rlo = S.center(pack_key(blo[0], blo[1], blo[2])), rhi = S.center(pack_key(bhi[0], bhi[1], bhi[2]));
+  c.known_lo = S.center(pack_key(blo[0], blo[1], blo[2])).array() - half;
+  c.known_hi = S.center(pack_key(bhi[0], bhi[1], bhi[2])).array() + half;
+  // the search space's cells are those whose centre lies in it (space_keys): their bounds, not the space's own
   const ExplorationOptions& o = map.options();
+  const SpaceKeys space = space_keys(o);
+  const Eigen::Vector3d slo = S.center(pack_key(space.lo[0], space.lo[1], space.lo[2])).array() - half;
+  const Eigen::Vector3d shi = S.center(pack_key(space.hi[0], space.hi[1], space.hi[2])).array() + half;
   for (int a = 0; a < 3; ++a) {
-    if (!open_below(o.search_lo[a])) c.reach_lo[a] = std::min({rlo[a] - half, o.search_lo[a], c.lo[a]});
-    if (!open_above(o.search_hi[a])) c.reach_hi[a] = std::max({rhi[a] + half, o.search_hi[a], c.hi[a]});
+    if (!open_below(o.search_lo[a])) c.reach_lo[a] = std::min({c.known_lo[a], slo[a], c.lo[a]});
+    if (!open_above(o.search_hi[a])) c.reach_hi[a] = std::max({c.known_hi[a], shi[a], c.hi[a]});
   }
   return c;
 }
@@ -171,6 +177,7 @@ struct ViewRays {
   std::vector<Eigen::Vector3d> dirs;
   std::vector<double> lengths;
   std::vector<double> reach;  // how far each ray is walked (at least its length): the clip's reach, else the range
+  std::vector<double> known;  // where each ray leaves the clip's known box (-1: it misses it; the range: no clip)
   std::int64_t klo[3], n[3];
 };
 
@@ -182,6 +189,7 @@ void view_rays(const CameraIntrinsics& cam, const Pose& pose, int sw, int sh, do
   v.dirs.resize(rays.size());
   v.lengths.assign(rays.size(), cam.max_range);
   v.reach.assign(rays.size(), cam.max_range);
+  v.known.assign(rays.size(), cam.max_range);
   // key box of the frustum (every walked cell lies within a cell of a ray's end points)
   Eigen::Vector3d lo = o, hi = o;
   for (std::size_t r = 0; r < rays.size(); ++r) {
@@ -191,6 +199,7 @@ void view_rays(const CameraIntrinsics& cam, const Pose& pose, int sw, int sh, do
       v.lengths[r] = clipped_length(clip->lo, clip->hi, res, o, d.normalized(), cam.max_range);
       v.reach[r] = std::max(v.lengths[r], clipped_length(clip->reach_lo, clip->reach_hi, res, o, d.normalized(),
                                                          cam.max_range));
+      v.known[r] = clipped_length(clip->known_lo, clip->known_hi, res, o, d.normalized(), cam.max_range);
     }
     if (v.lengths[r] < 0) continue;
     Eigen::Vector3d e = o + d.normalized() * v.lengths[r];
@@ -235,6 +244,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     GridRay g;
     if (!key_unit_ray(res, o, rays.dirs[r], rays.reach[r], g)) continue;
     const double counted = rays.lengths[r] / res;
+    // past the known box nothing but the search space's unknown cells is left, and with p 1 they stop nothing
+    const double known = p == 1.0 ? std::max(counted, rays.known[r] / res) : std::numeric_limits<double>::infinity();
     double entry = 0;      // the ray parameter at which it entered the current cell
     double behind = 1.0;   // past the clip: the chance that no unknown cell there stops the ray
     const StateGrid::Block* block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
@@ -248,7 +259,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
         break;
       }
       if (entry > counted) {
-        if (pending.empty()) break;  // nothing counted waits for the rest of the ray
+        // nothing counted waits for the rest of the ray, or nothing further changes a weight by 1e-12
+        if (pending.empty() || behind < 1e-12 || entry > known) break;
         if (s == std::uint8_t(CellState::Unknown)) {
           const bool v = f & kVoidFlag;
           const CellKey k = pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2]));

@@ -24,14 +24,17 @@ struct ExpectedCell;
 class ScoreCells;
 
 // Where a view's rays can still meet a cell that counts for the gain (map frame, cell bounds): with the
-// FrontierVoid gain, the box of the map's void cells; a ray ends where it leaves it (it cannot meet a
-// void cell beyond) and a ray that misses it is not walked. Empty: no void cell at all.
+// FrontierVoid gain, the box of the map's void cells; cells count only up to where a ray leaves it (it cannot
+// meet a void cell beyond) and a ray that misses it is not walked. Empty: no void cell at all.
 struct RayClip {
   Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = -Eigen::Vector3d::Ones();
   // Past the clip a ray is walked only to learn what ends it (an occupied cell, or an unknown cell of the search
-  // space or the voids); outside this box there is neither, so the walk ends where the ray leaves it.
+  // space or the voids); outside the reach box there is neither, so the walk ends where the ray leaves it. Outside
+  // the known box (the cell cache's blocks) every cell is unknown, and only the search space's cells there can
+  // stop a ray (1 - p each: none when p is 1).
   Eigen::Vector3d reach_lo = Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity());
   Eigen::Vector3d reach_hi = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d known_lo = Eigen::Vector3d::Zero(), known_hi = -Eigen::Vector3d::Ones();
   bool empty() const { return (hi.array() < lo.array()).any(); }
 };
 // The box of the map's void cells, and the box of its known cells and search space as the reach (the caller holds
