@@ -49,7 +49,9 @@ void wrap_search(py::module_& m) {
         }, py::arg("map"), py::arg("camera"), py::arg("camera_pose"), py::arg("score_width") = 48,
         py::arg("score_height") = 36, py::arg("pass_probability") = py::none(),
         "What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight\n"
-        "starts at 1 and is multiplied by pass_probability after each unknown cell; None: the map's learned\n"
+        "starts at 1 and is multiplied by pass_probability after each unknown cell, and a cell counts with\n"
+        "the chance that its ray returns at or behind it: 1 in front of an occupied cell, else 1 minus the\n"
+        "product of the pass probabilities of the unknown cells from there on; None: the map's learned\n"
         "values, void_pass_probability for void cells and pass_probability for the others, and its visibility\n"
         "curve learned from the views announced with expect_view): a ViewGainsResult (the raw distinct\n"
         "void_cells, unknown_cells, frontier_cells, their visibility-weighted expected_void, expected_unknown,\n"

@@ -2875,7 +2875,9 @@ __version__: str = '0.2.0'
 def view_gains(map: ExplorationMap, camera: typing.Any, camera_pose: typing.Any, score_width: typing.SupportsInt | typing.SupportsIndex = 48, score_height: typing.SupportsInt | typing.SupportsIndex = 36, pass_probability: typing.Any = None) -> ViewGainsResult:
     """
     What a camera at camera_pose (4x4) is expected to see under the visibility model (a ray's weight
-    starts at 1 and is multiplied by pass_probability after each unknown cell; None: the map's learned
+    starts at 1 and is multiplied by pass_probability after each unknown cell, and a cell counts with
+    the chance that its ray returns at or behind it: 1 in front of an occupied cell, else 1 minus the
+    product of the pass probabilities of the unknown cells from there on; None: the map's learned
     values, void_pass_probability for void cells and pass_probability for the others, and its visibility
     curve learned from the views announced with expect_view): a ViewGainsResult (the raw distinct
     void_cells, unknown_cells, frontier_cells, their visibility-weighted expected_void, expected_unknown,
