@@ -140,6 +140,23 @@ def test_a_search_space_around_the_robot_stops_with_the_rejection_counts(head):
     assert ex.stop_message(going.next_view()) == ""
 
 
+def test_a_head_whose_view_was_not_taken_says_why_it_stops(head):
+    """A pan/tilt head's views share its eye, so after one view not taken (view_failed) every view lies within
+    failed_view_radius of that camera: the stop says so, not only that nothing was scored. (This head rides a
+    torso lift, so the radius here holds every eye the lift reaches.)"""
+    robot, chain = head
+    scene = _table_scene()
+    e = ex.Explorer(_camera(), ex.scene_region(scene), robot=robot, chain=chain, base_pose=np.eye(4),
+                    failed_view_radius=1.0, **SETTINGS)
+    start = chain.fk(chain.aim(np.array([0.8, 0.0, 0.45])))
+    e.integrate(_camera().capture(scene, start), start)
+    assert not e.next_view().stop
+    e.view_failed()
+    view = e.next_view()
+    assert view.stop and view.stop_reason == "no valid view"
+    assert "failed_view_radius" in e.stop_message(view), e.stop_message(view)
+
+
 def test_the_joints_off_the_chain_stand_at_the_given_reference(head):
     """The head's chain starts at the base, so the torso lift carries the arm, which sticks forward at home into
     a search space that reaches up to 1.3 m: the exploration runs out of valid views. With the arm folded up

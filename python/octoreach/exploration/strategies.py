@@ -85,6 +85,9 @@ def stop_message(view) -> str:
         return view.stop_reason
     r = c.search
     counts = [(name, int(getattr(r, field)), why) for name, field, why in REJECTIONS if getattr(r, field)]
+    if not counts and int(c.candidates) == 0:
+        return ("no valid view (no pose to score: none lies in the search's workspace, the arm's reach, and "
+                "farther than failed_view_radius from the camera of every view not taken)")
     if not counts:
         return f"no valid view ({int(c.candidates)} poses scored, none valid)"
     counts.sort(key=lambda t: -t[1])
