@@ -233,6 +233,12 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     int depth;
   };
   thread_local std::vector<Pending> pending;
+  // The chance that an unknown cell (flags f) lets a ray through, in the chance of a return: p of its class for a
+  // void cell or one of the search space that no ray which returned nothing has crossed; 1 for any other.
+  const auto pass = [&](std::uint8_t f, CellKey k) {
+    const bool v = f & kVoidFlag;
+    return (v || space.contains(k)) && !cells.crossed_empty(k) ? (v ? p_void : p) : 1.0;
+  };
   for (std::size_t r = 0; r < rays.dirs.size(); ++r) {
     if ((r & 1023) == 1023) poll_cancel("view scoring cancelled");  // a fine score grid takes long per view
     if (rays.lengths[r] < 0) continue;  // misses the clip box
@@ -261,11 +267,8 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
       if (entry > counted) {
         // nothing counted waits for the rest of the ray, or nothing further changes a weight by 1e-12
         if (pending.empty() || behind < 1e-12 || entry > known) break;
-        if (s == std::uint8_t(CellState::Unknown)) {
-          const bool v = f & kVoidFlag;
-          const CellKey k = pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2]));
-          if ((v || space.contains(k)) && !cells.crossed_empty(k)) behind *= v ? p_void : p;
-        }
+        if (s == std::uint8_t(CellState::Unknown))
+          behind *= pass(f, pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2])));
       } else if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
         const bool inside = v || space.contains(g.key[0], g.key[1], g.key[2]);
@@ -293,8 +296,7 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     }
     double through = behind;  // the chance that no unknown cell from here on stops the ray
     for (auto c = pending.rbegin(); c != pending.rend(); ++c) {
-      const bool v = c->f & kVoidFlag;
-      if (!surface && (v || space.contains(c->key)) && !cells.crossed_empty(c->key)) through *= v ? p_void : p;
+      if (!surface) through *= pass(c->f, c->key);
       met.touch(int(key_x(c->key)), int(key_y(c->key)), int(key_z(c->key)), c->f,
                 surface ? c->w : c->w * (1.0 - through), c->depth);
     }
