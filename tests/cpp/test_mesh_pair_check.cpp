@@ -127,3 +127,48 @@ TEST(MeshPairCheck, HullPointsReachAsFarAsAllVertices) {
     }
   }
 }
+
+TEST(MeshPairCheck, PiecesHoldEveryTriangleAndProveOnlyWhatFclSays) {
+  // Every triangle's vertices lie in one piece's hull (the piece's support points reach as far as they do in
+  // every direction), and pieces proved apart are never in contact by FCL; on soups stretched along x, whose
+  // hulls hold much empty room, the pieces prove apart pairs whose whole hulls overlap.
+  std::mt19937_64 rng(13);
+  std::normal_distribution<double> g(0.0, 1.0);
+  auto a = soup(rng, 40, 0.15), b = soup(rng, 60, 0.12);
+  for (const auto* m : {a.get(), b.get()}) {
+    const auto& h = static_cast<const detail::HullMesh&>(*m);
+    const auto& pieces = h.pieces();
+    ASSERT_EQ(static_cast<int>(pieces.size()), detail::kMeshPieces);
+    for (int t = 0; t < h.num_tris; ++t) {
+      int held = 0;
+      for (const auto& p : pieces) {
+        bool all = true;
+        for (int k = 0; k < 100 && all; ++k) {
+          const Eigen::Vector3d d(g(rng), g(rng), g(rng));
+          double reach = -1e300;
+          for (std::size_t i = 0; i < p.points.x.size(); ++i)
+            reach = std::max(reach, d.dot(Eigen::Vector3d(p.points.x[i], p.points.y[i], p.points.z[i])));
+          for (int v = 0; v < 3; ++v) all = all && reach >= d.dot(h.vertices[h.tri_indices[t][v]]) - 1e-12;
+        }
+        held += all;
+      }
+      EXPECT_GE(held, 1) << "triangle " << t;
+    }
+  }
+  int proved = 0, open = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Pose ta = random_pose(rng, 0.3), tb = random_pose(rng, 0.3);
+    detail::MeshPairWitness w;
+    Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+    if (detail::hulls_apart(*a, ta, *b, tb, axis)) continue;
+    const bool fcl = detail::geometry_collide(a.get(), ta, b.get(), tb);
+    open += !fcl;
+    if (detail::meshes_pieces_apart(*a, ta, *b, tb, w)) {
+      EXPECT_FALSE(fcl) << "pose " << i;
+      ++proved;
+    }
+    EXPECT_EQ(detail::meshes_collide(*a, ta, *b, tb, w), fcl) << "pose " << i;  // with the hint the test left
+  }
+  EXPECT_GT(open, 300);
+  EXPECT_GT(5 * proved, open);  // about 30 % on these soups
+}

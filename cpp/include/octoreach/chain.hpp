@@ -37,7 +37,7 @@ struct IkOptions {
   int max_iterations = 100;             ///< per attempt (stalled attempts stop early)
   int attempts = 20;                    ///< seed (or first random start) plus random restarts
   /// Stop a descent whose error fell by less than 10 % over this many iterations while still above
-  /// the tolerances (0: never; the capability-map build, which tries many unreachable cells, uses 3).
+  /// the tolerances (0: never; the capability-map build, which tries many unreachable cells, uses 2).
   int stall_window = 0;
   std::uint64_t seed = 0;               ///< random restarts are deterministic for a seed
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tip-frame axis used in Approach mode
@@ -98,6 +98,9 @@ class Chain {
   /// \brief Uniform random configuration inside the limits (continuous joints in [-pi, pi)).
   template <class Rng>
   Eigen::VectorXd random_configuration(Rng& rng) const;
+  /// \brief The same draw into `q` (resized to dof()), for loops that reuse one vector.
+  template <class Rng>
+  void random_configuration(Rng& rng, Eigen::VectorXd& q) const;
   /// \brief n uniform random configurations (rows) from std::mt19937_64(seed), drawn in row order:
   /// row 0 equals random_configuration() of a fresh generator with the same seed.
   Eigen::MatrixXd random_configurations(int n, std::uint64_t seed) const;
@@ -146,13 +149,19 @@ class Chain {
 template <class Rng>
 Eigen::VectorXd Chain::random_configuration(Rng& rng) const {
   Eigen::VectorXd q(dof());
+  random_configuration(rng, q);
+  return q;
+}
+
+template <class Rng>
+void Chain::random_configuration(Rng& rng, Eigen::VectorXd& q) const {
+  q.resize(dof());
   for (int i = 0; i < dof(); ++i) {
     double lo = continuous_[i] ? -kPi : lower_[i];
     double hi = continuous_[i] ? kPi : upper_[i];
     std::uniform_real_distribution<double> u(lo, hi);
     q[i] = u(rng);
   }
-  return q;
 }
 
 }  // namespace octoreach

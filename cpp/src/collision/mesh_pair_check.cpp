@@ -28,13 +28,8 @@ bool gjk_apart(const Placed& A, const Placed& B, const Eigen::Vector3d& ca, cons
   return gjk::apart(A, B, d, kHullMargin, axis);
 }
 
-}  // namespace
-
-void HullMesh::measure() const {
-  if (!vertices || num_vertices <= 0) return;
-  std::vector<Eigen::Vector3d> all(vertices, vertices + num_vertices);
-  for (const auto& v : all)
-    if (!v.allFinite()) return;  // no support points: is_mesh is false
+// The support points of `all`'s convex hull (the points not clearly inside it), into `points`.
+void support_points(const std::vector<Eigen::Vector3d>& all, HullMesh::Points& points) {
   double scale = 1.0;
   for (const auto& v : all) scale = std::max(scale, v.cwiseAbs().maxCoeff());
   const double inside = 1e-9 * scale;  // far beyond qhull's rounding
@@ -45,9 +40,68 @@ void HullMesh::measure() const {
     for (std::size_t f = 0; interior && f < hull.planes.size(); ++f)
       interior = hull.planes[f].head<3>().dot(v) + hull.planes[f][3] < -inside;
     if (interior) continue;
-    points_.x.push_back(v.x());
-    points_.y.push_back(v.y());
-    points_.z.push_back(v.z());
+    points.x.push_back(v.x());
+    points.y.push_back(v.y());
+    points.z.push_back(v.z());
+  }
+}
+
+}  // namespace
+
+void HullMesh::measure() const {
+  if (!vertices || num_vertices <= 0) return;
+  std::vector<Eigen::Vector3d> all(vertices, vertices + num_vertices);
+  for (const auto& v : all)
+    if (!v.allFinite()) return;  // no support points: is_mesh is false
+  support_points(all, points_);
+}
+
+void HullMesh::split() const {
+  if (hull_points().x.empty() || !tri_indices || num_tris <= 0) return;
+  std::vector<int> order(num_tris);
+  for (int t = 0; t < num_tris; ++t) order[t] = t;
+  auto centroid = [&](int t) {
+    const fcl::Triangle& f = tri_indices[t];
+    return Eigen::Vector3d((vertices[f[0]] + vertices[f[1]] + vertices[f[2]]) / 3.0);
+  };
+  // Ranges of `order`, split at the median along the longest axis of their centroids' box.
+  std::vector<std::pair<int, int>> ranges = {{0, num_tris}};
+  while (static_cast<int>(ranges.size()) < kMeshPieces) {
+    std::vector<std::pair<int, int>> next;
+    for (auto [lo, hi] : ranges) {
+      if (hi - lo < 2) {
+        next.push_back({lo, hi});
+        continue;
+      }
+      Eigen::Vector3d bmin = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), bmax = -bmin;
+      for (int i = lo; i < hi; ++i) {
+        bmin = bmin.cwiseMin(centroid(order[i]));
+        bmax = bmax.cwiseMax(centroid(order[i]));
+      }
+      Eigen::Index axis = 0;
+      (bmax - bmin).maxCoeff(&axis);
+      const int mid = (lo + hi) / 2;
+      std::nth_element(order.begin() + lo, order.begin() + mid, order.begin() + hi,
+                       [&](int x, int y) { return centroid(x)[axis] < centroid(y)[axis]; });
+      next.push_back({lo, mid});
+      next.push_back({mid, hi});
+    }
+    if (next.size() == ranges.size()) break;
+    ranges.swap(next);
+  }
+  for (auto [lo, hi] : ranges) {
+    std::vector<Eigen::Vector3d> pts;
+    for (int i = lo; i < hi; ++i)
+      for (int k = 0; k < 3; ++k) pts.push_back(vertices[tri_indices[order[i]][k]]);
+    Piece piece;
+    support_points(pts, piece.points);
+    Eigen::Vector3d bmin = pts[0], bmax = pts[0];
+    for (const auto& v : pts) {
+      bmin = bmin.cwiseMin(v);
+      bmax = bmax.cwiseMax(v);
+    }
+    piece.centre = 0.5 * (bmin + bmax);
+    pieces_.push_back(std::move(piece));
   }
 }
 
@@ -105,6 +159,44 @@ bool meshes_hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const 
   return gjk_apart(A, B, a.aabb_local.center(), b.aabb_local.center(), witness.axis);
 }
 
+bool meshes_pieces_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                         const Pose& tb, MeshPairWitness& witness) {
+  const Mesh& ma = *hull_mesh(a);
+  const Mesh& mb = *hull_mesh(b);
+  const auto& pa = ma.pieces();
+  const auto& pb = mb.pieces();
+  if (pa.size() < 2 && pb.size() < 2) return false;  // a piece is the whole hull, already tested
+  auto placed = [](const HullMesh::Points& p, const Pose& t) { return Placed{p, t.linear(), t.translation()}; };
+  auto apart = [&](const Placed& x, const Eigen::Vector3d& cx, const Placed& y, const Eigen::Vector3d& cy) {
+    Eigen::Vector3d axis;
+    return gjk_apart(x, y, cx, cy, axis);
+  };
+  auto& hint = witness.pieces;
+  if (hint[0] >= 0 && hint[0] < static_cast<int>(pa.size()) && hint[1] < static_cast<int>(pb.size()) &&
+      !apart(placed(pa[hint[0]].points, ta), pa[hint[0]].centre,
+             hint[1] < 0 ? placed(mb.hull_points(), tb) : placed(pb[hint[1]].points, tb),
+             hint[1] < 0 ? Eigen::Vector3d(b.aabb_local.center()) : pb[hint[1]].centre))
+    return false;
+  const Placed B = placed(mb.hull_points(), tb);
+  for (std::size_t i = 0; i < pa.size(); ++i) {
+    const Placed A = placed(pa[i].points, ta);
+    Eigen::Vector3d& kept = witness.piece_axes[i];
+    if (kept.squaredNorm() > 0 && apart_by(A, B, kept)) continue;
+    if (gjk_apart(A, B, pa[i].centre, b.aabb_local.center(), kept)) continue;
+    kept.setZero();
+    if (pb.size() < 2) {
+      hint = {{static_cast<int>(i), -1}};
+      return false;
+    }
+    for (std::size_t k = 0; k < pb.size(); ++k)
+      if (!apart(A, pa[i].centre, placed(pb[k].points, tb), pb[k].centre)) {
+        hint = {{static_cast<int>(i), static_cast<int>(k)}};
+        return false;
+      }
+  }
+  return true;
+}
+
 bool meshes_fcl_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                         const Pose& tb, MeshPairWitness& witness) {
   const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
@@ -120,7 +212,7 @@ bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl:
                     const Pose& tb, MeshPairWitness& witness) {
   const MeshVerdict v = mesh_witness_verdict(a, ta, b, tb, witness);
   if (v != MeshVerdict::unknown) return v == MeshVerdict::touching;
-  if (meshes_hulls_apart(a, ta, b, tb, witness)) return false;
+  if (meshes_hulls_apart(a, ta, b, tb, witness) || meshes_pieces_apart(a, ta, b, tb, witness)) return false;
   return meshes_fcl_collide(a, ta, b, tb, witness);
 }
 

@@ -10,9 +10,13 @@
 //    GJK (Gilbert-Johnson-Keerthi) on the vertex sets finds one; either way the plane is checked by
 //    projecting both vertex sets on its normal, so the answer rests on that check alone, never on
 //    GJK's arithmetic.
-//  - otherwise (the hulls overlap and no kept triangle pair intersects): FCL decides, and the triangle
+//  - apart, closer: the same argument on the mesh's convex pieces (HullMesh::pieces), whose hulls hug a
+//    concave mesh closer than its whole hull: every piece of one mesh apart from the other's hull or from
+//    each of its pieces.
+//  - otherwise (the pieces overlap and no kept triangle pair intersects): FCL decides, and the triangle
 //    pair of its hit, if any, joins the witnesses.
-// Order: the kept plane (two passes over the vertices), the kept triangle pairs, GJK, FCL.
+// Order: the kept plane (two passes over the vertices), the kept triangle pairs, GJK on the hulls, the
+// pieces, FCL.
 // Consecutive checks are of neighbouring configurations, so the witnesses usually still hold. They
 // are per thread (the caller keeps them): a witness only ever changes the cost of a check.
 #include <array>
@@ -30,6 +34,9 @@ namespace octoreach::detail {
 /// Gap (m) a separating plane needs: FCL's triangle test is exact, this only absorbs rounding.
 constexpr double kHullMargin = 1e-6;
 
+/// Pieces a mesh is split into (HullMesh::pieces).
+constexpr int kMeshPieces = 8;
+
 /// What decided the last check of one shape pair.
 struct MeshPairWitness {
   Eigen::Vector3d axis = Eigen::Vector3d::Zero();  // separating direction (world, from b to a); zero: none
@@ -37,8 +44,17 @@ struct MeshPairWitness {
   // Intersecting triangle pairs ({a's, b's}) FCL found lately, the last confirmed first; -1: none.
   // (One pair alone confirmed a fifth of the PR2 map build's collisions, sixteen half of them.)
   std::array<std::array<int, 2>, kTriangles> triangles = none();
+  // The meshes' pieces (HullMesh::pieces): the piece pair ({a's, b's}, b's -1 for its hull) that overlapped
+  // last, -1: none; per piece of a, the direction that separated it from b's hull last (zero: none).
+  std::array<int, 2> pieces = {{-1, -1}};
+  std::array<Eigen::Vector3d, kMeshPieces> piece_axes = zeros();
 
  private:
+  static std::array<Eigen::Vector3d, kMeshPieces> zeros() {
+    std::array<Eigen::Vector3d, kMeshPieces> z;
+    for (auto& x : z) x.setZero();
+    return z;
+  }
   static std::array<std::array<int, 2>, kTriangles> none() {
     std::array<std::array<int, 2>, kTriangles> t;
     for (auto& x : t) x = {{-1, -1}};
@@ -75,11 +91,24 @@ class HullMesh : public fcl::BVHModel<fcl::OBBRSSd> {
     std::call_once(once_, [this] { measure(); });
     return points_;
   }
+  /// The mesh's triangles split into up to kMeshPieces spatially compact pieces (medians of the triangles'
+  /// centroids along the longest axis, three times), each with its hull's support points and its local box
+  /// centre: every triangle lies in its piece's hull, which hugs a concave mesh closer than the whole hull.
+  struct Piece {
+    Points points;
+    Eigen::Vector3d centre;
+  };
+  const std::vector<Piece>& pieces() const {
+    std::call_once(pieces_once_, [this] { split(); });
+    return pieces_;
+  }
 
  private:
   void measure() const;
-  mutable std::once_flag once_;
+  void split() const;
+  mutable std::once_flag once_, pieces_once_;
   mutable Points points_;
+  mutable std::vector<Piece> pieces_;
 };
 
 /// `g` as a HullMesh of triangles with support points (the geometries meshes_collide handles), or null.
@@ -110,8 +139,8 @@ struct PlacedHull {
 };
 
 /// FCL's answer for two meshes (both is_mesh) at world poses, using and refreshing `witness`: the
-/// witnesses' verdict if they give one, else GJK on the hulls (meshes_hulls_apart), else FCL
-/// (meshes_fcl_collide).
+/// witnesses' verdict if they give one, else GJK on the hulls (meshes_hulls_apart), else the pieces
+/// (meshes_pieces_apart), else FCL (meshes_fcl_collide).
 bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                     const Pose& tb, MeshPairWitness& witness);
 
@@ -125,6 +154,11 @@ MeshVerdict mesh_witness_verdict(const fcl::CollisionGeometryd& a, const Pose& t
 /// The steps after the witnesses: GJK on the hulls (true: apart, the plane kept), else nothing decided.
 bool meshes_hulls_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                         const Pose& tb, MeshPairWitness& witness);
+/// True when the meshes' pieces prove them apart: every piece of `a` is apart from `b`'s hull or from each
+/// of `b`'s pieces (a triangle lies in its piece's hull, so no triangle pair can meet). The piece pair that
+/// overlapped last is tried first (witness), so that a pair in contact is handed to FCL after one test.
+bool meshes_pieces_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
+                         const Pose& tb, MeshPairWitness& witness);
 /// FCL's narrow phase, the triangle pair of its hit joining the witnesses.
 bool meshes_fcl_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                         const Pose& tb, MeshPairWitness& witness);

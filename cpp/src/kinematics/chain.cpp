@@ -7,6 +7,7 @@
 
 #include "octoreach/chain.hpp"
 #include "octoreach/robot.hpp"
+#include "common/sin_cos.hpp"
 #include "kinematics/chain_checks.hpp"
 
 namespace octoreach {
@@ -103,7 +104,9 @@ inline void rotate_about(Eigen::Matrix3d& R, int kind, const Eigen::Vector3d& ax
     return;
   }
   const int k = kind % 3;
-  const double c = std::cos(angle), s = kind < 3 ? std::sin(angle) : -std::sin(angle);
+  double s, c;
+  detail::sin_cos(angle, s, c);
+  if (kind >= 3) s = -s;
   const int a = (k + 1) % 3, b = (k + 2) % 3;  // Rot(e_k, t): e_a -> c e_a + s e_b, e_b -> -s e_a + c e_b
   const Eigen::Vector3d ca = R.col(a), cb = R.col(b);
   R.col(a) = c * ca + s * cb;

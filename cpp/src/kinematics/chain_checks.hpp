@@ -1,9 +1,10 @@
 #pragma once
-// Internal: the joint-vector size check shared by the chain's kinematics (chain.cpp) and IK (ik.cpp), and
-// IK's collision check of a solution.
+// Internal: the joint-vector size check shared by the chain's kinematics (chain.cpp) and IK (ik.cpp), IK's
+// collision check of a solution, and IK without the request's checks.
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -42,5 +43,10 @@ inline double shift_by_turns(double q, double lo, double hi, double eps) {
 /// check_fixed_pairs. The same check and per-thread witnesses as Chain::ik: a caller that ran a single-attempt IK
 /// without collision checks and checks its solution here gets IK's answer, and learns why it failed.
 bool ik_solution_collides(const Chain& c, const Eigen::VectorXd& sol, const IkOptions& o);
+
+/// Chain::ik without its checks of the request, for callers that build many requests from checked ones (the
+/// capability map's build: its targets are voxel centres and rotations, its seeds the chain's own solutions).
+std::optional<Eigen::VectorXd> ik_checked(const Chain& c, const Pose& target, const IkOptions& o,
+                                          const Eigen::VectorXd* seed);
 
 }  // namespace octoreach::detail

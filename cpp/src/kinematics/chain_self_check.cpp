@@ -81,11 +81,12 @@ bool ChainSelfCheck::collides(const Robot& robot, const std::vector<Pose>& poses
                                              world_[x.b], witnesses_[x.witness]))
       open_[n++] = e;
   }
-  for (std::size_t i = 0; i < n; ++i) {  // FCL
+  for (std::size_t i = 0; i < n; ++i) {  // the meshes' convex pieces, then FCL
     const Entry& x = entries_[open_[i]];
     const ShapeRef& sa = shapes_[x.a];
     const ShapeRef& sb = shapes_[x.b];
-    if (x.witness >= 0 ? meshes_fcl_collide(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness])
+    if (x.witness >= 0 ? !meshes_pieces_apart(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness]) &&
+                             meshes_fcl_collide(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness])
                        : geometry_collide(sa.geometry, world_[x.a], sb.geometry, world_[x.b]))
       return hit(open_[i]);
   }

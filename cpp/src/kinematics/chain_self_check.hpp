@@ -5,8 +5,8 @@
 // others are placed afresh per check, and a shape pair goes to the narrow phase only when its boxes
 // overlap and its hinge certificate (hinge_pairs.hpp) does not already rule it out. The narrow phase
 // runs in passes over those pairs, cheapest first: the mesh witnesses of every pair (one that confirms
-// a contact ends the check), then GJK on the hulls of the pairs left open, then FCL on the rest (and on
-// the pairs that are not two meshes). The answer is the plain check's (first_colliding_pair over every
+// a contact ends the check), then GJK on the hulls of the pairs left open, then pair by pair the meshes'
+// convex pieces and FCL (FCL alone on the pairs that are not two meshes), until one collides. The answer is the plain check's (first_colliding_pair over every
 // pair): the boxes, the certificates, the passes, the order (the shape pair that collided last is
 // tested first) and the witnesses only change its cost.
 #include <cstdint>

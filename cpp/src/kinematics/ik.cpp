@@ -16,6 +16,7 @@
 #include "common/cancel.hpp"
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
+#include "robot/joint_motion.hpp"
 
 namespace octoreach {
 namespace {
@@ -73,13 +74,20 @@ struct CollisionSetup {
   Eigen::VectorXd reference;
   std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
   std::vector<int> moved;  // joints whose child link the chain moves, in the robot's (parents-first) order
+  // Per joint in `moved`: whether the chain sets its value (its own or, for a mimic joint, its source's), and if
+  // not, its origin times its motion at the reference, which no solution changes.
+  std::vector<char> turns;
+  std::vector<Pose> still;
   std::vector<Pose> poses;
   detail::ChainSelfCheck self;  // the moving pairs, flat: boxes, hinge certificates, witnesses
   Eigen::VectorXd full;         // scratch: the robot configuration of the solution checked
 
-  bool matches(const Chain& c, const std::shared_ptr<const Robot>& r, const Eigen::VectorXd& ref) const {
-    return !robot.expired() && !robot.owner_before(r) && !r.owner_before(robot) && base == c.base_link() &&
-           tip == c.tip_link() && reference.size() == ref.size() && reference == ref;
+  const Robot* address = nullptr;  // the robot's, compared while `robot` lives (no other live robot has it)
+
+  // Compared without copying the chain's shared_ptr: its count is one cache line every IK thread would write.
+  bool matches(const Chain& c, const Eigen::VectorXd& ref) const {
+    return address == &c.robot() && !robot.expired() && base == c.base_link() && tip == c.tip_link() &&
+           reference.size() == ref.size() && reference == ref;
   }
 
   // The set-up of the reference IK options `o` check at (their reference, else the robot's home).
@@ -93,18 +101,19 @@ struct CollisionSetup {
     thread_local std::array<CollisionSetup, 4> cache;
     thread_local std::array<std::uint64_t, 4> used{};
     thread_local std::uint64_t clock = 0;
-    const std::shared_ptr<const Robot> r = c.robot_ptr();
     std::size_t pick = 0;
     for (std::size_t i = 0; i < cache.size(); ++i) {
-      if (cache[i].matches(c, r, reference)) {
+      if (cache[i].matches(c, reference)) {
         used[i] = ++clock;
         return cache[i];
       }
       if (used[i] < used[pick]) pick = i;
     }
     used[pick] = ++clock;
+    const std::shared_ptr<const Robot> r = c.robot_ptr();
     CollisionSetup& s = cache[pick];
     s.robot = r;
+    s.address = r.get();
     s.base = c.base_link();
     s.tip = c.tip_link();
     s.reference = reference;
@@ -112,6 +121,16 @@ struct CollisionSetup {
     s.moved.clear();
     for (std::size_t j = 0; j < r->joints().size(); ++j)
       if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
+    std::vector<char> in_chain(r->dof(), 0);
+    for (int i = 0; i < c.dof(); ++i) in_chain[c.robot_indices()[i]] = 1;
+    s.turns.clear();
+    s.still.clear();
+    for (int ji : s.moved) {
+      const Joint& j = r->joints()[ji];
+      const int source = j.index >= 0 ? j.index : j.mimic >= 0 ? r->joints()[j.mimic].index : -1;
+      s.turns.push_back(source >= 0 && in_chain[source]);
+      s.still.push_back(j.origin * detail::joint_motion(j, detail::joint_value(r->joints(), j, reference)));
+    }
     r->link_poses(reference, s.poses);
     s.self = detail::ChainSelfCheck(c, s.moving_pairs, s.poses, reference);
     s.full = reference;
@@ -134,19 +153,22 @@ struct CollisionSetup {
 
   // Link poses at the robot configuration `full`, which differs from the reference only in the chain.
   void place(const Robot& robot, const Eigen::VectorXd& full) {
-    for (int ji : moved) {
-      const Joint& j = robot.joints()[ji];
-      double v = 0.0;
-      if (j.index >= 0) v = full[j.index];
-      else if (j.mimic >= 0) v = full[robot.joints()[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
-      // parent * origin * motion, the motion applied to the product's columns (a fixed joint has none)
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      const Joint& j = robot.joints()[moved[k]];
       Pose& child = poses[j.child_link];
+      if (!turns[k]) {
+        child = poses[j.parent_link] * still[k];
+        continue;
+      }
+      // parent * origin * motion, the motion applied to the product's columns
+      const double v = detail::joint_value(robot.joints(), j, full);
       child = poses[j.parent_link] * j.origin;
       if (j.type == JointType::Prismatic) child.translation() += child.linear() * (j.axis * v);
       else if (j.type == JointType::Revolute || j.type == JointType::Continuous)
         child.linear() = child.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
     }
   }
+
 };
 
 // One IK call: Levenberg-Marquardt descents from the seed and from random restarts. N is the
@@ -356,23 +378,28 @@ bool ik_solution_collides(const Chain& c, const Eigen::VectorXd& sol, const IkOp
 
 std::optional<Eigen::VectorXd> Chain::ik(const Pose& target, const IkOptions& o, const Eigen::VectorXd* seed) const {
   check_ik_request(*this, target, o, seed);
+  return detail::ik_checked(*this, target, o, seed);
+}
+
+std::optional<Eigen::VectorXd> detail::ik_checked(const Chain& c, const Pose& target, const IkOptions& o,
+                                                  const Eigen::VectorXd* seed) {
   detail::CancellableScope cancellable;
-  if (dof() == 0) return rigid_chain_ik(*this, target, o);
+  if (c.dof() == 0) return rigid_chain_ik(c, target, o);
   // Fixed-size solvers for the chains of heads, arms and arms on a rail (up to 8 joints): the descent's products
   // and factorisations unrolled, with no run-time sizes. Longer chains share a solver of dynamic size.
-  switch (dof()) {
-    case 1: return LmIk<1>(*this, target, o).solve(seed);
-    case 2: return LmIk<2>(*this, target, o).solve(seed);
-    case 3: return LmIk<3>(*this, target, o).solve(seed);
-    case 4: return LmIk<4>(*this, target, o).solve(seed);
-    case 5: return LmIk<5>(*this, target, o).solve(seed);
-    case 6: return LmIk<6>(*this, target, o).solve(seed);
-    case 7: return LmIk<7>(*this, target, o).solve(seed);
-    case 8: return LmIk<8>(*this, target, o).solve(seed);
+  switch (c.dof()) {
+    case 1: return LmIk<1>(c, target, o).solve(seed);
+    case 2: return LmIk<2>(c, target, o).solve(seed);
+    case 3: return LmIk<3>(c, target, o).solve(seed);
+    case 4: return LmIk<4>(c, target, o).solve(seed);
+    case 5: return LmIk<5>(c, target, o).solve(seed);
+    case 6: return LmIk<6>(c, target, o).solve(seed);
+    case 7: return LmIk<7>(c, target, o).solve(seed);
+    case 8: return LmIk<8>(c, target, o).solve(seed);
     default: break;
   }
-  if (dof() <= 12) return LmIk<Eigen::Dynamic, 12>(*this, target, o).solve(seed);
-  return LmIk<Eigen::Dynamic, Eigen::Dynamic>(*this, target, o).solve(seed);
+  if (c.dof() <= 12) return LmIk<Eigen::Dynamic, 12>(c, target, o).solve(seed);
+  return LmIk<Eigen::Dynamic, Eigen::Dynamic>(c, target, o).solve(seed);
 }
 
 void Chain::ik_batch(const std::vector<Pose>& targets, const IkOptions& options, Eigen::MatrixXd& solutions,

@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
-#include <unordered_set>
 
 #include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
+#include "kinematics/chain_checks.hpp"
 #include "maps/map_io.hpp"
 #include "octoreach/manipulability.hpp"
 
@@ -84,7 +84,7 @@ CapabilityBuilder::CapabilityBuilder(const Chain& chain, const CapabilityMapOpti
                                      const Eigen::Vector3d& approach_axis, const Eigen::VectorXd& reference,
                                      const CellBox& box, const ProgressCallback& progress)
     : chain_(chain), o_(o), set_(set), box_(box), progress_(progress), dof_(chain.dof()),
-      rotations_(set.size()), seed_row_(box.cells, -1), status_(box.cells, kUntried), sol_row_(box.cells, -1) {
+      rotations_(set.size()), seed_row_(box.cells, -1), status_(box.cells, kUntried), started_(box.cells, 0), sol_row_(box.cells, -1) {
   for (int i = 0; i < set.size(); ++i) rotations_[i] = set.rotation(i, approach_axis);
   base_ik_.mode = set.rolls() > 1 ? IkMode::Full : IkMode::Approach;
   base_ik_.position_tolerance = o.position_tolerance;
@@ -94,7 +94,7 @@ CapabilityBuilder::CapabilityBuilder(const Chain& chain, const CapabilityMapOpti
   base_ik_.check_fixed_pairs = false;  // checked once by CapabilityMap::build
   base_ik_.reference = reference;
   base_ik_.max_iterations = 25;  // seeds are near: a cell that needs more is almost always unreachable
-  base_ik_.stall_window = 3;     // most cells tried are unreachable: stop their descents once they stall
+  base_ik_.stall_window = 2;     // most cells tried are unreachable: stop their descents once they stall
 }
 
 void CapabilityBuilder::report(double start, double share, double fraction) const {
@@ -111,29 +111,40 @@ std::size_t CapabilityBuilder::sample() {
                                 std::to_string(box_.voxels) + " voxels) are more than the limit of " +
                                 std::to_string(limits::kFkSamples) + ": use a coarser resolution or give fk_samples");
   const std::size_t chunk = 8192, chunks_per_round = 16;
+  // Cells with a seed, one bit each: the samples' test reads these 1.4 MB (PR2 arm at 0.05 m), not seed_row_'s 45.
+  std::vector<std::uint64_t> seeded((box_.cells + 63) / 64, 0);
+  for (std::size_t c = 0; c < box_.cells; ++c)
+    if (seed_row_[c] >= 0) seeded[c >> 6] |= 1ULL << (c & 63);
   const std::size_t nchunks = (samples + chunk - 1) / chunk;
   for (std::size_t round = 0; round * chunks_per_round < nchunks; ++round) {
     std::size_t c0 = round * chunks_per_round, c1 = std::min(nchunks, c0 + chunks_per_round);
-    std::vector<std::vector<std::pair<std::uint32_t, Eigen::VectorXf>>> found(c1 - c0);
+    // Per chunk: the cells its samples hit that had no seed before this round, and their samples (dof
+    // floats each, flat); a cell hit twice keeps its first sample when the chunks are merged in order.
+    std::vector<std::vector<std::uint32_t>> hit(c1 - c0);
+    std::vector<std::vector<float>> hit_q(c1 - c0);
     detail::parallel_for(c1 - c0, o_.threads, [&](std::size_t ci, int) {
       std::mt19937_64 r(detail::mix64(o_.seed, c0 + ci));
       std::size_t n = std::min(chunk, samples - (c0 + ci) * chunk);
-      std::unordered_set<std::uint32_t> local;
+      hit[ci].reserve(n);
+      hit_q[ci].reserve(n * dof_);
+      Eigen::VectorXd q(dof_);
       for (std::size_t s = 0; s < n; ++s) {
-        Eigen::VectorXd q = chain_.random_configuration(r);
-        Pose T = chain_.fk(q);
+        chain_.random_configuration(r, q);
+        const Pose T = chain_.fk_jacobian(q.data(), nullptr);
         std::size_t v;
         if (!box_.voxel_of(T.translation(), v)) continue;
         std::uint32_t cell = static_cast<std::uint32_t>(v * O + set_.nearest(T.linear(), base_ik_.approach_axis));
-        if (seed_row_[cell] >= 0 || !local.insert(cell).second) continue;
-        found[ci].emplace_back(cell, q.cast<float>());
+        if ((seeded[cell >> 6] >> (cell & 63)) & 1ULL) continue;
+        hit[ci].push_back(cell);
+        for (int k = 0; k < dof_; ++k) hit_q[ci].push_back(static_cast<float>(q[k]));
       }
     }, 1);
-    for (auto& list : found)
-      for (auto& [cell, q] : list)
-        if (seed_row_[cell] < 0) {
-          seed_row_[cell] = static_cast<std::int32_t>(seed_pool_.size() / dof_);
-          seed_pool_.insert(seed_pool_.end(), q.data(), q.data() + dof_);
+    for (std::size_t ci = 0; ci < hit.size(); ++ci)
+      for (std::size_t i = 0; i < hit[ci].size(); ++i)
+        if (seed_row_[hit[ci][i]] < 0) {
+          seeded[hit[ci][i] >> 6] |= 1ULL << (hit[ci][i] & 63);
+          seed_row_[hit[ci][i]] = static_cast<std::int32_t>(seed_pool_.size() / dof_);
+          seed_pool_.insert(seed_pool_.end(), hit_q[ci].begin() + i * dof_, hit_q[ci].begin() + (i + 1) * dof_);
         }
     report(0.0, 0.15, double(c1) / nchunks);
   }
@@ -143,22 +154,26 @@ std::size_t CapabilityBuilder::sample() {
 void CapabilityBuilder::run_wave(const std::vector<Item>& wave, const std::vector<float>& pool, int attempts,
                                  std::vector<std::uint32_t>& newly) {
   const int O = box_.O, dof = dof_;
-  std::vector<Eigen::VectorXf> results(wave.size());
+  std::vector<float> results(wave.size() * dof);
   std::vector<char> ok(wave.size(), 0);
-  detail::parallel_for(wave.size(), o_.threads, [&](std::size_t i, int) {
+  // Per thread: the options (copied once per wave, not per call: they hold the reference posture) and the seed.
+  const int threads = detail::default_threads(o_.threads);
+  std::vector<IkOptions> options(threads, base_ik_);
+  std::vector<Eigen::VectorXd> seeds(threads, Eigen::VectorXd(dof));
+  detail::parallel_for(wave.size(), threads, [&](std::size_t i, int tid) {
     const Item& it = wave[i];
-    IkOptions opt = base_ik_;
+    IkOptions& opt = options[tid];
     opt.attempts = attempts;
     opt.seed = detail::mix64(o_.seed ^ 0xC0FFEEULL, it.cell);
     Pose target = Pose::Identity();
     target.linear() = rotations_[it.cell % O];
     target.translation() = box_.centre(it.cell / O);
-    Eigen::VectorXd s;
+    Eigen::VectorXd& s = seeds[tid];
     if (it.seed >= 0)
       s = Eigen::Map<const Eigen::VectorXf>(pool.data() + static_cast<std::size_t>(it.seed) * dof, dof).cast<double>();
-    auto q = chain_.ik(target, opt, it.seed >= 0 ? &s : nullptr);
+    auto q = detail::ik_checked(chain_, target, opt, it.seed >= 0 ? &s : nullptr);
     if (q) {
-      results[i] = q->cast<float>();
+      Eigen::Map<Eigen::VectorXf>(results.data() + i * dof, dof) = q->cast<float>();
       ok[i] = 1;
     }
   }, 8);
@@ -168,8 +183,9 @@ void CapabilityBuilder::run_wave(const std::vector<Item>& wave, const std::vecto
     std::uint32_t c = wave[i].cell;
     if (ok[i]) {
       status_[c] = kReachable;
+      ++reachable_;
       sol_row_[c] = static_cast<std::int32_t>(sol_pool_.size() / dof);
-      sol_pool_.insert(sol_pool_.end(), results[i].data(), results[i].data() + dof);
+      sol_pool_.insert(sol_pool_.end(), results.begin() + i * dof, results.begin() + (i + 1) * dof);
       newly.push_back(c);
     } else {
       status_[c] = kFailed;
@@ -192,60 +208,98 @@ void CapabilityBuilder::flood(std::vector<std::uint32_t> frontier) {
           wave.push_back({n, sol_row_[c]});
         }
     }
-    // Cells sampled by FK but not tried yet keep their own seed in wave 0; here the neighbour's solution is used.
+    // Every cell of a wave gets its neighbour's solution; a sampled cell that fails keeps its sample for the retries.
     run_wave(wave, sol_pool_, 1, frontier);
-    std::size_t reachable = std::count(status_.begin(), status_.end(), kReachable);
-    report(0.15, 0.8, std::min(1.0, double(reachable) / std::max<std::size_t>(1, seed_pool_.size() / dof_) * 0.9));
+    report(0.15, 0.8, std::min(1.0, double(reachable_) / std::max<std::size_t>(1, seed_pool_.size() / dof_) * 0.9));
   }
 }
 
-// A failed cell next to at least two reachable ones gets another neighbour's solution as its seed (a single
-// neighbour's seed can sit on the wrong side of a joint limit or a collision): the first reachable neighbour's
-// whose solution is not the seed the cell failed with (IK from the same seed at the same target repeats the same
-// descent). One seed: on the PR2 arm at 0.05 m it recovers 74,000 cells in 450,000 calls; three more seeds per
-// cell recovered 15,000 more in 560,000 more calls, cells that CertifiedLookup answers by IK anyway (their
-// neighbours disagree).
-std::vector<CapabilityBuilder::Item> CapabilityBuilder::retry_items() const {
+// The retries of the cells the floods failed, in two passes. First (samples) every failed cell's own forward-
+// kinematics sample that no descent started from yet: a configuration in the cell, often of another IK branch
+// than the neighbour's the cell failed with, in which the cell is reachable (without these retries the test arm's
+// maps miss twice as many of the cells IK reaches). Then (neighbours) a failed cell most of whose neighbours are reachable gets another reachable
+// neighbour's solution than the one it failed with (IK from the same seed at the same target repeats the same
+// descent): inside the reachable set a cell is likely reachable itself, and its seed sat on the wrong side of a
+// joint limit or a collision; a cell with fewer reachable neighbours than unreachable ones lies where the set
+// ends. On the PR2 arm at 0.05 m a neighbour's solution recovers about 75 % of the cells inside the set and under
+// 2 % of the others, cells the certified lookup answers by IK anyway (their neighbours disagree).
+std::vector<CapabilityBuilder::Item> CapabilityBuilder::retry_items(bool samples) const {
   std::vector<Item> retry;
   std::vector<std::uint32_t> nb;
   for (std::uint32_t c = 0; c < box_.cells; ++c) {
     if (status_[c] != kFailed) continue;
+    if (samples && (seed_row_[c] < 0 || started_[c])) continue;
+    if (samples) {
+      retry.push_back({c, seed_row_[c]});
+      continue;
+    }
     box_.neighbours(c, set_, nb);
-    int k = 0;
+    std::size_t k = 0;
     std::int32_t seed = -1;
     for (std::uint32_t n : nb)
       if (status_[n] == kReachable) {
         ++k;
         if (seed < 0 && sol_row_[n] != sol_row_[c]) seed = sol_row_[n];
       }
-    if (k >= 2 && seed >= 0) retry.push_back({c, seed});
+    if (2 * k > nb.size() && seed >= 0) retry.push_back({c, seed});
   }
   return retry;
+}
+
+// The flood starts from a sparse share of the cells forward-kinematics sampling hit, each with its own sample as
+// the seed, and the flood then reaches most of the others from a reachable neighbour: a neighbour's solution is
+// collision-free and one cell away, so its descent converges in two or three steps and rarely ends in collision,
+// where a random sample often does (a seed in self-collision leads IK to a solution in collision). Passes over the
+// sampled cells the floods have not reached go on while they find reachable cells (a piece of the reachable set
+// that no earlier start lay in); a pass that finds none ends the starts. Those cells keep their samples as mixed
+// cells, which the certified lookup answers by IK.
+void CapabilityBuilder::start_floods() {
+  std::vector<std::uint32_t> untried, newly;
+  for (std::uint32_t c = 0; c < box_.cells; ++c)
+    if (seed_row_[c] >= 0) untried.push_back(c);
+  while (!untried.empty()) {
+    // One cell in kStartShare, and at least kStartMin (or all) so that a pass that finds nothing has looked.
+    const std::size_t want = std::min(untried.size(), std::max(untried.size() / kStartShare, kStartMin));
+    std::vector<Item> wave;
+    wave.reserve(want);
+    for (std::size_t i = 0; i < want; ++i) {
+      const std::uint32_t c = untried[i * untried.size() / want];
+      wave.push_back({c, seed_row_[c]});
+      status_[c] = kQueued;
+      started_[c] = 1;
+    }
+    run_wave(wave, seed_pool_, 1, newly);
+    if (newly.empty()) break;
+    flood(newly);
+    untried.erase(std::remove_if(untried.begin(), untried.end(), [&](std::uint32_t c) { return status_[c] != kUntried; }),
+                  untried.end());
+  }
 }
 
 void CapabilityBuilder::solve() {
   const auto t0 = std::chrono::steady_clock::now();  // stage times for OCTOREACH_DEBUG
   auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  std::vector<Item> wave0;
-  for (std::uint32_t c = 0; c < box_.cells; ++c)
-    if (seed_row_[c] >= 0) {
-      wave0.push_back({c, seed_row_[c]});
-      status_[c] = kQueued;
-    }
-  std::vector<std::uint32_t> newly;
-  run_wave(wave0, seed_pool_, 1, newly);
   const char* debug = std::getenv("OCTOREACH_DEBUG");
-  if (debug) std::fprintf(stderr, "capability map: wave0 %zu calls, %zu reachable (%.2f s)\n", wave0.size(), newly.size(), secs());
-  report(0.15, 0.5, 1.0);
-  flood(newly);
-  if (debug) std::fprintf(stderr, "capability map: after flood %zu calls (%.2f s)\n", ik_calls_, secs());
-  // One retry pass: a second recovered about 1% of what it tried on the PR2 arm.
-  std::vector<Item> retry = retry_items();
-  if (!retry.empty()) {
-    run_wave(retry, sol_pool_, 1, newly);
-    if (debug) std::fprintf(stderr, "capability map: retry pass 0: %zu cells, %zu recovered (%.2f s)\n", retry.size(), newly.size(), secs());
+  start_floods();
+  if (debug) std::fprintf(stderr, "capability map: after the floods %zu calls (%.2f s)\n", ik_calls_, secs());
+  std::vector<std::uint32_t> newly;
+  // The retries (retry_items): samples, then neighbours' solutions; a second round of the neighbours' recovered
+  // about 1 % of what it tried on the PR2 arm.
+  for (const bool samples : {true, false}) {
+    const std::vector<Item> retry = retry_items(samples);
+    if (retry.empty()) continue;
+    // A failed sample keeps the row of the neighbour's solution the cell failed with (run_wave stores -1 for
+    // a seed from seed_pool_), so that the second pass does not repeat that descent.
+    std::vector<std::int32_t> failed_with(retry.size());
+    for (std::size_t i = 0; i < retry.size(); ++i) failed_with[i] = sol_row_[retry[i].cell];
+    run_wave(retry, samples ? seed_pool_ : sol_pool_, 1, newly);
+    if (samples)
+      for (std::size_t i = 0; i < retry.size(); ++i)
+        if (status_[retry[i].cell] == kFailed) sol_row_[retry[i].cell] = failed_with[i];
+    if (debug)
+      std::fprintf(stderr, "capability map: retry with %s: %zu cells, %zu recovered (%.2f s)\n",
+                   samples ? "samples" : "neighbours", retry.size(), newly.size(), secs());
     if (!newly.empty()) flood(newly);
-    if (debug) std::fprintf(stderr, "capability map: flood after retry: %zu calls (%.2f s)\n", ik_calls_, secs());
   }
   if (o_.exhaustive) {
     std::vector<Item> rest;

@@ -40,8 +40,10 @@ class CapabilityBuilder {
   /// Stage 1: forward-kinematics samples (deterministic: fixed chunks merged in order) give each
   /// cell they hit a seed configuration. Returns the number of samples.
   std::size_t sample();
-  /// Stage 2: seeded IK at the voxel centres, a flood fill over neighbours, one retry pass with
-  /// another neighbour's seed, and (exhaustive) random restarts on every untried cell.
+  /// Stage 2: floods over neighbours (IK at the voxel centres, seeded with a reachable neighbour's solution)
+  /// started from a sparse share of the sampled cells, retries of the failed cells most of whose neighbours are
+  /// reachable (their own sample, then another neighbour's solution), and (exhaustive) random restarts on every
+  /// untried cell.
   void solve();
 
   /// Stage 3: the quality of every reachable cell's solution (keep_solutions), on every core.
@@ -76,7 +78,9 @@ class CapabilityBuilder {
   void run_wave(const std::vector<Item>& wave, const std::vector<float>& pool, int attempts,
                 std::vector<std::uint32_t>& newly);
   void flood(std::vector<std::uint32_t> frontier);
-  std::vector<Item> retry_items() const;
+  void start_floods();
+  std::vector<Item> retry_items(bool samples) const;
+  static constexpr std::size_t kStartShare = 64, kStartMin = 1024;  // start_floods()
 
   const Chain& chain_;
   const CapabilityMapOptions& o_;
@@ -89,10 +93,12 @@ class CapabilityBuilder {
   std::vector<std::int32_t> seed_row_;
   std::vector<float> seed_pool_;
   std::vector<std::uint8_t> status_;
+  std::vector<std::uint8_t> started_;  // per cell: a descent started from its sample (a flood's start)
   std::vector<std::int32_t> sol_row_;
   std::vector<float> sol_pool_;
   std::vector<CellQuality> quality_;  // per sol_pool_ row (rate())
   std::size_t ik_calls_ = 0;
+  std::size_t reachable_ = 0;  // cells with status kReachable
 };
 
 }  // namespace octoreach::detail

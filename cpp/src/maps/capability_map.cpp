@@ -14,6 +14,7 @@
 #include "common/cancel.hpp"
 #include "common/checks.hpp"
 #include "maps/map_io.hpp"
+#include "common/thread_pool.hpp"
 #include "maps/capability_build.hpp"
 #include "maps/capability_cells.hpp"
 #include "octoreach/manipulability.hpp"
@@ -135,11 +136,14 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   builder.solve();
 
   builder.rate();
-  // The octree and the per-voxel records, in voxel order.
-  detail::VoxelCellData cells;
-  for (std::size_t v = 0; v < box.voxels; ++v) {
-    builder.collect(v, cells);
-    if (!cells.empty()) m.add_voxel_(box.key(v), cells);
+  // The octree and the per-voxel records, in voxel order: each slab of voxels collected on every core, then added.
+  constexpr std::size_t kSlab = 4096;
+  std::vector<detail::VoxelCellData> slab(kSlab);
+  for (std::size_t v0 = 0; v0 < box.voxels; v0 += kSlab) {
+    const std::size_t n = std::min(kSlab, box.voxels - v0);
+    detail::parallel_for(n, o.threads, [&](std::size_t i, int) { builder.collect(v0 + i, slab[i]); }, 64);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!slab[i].empty()) m.add_voxel_(box.key(v0 + i), slab[i]);
   }
   m.finish_build_(samples, builder.ik_calls(), box.cells,
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());

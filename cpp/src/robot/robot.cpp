@@ -7,6 +7,7 @@
 
 #include "common/nearest_names.hpp"
 #include "common/random_mix.hpp"
+#include "robot/joint_motion.hpp"
 
 namespace octoreach {
 
@@ -81,20 +82,9 @@ Eigen::VectorXd Robot::configuration(const std::map<std::string, double>& values
 }
 
 namespace {
-inline Pose joint_motion(const Joint& j, double q) {
-  Pose m = Pose::Identity();
-  if (j.type == JointType::Prismatic) m.translation() = j.axis * q;
-  else if (j.type == JointType::Revolute || j.type == JointType::Continuous)
-    m.linear() = Eigen::AngleAxisd(q, j.axis).toRotationMatrix();
-  return m;
-}
-
 // The pose of joint j's child link from its parent's, at configuration q (one step of link_poses).
 void place_child(const std::vector<Joint>& joints, const Joint& j, const Eigen::VectorXd& q, std::vector<Pose>& out) {
-  double v = 0.0;
-  if (j.index >= 0) v = q[j.index];
-  else if (j.mimic >= 0) v = q[joints[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
-  out[j.child_link] = out[j.parent_link] * j.origin * joint_motion(j, v);
+  out[j.child_link] = out[j.parent_link] * j.origin * detail::joint_motion(j, detail::joint_value(joints, j, q));
 }
 
 // `q` has one entry per degree of freedom of the robot `name`, else std::invalid_argument.
