@@ -80,7 +80,7 @@ class CapabilityBuilder {
   void flood(std::vector<std::uint32_t> frontier);
   void start_floods();
   std::vector<Item> retry_items(bool samples) const;
-  static constexpr std::size_t kStartShare = 64, kStartMin = 1024;  // start_floods()
+  static constexpr std::size_t kStartShare = 16, kStartMin = 16384, kPassMin = 1024;  // start_floods()
 
   const Chain& chain_;
   const CapabilityMapOptions& o_;
