@@ -84,7 +84,8 @@ CapabilityBuilder::CapabilityBuilder(const Chain& chain, const CapabilityMapOpti
                                      const Eigen::Vector3d& approach_axis, const Eigen::VectorXd& reference,
                                      const CellBox& box, const ProgressCallback& progress)
     : chain_(chain), o_(o), set_(set), box_(box), progress_(progress), dof_(chain.dof()),
-      rotations_(set.size()), seed_row_(box.cells, -1), status_(box.cells, kUntried), started_(box.cells, 0), sol_row_(box.cells, -1) {
+      rotations_(set.size()), seed_row_(box.cells, -1), status_(box.cells, kUntried), started_(box.cells, 0),
+      sol_row_(box.cells, -1) {
   for (int i = 0; i < set.size(); ++i) rotations_[i] = set.rotation(i, approach_axis);
   base_ik_.mode = set.rolls() > 1 ? IkMode::Full : IkMode::Approach;
   base_ik_.position_tolerance = o.position_tolerance;
@@ -217,12 +218,13 @@ void CapabilityBuilder::flood(std::vector<std::uint32_t> frontier) {
 // The retries of the cells the floods failed, in two passes. First (samples) every failed cell's own forward-
 // kinematics sample that no descent started from yet: a configuration in the cell, often of another IK branch
 // than the neighbour's the cell failed with, in which the cell is reachable (without these retries the test arm's
-// maps miss twice as many of the cells IK reaches). Then (neighbours) a failed cell most of whose neighbours are reachable gets another reachable
-// neighbour's solution than the one it failed with (IK from the same seed at the same target repeats the same
-// descent): inside the reachable set a cell is likely reachable itself, and its seed sat on the wrong side of a
-// joint limit or a collision; a cell with fewer reachable neighbours than unreachable ones lies where the set
-// ends. On the PR2 arm at 0.05 m a neighbour's solution recovers about 75 % of the cells inside the set and under
-// 2 % of the others, cells the certified lookup answers by IK anyway (their neighbours disagree).
+// maps miss twice as many of the cells IK reaches). Then (neighbours) a failed cell most of whose neighbours are
+// reachable gets another reachable neighbour's solution than the one it failed with (IK from the same seed at the
+// same target repeats the same descent): inside the reachable set a cell is likely reachable itself, and its seed
+// sat on the wrong side of a joint limit or a collision; a cell with fewer reachable neighbours than unreachable
+// ones lies where the set ends. On the PR2 arm at 0.05 m a neighbour's solution recovers about 75 % of the cells
+// inside the set and under 2 % of the others, cells the certified lookup answers by IK anyway (their neighbours
+// disagree).
 std::vector<CapabilityBuilder::Item> CapabilityBuilder::retry_items(bool samples) const {
   std::vector<Item> retry;
   std::vector<std::uint32_t> nb;
@@ -253,10 +255,9 @@ std::vector<CapabilityBuilder::Item> CapabilityBuilder::retry_items(bool samples
 // branch spreads only as far as the next start's: the configurations stored around a pose then come from several
 // branches, and the certified lookup starts its descents from them (with one start in 64 the held-out G1 arm's
 // certified false negatives were 0.6 %, above the 0.5 % target; with one in 16, 0.2-0.3 %, as with every sample a
-// start). Passes over the
-// sampled cells the floods have not reached go on while they find reachable cells (a piece of the reachable set
-// that no earlier start lay in); a pass that finds none ends the starts. Those cells keep their samples as mixed
-// cells, which the certified lookup answers by IK.
+// start). Passes over the sampled cells the floods have not reached go on while they find reachable cells (a piece
+// of the reachable set that no earlier start lay in); a pass that finds none ends the starts. Those cells keep
+// their samples as mixed cells, which the certified lookup answers by IK.
 void CapabilityBuilder::start_floods() {
   std::vector<std::uint32_t> untried, newly;
   for (std::uint32_t c = 0; c < box_.cells; ++c)
