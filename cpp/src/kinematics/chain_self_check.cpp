@@ -85,10 +85,12 @@ bool ChainSelfCheck::collides(const Robot& robot, const std::vector<Pose>& poses
     const Entry& x = entries_[open_[i]];
     const ShapeRef& sa = shapes_[x.a];
     const ShapeRef& sb = shapes_[x.b];
-    if (x.witness >= 0 ? !meshes_pieces_apart(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness]) &&
-                             meshes_fcl_collide(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness])
-                       : geometry_collide(sa.geometry, world_[x.a], sb.geometry, world_[x.b]))
-      return hit(open_[i]);
+    const bool collides =
+        x.witness >= 0
+            ? !meshes_pieces_apart(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness]) &&
+                  meshes_fcl_collide(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness])
+            : geometry_collide(sa.geometry, world_[x.a], sb.geometry, world_[x.b]);
+    if (collides) return hit(open_[i]);
   }
   return false;
 }

@@ -127,7 +127,7 @@ struct CollisionSetup {
     s.still.clear();
     for (int ji : s.moved) {
       const Joint& j = r->joints()[ji];
-      const int source = j.index >= 0 ? j.index : j.mimic >= 0 ? r->joints()[j.mimic].index : -1;
+      const int source = detail::joint_source(r->joints(), j);
       s.turns.push_back(source >= 0 && in_chain[source]);
       s.still.push_back(j.origin * detail::joint_motion(j, detail::joint_value(r->joints(), j, reference)));
     }

@@ -9,11 +9,16 @@
 
 namespace octoreach::detail {
 
+/// The robot configuration entry joint j's value comes from: its own, a mimic joint's source's; -1 when fixed.
+inline int joint_source(const std::vector<Joint>& joints, const Joint& j) {
+  return j.index >= 0 ? j.index : j.mimic >= 0 ? joints[j.mimic].index : -1;
+}
+
 /// Joint j's value in the robot configuration q: its own entry, a mimic joint's from its source's, 0 when fixed.
 inline double joint_value(const std::vector<Joint>& joints, const Joint& j, const Eigen::VectorXd& q) {
-  if (j.index >= 0) return q[j.index];
-  if (j.mimic >= 0) return q[joints[j.mimic].index] * j.mimic_multiplier + j.mimic_offset;
-  return 0.0;
+  const int source = joint_source(joints, j);
+  if (source < 0) return 0.0;
+  return j.index >= 0 ? q[source] : q[source] * j.mimic_multiplier + j.mimic_offset;
 }
 
 /// Joint j's motion at the value v (after its origin): a turn about its axis or a shift along it.
