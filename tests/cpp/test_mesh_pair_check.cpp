@@ -110,7 +110,8 @@ TEST(MeshPairCheck, HullsApartFindsSeparatedHulls) {
 }
 
 TEST(MeshPairCheck, HullPointsReachAsFarAsAllVertices) {
-  // The support points a mesh keeps reach as far as all its vertices in every direction, and drop some.
+  // The support points a mesh keeps reach as far as all its vertices in every direction, and drop some; the ball
+  // that holds them reaches at least as far as they do at any pose, and not much farther than the radius says.
   std::mt19937_64 rng(3);
   std::normal_distribution<double> g(0.0, 1.0);
   for (int m = 0; m < 20; ++m) {
@@ -124,14 +125,21 @@ TEST(MeshPairCheck, HullPointsReachAsFarAsAllVertices) {
       for (int i = 0; i < h.num_vertices; ++i) all = std::max(all, d.dot(h.vertices[i]));
       for (std::size_t i = 0; i < pts.x.size(); ++i) kept = std::max(kept, d.dot(Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i])));
       EXPECT_GE(kept, all - 1e-12 * d.norm()) << "mesh " << m;
+      const Pose T = random_pose(rng, 0.5);
+      const detail::PlacedHull placed{pts, T.linear(), T.translation()};
+      const double bound = placed.reach_bound(d), reach = placed.reach(d);
+      EXPECT_GE(bound, reach) << "mesh " << m;
+      EXPECT_LE(bound, reach + 2.0 * pts.radius * d.norm() + 1e-12) << "mesh " << m;
     }
   }
 }
 
 TEST(MeshPairCheck, PiecesHoldEveryTriangleAndProveOnlyWhatFclSays) {
-  // Every triangle's vertices lie in one piece's hull (the piece's support points reach as far as they do in
-  // every direction), and pieces proved apart are never in contact by FCL; on soups stretched along x, whose
-  // hulls hold much empty room, the pieces prove apart pairs whose whole hulls overlap.
+  // The pieces' triangle lists split the mesh's triangles, and every triangle's vertices lie in its piece's hull
+  // (the piece's support points reach as far as they do in every direction); pieces proved apart are never in
+  // contact by FCL; on soups stretched along x, whose hulls hold much empty room, the pieces prove apart pairs
+  // whose whole hulls overlap; where they do not, meshes_fcl_collide (the overlapping piece pair's triangles, then
+  // FCL) answers as FCL, and a contact it reports is a triangle pair FCL's triangle test finds intersecting.
   std::mt19937_64 rng(13);
   std::normal_distribution<double> g(0.0, 1.0);
   auto a = soup(rng, 40, 0.15), b = soup(rng, 60, 0.12);
@@ -139,9 +147,17 @@ TEST(MeshPairCheck, PiecesHoldEveryTriangleAndProveOnlyWhatFclSays) {
     const auto& h = static_cast<const detail::HullMesh&>(*m);
     const auto& pieces = h.pieces();
     ASSERT_EQ(static_cast<int>(pieces.size()), detail::kMeshPieces);
+    std::vector<int> piece_of(h.num_tris, -1);
+    for (std::size_t k = 0; k < pieces.size(); ++k)
+      for (int t : pieces[k].triangles) {
+        ASSERT_TRUE(t >= 0 && t < h.num_tris);
+        EXPECT_EQ(piece_of[t], -1) << "triangle " << t << " in two pieces";
+        piece_of[t] = static_cast<int>(k);
+      }
     for (int t = 0; t < h.num_tris; ++t) {
+      ASSERT_GE(piece_of[t], 0) << "triangle " << t << " in no piece";
       int held = 0;
-      for (const auto& p : pieces) {
+      for (const auto& p : {pieces[piece_of[t]]}) {
         bool all = true;
         for (int k = 0; k < 100 && all; ++k) {
           const Eigen::Vector3d d(g(rng), g(rng), g(rng));
@@ -155,7 +171,9 @@ TEST(MeshPairCheck, PiecesHoldEveryTriangleAndProveOnlyWhatFclSays) {
       EXPECT_GE(held, 1) << "triangle " << t;
     }
   }
-  int proved = 0, open = 0;
+  int proved = 0, open = 0, contacts = 0;
+  const auto& ha = static_cast<const detail::HullMesh&>(*a);
+  const auto& hb = static_cast<const detail::HullMesh&>(*b);
   for (int i = 0; i < 3000; ++i) {
     const Pose ta = random_pose(rng, 0.3), tb = random_pose(rng, 0.3);
     detail::MeshPairWitness w;
@@ -166,9 +184,24 @@ TEST(MeshPairCheck, PiecesHoldEveryTriangleAndProveOnlyWhatFclSays) {
     if (detail::meshes_pieces_apart(*a, ta, *b, tb, w)) {
       EXPECT_FALSE(fcl) << "pose " << i;
       ++proved;
+      EXPECT_EQ(detail::meshes_collide(*a, ta, *b, tb, w), fcl) << "pose " << i;  // with the hint the test left
+      continue;
     }
-    EXPECT_EQ(detail::meshes_collide(*a, ta, *b, tb, w), fcl) << "pose " << i;  // with the hint the test left
+    ASSERT_EQ(detail::meshes_fcl_collide(*a, ta, *b, tb, w), fcl) << "pose " << i;  // the piece pair's hint
+    if (!fcl) continue;
+    ++contacts;
+    const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
+    fcl::Matrix3d R;
+    fcl::Vector3d T;
+    fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
+    const fcl::Triangle& p = ha.tri_indices[w.triangles[0][0]];
+    const fcl::Triangle& q = hb.tri_indices[w.triangles[0][1]];
+    EXPECT_TRUE(fcl::detail::Intersect<double>::intersect_Triangle(ha.vertices[p[0]], ha.vertices[p[1]],
+                                                                   ha.vertices[p[2]], hb.vertices[q[0]],
+                                                                   hb.vertices[q[1]], hb.vertices[q[2]], R, T))
+        << "pose " << i;
   }
   EXPECT_GT(open, 300);
+  EXPECT_GT(contacts, 100);
   EXPECT_GT(5 * proved, open);  // about 30 % on these soups
 }

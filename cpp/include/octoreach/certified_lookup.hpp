@@ -78,6 +78,9 @@ class CertifiedLookup {
   static constexpr int kMaxSeeds = 16;
   // reachable() of a pose already known to be rigid (is_rigid, check_rigid's rule: the batch tests each row).
   bool answer(const Pose& T, Eigen::VectorXd* solution) const;
+  // True when stored configurations a and b are within gap_max of each other in every joint (continuous joints
+  // modulo 2 pi).
+  bool near(const float* a, const float* b, double gap_max) const;
   // The cells around T; for mixed cells, up to options_.seeds stored configurations, nearest first.
   Cells cells(const Pose& T, const float** seeds, int& n_seeds) const;
   // One descent from q0; true with a collision-free solution. `collided`: set when the descent reached the pose

@@ -15,9 +15,12 @@ using Mesh = HullMesh;
 
 using Placed = PlacedHull;
 
-// apart_along without the support point: the two vertex passes alone.
+// apart_along without the support point: the two vertex passes alone, or none when the balls that hold the
+// points are apart along d already.
 bool apart_by(const Placed& A, const Placed& B, const Eigen::Vector3d& d) {
-  return -A.reach(-d) - B.reach(d) > kHullMargin * d.norm();
+  const double margin = kHullMargin * d.norm();
+  if (-A.reach_bound(-d) - B.reach_bound(d) > margin) return true;
+  return -A.reach(-d) - B.reach(d) > margin;
 }
 
 // GJK on the hulls, started along the direction between the meshes' local box centres ca, cb.
@@ -44,6 +47,74 @@ void support_points(const std::vector<Eigen::Vector3d>& all, HullMesh::Points& p
     points.y.push_back(v.y());
     points.z.push_back(v.z());
   }
+  // The ball: centred on the points' box, its radius their farthest distance from there plus what rounding in
+  // that distance could hide.
+  if (points.x.empty()) return;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t i = 0; i < points.x.size(); ++i) {
+    const Eigen::Vector3d v(points.x[i], points.y[i], points.z[i]);
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  points.centre = 0.5 * (lo + hi);
+  double r2 = 0.0;
+  for (std::size_t i = 0; i < points.x.size(); ++i)
+    r2 = std::max(r2, (Eigen::Vector3d(points.x[i], points.y[i], points.z[i]) - points.centre).squaredNorm());
+  points.radius = std::sqrt(r2) * (1.0 + 1e-12) + 1e-12 * scale;
+}
+
+// The relative transform FCL's mesh traversal computes (b's frame into a's), which its triangle test takes.
+void fcl_relative(const Pose& ta, const Pose& tb, fcl::Matrix3d& R, fcl::Vector3d& T) {
+  const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
+  fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
+}
+
+// The triangles of a's piece ia and of b's piece ib (-1: all of b's) tested pairwise with FCL's leaf test, pairs
+// whose boxes (in a's frame) are apart skipped: the first pair that intersects, or {-1, -1}.
+std::array<int, 2> piece_pair_touch(const HullMesh& ma, int ia, const HullMesh& mb, int ib, const fcl::Matrix3d& R,
+                                    const fcl::Vector3d& T) {
+  struct Box {
+    Eigen::Vector3d lo, hi;
+  };
+  auto box = [](const fcl::Vector3d& p, const fcl::Vector3d& q, const fcl::Vector3d& r) {
+    return Box{p.cwiseMin(q).cwiseMin(r), p.cwiseMax(q).cwiseMax(r)};
+  };
+  const std::vector<int>& ta = ma.pieces()[ia].triangles;
+  thread_local std::vector<int> all;
+  const std::vector<int>* tb = &all;
+  if (ib >= 0) {
+    tb = &mb.pieces()[ib].triangles;
+  } else {
+    all.resize(mb.num_tris);
+    for (int t = 0; t < mb.num_tris; ++t) all[t] = t;
+  }
+  thread_local std::vector<Box> boxes_b;
+  boxes_b.clear();
+  Box bound{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+            Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  for (int t : *tb) {
+    const fcl::Triangle& q = mb.tri_indices[t];
+    boxes_b.push_back(box(R * mb.vertices[q[0]] + T, R * mb.vertices[q[1]] + T, R * mb.vertices[q[2]] + T));
+    bound.lo = bound.lo.cwiseMin(boxes_b.back().lo);
+    bound.hi = bound.hi.cwiseMax(boxes_b.back().hi);
+  }
+  auto overlap = [](const Box& x, const Box& y) {
+    return (x.lo.array() <= y.hi.array()).all() && (y.lo.array() <= x.hi.array()).all();
+  };
+  for (int s : ta) {
+    const fcl::Triangle& p = ma.tri_indices[s];
+    const Box bs = box(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]]);
+    if (!overlap(bs, bound)) continue;
+    for (std::size_t k = 0; k < tb->size(); ++k) {
+      if (!overlap(bs, boxes_b[k])) continue;
+      const fcl::Triangle& q = mb.tri_indices[(*tb)[k]];
+      if (fcl::detail::Intersect<double>::intersect_Triangle(ma.vertices[p[0]], ma.vertices[p[1]], ma.vertices[p[2]],
+                                                             mb.vertices[q[0]], mb.vertices[q[1]], mb.vertices[q[2]],
+                                                             R, T))
+        return {{s, (*tb)[k]}};
+    }
+  }
+  return {{-1, -1}};
 }
 
 }  // namespace
@@ -95,6 +166,7 @@ void HullMesh::split() const {
       for (int k = 0; k < 3; ++k) pts.push_back(vertices[tri_indices[order[i]][k]]);
     Piece piece;
     support_points(pts, piece.points);
+    piece.triangles.assign(order.begin() + lo, order.begin() + hi);
     Eigen::Vector3d bmin = pts[0], bmax = pts[0];
     for (const auto& v : pts) {
       bmin = bmin.cwiseMin(v);
@@ -132,10 +204,9 @@ MeshVerdict mesh_witness_verdict(const fcl::CollisionGeometryd& a, const Pose& t
   if (witness.triangles[0][0] < 0) return MeshVerdict::unknown;
   // FCL's leaf test (mesh_collision_traversal_node-inl.h): b's triangle moved into a's frame by the
   // relative transform FCL's traversal node computes.
-  const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
   fcl::Matrix3d R;
   fcl::Vector3d T;
-  fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
+  fcl_relative(ta, tb, R, T);
   auto& tris = witness.triangles;
   for (std::size_t k = 0; k < tris.size(); ++k) {
     const int ia = tris[k][0], ib = tris[k][1];
@@ -199,13 +270,27 @@ bool meshes_pieces_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const
 
 bool meshes_fcl_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,
                         const Pose& tb, MeshPairWitness& witness) {
+  auto keep = [&](std::array<int, 2> pair) {
+    std::rotate(witness.triangles.begin(), witness.triangles.end() - 1, witness.triangles.end());
+    witness.triangles[0] = pair;
+    return true;
+  };
+  const Mesh* ma = hull_mesh(a);
+  const Mesh* mb = hull_mesh(b);
+  const auto& hint = witness.pieces;
+  if (ma && mb && hint[0] >= 0 && hint[0] < static_cast<int>(ma->pieces().size()) &&
+      hint[1] < static_cast<int>(mb->pieces().size())) {
+    fcl::Matrix3d R;
+    fcl::Vector3d T;
+    fcl_relative(ta, tb, R, T);
+    const std::array<int, 2> pair = piece_pair_touch(*ma, hint[0], *mb, hint[1], R, T);
+    if (pair[0] >= 0) return keep(pair);
+  }
   const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
   fcl::CollisionRequestd request;
   fcl::CollisionResultd result;
   if (fcl::collide(&a, fa, &b, fb, request, result) == 0) return false;
-  std::rotate(witness.triangles.begin(), witness.triangles.end() - 1, witness.triangles.end());
-  witness.triangles[0] = {{static_cast<int>(result.getContact(0).b1), static_cast<int>(result.getContact(0).b2)}};
-  return true;
+  return keep({{static_cast<int>(result.getContact(0).b1), static_cast<int>(result.getContact(0).b2)}});
 }
 
 bool meshes_collide(const fcl::CollisionGeometryd& a, const Pose& ta, const fcl::CollisionGeometryd& b,

@@ -9,6 +9,7 @@
 #include "octoreach/robot.hpp"
 #include "common/sin_cos.hpp"
 #include "kinematics/chain_checks.hpp"
+#include "robot/joint_motion.hpp"
 
 namespace octoreach {
 
@@ -100,7 +101,7 @@ namespace {
 // columns of R mix; any other axis takes the general rotation.
 inline void rotate_about(Eigen::Matrix3d& R, int kind, const Eigen::Vector3d& axis, double angle) {
   if (kind < 0) {
-    R = R * Eigen::AngleAxisd(angle, axis).toRotationMatrix();
+    R = R * detail::axis_rotation(axis, angle);
     return;
   }
   const int k = kind % 3;

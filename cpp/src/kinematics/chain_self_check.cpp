@@ -74,23 +74,19 @@ bool ChainSelfCheck::collides(const Robot& robot, const std::vector<Pose>& poses
     }
     open_.push_back(e);
   }
-  std::size_t n = 0;
-  for (std::size_t e : open_) {  // GJK on the hulls of the mesh pairs left open
+  // The pairs left open, each to the end before the next (GJK on the hulls, the meshes' convex pieces, then FCL):
+  // a configuration in collision usually has many open pairs, and the first hit ends the check.
+  for (std::size_t e : open_) {
     const Entry& x = entries_[e];
-    if (x.witness < 0 || !meshes_hulls_apart(*shapes_[x.a].geometry, world_[x.a], *shapes_[x.b].geometry,
-                                             world_[x.b], witnesses_[x.witness]))
-      open_[n++] = e;
-  }
-  for (std::size_t i = 0; i < n; ++i) {  // the meshes' convex pieces, then FCL
-    const Entry& x = entries_[open_[i]];
     const ShapeRef& sa = shapes_[x.a];
     const ShapeRef& sb = shapes_[x.b];
     const bool collides =
         x.witness >= 0
-            ? !meshes_pieces_apart(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness]) &&
+            ? !meshes_hulls_apart(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness]) &&
+                  !meshes_pieces_apart(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness]) &&
                   meshes_fcl_collide(*sa.geometry, world_[x.a], *sb.geometry, world_[x.b], witnesses_[x.witness])
             : geometry_collide(sa.geometry, world_[x.a], sb.geometry, world_[x.b]);
-    if (collides) return hit(open_[i]);
+    if (collides) return hit(e);
   }
   return false;
 }

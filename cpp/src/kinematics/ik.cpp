@@ -165,7 +165,7 @@ struct CollisionSetup {
       child = poses[j.parent_link] * j.origin;
       if (j.type == JointType::Prismatic) child.translation() += child.linear() * (j.axis * v);
       else if (j.type == JointType::Revolute || j.type == JointType::Continuous)
-        child.linear() = child.linear() * Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+        child.linear() = child.linear() * detail::axis_rotation(j.axis, v);
     }
   }
 

@@ -122,6 +122,17 @@ bool CertifiedLookup::reachable(const Pose& T, Eigen::VectorXd* solution) const 
   return answer(T, solution);
 }
 
+bool CertifiedLookup::near(const float* a, const float* b, double gap_max) const {
+  const int dof = chain_.dof();
+  const std::vector<bool>& continuous = chain_.continuous();
+  for (int j = 0; j < dof; ++j) {
+    const double gap = double(a[j]) - double(b[j]);
+    const double wrapped = continuous[j] ? gap - 2.0 * M_PI * std::nearbyint(gap / (2.0 * M_PI)) : gap;
+    if (std::abs(wrapped) > gap_max) return false;
+  }
+  return true;
+}
+
 bool CertifiedLookup::answer(const Pose& T, Eigen::VectorXd* solution) const {
   const float* seeds[kMaxSeeds];
   int n = 0;
@@ -167,6 +178,7 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
     double distance;  // voxels from the position plus direction spacings from the approach direction
     std::uint32_t rec;
     int o;
+    int order;  // gathering order: equal distances are taken in it
   };
   thread_local std::vector<std::pair<int, double>> directions;  // (orientation, direction spacings away)
   thread_local std::vector<Candidate> candidates;
@@ -207,34 +219,28 @@ bool CertifiedLookup::other_branches(const Pose& T, const float* const* tried, i
         if (rec == DenseIndex::kNone) continue;
         const double voxels = (Eigen::Vector3d(g[0] + 0.5, g[1] + 0.5, g[2] + 0.5) * res - T.translation()).norm() / res;
         for (const auto& [o, angle] : directions)
-          if (m.record_has(rec, o) || m.record_mixed(rec, o)) candidates.push_back({voxels + angle, rec, o});
+          if (m.record_has(rec, o) || m.record_mixed(rec, o))
+            candidates.push_back({voxels + angle, rec, o, static_cast<int>(candidates.size())});
       }
-  std::stable_sort(candidates.begin(), candidates.end(),  // (stable: ties keep the gathering order)
-                   [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+  // Nearest first, taken from a heap as the descents need them (a few of hundreds of candidates).
+  auto farther = [](const Candidate& a, const Candidate& b) {
+    return a.distance > b.distance || (a.distance == b.distance && a.order > b.order);
+  };
+  std::make_heap(candidates.begin(), candidates.end(), farther);
   const int dof = chain_.dof();
-  const std::vector<bool>& continuous = chain_.continuous();
   thread_local std::vector<const float*> used;
   used.assign(tried, tried + n_tried);
   Eigen::VectorXd q0(dof);
   int descents = 0;
-  for (const Candidate& c : candidates) {
+  for (auto end = candidates.end(); end != candidates.begin(); --end) {
     if (descents >= budget()) break;
+    std::pop_heap(candidates.begin(), end, farther);
+    const Candidate& c = *(end - 1);
     const float* q = m.record_solution(c.rec, c.o);
     if (!q) q = m.record_mixed_solution(c.rec, c.o);
     if (!q) continue;
     bool same = false;
-    for (const float* u : used) {
-      int j = 0;
-      while (j < dof) {
-        const double gap = double(q[j]) - double(u[j]);
-        if (std::abs(continuous[j] ? std::remainder(gap, 2.0 * M_PI) : gap) > kSameBranch) break;
-        ++j;
-      }
-      if (j == dof) {
-        same = true;
-        break;
-      }
-    }
+    for (const float* u : used) same = same || near(q, u, kSameBranch);
     if (same) continue;
     used.push_back(q);
     ++descents;

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "octoreach/robot.hpp"
+#include "common/sin_cos.hpp"
 
 namespace octoreach::detail {
 
@@ -21,12 +22,28 @@ inline double joint_value(const std::vector<Joint>& joints, const Joint& j, cons
   return j.index >= 0 ? q[source] : q[source] * j.mimic_multiplier + j.mimic_offset;
 }
 
+/// The rotation by angle v about the unit axis a (Rodrigues' formula; sine and cosine from sin_cos).
+inline Eigen::Matrix3d axis_rotation(const Eigen::Vector3d& a, double v) {
+  double s, c;
+  sin_cos(v, s, c);
+  Eigen::Matrix3d r = (1.0 - c) * a * a.transpose();
+  r.diagonal().array() += c;
+  const Eigen::Vector3d sa = s * a;
+  r(0, 1) -= sa.z();
+  r(1, 0) += sa.z();
+  r(0, 2) += sa.y();
+  r(2, 0) -= sa.y();
+  r(1, 2) -= sa.x();
+  r(2, 1) += sa.x();
+  return r;
+}
+
 /// Joint j's motion at the value v (after its origin): a turn about its axis or a shift along it.
 inline Pose joint_motion(const Joint& j, double v) {
   Pose m = Pose::Identity();
   if (j.type == JointType::Prismatic) m.translation() = j.axis * v;
   else if (j.type == JointType::Revolute || j.type == JointType::Continuous)
-    m.linear() = Eigen::AngleAxisd(v, j.axis).toRotationMatrix();
+    m.linear() = axis_rotation(j.axis, v);
   return m;
 }
 
