@@ -167,12 +167,6 @@ void HullMesh::split() const {
     Piece piece;
     support_points(pts, piece.points);
     piece.triangles.assign(order.begin() + lo, order.begin() + hi);
-    Eigen::Vector3d bmin = pts[0], bmax = pts[0];
-    for (const auto& v : pts) {
-      bmin = bmin.cwiseMin(v);
-      bmax = bmax.cwiseMax(v);
-    }
-    piece.centre = 0.5 * (bmin + bmax);
     pieces_.push_back(std::move(piece));
   }
 }
@@ -244,23 +238,23 @@ bool meshes_pieces_apart(const fcl::CollisionGeometryd& a, const Pose& ta, const
   };
   auto& hint = witness.pieces;
   if (hint[0] >= 0 && hint[0] < static_cast<int>(pa.size()) && hint[1] < static_cast<int>(pb.size()) &&
-      !apart(placed(pa[hint[0]].points, ta), pa[hint[0]].centre,
+      !apart(placed(pa[hint[0]].points, ta), pa[hint[0]].points.centre,
              hint[1] < 0 ? placed(mb.hull_points(), tb) : placed(pb[hint[1]].points, tb),
-             hint[1] < 0 ? Eigen::Vector3d(b.aabb_local.center()) : pb[hint[1]].centre))
+             hint[1] < 0 ? Eigen::Vector3d(b.aabb_local.center()) : pb[hint[1]].points.centre))
     return false;
   const Placed B = placed(mb.hull_points(), tb);
   for (std::size_t i = 0; i < pa.size(); ++i) {
     const Placed A = placed(pa[i].points, ta);
     Eigen::Vector3d& kept = witness.piece_axes[i];
     if (kept.squaredNorm() > 0 && apart_by(A, B, kept)) continue;
-    if (gjk_apart(A, B, pa[i].centre, b.aabb_local.center(), kept)) continue;
+    if (gjk_apart(A, B, pa[i].points.centre, b.aabb_local.center(), kept)) continue;
     kept.setZero();
     if (pb.size() < 2) {
       hint = {{static_cast<int>(i), -1}};
       return false;
     }
     for (std::size_t k = 0; k < pb.size(); ++k)
-      if (!apart(A, pa[i].centre, placed(pb[k].points, tb), pb[k].centre)) {
+      if (!apart(A, pa[i].points.centre, placed(pb[k].points, tb), pb[k].points.centre)) {
         hint = {{static_cast<int>(i), static_cast<int>(k)}};
         return false;
       }

@@ -87,7 +87,8 @@ class MeshPairWitnesses {
 /// never updates a mesh's vertices after building it (FCL's update calls would leave these stale).
 class HullMesh : public fcl::BVHModel<fcl::OBBRSSd> {
  public:
-  /// Coordinate columns of the support points, and a ball that holds them all (centre, radius).
+  /// Coordinate columns of the support points, and a ball that holds them all (centre: the centre of their box,
+  /// which is the box of all the vertices they stand for; radius).
   struct Points {
     std::vector<double> x, y, z;
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -98,11 +99,10 @@ class HullMesh : public fcl::BVHModel<fcl::OBBRSSd> {
     return points_;
   }
   /// The mesh's triangles split into up to kMeshPieces spatially compact pieces (medians of the triangles'
-  /// centroids along the longest axis, four times), each with its hull's support points and its local box
-  /// centre: every triangle lies in its piece's hull, which hugs a concave mesh closer than the whole hull.
+  /// centroids along the longest axis, four times), each with its hull's support points and its triangles: every
+  /// triangle lies in its piece's hull, which hugs a concave mesh closer than the whole hull.
   struct Piece {
     Points points;
-    Eigen::Vector3d centre;
     std::vector<int> triangles;  // indices into tri_indices
   };
   const std::vector<Piece>& pieces() const {

@@ -168,7 +168,6 @@ struct CollisionSetup {
         child.linear() = child.linear() * detail::axis_rotation(j.axis, v);
     }
   }
-
 };
 
 // One IK call: Levenberg-Marquardt descents from the seed and from random restarts. N is the

@@ -41,9 +41,9 @@ class CapabilityBuilder {
   /// cell they hit a seed configuration. Returns the number of samples.
   std::size_t sample();
   /// Stage 2: floods over neighbours (IK at the voxel centres, seeded with a reachable neighbour's solution)
-  /// started from a sparse share of the sampled cells, retries of the failed cells most of whose neighbours are
-  /// reachable (their own sample, then another neighbour's solution), and (exhaustive) random restarts on every
-  /// untried cell.
+  /// started from a sparse share of the sampled cells, retries of the failed cells (their own sample where at
+  /// least a quarter of their neighbours are reachable, then another neighbour's solution where most are), and
+  /// (exhaustive) random restarts on every untried cell.
   void solve();
 
   /// Stage 3: the quality of every reachable cell's solution (keep_solutions), on every core.
