@@ -134,6 +134,45 @@ TEST(MeshPairCheck, HullPointsReachAsFarAsAllVertices) {
   }
 }
 
+TEST(MeshPairCheck, TriangleBallsHoldTheirTrianglesAndEveryContact) {
+  // Each triangle's ball holds its vertices; at random poses, every triangle pair FCL's triangle test finds
+  // intersecting has balls that meet (the witnesses skip a kept pair only when its balls are apart).
+  std::mt19937_64 rng(21);
+  auto a = soup(rng, 30, 0.12), b = soup(rng, 30, 0.12);
+  const auto& ha = static_cast<const detail::HullMesh&>(*a);
+  const auto& hb = static_cast<const detail::HullMesh&>(*b);
+  for (const auto* h : {&ha, &hb}) {
+    ASSERT_EQ(static_cast<int>(h->triangle_balls().size()), h->num_tris);
+    for (int t = 0; t < h->num_tris; ++t)
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector4d& ball = h->triangle_balls()[t];
+        EXPECT_LE((h->vertices[h->tri_indices[t][k]] - ball.head<3>()).norm(), ball[3]);
+      }
+  }
+  int contacts = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Pose ta = random_pose(rng, 0.05), tb = random_pose(rng, 0.05);
+    const fcl::Transform3d fa(ta.matrix()), fb(tb.matrix());
+    fcl::Matrix3d R;
+    fcl::Vector3d T;
+    fcl::relativeTransform(fa.linear(), fa.translation(), fb.linear(), fb.translation(), R, T);
+    for (int s = 0; s < ha.num_tris; ++s)
+      for (int t = 0; t < hb.num_tris; ++t) {
+        const fcl::Triangle& p = ha.tri_indices[s];
+        const fcl::Triangle& q = hb.tri_indices[t];
+        if (!fcl::detail::Intersect<double>::intersect_Triangle(ha.vertices[p[0]], ha.vertices[p[1]],
+                                                                ha.vertices[p[2]], hb.vertices[q[0]],
+                                                                hb.vertices[q[1]], hb.vertices[q[2]], R, T))
+          continue;
+        ++contacts;
+        const Eigen::Vector4d& x = ha.triangle_balls()[s];
+        const Eigen::Vector4d& y = hb.triangle_balls()[t];
+        EXPECT_LE((R * y.head<3>() + T - x.head<3>()).norm(), x[3] + y[3]);
+      }
+  }
+  EXPECT_GT(contacts, 100);
+}
+
 TEST(MeshPairCheck, PiecesHoldEveryTriangleAndProveOnlyWhatFclSays) {
   // The pieces' triangle lists split the mesh's triangles, and every triangle's vertices lie in its piece's hull
   // (the piece's support points reach as far as they do in every direction); pieces proved apart are never in

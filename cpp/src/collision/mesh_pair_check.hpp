@@ -98,6 +98,12 @@ class HullMesh : public fcl::BVHModel<fcl::OBBRSSd> {
     std::call_once(once_, [this] { measure(); });
     return points_;
   }
+  /// Per triangle, a ball that holds it (centre xyz, radius w; mesh frame): two triangles whose balls are apart
+  /// cannot meet, which rules out a kept triangle pair without FCL's triangle test.
+  const std::vector<Eigen::Vector4d>& triangle_balls() const {
+    std::call_once(once_, [this] { measure(); });
+    return balls_;
+  }
   /// The mesh's triangles split into up to kMeshPieces spatially compact pieces (medians of the triangles'
   /// centroids along the longest axis, four times), each with its hull's support points and its triangles: every
   /// triangle lies in its piece's hull, which hugs a concave mesh closer than the whole hull.
@@ -115,6 +121,7 @@ class HullMesh : public fcl::BVHModel<fcl::OBBRSSd> {
   void split() const;
   mutable std::once_flag once_, pieces_once_;
   mutable Points points_;
+  mutable std::vector<Eigen::Vector4d> balls_;
   mutable std::vector<Piece> pieces_;
 };
 
