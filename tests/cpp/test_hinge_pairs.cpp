@@ -6,6 +6,7 @@
 #include <random>
 
 #include "collision/detail.hpp"
+#include "kinematics/chain_checks.hpp"
 #include "kinematics/chain_self_check.hpp"
 #include "kinematics/hinge_pairs.hpp"
 #include "octoreach/chain.hpp"
@@ -169,3 +170,33 @@ TEST(ShapeBoxes, IkSolutionsWithSelfCollisionAreFree) {
   }
   EXPECT_GT(solved, 100);
 }
+
+TEST(ShapeBoxes, ShapesBelowFramesWithoutGeometryAreChecked) {
+  // IK places only the moved links a check reads: those with shapes and the links above them. A hand hung below
+  // a wrist frame without geometry (and a tool frame below it, without geometry too) is still placed and
+  // checked: IK's check answers as the robot's full check at random configurations, collisions among them.
+  std::string urdf = kUrdf;
+  urdf.replace(urdf.rfind("</robot>"), 8, R"(
+  <link name="wrist"/>
+  <joint name="wrist_joint" type="fixed"><parent link="fore"/><child link="wrist"/><origin xyz="0 0 0.5"/></joint>
+  <link name="hand"><collision><origin xyz="0 0 0.1"/><geometry><box size="0.25 0.25 0.2"/></geometry></collision></link>
+  <joint name="hand_joint" type="fixed"><parent link="wrist"/><child link="hand"/></joint>
+  <link name="tool"/>
+  <joint name="tool_joint" type="fixed"><parent link="hand"/><child link="tool"/><origin xyz="0 0 0.2"/></joint>
+</robot>)");
+  auto robot = Robot::from_urdf(urdf);
+  Chain chain = robot->chain("base", "tool");
+  IkOptions o;
+  o.check_self_collision = true;
+  std::mt19937_64 rng(9);
+  int colliding = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::VectorXd q = chain.random_configuration(rng);
+    const bool full = robot->in_self_collision(chain.to_robot_configuration(q, robot->home()));
+    ASSERT_EQ(detail::ik_solution_collides(chain, q, o), full) << "configuration " << i;
+    colliding += full;
+  }
+  EXPECT_GT(colliding, 100);
+  EXPECT_LT(colliding, 1900);
+}
+

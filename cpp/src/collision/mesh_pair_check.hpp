@@ -3,7 +3,8 @@
 // same shape pair, so that most checks need no FCL narrow phase. The answer is FCL's, always:
 //  - touching: the triangle pairs FCL found intersecting lately (the last 16) are tested, with FCL's
 //    own triangle test on FCL's own relative transform; if one still intersects, FCL's traversal
-//    (which reaches every intersecting triangle pair) would report a collision too.
+//    (which reaches every intersecting triangle pair) would report a collision too. A pair whose
+//    triangles' balls are apart is skipped: those triangles cannot meet.
 //  - apart: FCL's mesh-mesh collision intersects triangles, and every triangle lies in the convex hull
 //    of its mesh's vertices. If a plane separates the two vertex sets by more than kHullMargin, no
 //    triangle pair can meet. The plane's normal is the one that separated the pair last time, else

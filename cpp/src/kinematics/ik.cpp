@@ -67,13 +67,13 @@ std::optional<Eigen::VectorXd> rigid_chain_ik(const Chain& c, const Pose& target
 // of the last four robot, chain and reference combinations are kept and reused by the next call for
 // the same robot, chain and reference (keyed by the robot's control block through a weak_ptr, so a
 // robot built at the address of a freed one never matches). Checking a solution then recomputes
-// only the links the chain moves (the joints in `moved`, parents first).
+// only the links the chain moves that the check reads (the joints in `moved`, parents first).
 struct CollisionSetup {
   std::weak_ptr<const Robot> robot;
   std::string base, tip;
   Eigen::VectorXd reference;
   std::vector<std::pair<int, int>> moving_pairs, fixed_pairs;
-  std::vector<int> moved;  // joints whose child link the chain moves, in the robot's (parents-first) order
+  std::vector<int> moved;  // joints whose child link the chain moves and a check reads, parents first
   // Per joint in `moved`: whether the chain sets its value (its own or, for a mimic joint, its source's), and if
   // not, its origin times its motion at the reference, which no solution changes.
   std::vector<char> turns;
@@ -118,9 +118,18 @@ struct CollisionSetup {
     s.tip = c.tip_link();
     s.reference = reference;
     c.split_collision_pairs(s.moving_pairs, s.fixed_pairs);
+    // The moved links a check reads: those with collision shapes and the links above them (a gripper's frames
+    // without geometry, a camera frame, are never placed).
+    std::vector<char> read(r->links().size(), 0);
+    for (std::size_t j = r->joints().size(); j-- > 0;) {
+      const Joint& joint = r->joints()[j];
+      if (!r->links()[joint.child_link].shapes.empty()) read[joint.child_link] = 1;
+      if (read[joint.child_link]) read[joint.parent_link] = 1;
+    }
     s.moved.clear();
     for (std::size_t j = 0; j < r->joints().size(); ++j)
-      if (c.link_mask(r->joints()[j].child_link) != 0) s.moved.push_back(static_cast<int>(j));
+      if (c.link_mask(r->joints()[j].child_link) != 0 && read[r->joints()[j].child_link])
+        s.moved.push_back(static_cast<int>(j));
     std::vector<char> in_chain(r->dof(), 0);
     for (int i = 0; i < c.dof(); ++i) in_chain[c.robot_indices()[i]] = 1;
     s.turns.clear();
