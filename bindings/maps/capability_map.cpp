@@ -105,7 +105,8 @@ void wrap_queries(py::class_<CapabilityMap>& cls) {
       .def("solution", [](const CapabilityMap& cm, const py::object& point, int orientation) {
              return cm.solution(vec3_from(point, "point"), orientation);
            }, py::arg("point"), py::arg("orientation"),
-           "Stored joint solution of a reachable cell, or None.")
+           "Stored joint solution of a reachable cell, or None when the cell is not reachable; ValueError on a\n"
+           "map without solutions (has_solutions False).")
       .def("quality", [](const CapabilityMap& cm, const py::object& point, int o) -> py::object {
              auto q = cm.quality(vec3_from(point, "point"), o);
              if (!q) return py::none();

@@ -90,8 +90,9 @@ def __getattr__(name):
 
 
 def view(*items, **kwargs):
-    """Shows maps, samples and explorations in 3D in the browser (octoreach.viewer.view; needs the viewer
-    extra)."""
+    """Shows maps, samples and explorations in 3D in the browser (needs the viewer extra): octoreach.viewer.view,
+    whose help lists the arguments (robot, q, joints, samples, html, png, serve, colour_by, ...); imported on the
+    first call, so that importing octoreach does not import the viewer."""
     from .viewer import view as _view
 
     return _view(*items, **kwargs)

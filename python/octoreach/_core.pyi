@@ -943,7 +943,8 @@ class CapabilityMap:
         """
     def solution(self, point: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"], orientation: typing.SupportsInt | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"] | None:
         """
-        Stored joint solution of a reachable cell, or None.
+        Stored joint solution of a reachable cell, or None when the cell is not reachable; ValueError on a
+        map without solutions (has_solutions False).
         """
     def voxels(self) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 3]"], typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
         """

@@ -353,7 +353,8 @@ def test_save_load_round_trip(cmap, tmp_path):
     assert loaded.stats["voxels"] == cmap.stats["voxels"]
     assert loaded.stats["reachable_cells"] == cmap.stats["reachable_cells"]
     assert loaded.robot_name == cmap.robot_name and loaded.urdf_hash == cmap.urdf_hash
-    assert loaded.solution(cmap.voxels()[0][0], 0) is None
+    with pytest.raises(ValueError, match="save it with save\\(path, with_solutions=True\\)"):
+        loaded.solution(cmap.voxels()[0][0], 0)
 
     path2 = str(tmp_path / "arm_solutions.map")
     cmap.save(path2, with_solutions=True)
@@ -385,7 +386,8 @@ def test_keep_solutions_false(chain, small):
     assert not m.has_solutions
     assert_same_maps(m, small, with_solutions=False)
     c, _ = m.voxels()
-    assert all(m.solution(c[0], o) is None for o in range(len(m.orientations)))
+    with pytest.raises(ValueError, match="holds no joint solutions|does not hold"):
+        m.solution(c[0], 0)
 
 
 def test_save_is_atomic_and_replaces(small, tmp_path):

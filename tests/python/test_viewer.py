@@ -108,6 +108,18 @@ def test_capability_map_slice(arm_map, viewer):
     assert sel["value"] == pytest.approx(float(cap.reachability(centres[layer.drawn[:1]])[0]))
 
 
+def test_capability_map_of_another_robot_is_said(arm_map):
+    # A capability map shown with a robot of another model is drawn at that robot's link of the same name, and the
+    # viewer says the voxels are not that robot's reach; with its own robot it says nothing.
+    robot, cap, _ = arm_map
+    other = octoreach.Robot.from_urdf('<robot name="other"><link name="base_link"><visual><geometry>'
+                                      '<box size="0.1 0.1 0.1"/></geometry></visual></link></robot>')
+    v = octoreach.view(cap, robot=other, port=_free_port(), verbose=False, serve=False)
+    assert any("built for another robot model" in n and "'other'" in n for n in v.notes), v.notes
+    v = octoreach.view(cap, robot=robot, port=_free_port(), verbose=False, serve=False)
+    assert not any("another robot model" in n for n in v.notes), v.notes
+
+
 def test_surface_obstacles_drawn_or_said_missing(arm_map, viewer):
     robot, cap, sm = arm_map
     table = octoreach.Surface.rectangle(0.6, 0.4, 0.4, x=0.55)

@@ -144,7 +144,8 @@ class CapabilityMap {
   }
   /// \brief True when orientation o is reachable at p by `lookup`.
   bool reachable(const Eigen::Vector3d& p, int orientation, CapabilityLookup lookup) const;
-  /// \brief The stored joint solution of cell (p, orientation), if the map kept solutions.
+  /// \brief The stored joint solution of cell (p, orientation), none when the cell is not reachable; throws
+  /// std::invalid_argument on a map without solutions (has_solutions() false).
   std::optional<Eigen::VectorXd> solution(const Eigen::Vector3d& p, int orientation) const;
   /// \brief True when the map keeps the joint solutions of its cells (built with keep_solutions, saved with them),
   /// also where no cell is reachable (its mixed cells' configurations are then all it holds).

@@ -71,9 +71,14 @@ GraspSet GraspSet::make(const OrientationSet& set, const std::vector<int>& direc
 }
 
 void check_map_robot(const Robot& robot, const CapabilityMap& capability) {
-  if (capability.robot_name() != robot.name() || capability.urdf_hash() != robot.urdf_hash())
+  if (capability.robot_name() != robot.name())
+    throw std::invalid_argument("the capability map was built for robot '" + capability.robot_name() + "', not for '" +
+                                robot.name() + "': pass the robot the map was built for, or build a map for this one");
+  if (capability.urdf_hash() != robot.urdf_hash())
     throw std::invalid_argument("the capability map was built for robot '" + capability.robot_name() +
-                                "' (another URDF), not for '" + robot.name() + "'");
+                                "' from another URDF than this '" + robot.name() +
+                                "' (URDF hashes differ): pass the robot the map was built for, or build a map for "
+                                "this one");
   // Self-collision decided which cells are reachable: the allowed-collision matrix must match too.
   if (capability.model_hash() != 0 && capability.model_hash() != robot.model_hash())
     throw std::invalid_argument("the capability map was built for robot '" + capability.robot_name() +

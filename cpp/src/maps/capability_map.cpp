@@ -181,7 +181,13 @@ void CapabilityMap::finish_() {
 }
 
 std::optional<Eigen::VectorXd> CapabilityMap::solution(const Eigen::Vector3d& p, int orientation) const {
-  if (!has_solutions() || !reachable(p, orientation, CapabilityLookup::nearest_cell)) return std::nullopt;
+  // No solutions is no answer, not "unreachable": said as quality() says it.
+  if (!has_solutions())
+    throw std::invalid_argument(
+        "CapabilityMap.solution needs the joint solutions of the map's cells, which this map does not hold (it was "
+        "built or saved without them): rebuild it with solutions, e.g. arms.capability_map(robot, arm, ...) "
+        "(keep_solutions=True, the default) and save it with save(path, with_solutions=True)");
+  if (!reachable(p, orientation, CapabilityLookup::nearest_cell)) return std::nullopt;
   const float* q = record_solution(record(p), orientation);
   return Eigen::Map<const Eigen::VectorXf>(q, dof_).cast<double>();
 }

@@ -75,8 +75,9 @@ void check_options(const CapabilityMap& cap, const SurfaceMapOptions& o) {
     throw std::invalid_argument("the capability map of " + cap.base_link() + " -> " + cap.tip_link() +
                                 " reaches no voxel (its warning says why): no surface map to build from it");
   if (o.check_arm && !cap.has_solutions())
-    throw std::invalid_argument("the capability map holds no joint solutions (build it with keep_solutions=True "
-                                "or save it with_solutions) : the surface map checks the arm against the surface");
+    throw std::invalid_argument("the capability map holds no joint solutions, and the surface map checks the arm "
+                                "against the surface with them: build it with keep_solutions=True and save it "
+                                "with_solutions=True (command line: octoreach capability --with-solutions)");
   if (o.theta_bins < 1 || o.theta_bins > limits::kThetaBins)
     throw std::invalid_argument("theta_bins must be in [1, " + std::to_string(limits::kThetaBins) + "], got " +
                                 std::to_string(o.theta_bins));

@@ -93,7 +93,8 @@ def _cmd_surface(args) -> int:
     for arm in args.arms:
         source = CapabilityMap.load(arm) if arm.endswith(".orcm") else named_arm(args, robot, arm)
         if isinstance(source, CapabilityMap) and not source.has_solutions:
-            raise ValueError(f"{arm}: the capability map was saved without joint solutions (--with-solutions)")
+            raise ValueError(f"{arm}: the capability map was saved without joint solutions, which the surface map "
+                             "needs: rebuild it with octoreach capability ... --with-solutions")
         sources.append(source)
     # No --resolution: the (first) capability map's, SurfaceMap.build's default, so the maps of several arms
     # share one grid; with arm names only, CapabilityMapOptions' resolution.
