@@ -103,7 +103,9 @@ def _show(v: Viewer, loaded, robot, q, joints, samples, seed, steps, surface, ro
     if joints and v.robot_layer is not None:
         v.robot_layer.set_configuration(files.with_joints(v.robot_layer.meshes.robot, v.robot_layer.q, joints))
     layer, rl = v.capability_map, v.robot_layer
-    if layer is not None and rl is not None and layer.cap.urdf_hash and rl.meshes.robot.urdf_hash != layer.cap.urdf_hash:
+    other = layer is not None and rl is not None and bool(layer.cap.urdf_hash) and \
+        rl.meshes.robot.urdf_hash != layer.cap.urdf_hash
+    if other:
         v.note(f"the capability map was built for another robot model ({layer.cap.robot_name!r}) than this "
                f"{rl.meshes.robot.name!r}: its voxels are drawn at this robot's {layer.cap.base_link!r} if it has one, "
                "and say nothing about this robot's reach")
