@@ -31,6 +31,26 @@ bool gjk_apart(const Placed& A, const Placed& B, const Eigen::Vector3d& ca, cons
   return gjk::apart(A, B, d, kHullMargin, axis);
 }
 
+// The ball that holds the points point(0), ..., point(n - 1) (centre xyz, radius w): centred on their box, its
+// radius their farthest distance from there plus what rounding in that distance could hide.
+template <class Point>
+Eigen::Vector4d holding_ball(std::size_t n, const Point& point) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  double scale = 1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d v = point(i);
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+    scale = std::max(scale, v.cwiseAbs().maxCoeff());
+  }
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  double r2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) r2 = std::max(r2, (point(i) - centre).squaredNorm());
+  Eigen::Vector4d ball;
+  ball << centre, std::sqrt(r2) * (1.0 + 1e-12) + 1e-12 * scale;
+  return ball;
+}
+
 // The support points of `all`'s convex hull (the points not clearly inside it), into `points`.
 void support_points(const std::vector<Eigen::Vector3d>& all, HullMesh::Points& points) {
   double scale = 1.0;
@@ -47,20 +67,12 @@ void support_points(const std::vector<Eigen::Vector3d>& all, HullMesh::Points& p
     points.y.push_back(v.y());
     points.z.push_back(v.z());
   }
-  // The ball: centred on the points' box, its radius their farthest distance from there plus what rounding in
-  // that distance could hide.
+  // The ball that holds them.
   if (points.x.empty()) return;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (std::size_t i = 0; i < points.x.size(); ++i) {
-    const Eigen::Vector3d v(points.x[i], points.y[i], points.z[i]);
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-  }
-  points.centre = 0.5 * (lo + hi);
-  double r2 = 0.0;
-  for (std::size_t i = 0; i < points.x.size(); ++i)
-    r2 = std::max(r2, (Eigen::Vector3d(points.x[i], points.y[i], points.z[i]) - points.centre).squaredNorm());
-  points.radius = std::sqrt(r2) * (1.0 + 1e-12) + 1e-12 * scale;
+  const Eigen::Vector4d ball = holding_ball(
+      points.x.size(), [&](std::size_t i) { return Eigen::Vector3d(points.x[i], points.y[i], points.z[i]); });
+  points.centre = ball.head<3>();
+  points.radius = ball[3];
 }
 
 // The relative transform FCL's mesh traversal computes (b's frame into a's), which its triangle test takes.
@@ -126,16 +138,10 @@ void HullMesh::measure() const {
     if (!v.allFinite()) return;  // no support points: is_mesh is false
   support_points(all, points_);
   if (!tri_indices || num_tris <= 0) return;
-  // Centred on the triangle's box, the radius its farthest vertex plus what rounding in that distance could hide.
   balls_.resize(num_tris);
   for (int t = 0; t < num_tris; ++t) {
     const fcl::Triangle& f = tri_indices[t];
-    const Eigen::Vector3d lo = all[f[0]].cwiseMin(all[f[1]]).cwiseMin(all[f[2]]);
-    const Eigen::Vector3d hi = all[f[0]].cwiseMax(all[f[1]]).cwiseMax(all[f[2]]);
-    const Eigen::Vector3d c = 0.5 * (lo + hi);
-    double r2 = 0.0;
-    for (int k = 0; k < 3; ++k) r2 = std::max(r2, (all[f[k]] - c).squaredNorm());
-    balls_[t] << c, std::sqrt(r2) * (1.0 + 1e-12) + 1e-12 * std::max(1.0, c.cwiseAbs().maxCoeff());
+    balls_[t] = holding_ball(3, [&](std::size_t k) { return all[f[k]]; });
   }
 }
 

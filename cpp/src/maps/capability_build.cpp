@@ -305,12 +305,15 @@ void CapabilityBuilder::start_floods() {
     if (started_[c] && status_[c] == kUntried) status_[c] = kFailed;
 }
 
+void CapabilityBuilder::stage(const std::string& what) const {
+  if (debug_)
+    std::fprintf(stderr, "capability map: %s (%.2f s)\n", what.c_str(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+}
+
 void CapabilityBuilder::solve() {
-  const auto t0 = std::chrono::steady_clock::now();  // stage times for OCTOREACH_DEBUG
-  auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  const char* debug = std::getenv("OCTOREACH_DEBUG");
   start_floods();
-  if (debug) std::fprintf(stderr, "capability map: after the floods %zu calls (%.2f s)\n", ik_calls_, secs());
+  stage("after the floods " + std::to_string(ik_calls_) + " calls");
   std::vector<std::uint32_t> newly;
   // The retries (retry_items): samples, then neighbours' solutions; a second round of the neighbours' recovered
   // about 1 % of what it tried on the PR2 arm.
@@ -325,9 +328,8 @@ void CapabilityBuilder::solve() {
     if (samples)
       for (std::size_t i = 0; i < retry.size(); ++i)
         if (status_[retry[i].cell] == kFailed) sol_row_[retry[i].cell] = failed_with[i];
-    if (debug)
-      std::fprintf(stderr, "capability map: retry with %s: %zu cells, %zu recovered (%.2f s)\n",
-                   samples ? "samples" : "neighbours", retry.size(), newly.size(), secs());
+    stage(std::string("retry with ") + (samples ? "samples: " : "neighbours: ") + std::to_string(retry.size()) +
+          " cells, " + std::to_string(newly.size()) + " recovered");
     if (!newly.empty()) flood(newly);
   }
   if (o_.exhaustive) {

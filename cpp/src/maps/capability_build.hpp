@@ -3,7 +3,10 @@
 // arm's workspace; forward-kinematics sampling proposes cells and IK seeds; IK at the voxel centres
 // settles them in waves, flooding from reachable cells to their neighbours.
 #include <array>
+#include <chrono>
 #include <cstdint>
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "octoreach/capability_map.hpp"
@@ -69,6 +72,8 @@ class CapabilityBuilder {
   }
   /// Reports progress: this stage starts at `start` (fraction of the build) and owns `share` of it.
   void report(double start, double share, double fraction) const;
+  /// With OCTOREACH_DEBUG set: `what` and the seconds since the builder was made, on stderr (the build's stages).
+  void stage(const std::string& what) const;
 
  private:
   struct Item {
@@ -99,6 +104,8 @@ class CapabilityBuilder {
   std::vector<CellQuality> quality_;  // per sol_pool_ row (rate())
   std::size_t ik_calls_ = 0;
   std::size_t reachable_ = 0;  // cells with status kReachable
+  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();  // stage()
+  const bool debug_ = std::getenv("OCTOREACH_DEBUG") != nullptr;
 };
 
 }  // namespace octoreach::detail

@@ -132,20 +132,12 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
   const int O = m.orientations_.size();
   const detail::CellBox box = detail::CellBox::around_workspace(chain, *m.tree_, O, o.seed);
   detail::CapabilityBuilder builder(chain, o, m.orientations_, m.approach_axis_, reference, box, progress);
-  // Stage times since the start, on stderr when OCTOREACH_DEBUG is set (the solve's own stages too).
-  const bool debug = std::getenv("OCTOREACH_DEBUG") != nullptr;
-  auto dbg = [&](const char* stage) {
-    if (debug)
-      std::fprintf(stderr, "capability map: %s (%.2f s)\n", stage,
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
-  };
-  dbg("set up");
   const std::size_t samples = builder.sample();
-  dbg("sampled");
+  builder.stage("sampled");
   builder.solve();
-  dbg("solved");
+  builder.stage("solved");
   builder.rate();
-  dbg("rated");
+  builder.stage("rated");
   // The octree and the per-voxel records, in voxel order: each slab of voxels collected on every core, then added.
   constexpr std::size_t kSlab = 4096;
   std::vector<detail::VoxelCellData> slab(kSlab);
@@ -155,10 +147,9 @@ CapabilityMap CapabilityMap::build(const Chain& chain, const CapabilityMapOption
     for (std::size_t i = 0; i < n; ++i)
       if (!slab[i].empty()) m.add_voxel_(box.key(v0 + i), slab[i]);
   }
-  dbg("collected");
+  builder.stage("collected");
   m.finish_build_(samples, builder.ik_calls(), box.cells,
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
-  dbg("done");
   builder.report(1.0, 0.0, 1.0);
   return m;
 }
