@@ -1,6 +1,6 @@
 // The last chance's eyes (cpp/src/exploration/void_aims.hpp): rays out of void cells leave through observed-free
-// space and may cross void cells past it (a box's inside seen in patches), never an occupied cell or an unseen
-// cell that is not a void; and the optical axis turns, within a bound, to one the capability map reaches.
+// space and may cross void cells past it (a box's inside seen in patches), never the surface in an occupied cell
+// (surface_extents.hpp) or an unseen cell that is not a void; and the optical axis turns, within a bound, to one the capability map reaches.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,7 +34,7 @@ std::unique_ptr<ExplorationMap> box_seen_in_patches(Scene& scene) {
               look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2}), look_at({0.2, 0.6, 0.7}, {0.8, 0.0, 0.2})});
 }
 
-// The rule of a ray out of void cell `c` towards `eye`: no occupied cell, and past the first observed-free cell
+// The rule of a ray out of void cell `c` towards `eye`: no surface of an occupied cell on the line, and past the first observed-free cell
 // only free or void cells (unknown cells outside the search space count as free). `crossed` is set when a void
 // cell lies past free space.
 bool ray_rule_holds(const ExplorationMap& map, const Eigen::Vector3d& c, const Eigen::Vector3d& eye, bool& crossed) {
@@ -51,7 +51,10 @@ bool ray_rule_holds(const ExplorationMap& map, const Eigen::Vector3d& c, const E
     CellState st = map.state(k);
     const bool inside = (p.array() >= o.search_lo.array()).all() && (p.array() <= o.search_hi.array()).all();
     if (st == CellState::Unknown && !inside) st = CellState::Free;
-    if (st == CellState::Occupied) return false;
+    if (st == CellState::Occupied) {
+      if (detail::surface_meets_line(detail::state(map), k, c, d)) return false;
+      continue;  // past the part of the cell its surface fills
+    }
     if (st == CellState::Free) left = true;
     if (st == CellState::Unknown && left) {
       if (!map.is_void(k)) return false;

@@ -545,8 +545,10 @@ def test_visibility_model_expects_what_the_view_sees_when_nothing_hides_in_the_u
     """A pipe seen from its sides, above and behind: its inside is void, and nothing occupies it. A view into one
     end with pass probability 1 (unknown cells let rays through, as they do here) expects what its image turns
     known, with the score grid at the image's rays. With a wall behind the far end every ray ends on a known
-    surface, so every void cell a ray meets counts; without it the rays through the far opening return nothing
-    and clear nothing, and count nothing. A learned p < 1 expects fewer."""
+    surface, so every void cell a ray meets counts, but for the few rays that pass just over the pipe's top edge
+    (the part of the edge's cells the board does not fill) and go on to the part of the wall no view has seen;
+    without it the rays through the far opening return nothing and clear nothing, and count nothing. A learned
+    p < 1 expects fewer."""
     scene = _pipe_scene(back_wall)
     cam = DepthCamera(160, 120, FOV, 3.0)
     emap = ExplorationMap(resolution=0.03, search_space=np.array([[0.5, -0.3, 0.0], [1.1, 0.3, 0.5]]))
@@ -561,11 +563,13 @@ def test_visibility_model_expects_what_the_view_sees_when_nothing_hides_in_the_u
     assert clear.void_cells > 1000
     assert learned.void_pass_probability < 1 and learned.expected_void < clear.expected_void
     if back_wall:
-        assert clear.expected_void == clear.void_cells
+        assert clear.void_cells >= clear.expected_void > 0.98 * clear.void_cells
     else:  # about a third of the met void cells lie only on rays out through the far opening
         assert clear.expected_void < 0.8 * clear.void_cells
     seen = emap.insert(cam.capture(scene, front), front[:3, 3], cam.max_range)["void_removed"]
-    assert seen == pytest.approx(clear.expected_void, rel=0.05)
+    # (without the wall, a few rays that end on the inside of the pipe's walls, which no view has seen, cross the
+    # unknown cells the walls fill in part, leave past the pipe's end and are expected to return nothing)
+    assert seen == pytest.approx(clear.expected_void, rel=0.05 if back_wall else 0.1)
 
 
 def test_clipped_rays_learn_whether_they_return_as_whole_rays():
@@ -630,6 +634,36 @@ def test_a_view_in_front_of_an_opening_outside_the_search_space_is_found():
     r = next_best_view(emap, cam, workspace_box=np.array([[0.2, -0.3, 0.02], [0.4, 0.3, 0.4]]))
     assert r.best_pose is not None, r.candidate_cells
     assert r.best_pose[0, 3] <= 0.4 and r.ranked[0].expected_void > 10
+
+
+def test_rays_pass_the_part_of_an_opening_the_cells_of_its_rim_leave_free():
+    """An opening 5 cm across whose rims lie mid-cell keeps one free column of 2.5 cm cells in the map: a line
+    at 55 degrees to the wall crosses no free column through the 2 cm board, yet real rays pass. The cells of the
+    rim hold the box of the points that hit them, and a ray past that box passes: the oblique view expects the
+    void behind the opening and its capture sees into it. A view of the box's solid side expects none of it."""
+    s = Scene()
+    lo, hi = np.array([0.6, -0.1875, 0.0125]), np.array([0.9, 0.2125, 0.3125])
+    s.add_closed_box(lo, hi, 0.02, "-x", 0.05, 0.05)  # opening y 0.0125 +- 0.025, z 0.1625 +- 0.025
+    emap = ExplorationMap(resolution=0.025, search_space=np.array([lo - 0.05, hi + 0.05]))
+    cam = DepthCamera(160, 120, FOV, 3.0, seed=1)
+    hole = np.array([0.61, 0.0125, 0.1625])
+    for eye, at in [((0.1, 0.0125, 0.1625), hole), ((0.75, 0.0, 0.9), (0.75, 0.01, 0.2)),
+                    ((1.4, 0.0, 0.3), (0.75, 0.0, 0.16)), ((0.75, -0.7, 0.3), (0.75, 0.0, 0.16)),
+                    ((0.75, 0.7, 0.3), (0.75, 0.0, 0.16))]:
+        T = ex.look_at(eye, at)
+        emap.insert(cam.capture(s, T), T[:3, 3], cam.max_range)
+    assert emap.void_cell_count > 100
+    rim = emap.state(np.array([[0.61, 0.0125, 0.1625], [0.61, -0.0125, 0.1625], [0.61, 0.0375, 0.1625]]))
+    assert list(rim) == [1, 2, 2]  # one free column between occupied rims
+    a = np.deg2rad(55.0)
+    oblique = ex.look_at(hole + 0.3 * np.array([-np.cos(a), -np.sin(a), 0.0]), hole)
+    g = view_gains(emap, cam, oblique)
+    assert g.void_cells > 10 and g.expected_void > 1
+    voids = emap.cells("void")
+    emap.insert(cam.capture(s, oblique), oblique[:3, 3], cam.max_range)
+    assert np.count_nonzero(emap.state(voids) != 0) > 5  # what it expected is there to see
+    side = ex.look_at(np.array([0.75, 0.0, 0.16]) + 0.4 * np.array([np.cos(a), -np.sin(a), 0.0]), (0.75, 0.0, 0.16))
+    assert view_gains(emap, cam, side).void_cells == 0
 
 
 def test_void_enclosure_by_hand_and_the_ranking_it_weighs():

@@ -186,6 +186,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
 
   // 3. one batched descent of the tree; the cell cache follows the changed cells
   t0 = Clock::now();
+  S.surface.record(S.tree, pc, o, max_range);
   detail::apply_updates(S.tree, up.updates, changed_);
   detail::GridWriter gw(S.grid);
   const detail::SpaceKeys space = detail::space_keys(options_);

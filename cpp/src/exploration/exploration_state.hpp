@@ -20,6 +20,7 @@
 #include "exploration/cell_sets.hpp"
 #include "common/shared_mutex.hpp"
 #include "exploration/hull.hpp"
+#include "exploration/surface_extents.hpp"
 #include "octoreach/exploration.hpp"
 #include "octoreach/simulation.hpp"
 
@@ -227,6 +228,8 @@ struct ExplorationState {
   BlindLines blind;
   // Void cells no ray can reach (update_sealed): seeability 0.
   KeyTable<std::uint8_t> sealed;
+  // Per occupied cell, the box of the points that hit it (surface_extents.hpp): where rays through it pass.
+  SurfaceExtents surface;
   double seeability(CellKey k) const {
     if (sealed.size() && sealed.find(k)) return 0.0;
     return 1.0 - double(hidden.get(k));

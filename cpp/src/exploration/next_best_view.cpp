@@ -154,7 +154,7 @@ std::vector<UtilityCell> accumulate(const ExplorationMap& map, const std::vector
       if (length < 0) continue;
       detail::walk_cells(res, v.from, v.dir, length, [&](CellKey k) {
         const std::uint8_t st = g.get(k) & detail::kStateMask;
-        if (st == std::uint8_t(CellState::Occupied)) return false;
+        if (st == std::uint8_t(CellState::Occupied)) return !detail::surface_meets_line(S, k, v.from, v.dir);
         if (st == std::uint8_t(CellState::Unknown)) {  // only outside the search space, and not below its floor
           const Eigen::Vector3d c = S.center(k);
           if (c.z() < s_lo.z() || ((c.array() >= s_lo.array()).all() && (c.array() <= s_hi.array()).all()))

@@ -48,7 +48,7 @@ bool surface_behind(const ExplorationState& S, double res, const Eigen::Vector3d
   if (!(n > 0) || n >= range) return false;
   bool hit = false;
   walk_cells(res, c, (c - eye) / n, range - n, [&](CellKey x) {
-    hit = x != k && S.state(x) == CellState::Occupied;
+    hit = x != k && S.state(x) == CellState::Occupied && surface_meets_line(S, x, c, (c - eye) / n);
     return !hit;
   });
   return hit;

@@ -261,10 +261,12 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
       const std::uint8_t f = block ? (*block)[(g.key[0] & 15) | ((g.key[1] & 15) << 4) | ((g.key[2] & 15) << 8)] : 0;
       const std::uint8_t s = f & kStateMask;
       if (s == std::uint8_t(CellState::Occupied)) {
-        surface = true;
-        break;
-      }
-      if (entry > counted) {
+        // (a ray past the part of the cell its surface fills goes on: surface_extents.hpp)
+        if (surface_meets_line(S, g.cell(), o, rays.dirs[r])) {
+          surface = true;
+          break;
+        }
+      } else if (entry > counted) {
         // nothing counted waits for the rest of the ray, or nothing further changes a weight by 1e-12
         if (pending.empty() || behind < 1e-12 || entry > known) break;
         if (s == std::uint8_t(CellState::Unknown))

@@ -106,7 +106,7 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
         if (p.z() < s_lo.z()) return false;  // the ground under the search space
         st = std::uint8_t(CellState::Free);  // the robot's side of the scene: no view needs to have seen it
       }
-      if (st == std::uint8_t(CellState::Occupied)) return false;
+      if (st == std::uint8_t(CellState::Occupied)) return !surface_meets_line(S, k, c, d);  // no eye inside it
       // past free space an unknown cell ends the ray unless it is a void cell: the score weighs what lies
       // behind one by the void pass probability
       if (st == std::uint8_t(CellState::Unknown)) return !left_unknown || (cell & kVoidFlag) != 0;
@@ -196,7 +196,8 @@ std::vector<Pose> aim_along_sight(const ExplorationMap& map, const NbvOptions& o
     if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
     bool clear = true;
     walk_cells(res, c, d, s, [&](CellKey k) {
-      if (k != from[i] && (g.get(k) & kStateMask) == std::uint8_t(CellState::Occupied)) clear = false;
+      if (k != from[i] && (g.get(k) & kStateMask) == std::uint8_t(CellState::Occupied) && surface_meets_line(S, k, c, d))
+        clear = false;
       return clear;
     });
     if (clear) out.push_back(camera_pose(eye, c - eye, 0.0));

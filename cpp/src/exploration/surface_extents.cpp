@@ -1,0 +1,159 @@
+// Where the surface inside an occupied cell lies (surface_extents.hpp).
+#include "exploration/surface_extents.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "exploration/exploration_state.hpp"
+
+namespace octoreach::detail {
+
+namespace {
+
+// A record: lo x y z, hi x y z (a byte each, in 1/255 of the cell from its lower corner), bit 48 set, bits 49-54
+// the sides the hits were seen from (per axis: a sensor below the hit, a sensor above it), then the count of hits
+// (9 bits, saturating).
+constexpr std::uint64_t kRecorded = std::uint64_t(1) << 48;
+constexpr int kSidesShift = 49, kCountShift = 55;
+constexpr std::uint64_t kMaxCount = (std::uint64_t(1) << 9) - 1;
+std::uint64_t side_bit(int axis, bool above) { return std::uint64_t(1) << (kSidesShift + 2 * axis + (above ? 1 : 0)); }
+constexpr double kSteps = 255.0;
+
+std::uint64_t byte_at(std::uint64_t v, int i) { return (v >> (8 * i)) & 0xff; }
+
+// The line o + t d against the box [lo, hi] (slabs; a zero component of d meets a slab only from inside it).
+bool line_meets_box(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo,
+                    const Eigen::Vector3d& hi) {
+  double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0.0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
+    double u = (lo[a] - o[a]) / d[a], v = (hi[a] - o[a]) / d[a];
+    if (u > v) std::swap(u, v);
+    t0 = std::max(t0, u);
+    t1 = std::min(t1, v);
+  }
+  return t0 <= t1;
+}
+
+}  // namespace
+
+void SurfaceExtents::record(const octomap::OcTree& tree, const std::vector<octomap::point3d>& cloud,
+                            const octomap::point3d& origin, double max_range) {
+  const bool unlimited = !(max_range > 0) || std::isinf(max_range);
+  const double res = tree.getResolution();
+  CellKey last = KeyTable<std::uint64_t>::kEmpty;
+  std::uint64_t* box = nullptr;
+  for (const octomap::point3d& p : cloud) {
+    if (!unlimited && (p - origin).norm() > max_range) continue;  // a max-range ray: no hit
+    octomap::OcTreeKey key;
+    if (!tree.coordToKeyChecked(p, key)) continue;
+    const CellKey k = pack_key(key[0], key[1], key[2]);
+    if (k != last || !box) {
+      box = &boxes_.at(k);  // (only a new key rehashes: the pointer is taken again for every new cell)
+      last = k;
+    }
+    std::uint64_t q[3];
+    for (int a = 0; a < 3; ++a) {
+      const double corner = tree.keyToCoord(key[a]) - 0.5 * res;
+      q[a] = std::uint64_t(std::clamp(std::lround((double(p(a)) - corner) / res * kSteps), 0L, 255L));
+    }
+    std::uint64_t v = *box;
+    if (!(v & kRecorded)) {
+      v = kRecorded;
+      for (int a = 0; a < 3; ++a) v |= q[a] << (8 * a) | q[a] << (8 * (a + 3));
+    } else {
+      for (int a = 0; a < 3; ++a) {
+        const std::uint64_t l = std::min(byte_at(v, a), q[a]), h = std::max(byte_at(v, a + 3), q[a]);
+        v = (v & ~(std::uint64_t(0xff) << (8 * a)) & ~(std::uint64_t(0xff) << (8 * (a + 3)))) | l << (8 * a) |
+            h << (8 * (a + 3));
+      }
+    }
+    for (int a = 0; a < 3; ++a)
+      if (origin(a) != p(a)) v |= side_bit(a, origin(a) > p(a));
+    const std::uint64_t n = std::min(kMaxCount, (v >> kCountShift) + 1);
+    *box = (v & ((std::uint64_t(1) << kCountShift) - 1)) | n << kCountShift;
+  }
+}
+
+namespace {
+
+// The box of the surface in cell k (cell units: lo l, hi h) grown across the faces it goes on past (the header);
+// false when it is not grown across any face.
+bool surface_box(const ExplorationState& S, CellKey k, std::uint64_t v, double l[3], double h[3]) {
+  const double step = 1.0 / kSteps;
+  for (int a = 0; a < 3; ++a) {  // the hits' box, one quantisation step wider on each side
+    l[a] = double(byte_at(v, a)) * step - step;
+    h[a] = double(byte_at(v, a + 3)) * step + step;
+  }
+  // The hits sample the surface about sqrt(area / hits) apart (cell units; the area spans the box's two largest
+  // extents): a face of the cell the box comes that close to, the surface reaches.
+  double e[3] = {h[0] - l[0], h[1] - l[1], h[2] - l[2]};
+  std::sort(e, e + 3);
+  const double spacing = std::sqrt(std::min(e[1], 1.0) * std::min(e[2], 1.0) / double(v >> kCountShift)) + step;
+  const double l0[3] = {l[0], l[1], l[2]}, h0[3] = {h[0], h[1], h[2]};  // the hits' own box
+  const GridReader g(S.grid);
+  const int c[3] = {int(key_x(k)), int(key_y(k)), int(key_z(k))};
+  bool grown = false;
+  // Hits spread over a plane across the cell (thin along one axis, at most half their next extent) lie on a
+  // surface facing the sensors: the solid behind it, seen from one side only, fills the cell on the far side.
+  int thin = 0;
+  for (int a = 1; a < 3; ++a)
+    if (h[a] - l[a] < h[thin] - l[thin]) thin = a;
+  const bool planar = (v >> kCountShift) >= 3 && 2 * (h[thin] - l[thin]) <= e[1];
+  if (planar) {
+    const bool below = v & side_bit(thin, false), above = v & side_bit(thin, true);
+    if (above != below) {
+      grown = true;
+      if (above) l[thin] = 0.0;
+      else h[thin] = 1.0;
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int side : {-1, 1}) {
+      int n[3] = {c[0], c[1], c[2]};
+      n[a] += side;
+      if (n[a] < 0 || n[a] > 0xffff) continue;
+      const CellKey nk = pack_key(std::uint32_t(n[0]), std::uint32_t(n[1]), std::uint32_t(n[2]));
+      // (a plane lying on a face of the cell does not cross it)
+      const bool reaches = !(planar && a == thin) && (side < 0 ? l0[a] <= spacing : h0[a] >= 1.0 - spacing);
+      double to;  // how far the surface goes on across the face, in cells beyond it
+      if ((g.get(nk) & kStateMask) != std::uint8_t(CellState::Free)) {
+        to = 0.0;  // into an occupied cell (its own record) or unknown space
+      } else if (reaches || S.surface.find(nk)) {
+        to = 1.0;  // through a free cell (rays grazing it freed it): lines crossing it there meet it here
+      } else {
+        continue;  // the surface ends in this cell
+      }
+      grown = true;
+      if (side < 0) l[a] = std::min(l[a], -to);
+      else h[a] = std::max(h[a], 1.0 + to);
+    }
+  return grown;
+}
+
+}  // namespace
+
+bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
+  const std::uint64_t* rec = S.surface.find(k);
+  if (!rec) return true;
+  const double res = S.tree.getResolution(), step = 1.0 / kSteps;
+  const Eigen::Vector3d corner = S.center(k) - Eigen::Vector3d::Constant(0.5 * res);
+  const auto meets = [&](const double l[3], const double h[3]) {
+    Eigen::Vector3d lo, hi;
+    for (int a = 0; a < 3; ++a) lo[a] = corner[a] + l[a] * res, hi[a] = corner[a] + h[a] * res;
+    return line_meets_box(o, d, lo, hi);
+  };
+  double l[3], h[3];
+  for (int a = 0; a < 3; ++a) {  // the hits' box alone first: most lines that meet the surface meet it
+    l[a] = double(byte_at(*rec, a)) * step - step;
+    h[a] = double(byte_at(*rec, a + 3)) * step + step;
+  }
+  if (meets(l, h)) return true;
+  return surface_box(S, k, *rec, l, h) && meets(l, h);
+}
+
+}  // namespace octoreach::detail

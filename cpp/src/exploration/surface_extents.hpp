@@ -1,0 +1,44 @@
+#pragma once
+// Internal: where the surface inside an occupied cell lies.
+//
+// A cell is occupied when a point hit it anywhere inside, so the rim of an opening or the edge of a board fills only
+// part of the cells it occupies: an 8 cm opening in 2.5 cm cells keeps one free column in the map while real rays
+// pass through the whole of it. Each insert records, per cell its points hit, the box of those points
+// (SurfaceExtents) and how many hit it. A line meets a cell's surface when it meets that box grown across every face
+// the surface goes on past:
+// - into an occupied cell (which has a record of its own) or unknown space: grown to the face;
+// - into a free cell the box comes within the hits' spacing of (sqrt(area / hits)), or a free cell points hit too:
+//   grown through that cell as well, since rays grazing a surface free the cells it fills in part, and a line that
+//   crosses the surface there must still stop;
+// - into a free cell no point hit and the box stays clear of: rays have crossed it, so the surface ends inside this
+//   cell, within the hits' spacing of its last hit, and a line through the rest passes.
+// A cell without a record (a map read from a file) stops every line.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <octomap/OcTree.h>
+
+#include "exploration/cell_sets.hpp"
+
+namespace octoreach::detail {
+
+struct ExplorationState;
+
+// Per cell points hit, the box of those points and their count, packed in 64 bits (surface_extents.cpp).
+class SurfaceExtents {
+ public:
+  // Records the hits of one cloud (points within max_range of origin; <= 0 or inf: every point).
+  void record(const octomap::OcTree& tree, const std::vector<octomap::point3d>& cloud, const octomap::point3d& origin,
+              double max_range);
+  const std::uint64_t* find(CellKey k) const { return boxes_.find(k); }
+  std::size_t size() const { return boxes_.size(); }
+
+ private:
+  KeyTable<std::uint64_t> boxes_;
+};
+
+// True when the line o + t d (any t) meets the surface in occupied cell k (see above).
+bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vector3d& o, const Eigen::Vector3d& d);
+
+}  // namespace octoreach::detail
