@@ -44,22 +44,26 @@ bool line_meets_box(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Ei
 void SurfaceExtents::record(const octomap::OcTree& tree, const std::vector<octomap::point3d>& cloud,
                             const octomap::point3d& origin, double max_range) {
   const bool unlimited = !(max_range > 0) || std::isinf(max_range);
-  const double res = tree.getResolution();
+  const double inv = 1.0 / tree.getResolution();  // (OcTree::coordToKey's resolution_factor: the same keys)
+  const double o[3] = {origin.x(), origin.y(), origin.z()};
   CellKey last = KeyTable<std::uint64_t>::kEmpty;
   std::uint64_t* box = nullptr;
   for (const octomap::point3d& p : cloud) {
     if (!unlimited && (p - origin).norm() > max_range) continue;  // a max-range ray: no hit
-    octomap::OcTreeKey key;
-    if (!tree.coordToKeyChecked(p, key)) continue;
+    std::uint32_t key[3];
+    std::uint64_t q[3];
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) {
+      const double u = std::floor(inv * double(p(a))), f = inv * double(p(a)) - u;  // cell and place in it
+      inside = inside && u >= -32768.0 && u < 32768.0;
+      key[a] = std::uint32_t(std::int64_t(u) + 32768);
+      q[a] = std::uint64_t(std::clamp(std::lround(f * kSteps), 0L, 255L));
+    }
+    if (!inside) continue;
     const CellKey k = pack_key(key[0], key[1], key[2]);
     if (k != last || !box) {
       box = &boxes_.at(k);  // (only a new key rehashes: the pointer is taken again for every new cell)
       last = k;
-    }
-    std::uint64_t q[3];
-    for (int a = 0; a < 3; ++a) {
-      const double corner = tree.keyToCoord(key[a]) - 0.5 * res;
-      q[a] = std::uint64_t(std::clamp(std::lround((double(p(a)) - corner) / res * kSteps), 0L, 255L));
     }
     std::uint64_t v = *box;
     if (!(v & kRecorded)) {
@@ -73,7 +77,7 @@ void SurfaceExtents::record(const octomap::OcTree& tree, const std::vector<octom
       }
     }
     for (int a = 0; a < 3; ++a)
-      if (origin(a) != p(a)) v |= side_bit(a, origin(a) > p(a));
+      if (o[a] != double(p(a))) v |= side_bit(a, o[a] > double(p(a)));
     const std::uint64_t n = std::min(kMaxCount, (v >> kCountShift) + 1);
     *box = (v & ((std::uint64_t(1) << kCountShift) - 1)) | n << kCountShift;
   }
