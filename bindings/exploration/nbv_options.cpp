@@ -196,10 +196,12 @@ void wrap_explore_options(py::module_& m) {
       .def_readwrite("low_aimed_poses", &E::low_aimed_poses,
                      "before a low view is taken: this many more poses, aimed at any void cell")
       .def_readwrite("last_directions", &E::last_directions,
-                     "last chance (the choice would end the loop): rays out of each void cell")
+                     "last chance (the choice would end the loop): rays out of each void cell, and as many "
+                     "again through the voids' gates (observed-free cells with a void cell across a face)")
       .def_readwrite("last_poses", &E::last_poses, "last chance: poses kept from those rays")
       .def_readwrite("last_distance", &E::last_distance, "(min, max) metres from a last-chance eye to its void cell")
-      .def_readwrite("max_ray_cells", &E::max_ray_cells, "last chance: void cells the rays leave from, at most")
+      .def_readwrite("max_ray_cells", &E::max_ray_cells,
+                     "last chance: void cells the rays leave from, and gates they pass, each at most")
       .def_readwrite("beyond_voids", &E::beyond_voids,
                      "frontier_void: a view beyond the voids (toward the search space's unknown cells outside the "
                      "hull of the occupied cells) where it expects more unknown cells of the search space (voids "

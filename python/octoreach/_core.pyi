@@ -2278,7 +2278,7 @@ class ExploreOptions:
     @property
     def last_directions(self) -> int:
         """
-        last chance (the choice would end the loop): rays out of each void cell
+        last chance (the choice would end the loop): rays out of each void cell, and as many again through the voids' gates (observed-free cells with a void cell across a face)
         """
     @last_directions.setter
     def last_directions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
@@ -2318,7 +2318,7 @@ class ExploreOptions:
     @property
     def max_ray_cells(self) -> int:
         """
-        last chance: void cells the rays leave from, at most
+        last chance: void cells the rays leave from, and gates they pass, each at most
         """
     @max_ray_cells.setter
     def max_ray_cells(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

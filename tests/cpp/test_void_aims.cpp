@@ -1,6 +1,7 @@
 // The last chance's eyes (cpp/src/exploration/void_aims.hpp): rays out of void cells leave through observed-free
 // space and may cross void cells past it (a box's inside seen in patches), never the surface in an occupied cell
-// (surface_extents.hpp) or an unseen cell that is not a void; and the optical axis turns, within a bound, to one the capability map reaches.
+// (surface_extents.hpp) or an unseen cell that is not a void; rays through the voids' gates find the eyes behind a
+// small opening; and the optical axis turns, within a bound, to one the capability map reaches.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,9 +35,9 @@ std::unique_ptr<ExplorationMap> box_seen_in_patches(Scene& scene) {
               look_at({0.2, -0.6, 0.7}, {0.8, 0.0, 0.2}), look_at({0.2, 0.6, 0.7}, {0.8, 0.0, 0.2})});
 }
 
-// The rule of a ray out of void cell `c` towards `eye`: no surface of an occupied cell on the line, and past the first observed-free cell
-// only free or void cells (unknown cells outside the search space count as free). `crossed` is set when a void
-// cell lies past free space.
+// The rule of a ray out of void cell `c` towards `eye`: no surface of an occupied cell on the line, and past the
+// first observed-free cell only free or void cells (unknown cells outside the search space count as free).
+// `crossed` is set when a void cell lies past free space.
 bool ray_rule_holds(const ExplorationMap& map, const Eigen::Vector3d& c, const Eigen::Vector3d& eye, bool& crossed) {
   const Eigen::Vector3d d = (eye - c).normalized();
   const double len = (eye - c).norm();
@@ -108,6 +109,62 @@ TEST(VoidAims, RaysCrossVoidCellsPastFreeSpaceButNotWallsOrUnseenSpace) {
   EXPECT_GT(crossing, 0u);
 }
 
+TEST(VoidAims, RaysThroughTheGatesFindEyesOutsideASlotThatUniformRaysSeldomFind) {
+  // a closed box with a 5 x 5 cm slot in its +x face, seen from every side but never through the slot: its
+  // inside is void, and from most of its cells the slot spans under 1 % of the sphere
+  Scene scene;
+  scene.add_closed_box({0.6, -0.2, 0.2}, {1.0, 0.2, 0.6}, 0.02, "+x", 0.05, 0.05);
+  ExplorationOptions o;
+  o.resolution = kRes;
+  o.search_lo = {0.4, -0.4, 0.0};
+  o.search_hi = {1.4, 0.4, 0.8};
+  ExplorationMap map(o);
+  DepthCamera cam(48, 36, 1.0123, 4.0, 0.0, 0);
+  for (const Pose& T : {look_at({1.6, 0.7, 0.9}, {0.8, 0.0, 0.4}), look_at({1.6, -0.7, 0.0}, {0.8, 0.0, 0.4}),
+                        look_at({0.8, 0.0, 1.6}, {0.8, 0.0, 0.4}), look_at({0.0, 0.0, 0.4}, {0.8, 0.0, 0.4}),
+                        look_at({0.8, -1.0, 0.4}, {0.8, 0.0, 0.4}), look_at({0.8, 1.0, 0.4}, {0.8, 0.0, 0.4}),
+                        look_at({0.8, 0.0, -0.8}, {0.8, 0.0, 0.4})})
+    map.insert(cam.capture(scene, T), T.translation(), 4.0);
+  ASSERT_GT(map.void_cell_count(), 1000u);
+  NbvOptions opt;
+  opt.min_distance = 0.05;
+  detail::AimRequest req;
+  req.poses = 1000000;
+  req.every_cell = true;
+  req.directions = 8;
+  req.distance = {0.15, 1.0};
+  req.seed = 3;
+  const auto eyes = [&](bool gates) {
+    req.through_gates = gates;
+    auto guard = detail::read_guard(map);
+    const detail::ViewChecker checker(map, opt);
+    return detail::aim_at_voids(map, checker, opt, req);
+  };
+  // the eyes that look into the box through the slot: outside it, their void cell inside it, the ray to it
+  // following the rule
+  const auto through_slot = [&](const std::vector<Pose>& poses) {
+    std::size_t n = 0;
+    for (const Pose& T : poses) {
+      const Eigen::Vector3d eye = T.translation(), axis = T.linear().col(2);
+      if (eye.x() < 1.0) continue;
+      for (double s = 0.15 - kRes; s <= 1.0 + kRes; s += kRes / 8) {
+        const CellKey k = map.key_of(eye + s * axis);
+        const Eigen::Vector3d c = map.center(k);
+        bool crossed = false;
+        if (map.is_void(k) && (c - eye - (c - eye).dot(axis) * axis).norm() < 1e-6) {
+          EXPECT_TRUE(ray_rule_holds(map, c, eye, crossed)) << "eye " << eye.transpose();
+          n += (c.x() > 0.62 && c.x() < 0.98 && std::abs(c.y()) < 0.18 && c.z() > 0.22 && c.z() < 0.58) ? 1 : 0;
+          break;
+        }
+      }
+    }
+    return n;
+  };
+  const std::size_t uniform = through_slot(eyes(false)), gated = through_slot(eyes(true));
+  // as many rays either way (half of them through the gates): over twice as many eyes look in through the slot
+  EXPECT_GT(gated, 2 * uniform + 20) << "uniform rays: " << uniform;
+}
+
 TEST(VoidAims, EyesAreARandomSampleOfTheRaysEyesTheSameForAnyThreadCount) {
   Scene scene;
   auto map = box_seen_in_patches(scene);
@@ -161,7 +218,8 @@ TEST(VoidAims, AnAxisTurnsToTheNearestReachableDirectionWithinItsBound) {
   const double turn = 0.4;
   int kept = 0, turned = 0, refused = 0;
   for (int i = 0; i < 3000; ++i) {
-    const Eigen::Vector3d eye = opt.capability_base * (lo + (hi - lo).cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng))));
+    const Eigen::Vector3d eye =
+        opt.capability_base * (lo + (hi - lo).cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng))));
     const Eigen::Vector3d axis = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
     const std::vector<Eigen::Vector3d> near = checker.turned_axes(axis, turn);
     for (std::size_t k = 0; k < near.size(); ++k) {  // within the bound, nearest first

@@ -76,6 +76,43 @@ struct Eye {
 
 constexpr std::uint64_t kRayChunk = 8192;  // rays walked between two looks at the eyes found (a few ms of work)
 
+// A gate of the voids: an observed-free cell with a void cell across a face. A line of sight out of the voids
+// leaves them into a gate; where their openings span a small solid angle (a closed box's slot a few cells wide),
+// few of the rays a void cell sends uniformly pass them, while every line through a gate into the voids meets
+// void cells.
+struct Gate {
+  CellKey cell;
+  Eigen::Vector3d inward;  // unit: towards a void cell across a face
+};
+
+// The gates (at most req.max_cells, drawn at random for req.seed), in a deterministic order.
+std::vector<Gate> draw_gates(const ExplorationState& S, const AimRequest& req) {
+  std::vector<std::pair<CellKey, int>> found;  // (gate, index of a face towards a void cell)
+  {
+    const GridReader g(S.grid);
+    for (CellKey k : S.void_set)
+      for (int f = 0; f < 6; ++f) {
+        CellKey nb;
+        if (neighbour(k, kN6[f][0], kN6[f][1], kN6[f][2], nb) &&
+            (g.get(nb) & kStateMask) == std::uint8_t(CellState::Free))
+          found.emplace_back(nb, f ^ 1);  // kN6 pairs opposite faces: from the gate back to k
+      }
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+              found.end());
+  Stream rng(mix(req.seed, 4));
+  const std::size_t n = std::min(found.size(), req.max_cells);
+  for (std::size_t i = 0; i < n; ++i)
+    std::swap(found[i], found[i + std::size_t(rng.uniform() * double(found.size() - i))]);
+  std::vector<Gate> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int* f = kN6[found[i].second];
+    out[i] = Gate{found[i].first, Eigen::Vector3d(f[0], f[1], f[2])};
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& checker, const NbvOptions& opt,
@@ -86,18 +123,20 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
   const double res = map.resolution();
   const Eigen::Vector3d s_lo = map.options().search_lo, s_hi = map.options().search_hi;
   const Pose cap_inv = opt.capability_base.inverse();
-  const std::size_t dirs = std::size_t(req.directions);
-  // The eye of ray r out of cell from[i], if any (its own random stream: the same whatever the thread).
-  const auto eye_of = [&](std::size_t i, std::size_t r, std::vector<std::pair<CellKey, double>>& stretch)
-      -> std::optional<Eye> {
+  // with gates, half of a cell's rays go through them instead: as many rays as without, at the same cost
+  const std::vector<Gate> gates = req.through_gates ? draw_gates(S, req) : std::vector<Gate>{};
+  const std::size_t all_dirs = std::size_t(req.directions);
+  const std::size_t dirs = gates.empty() ? all_dirs : (all_dirs + 1) / 2;
+  const std::size_t gate_dirs =
+      gates.empty() ? 0 : std::max<std::size_t>(1, from.size() * (all_dirs - dirs) / gates.size());
+  // The eye along the ray out of void cell `from_key` (centre c) in direction d, if any.
+  const auto eye_along = [&](CellKey from_key, const Eigen::Vector3d& c, const Eigen::Vector3d& d, Stream& rng,
+                             std::vector<std::pair<CellKey, double>>& stretch) -> std::optional<Eye> {
     const GridReader g(S.grid);
-    const Eigen::Vector3d c = S.center(from[i]);
-    Stream rng(mix(mix(req.seed, from[i]), std::uint64_t(r)));
-    const Eigen::Vector3d d = rng.direction();
     stretch.clear();  // the free cells of the ray (key, distance along it)
     bool left_unknown = false;
     walk_cells(res, c, d, req.distance.second, [&](CellKey k) {
-      if (k == from[i]) return true;
+      if (k == from_key) return true;
       const std::uint8_t cell = g.get(k);
       std::uint8_t st = cell & kStateMask;
       const Eigen::Vector3d p = S.center(k);
@@ -132,10 +171,46 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
     }
     return std::nullopt;
   };
+  // The eye of ray r out of cell from[i], uniform over the sphere (its own random stream: the same whatever the
+  // thread).
+  const auto eye_of = [&](std::size_t i, std::size_t r, std::vector<std::pair<CellKey, double>>& stretch) {
+    Stream rng(mix(mix(req.seed, from[i]), std::uint64_t(r)));
+    const Eigen::Vector3d d = rng.direction();
+    return eye_along(from[i], S.center(from[i]), d, rng, stretch);
+  };
+  // The eye of ray r through gate i: a direction into the voids across the gate's face, a void cell on that line
+  // drawn at random, and the ray out of that cell through a random point of the gate.
+  const auto eye_through = [&](std::size_t i, std::size_t r, std::vector<std::pair<CellKey, double>>& stretch)
+      -> std::optional<Eye> {
+    const Gate& gate = gates[i];
+    Stream rng(mix(mix(req.seed ^ 0x6A09E667F3BCC909ULL, gate.cell), std::uint64_t(r)));
+    Eigen::Vector3d u = rng.direction();
+    if (u.dot(gate.inward) < 0) u = -u;
+    const Eigen::Vector3d o = S.center(gate.cell);
+    // a void cell drawn at random (reservoir) of those on the line into the voids, up to the first other cell
+    CellKey at = gate.cell;
+    std::size_t behind = 0;
+    {
+      const GridReader g(S.grid);
+      walk_cells(res, o, u, req.distance.second - req.distance.first, [&](CellKey k) {
+        if (k == gate.cell) return true;
+        if ((g.get(k) & kVoidFlag) == 0) return false;
+        if (rng.uniform() * double(++behind) < 1.0) at = k;
+        return true;
+      });
+    }
+    if (behind == 0) return std::nullopt;
+    const Eigen::Vector3d c = S.center(at);
+    Eigen::Vector3d q = o;
+    for (int a = 0; a < 3; ++a) q[a] += res * (rng.uniform() - 0.5);  // a point of the gate
+    if ((q - c).norm() < 1e-9) return std::nullopt;
+    return eye_along(at, c, (q - c).normalized(), rng, stretch);
+  };
   // The rays in a random order of (cell, ray), in chunks, until `poses` eyes are found: the eyes of the first
   // rays are a random sample of all the rays' eyes, and the rest need not be walked (about 12 000 of a table
   // top's 150 000 rays give eyes, 4000 are wanted).
-  const std::uint64_t pairs = std::uint64_t(from.size()) * dirs;
+  const std::uint64_t cell_rays = std::uint64_t(from.size()) * dirs;
+  const std::uint64_t pairs = cell_rays + std::uint64_t(gates.size()) * gate_dirs;
   // Fisher-Yates as far as the rays walked, the swapped slots in a table (memory for the rays walked only)
   std::unordered_map<std::uint64_t, std::uint64_t> swapped;
   const auto slot = [&](std::uint64_t k) {
@@ -156,7 +231,10 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
     std::vector<std::optional<Eye>> got(n);
     std::vector<std::vector<std::pair<CellKey, double>>> scratch(std::size_t(std::max(threads, 1)));
     parallel_for(n, threads, [&](std::size_t k, int tid) {
-      got[k] = eye_of(std::size_t(rays[k] / dirs), std::size_t(rays[k] % dirs), scratch[std::size_t(tid)]);
+      const std::uint64_t ray = rays[k];
+      got[k] = ray < cell_rays ? eye_of(std::size_t(ray / dirs), std::size_t(ray % dirs), scratch[std::size_t(tid)])
+                               : eye_through(std::size_t((ray - cell_rays) / gate_dirs),
+                                             std::size_t((ray - cell_rays) % gate_dirs), scratch[std::size_t(tid)]);
     }, 64);
     std::vector<Eye> chunk;
     for (auto& g : got)
@@ -196,7 +274,8 @@ std::vector<Pose> aim_along_sight(const ExplorationMap& map, const NbvOptions& o
     if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
     bool clear = true;
     walk_cells(res, c, d, s, [&](CellKey k) {
-      if (k != from[i] && (g.get(k) & kStateMask) == std::uint8_t(CellState::Occupied) && surface_meets_line(S, k, c, d))
+      if (k != from[i] && (g.get(k) & kStateMask) == std::uint8_t(CellState::Occupied) &&
+          surface_meets_line(S, k, c, d))
         clear = false;
       return clear;
     });

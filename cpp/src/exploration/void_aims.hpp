@@ -23,6 +23,9 @@ struct AimRequest {
   std::size_t max_cells = 4096;
   double unexposed_share = 0.25;
   int directions = 8;                            // rays per cell, uniform over the sphere
+  // aim_at_voids: half of the rays through the gates of the voids instead (observed-free cells with a void cell
+  // across a face; at most max_cells of them), each from a void cell on its line
+  bool through_gates = true;
   std::pair<double, double> distance{0.3, 1.0};  // metres from the cell to the eye
   double min_height = 0.05;                      // eyes stay above this height (map frame z)
   // aim_at_voids: radians the optical axis may turn away from the cell to one the arm can reach (a camera
