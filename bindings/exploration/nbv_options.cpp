@@ -196,8 +196,8 @@ void wrap_explore_options(py::module_& m) {
       .def_readwrite("low_aimed_poses", &E::low_aimed_poses,
                      "before a low view is taken: this many more poses, aimed at any void cell")
       .def_readwrite("last_directions", &E::last_directions,
-                     "last chance (the choice would end the loop): rays out of each void cell, and as many "
-                     "again through the voids' gates (observed-free cells with a void cell across a face)")
+                     "last chance (the choice would end the loop): rays out of each void cell, half of them "
+                     "through the voids' gates (observed-free cells with a void cell across a face)")
       .def_readwrite("last_poses", &E::last_poses, "last chance: poses kept from those rays")
       .def_readwrite("last_distance", &E::last_distance, "(min, max) metres from a last-chance eye to its void cell")
       .def_readwrite("max_ray_cells", &E::max_ray_cells,

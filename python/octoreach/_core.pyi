@@ -2278,7 +2278,7 @@ class ExploreOptions:
     @property
     def last_directions(self) -> int:
         """
-        last chance (the choice would end the loop): rays out of each void cell, and as many again through the voids' gates (observed-free cells with a void cell across a face)
+        last chance (the choice would end the loop): rays out of each void cell, half of them through the voids' gates (observed-free cells with a void cell across a face)
         """
     @last_directions.setter
     def last_directions(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

@@ -65,6 +65,24 @@ bool ray_rule_holds(const ExplorationMap& map, const Eigen::Vector3d& c, const E
   return true;
 }
 
+// A last chance's request: rays out of every void cell, `directions` per cell, eyes 0.15-1 m out.
+detail::AimRequest rays_request(std::size_t poses, int directions, std::uint64_t seed) {
+  detail::AimRequest req;
+  req.poses = poses;
+  req.every_cell = true;
+  req.directions = directions;
+  req.distance = {0.15, 1.0};
+  req.seed = seed;
+  return req;
+}
+
+// aim_at_voids on `map` under its read lock.
+std::vector<Pose> aims_at_voids(const ExplorationMap& map, const NbvOptions& opt, const detail::AimRequest& req) {
+  auto guard = detail::read_guard(map);
+  const detail::ViewChecker checker(map, opt);
+  return detail::aim_at_voids(map, checker, opt, req);
+}
+
 }  // namespace
 
 TEST(VoidAims, RaysCrossVoidCellsPastFreeSpaceButNotWallsOrUnseenSpace) {
@@ -73,18 +91,7 @@ TEST(VoidAims, RaysCrossVoidCellsPastFreeSpaceButNotWallsOrUnseenSpace) {
   ASSERT_GT(map->void_cell_count(), 100u);
   NbvOptions opt;
   opt.min_distance = 0.05;
-  detail::AimRequest req;
-  req.poses = 100000;
-  req.every_cell = true;
-  req.directions = 64;
-  req.distance = {0.15, 1.0};
-  req.seed = 5;
-  std::vector<Pose> poses;
-  {
-    auto guard = detail::read_guard(*map);
-    const detail::ViewChecker checker(*map, opt);
-    poses = detail::aim_at_voids(*map, checker, opt, req);
-  }
+  const std::vector<Pose> poses = aims_at_voids(*map, opt, rays_request(100000, 64, 5));
   ASSERT_GT(poses.size(), 50u);
   // each pose looks at its void cell (max_turn 0): a void cell whose centre is on the optical axis, 0.15-1 m
   // out, from which the ray to the eye follows the rule
@@ -128,17 +135,10 @@ TEST(VoidAims, RaysThroughTheGatesFindEyesOutsideASlotThatUniformRaysSeldomFind)
   ASSERT_GT(map.void_cell_count(), 1000u);
   NbvOptions opt;
   opt.min_distance = 0.05;
-  detail::AimRequest req;
-  req.poses = 1000000;
-  req.every_cell = true;
-  req.directions = 8;
-  req.distance = {0.15, 1.0};
-  req.seed = 3;
+  detail::AimRequest req = rays_request(1000000, 8, 3);
   const auto eyes = [&](bool gates) {
     req.through_gates = gates;
-    auto guard = detail::read_guard(map);
-    const detail::ViewChecker checker(map, opt);
-    return detail::aim_at_voids(map, checker, opt, req);
+    return aims_at_voids(map, opt, req);
   };
   // the eyes that look into the box through the slot: outside it, their void cell inside it, the ray to it
   // following the rule
@@ -170,17 +170,9 @@ TEST(VoidAims, EyesAreARandomSampleOfTheRaysEyesTheSameForAnyThreadCount) {
   auto map = box_seen_in_patches(scene);
   NbvOptions opt;
   opt.min_distance = 0.05;
-  detail::AimRequest req;
-  req.every_cell = true;
-  req.directions = 64;
-  req.distance = {0.15, 1.0};
-  req.seed = 9;
   const auto aims = [&](std::size_t poses, int threads) {
     opt.threads = threads;
-    req.poses = poses;
-    auto guard = detail::read_guard(*map);
-    const detail::ViewChecker checker(*map, opt);
-    return detail::aim_at_voids(*map, checker, opt, req);
+    return aims_at_voids(*map, opt, rays_request(poses, 64, 9));
   };
   const std::vector<Pose> all = aims(1000000, 2);  // every ray's eye
   ASSERT_GT(all.size(), 200u);

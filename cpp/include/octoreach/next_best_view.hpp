@@ -412,8 +412,8 @@ struct ExploreOptions {
   std::pair<double, double> aimed_distance{0.3, 1.0};  ///< metres from an aimed pose's eye to its void cell
   double unexposed_share = 0.25;    ///< share of the void cells with no observed free neighbour among the aims
   int low_aimed_poses = 1200;       ///< before a low view is taken: this many more, aimed at any void cell
-  /// last chance (the choice would end the loop): rays out of each void cell, and as many again through the
-  /// voids' gates (observed-free cells with a void cell across a face)
+  /// last chance (the choice would end the loop): rays out of each void cell, half of them through the voids'
+  /// gates (observed-free cells with a void cell across a face)
   int last_directions = 128;
   int last_poses = 4000;            ///< last chance: poses kept from those rays
   std::pair<double, double> last_distance{0.15, 1.0};  ///< metres from a last-chance eye to its void cell

@@ -113,6 +113,91 @@ std::vector<Gate> draw_gates(const ExplorationState& S, const AimRequest& req) {
   return out;
 }
 
+// The eyes along the last chance's rays (its own random stream per ray: the same whatever the thread).
+struct RayEyes {
+  using Stretch = std::vector<std::pair<CellKey, double>>;  // the free cells of a ray (key, distance along it)
+  const ExplorationState& S;
+  const ViewChecker& checker;
+  const NbvOptions& opt;
+  const AimRequest& req;
+  double res;
+  Eigen::Vector3d s_lo, s_hi;  // the search space
+  Pose cap_inv;                // opt.capability_base.inverse()
+  // The eye along the ray out of void cell `from_key` (centre c) in direction d, if any.
+  std::optional<Eye> along(CellKey from_key, const Eigen::Vector3d& c, const Eigen::Vector3d& d, Stream& rng,
+                           Stretch& stretch) const;
+  // The eye of ray r through `gate`: a direction into the voids across the gate's face, a void cell on that
+  // line drawn at random, and the ray out of that cell through a random point of the gate.
+  std::optional<Eye> through(const Gate& gate, std::size_t r, Stretch& stretch) const;
+};
+
+std::optional<Eye> RayEyes::along(CellKey from_key, const Eigen::Vector3d& c, const Eigen::Vector3d& d, Stream& rng,
+                                  Stretch& stretch) const {
+  const GridReader g(S.grid);
+  stretch.clear();
+  bool left_unknown = false;
+  walk_cells(res, c, d, req.distance.second, [&](CellKey k) {
+    if (k == from_key) return true;
+    const std::uint8_t cell = g.get(k);
+    std::uint8_t st = cell & kStateMask;
+    const Eigen::Vector3d p = S.center(k);
+    const bool inside = (p.array() >= s_lo.array()).all() && (p.array() <= s_hi.array()).all();
+    if (st == std::uint8_t(CellState::Unknown) && !inside) {
+      if (p.z() < s_lo.z()) return false;  // the ground under the search space
+      st = std::uint8_t(CellState::Free);  // the robot's side of the scene: no view needs to have seen it
+    }
+    if (st == std::uint8_t(CellState::Occupied)) return !surface_meets_line(S, k, c, d);  // no eye inside it
+    // past free space an unknown cell ends the ray unless it is a void cell: the score weighs what lies
+    // behind one by the void pass probability
+    if (st == std::uint8_t(CellState::Unknown)) return !left_unknown || (cell & kVoidFlag) != 0;
+    left_unknown = true;
+    const double s = (p - c).dot(d);
+    if (s >= req.distance.first) stretch.emplace_back(k, s);
+    return true;
+  });
+  // the eye: a random cell of the free stretch that passes the checks (tried in random order); its axis
+  // looks back along the ray at the cell, or turns to a direction the arm reaches
+  const std::vector<Eigen::Vector3d> turned = stretch.empty() ? std::vector<Eigen::Vector3d>{}
+                                                              : checker.turned_axes(-d, req.max_turn);
+  while (!stretch.empty()) {
+    const std::size_t j = std::size_t(rng.uniform() * double(stretch.size()));
+    const Eigen::Vector3d eye = c + stretch[j].second * d;
+    stretch[j] = stretch.back();
+    stretch.pop_back();
+    if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
+    if (!position_reachable(opt, cap_inv, eye)) continue;
+    const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, -d, turned);
+    if (!axis || !checker.camera_clear(eye)) continue;
+    return Eye{eye, *axis};
+  }
+  return std::nullopt;
+}
+
+std::optional<Eye> RayEyes::through(const Gate& gate, std::size_t r, Stretch& stretch) const {
+  Stream rng(mix(mix(req.seed ^ 0x6A09E667F3BCC909ULL, gate.cell), std::uint64_t(r)));
+  Eigen::Vector3d u = rng.direction();
+  if (u.dot(gate.inward) < 0) u = -u;
+  const Eigen::Vector3d o = S.center(gate.cell);
+  // a void cell drawn at random (reservoir) of those on the line into the voids, up to the first other cell
+  CellKey at = gate.cell;
+  std::size_t behind = 0;
+  {
+    const GridReader g(S.grid);
+    walk_cells(res, o, u, req.distance.second - req.distance.first, [&](CellKey k) {
+      if (k == gate.cell) return true;
+      if ((g.get(k) & kVoidFlag) == 0) return false;
+      if (rng.uniform() * double(++behind) < 1.0) at = k;
+      return true;
+    });
+  }
+  if (behind == 0) return std::nullopt;
+  const Eigen::Vector3d c = S.center(at);
+  Eigen::Vector3d q = o;
+  for (int a = 0; a < 3; ++a) q[a] += res * (rng.uniform() - 0.5);  // a point of the gate
+  if ((q - c).norm() < 1e-9) return std::nullopt;
+  return along(at, c, (q - c).normalized(), rng, stretch);
+}
+
 }  // namespace
 
 std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& checker, const NbvOptions& opt,
@@ -120,91 +205,24 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
   const ExplorationState& S = state(map);
   if (S.void_set.empty() || req.poses == 0 || req.directions <= 0) return {};
   const std::vector<CellKey> from = draw_void_cells(S, req);
-  const double res = map.resolution();
-  const Eigen::Vector3d s_lo = map.options().search_lo, s_hi = map.options().search_hi;
-  const Pose cap_inv = opt.capability_base.inverse();
+  const RayEyes ray_eyes{S, checker, opt, req, map.resolution(), map.options().search_lo, map.options().search_hi,
+                         opt.capability_base.inverse()};
   // with gates, half of a cell's rays go through them instead: as many rays as without, at the same cost
   const std::vector<Gate> gates = req.through_gates ? draw_gates(S, req) : std::vector<Gate>{};
   const std::size_t all_dirs = std::size_t(req.directions);
   const std::size_t dirs = gates.empty() ? all_dirs : (all_dirs + 1) / 2;
   const std::size_t gate_dirs =
       gates.empty() ? 0 : std::max<std::size_t>(1, from.size() * (all_dirs - dirs) / gates.size());
-  // The eye along the ray out of void cell `from_key` (centre c) in direction d, if any.
-  const auto eye_along = [&](CellKey from_key, const Eigen::Vector3d& c, const Eigen::Vector3d& d, Stream& rng,
-                             std::vector<std::pair<CellKey, double>>& stretch) -> std::optional<Eye> {
-    const GridReader g(S.grid);
-    stretch.clear();  // the free cells of the ray (key, distance along it)
-    bool left_unknown = false;
-    walk_cells(res, c, d, req.distance.second, [&](CellKey k) {
-      if (k == from_key) return true;
-      const std::uint8_t cell = g.get(k);
-      std::uint8_t st = cell & kStateMask;
-      const Eigen::Vector3d p = S.center(k);
-      const bool inside = (p.array() >= s_lo.array()).all() && (p.array() <= s_hi.array()).all();
-      if (st == std::uint8_t(CellState::Unknown) && !inside) {
-        if (p.z() < s_lo.z()) return false;  // the ground under the search space
-        st = std::uint8_t(CellState::Free);  // the robot's side of the scene: no view needs to have seen it
-      }
-      if (st == std::uint8_t(CellState::Occupied)) return !surface_meets_line(S, k, c, d);  // no eye inside it
-      // past free space an unknown cell ends the ray unless it is a void cell: the score weighs what lies
-      // behind one by the void pass probability
-      if (st == std::uint8_t(CellState::Unknown)) return !left_unknown || (cell & kVoidFlag) != 0;
-      left_unknown = true;
-      const double s = (p - c).dot(d);
-      if (s >= req.distance.first) stretch.emplace_back(k, s);
-      return true;
-    });
-    // the eye: a random cell of the free stretch that passes the checks (tried in random order); its axis
-    // looks back along the ray at the cell, or turns to a direction the arm reaches
-    const std::vector<Eigen::Vector3d> turned = stretch.empty() ? std::vector<Eigen::Vector3d>{}
-                                                                : checker.turned_axes(-d, req.max_turn);
-    while (!stretch.empty()) {
-      const std::size_t j = std::size_t(rng.uniform() * double(stretch.size()));
-      const Eigen::Vector3d eye = c + stretch[j].second * d;
-      stretch[j] = stretch.back();
-      stretch.pop_back();
-      if (eye.z() < req.min_height || !opt.workspace.contains(eye)) continue;
-      if (!position_reachable(opt, cap_inv, eye)) continue;
-      const std::optional<Eigen::Vector3d> axis = checker.reachable_axis(eye, -d, turned);
-      if (!axis || !checker.camera_clear(eye)) continue;
-      return Eye{eye, *axis};
-    }
-    return std::nullopt;
-  };
   // The eye of ray r out of cell from[i], uniform over the sphere (its own random stream: the same whatever the
   // thread).
-  const auto eye_of = [&](std::size_t i, std::size_t r, std::vector<std::pair<CellKey, double>>& stretch) {
+  const auto eye_of = [&](std::size_t i, std::size_t r, RayEyes::Stretch& stretch) {
     Stream rng(mix(mix(req.seed, from[i]), std::uint64_t(r)));
     const Eigen::Vector3d d = rng.direction();
-    return eye_along(from[i], S.center(from[i]), d, rng, stretch);
+    return ray_eyes.along(from[i], S.center(from[i]), d, rng, stretch);
   };
-  // The eye of ray r through gate i: a direction into the voids across the gate's face, a void cell on that line
-  // drawn at random, and the ray out of that cell through a random point of the gate.
-  const auto eye_through = [&](std::size_t i, std::size_t r, std::vector<std::pair<CellKey, double>>& stretch)
-      -> std::optional<Eye> {
-    const Gate& gate = gates[i];
-    Stream rng(mix(mix(req.seed ^ 0x6A09E667F3BCC909ULL, gate.cell), std::uint64_t(r)));
-    Eigen::Vector3d u = rng.direction();
-    if (u.dot(gate.inward) < 0) u = -u;
-    const Eigen::Vector3d o = S.center(gate.cell);
-    // a void cell drawn at random (reservoir) of those on the line into the voids, up to the first other cell
-    CellKey at = gate.cell;
-    std::size_t behind = 0;
-    {
-      const GridReader g(S.grid);
-      walk_cells(res, o, u, req.distance.second - req.distance.first, [&](CellKey k) {
-        if (k == gate.cell) return true;
-        if ((g.get(k) & kVoidFlag) == 0) return false;
-        if (rng.uniform() * double(++behind) < 1.0) at = k;
-        return true;
-      });
-    }
-    if (behind == 0) return std::nullopt;
-    const Eigen::Vector3d c = S.center(at);
-    Eigen::Vector3d q = o;
-    for (int a = 0; a < 3; ++a) q[a] += res * (rng.uniform() - 0.5);  // a point of the gate
-    if ((q - c).norm() < 1e-9) return std::nullopt;
-    return eye_along(at, c, (q - c).normalized(), rng, stretch);
+  // The eye of ray r through gate i.
+  const auto eye_through = [&](std::size_t i, std::size_t r, RayEyes::Stretch& stretch) {
+    return ray_eyes.through(gates[i], r, stretch);
   };
   // The rays in a random order of (cell, ray), in chunks, until `poses` eyes are found: the eyes of the first
   // rays are a random sample of all the rays' eyes, and the rest need not be walked (about 12 000 of a table
@@ -229,7 +247,7 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
       swapped[j] = slot(at);
     }
     std::vector<std::optional<Eye>> got(n);
-    std::vector<std::vector<std::pair<CellKey, double>>> scratch(std::size_t(std::max(threads, 1)));
+    std::vector<RayEyes::Stretch> scratch(std::size_t(std::max(threads, 1)));
     parallel_for(n, threads, [&](std::size_t k, int tid) {
       const std::uint64_t ray = rays[k];
       got[k] = ray < cell_rays ? eye_of(std::size_t(ray / dirs), std::size_t(ray % dirs), scratch[std::size_t(tid)])
