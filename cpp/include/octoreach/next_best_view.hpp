@@ -417,7 +417,8 @@ struct ExploreOptions {
   int last_directions = 128;
   int last_poses = 4000;            ///< last chance: poses kept from those rays
   std::pair<double, double> last_distance{0.15, 1.0};  ///< metres from a last-chance eye to its void cell
-  int max_ray_cells = 4096;         ///< last chance: void cells the rays leave from, gates they pass (each at most; at random)
+  /// last chance: void cells the rays leave from, and gates they pass (each at most; drawn at random)
+  int max_ray_cells = 4096;
   /// frontier_void: a view beyond the voids (toward the unknown cells of the search space outside the hull of the
   /// occupied cells; ViewChoice::beyond) where it expects more unknown cells of the search space (void cells
   /// included) than frontier-void's view expects void cells, and where frontier-void's own choice would end the

@@ -37,26 +37,29 @@ struct Stream {
 
 std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return Stream(a * 0x2545F4914F6CDD1DULL ^ b).next(); }
 
+// A random n of v (partial Fisher-Yates), kept in v's front; v shrinks to them.
+template <class T>
+void shuffle_first(std::vector<T>& v, std::size_t n, Stream& rng) {
+  n = std::min(n, v.size());
+  for (std::size_t i = 0; i < n; ++i) std::swap(v[i], v[i + std::size_t(rng.uniform() * double(v.size() - i))]);
+  v.resize(n);
+}
+
 }  // namespace
 
 std::vector<CellKey> draw_void_cells(const ExplorationState& S, const AimRequest& req) {
   std::vector<CellKey> all(S.void_set.begin(), S.void_set.end());
   std::sort(all.begin(), all.end());
   Stream rng(mix(req.seed, 1));
-  const auto shuffle_first = [&](std::vector<CellKey>& v, std::size_t n) {  // a random n of v, in v's front
-    n = std::min(n, v.size());
-    for (std::size_t i = 0; i < n; ++i) std::swap(v[i], v[i + std::size_t(rng.uniform() * double(v.size() - i))]);
-    v.resize(n);
-  };
   if (req.every_cell) {
-    shuffle_first(all, req.max_cells);
+    shuffle_first(all, req.max_cells, rng);
     return all;
   }
   const GridReader g(S.grid);
   std::vector<CellKey> exposed, other;
   for (CellKey k : all) (has_free_neighbour(g, k) ? exposed : other).push_back(k);
-  shuffle_first(exposed, exposed.size());
-  shuffle_first(other, other.size());
+  shuffle_first(exposed, exposed.size(), rng);
+  shuffle_first(other, other.size(), rng);
   std::vector<CellKey> out;
   std::size_t e = 0, o = 0;
   while (out.size() < req.cells && (e < exposed.size() || o < other.size())) {
@@ -102,11 +105,9 @@ std::vector<Gate> draw_gates(const ExplorationState& S, const AimRequest& req) {
   found.erase(std::unique(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
               found.end());
   Stream rng(mix(req.seed, 4));
-  const std::size_t n = std::min(found.size(), req.max_cells);
-  for (std::size_t i = 0; i < n; ++i)
-    std::swap(found[i], found[i + std::size_t(rng.uniform() * double(found.size() - i))]);
-  std::vector<Gate> out(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  shuffle_first(found, req.max_cells, rng);
+  std::vector<Gate> out(found.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
     const int* f = kN6[found[i].second];
     out[i] = Gate{found[i].first, Eigen::Vector3d(f[0], f[1], f[2])};
   }
@@ -193,8 +194,7 @@ std::optional<Eye> RayEyes::through(const Gate& gate, std::size_t r, Stretch& st
   if (behind == 0) return std::nullopt;
   const Eigen::Vector3d c = S.center(at);
   Eigen::Vector3d q = o;
-  for (int a = 0; a < 3; ++a) q[a] += res * (rng.uniform() - 0.5);  // a point of the gate
-  if ((q - c).norm() < 1e-9) return std::nullopt;
+  for (int a = 0; a < 3; ++a) q[a] += res * (rng.uniform() - 0.5);  // a point of the gate (not in `at`'s cell)
   return along(at, c, (q - c).normalized(), rng, stretch);
 }
 
