@@ -20,8 +20,8 @@ IkMode parse_mode(const std::string& mode) {
 
 IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, double rot_tol, int attempts,
                        int max_iterations, std::uint64_t seed, const Eigen::Vector3d& approach_axis,
-                       bool self_collision, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
-                       const py::object& reference, const py::object& obstacle_links) {
+                       double approach_cone, bool self_collision, std::shared_ptr<Obstacles> obstacles,
+                       const py::object& base_pose, const py::object& reference, const py::object& obstacle_links) {
   IkOptions o;
   if (!obstacle_links.is_none())
     for (const auto& name : cast_arg<std::vector<std::string>>(obstacle_links, "obstacle_links", "a list of link names"))
@@ -35,6 +35,7 @@ IkOptions make_options(const Chain& c, const std::string& mode, double pos_tol, 
   if (!approach_axis.allFinite() || approach_axis.norm() < 1e-9)
     throw std::invalid_argument("approach_axis must be a finite non-zero vector");
   o.approach_axis = approach_axis;
+  o.approach_cone = approach_cone;
   o.check_self_collision = self_collision;
   o.obstacles = obstacles;
   if (!base_pose.is_none()) o.base_pose = pose_from(base_pose, "base_pose");
@@ -65,7 +66,8 @@ const IkOptions kIkDefaults;
   py::arg("mode") = mode_name(kIkDefaults.mode), py::arg("position_tolerance") = kIkDefaults.position_tolerance, \
   py::arg("orientation_tolerance") = kIkDefaults.orientation_tolerance, py::arg("attempts") = kIkDefaults.attempts, \
   py::arg("max_iterations") = kIkDefaults.max_iterations, py::arg("rng_seed") = kIkDefaults.seed,             \
-  py::arg("approach_axis") = kIkDefaults.approach_axis, py::arg("self_collision") = kIkDefaults.check_self_collision, \
+  py::arg("approach_axis") = kIkDefaults.approach_axis, py::arg("approach_cone") = kIkDefaults.approach_cone,   \
+  py::arg("self_collision") = kIkDefaults.check_self_collision,                                               \
   py::arg("obstacles") = nullptr, py::arg("base_pose") = py::none(), py::arg("reference") = py::none(),      \
   py::arg("obstacle_links") = py::none()
 
@@ -192,10 +194,10 @@ void wrap_chain(py::module_& m) {
            "Full robot configuration with this chain's joints set to q, the rest from `reference` (default home).")
       .def("ik", [](const Chain& c, const py::object& T, const py::object& seed, const std::string& mode, double pt,
                     double rt, int attempts, int iters, std::uint64_t rng_seed, const Eigen::Vector3d& axis,
-                    bool self_col, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
+                    double cone, bool self_col, std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
                     const py::object& reference, const py::object& obstacle_links) -> py::object {
              Pose target = pose_from(T, "T (the target pose)");
-             IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
+             IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, cone, self_col, obstacles,
                                         base_pose, reference, obstacle_links);
              Eigen::VectorXd s;
              if (!seed.is_none()) s = q_from(c, seed, "seed");
@@ -212,14 +214,15 @@ void wrap_chain(py::module_& m) {
            "approach_axis, any roll about it). Restarts from random configurations inside the limits;\n"
            "deterministic for rng_seed. self_collision / obstacles reject colliding solutions (obstacles in the\n"
            "world frame, the robot's root at base_pose; obstacle_links restricts that check to the named links);\n"
-           "joints outside the chain take their values from `reference` (default robot.home()).")
+           "joints outside the chain take their values from `reference` (default robot.home()).\n"
+           "approach_cone: in 'approach' mode, radians the tip's axis may lie from the target's (0: exact).")
       .def("ik_batch", [](const Chain& c, const py::object& Ts, const py::object& seeds, const std::string& mode,
                           double pt, double rt, int attempts, int iters, std::uint64_t rng_seed,
-                          const Eigen::Vector3d& axis, bool self_col, std::shared_ptr<Obstacles> obstacles,
-                          const py::object& base_pose, const py::object& reference, const py::object& obstacle_links,
-                          int threads) {
+                          const Eigen::Vector3d& axis, double cone, bool self_col,
+                          std::shared_ptr<Obstacles> obstacles, const py::object& base_pose,
+                          const py::object& reference, const py::object& obstacle_links, int threads) {
              std::vector<Pose> targets = poses_from(Ts, "Ts");
-             IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, self_col, obstacles,
+             IkOptions o = make_options(c, mode, pt, rt, attempts, iters, rng_seed, axis, cone, self_col, obstacles,
                                         base_pose, reference, obstacle_links);
              Eigen::MatrixXd S;
              bool has_seeds = !seeds.is_none();

@@ -184,6 +184,40 @@ TEST(Robot, IkRelaxedModes) {
   EXPECT_FALSE(c.ik(far, o).has_value());
 }
 
+TEST(Robot, IkApproachCone) {
+  // A target whose approach axis is tilted 0.3 rad off one the arm reaches there: within a 0.35 rad cone the
+  // configuration that reaches the untilted pose is a solution, so IK finds one, its axis within the cone.
+  auto r = arm_robot();
+  Chain c = r->chain("base_link", "tool0");
+  std::mt19937_64 rng(8);
+  IkOptions o;
+  o.mode = IkMode::Approach;
+  o.approach_cone = 0.35;
+  int solved = 0;
+  for (int i = 0; i < 40; ++i) {
+    const Eigen::VectorXd q = c.random_configuration(rng);
+    const Pose T = c.fk(q);
+    Pose tilted = T;
+    tilted.linear() = T.linear() * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    o.seed = std::uint64_t(i);
+    const auto sol = c.ik(tilted, o);
+    if (!sol) continue;
+    ++solved;
+    const Pose Ts = c.fk(*sol);
+    EXPECT_LT((Ts.translation() - T.translation()).norm(), 1e-4);
+    const double off = std::acos(std::min(1.0, Ts.linear().col(2).dot(tilted.linear().col(2))));
+    EXPECT_LT(off, o.approach_cone + o.orientation_tolerance);
+  }
+  EXPECT_GE(solved, 38);
+  // the cone widens Approach mode only: a full pose is still matched exactly
+  o.mode = IkMode::Full;
+  const Eigen::VectorXd q = c.random_configuration(rng);
+  const Pose T = c.fk(q);
+  const auto sol = c.ik(T, o);
+  ASSERT_TRUE(sol.has_value());
+  EXPECT_LT(Eigen::AngleAxisd(c.fk(*sol).linear() * T.linear().transpose()).angle(), o.orientation_tolerance);
+}
+
 TEST(Robot, IkBatchIsDeterministic) {
   auto r = arm_robot();
   Chain c = r->chain("base_link", "tool0");

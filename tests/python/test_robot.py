@@ -171,6 +171,22 @@ def test_ik_approach_mode(arm_chain):
     assert np.arccos(np.clip(F[:3, 0] @ T[:3, 0], -1, 1)) < ROT_TOL
 
 
+def test_ik_approach_cone(arm_chain):
+    # Tilted 0.3 rad about their x axis, the targets' z axes lie within a 0.35 rad cone of one the arm reaches
+    # at the same position: approach IK with that cone solves them, the axis within the cone.
+    targets = reachable_targets(arm_chain, 20, seed=11)
+    tilted = np.array([T @ _rot_x(0.3) for T in targets])
+    Q, ok = arm_chain.ik_batch(tilted, mode="approach", approach_cone=0.35, rng_seed=7)
+    assert ok.mean() >= 0.95
+    for q, T in zip(Q[ok], tilted[ok]):
+        F = arm_chain.fk(q)
+        assert np.linalg.norm(F[:3, 3] - T[:3, 3]) < POS_TOL
+        assert np.arccos(np.clip(F[:3, 2] @ T[:3, 2], -1, 1)) < 0.35 + ROT_TOL
+    for bad in (-0.1, np.pi, np.nan):
+        with pytest.raises(ValueError, match="approach_cone"):
+            arm_chain.ik(targets[0], mode="approach", approach_cone=bad)
+
+
 def _rot_x(angle):
     c, s = np.cos(angle), np.sin(angle)
     T = np.eye(4)

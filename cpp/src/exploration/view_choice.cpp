@@ -127,6 +127,9 @@ ViewChoice aimed_choice(const ChoiceContext& ctx, int i, std::uint64_t seed, Loo
       req.max_cells = std::size_t(ctx.options.max_ray_cells);
       req.directions = ctx.options.last_directions;
       req.max_turn = half_narrow_field(ctx.camera);
+      // IK may turn the axis as far as the eye's may turn (the cell stays in the image): at the edge of the arm's
+      // reach, where the look straight at a cell seen through a slot fails, a turned one often does not
+      opt.ik.approach_cone = std::max(opt.ik.approach_cone, req.max_turn);
       const detail::ViewChecker checker(ctx.map, opt);
       poses = detail::aim_at_voids(ctx.map, checker, opt, req);
     }

@@ -38,6 +38,9 @@ void check_ik_request(const Chain& c, const Pose& target, const IkOptions& o, co
                                 std::to_string(o.orientation_tolerance));
   if (!o.approach_axis.allFinite() || o.approach_axis.norm() < 1e-9)
     throw std::invalid_argument("IK approach_axis must be a finite non-zero vector");
+  if (!(o.approach_cone >= 0) || !(o.approach_cone < kPi))
+    throw std::invalid_argument("IK approach_cone must be a number of radians in [0, pi), got " +
+                                std::to_string(o.approach_cone));
   if (o.attempts < 1 || o.max_iterations < 1)
     throw std::invalid_argument("IK needs at least one attempt and one iteration");
   if (seed) {
@@ -53,10 +56,11 @@ void check_ik_request(const Chain& c, const Pose& target, const IkOptions& o, co
 std::optional<Eigen::VectorXd> rigid_chain_ik(const Chain& c, const Pose& target, const IkOptions& o) {
   Pose T = c.fk(Eigen::VectorXd());
   bool pos_ok = (T.translation() - target.translation()).norm() < o.position_tolerance;
+  const Eigen::Vector3d a = o.approach_axis.normalized();
+  const double off = std::acos(std::min(1.0, (T.linear() * a).dot(target.linear() * a)));
   double rot = o.mode == IkMode::Position ? 0.0
                : o.mode == IkMode::Full   ? Eigen::AngleAxisd(target.linear() * T.linear().transpose()).angle()
-                                          : std::acos(std::min(1.0, (T.linear() * o.approach_axis.normalized())
-                                                                        .dot(target.linear() * o.approach_axis.normalized())));
+                                          : std::max(0.0, off - o.approach_cone);
   if (pos_ok && rot < o.orientation_tolerance) return Eigen::VectorXd();
   return std::nullopt;
 }
@@ -245,9 +249,9 @@ class LmIk {
       Eigen::Vector3d a = T.linear() * approach_tip_;
       Eigen::Vector3d c = a.cross(approach_goal_);
       double s = c.norm(), cs = a.dot(approach_goal_);
-      rot_err = std::atan2(s, cs);
+      rot_err = std::max(0.0, std::atan2(s, cs) - o_.approach_cone);  // inside the cone: reached
       if (s > 1e-12) er = c / s * rot_err;
-      else if (cs < 0) er = a.unitOrthogonal() * kPi;  // opposite: any perpendicular axis
+      else if (cs < 0) er = a.unitOrthogonal() * rot_err;  // opposite: any perpendicular axis
       else er.setZero();
       P -= a * a.transpose();  // roll about the approach axis does not matter
     }
