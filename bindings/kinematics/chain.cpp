@@ -211,11 +211,10 @@ void wrap_chain(py::module_& m) {
            }, py::arg("T"), py::arg("seed") = py::none(), IK_ARGS,
            "Joint vector reaching the 4x4 tip pose T (base link frame), or None.\n\n"
            "mode: 'full' (position and orientation), 'position', or 'approach' (position and the tip's\n"
-           "approach_axis, any roll about it). Restarts from random configurations inside the limits;\n"
+           "approach_axis within approach_cone radians, any roll about it). Random restarts inside the limits;\n"
            "deterministic for rng_seed. self_collision / obstacles reject colliding solutions (obstacles in the\n"
            "world frame, the robot's root at base_pose; obstacle_links restricts that check to the named links);\n"
-           "joints outside the chain take their values from `reference` (default robot.home()).\n"
-           "approach_cone: in 'approach' mode, radians the tip's axis may lie from the target's (0: exact).")
+           "joints outside the chain take their values from `reference` (default robot.home()).")
       .def("ik_batch", [](const Chain& c, const py::object& Ts, const py::object& seeds, const std::string& mode,
                           double pt, double rt, int attempts, int iters, std::uint64_t rng_seed,
                           const Eigen::Vector3d& axis, double cone, bool self_col,

@@ -174,11 +174,10 @@ class Chain:
         Joint vector reaching the 4x4 tip pose T (base link frame), or None.
         
         mode: 'full' (position and orientation), 'position', or 'approach' (position and the tip's
-        approach_axis, any roll about it). Restarts from random configurations inside the limits;
+        approach_axis within approach_cone radians, any roll about it). Random restarts inside the limits;
         deterministic for rng_seed. self_collision / obstacles reject colliding solutions (obstacles in the
         world frame, the robot's root at base_pose; obstacle_links restricts that check to the named links);
         joints outside the chain take their values from `reference` (default robot.home()).
-        approach_cone: in 'approach' mode, radians the tip's axis may lie from the target's (0: exact).
         """
     def ik_batch(self, Ts: typing.Any, seeds: typing.Any = None, mode: str = 'full', position_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.0001, orientation_tolerance: typing.SupportsFloat | typing.SupportsIndex = 0.001, attempts: typing.SupportsInt | typing.SupportsIndex = 20, max_iterations: typing.SupportsInt | typing.SupportsIndex = 100, rng_seed: typing.SupportsInt | typing.SupportsIndex = 0, approach_axis: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[3, 1]"] = ..., approach_cone: typing.SupportsFloat | typing.SupportsIndex = 0.0, self_collision: bool = False, obstacles: Obstacles = None, base_pose: typing.Any = None, reference: typing.Any = None, obstacle_links: typing.Any = None, threads: typing.SupportsInt | typing.SupportsIndex = 0) -> tuple[typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]"], numpy.typing.NDArray[numpy.bool]]:
         """
