@@ -41,8 +41,8 @@ struct IkOptions {
   int stall_window = 0;
   std::uint64_t seed = 0;               ///< random restarts are deterministic for a seed
   Eigen::Vector3d approach_axis = Eigen::Vector3d::UnitZ();  ///< tip-frame axis used in Approach mode
-  /// Approach mode: radians the approach axis may lie from the target's and still count as reached (0: exact,
-  /// to orientation_tolerance); a camera aimed at a point sees it with the axis anywhere within half its field
+  /// Approach mode: radians the approach axis may lie from the target's and count as reached, orientation_tolerance
+  /// beyond them (0: exact); a camera aimed at a point sees it with the axis anywhere within half its field
   double approach_cone = 0.0;
   bool check_self_collision = false;    ///< reject solutions in self-collision
   /// With check_self_collision: also check the link pairs the chain never moves relative to each
