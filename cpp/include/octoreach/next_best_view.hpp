@@ -415,7 +415,9 @@ struct ExploreOptions {
   /// last chance (the choice would end the loop): rays out of each void cell, half of them through the voids'
   /// gates (observed-free cells with a void cell across a face)
   int last_directions = 128;
-  int last_poses = 4000;            ///< last chance: poses kept from those rays
+  /// last chance: poses kept from those rays (most of its cost: the rays walked until it has them, then a score
+  /// and IK each in rank order until rescore_best are valid)
+  int last_poses = 1000;
   std::pair<double, double> last_distance{0.15, 1.0};  ///< metres from a last-chance eye to its void cell
   /// last chance: void cells the rays leave from, and gates they pass (each at most; drawn at random)
   int max_ray_cells = 4096;

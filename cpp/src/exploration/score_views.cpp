@@ -102,7 +102,7 @@ std::vector<bool> filter_verdicts(const NbvOptions& opt, const std::vector<Eigen
 }
 
 // rescored_views: when more than kFirstPass x rescore_best poses pass the checks before IK (the second look's
-// 400 aims may, a low view's 1200 and the last chance's 4000 do), a score with every fourth ray of the grid (a
+// 400 aims may, a low view's 1200 and the last chance's 1000 do), a score with every fourth ray of the grid (a
 // sixteenth of the full score's rays) ranks them, and they get the coarse score and IK in chunks of kFirstPass x
 // rescore_best in that order until rescore_best are valid. 16 is a chosen margin, as rescore_best's 16 is,
 // checked with benchmarks/view_choice_times.py (the same views and stops as without the first pass).

@@ -226,7 +226,7 @@ std::vector<Pose> aim_at_voids(const ExplorationMap& map, const ViewChecker& che
   };
   // The rays in a random order of (cell, ray), in chunks, until `poses` eyes are found: the eyes of the first
   // rays are a random sample of all the rays' eyes, and the rest need not be walked (about 12 000 of a table
-  // top's 150 000 rays give eyes, 4000 are wanted).
+  // top's 150 000 rays give eyes, 1000 are wanted).
   const std::uint64_t cell_rays = std::uint64_t(from.size()) * dirs;
   const std::uint64_t pairs = cell_rays + std::uint64_t(gates.size()) * gate_dirs;
   // Fisher-Yates as far as the rays walked, the swapped slots in a table (memory for the rays walked only)
