@@ -16,7 +16,12 @@ With --reference DIR, every scene runs first with the octoreach package found in
 PYTHONPATH=DIR, in a child process) and then with this one, so both see the machine in the same state; "reference"
 holds its figures.
 
-Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] [--reference DIR] [--beyond-voids 1] > times.json
+With --head, the camera is the pan/tilt head of the guides' rover (docs/examples/rover.urdf, standing at the
+origin) instead of the explorer robot's arm: a chain that only aims its camera (NbvOptions.aiming "auto"), whose
+first view looks at the search space's centre.
+
+Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] [--reference DIR] [--beyond-voids 1]
+[--head] > times.json
 """
 from __future__ import annotations
 
@@ -31,12 +36,15 @@ import time
 import numpy as np
 
 import octoreach
-from octoreach import DepthCamera
+from octoreach import DepthCamera, Robot
 from octoreach import exploration as ex
 from octoreach.exploration import strategies
 from octoreach.exploration.camera import look_at
 from octoreach.exploration.explorer import Explorer
 from octoreach.testing import scene_families
+
+
+ROVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "docs", "examples", "rover.urdf")
 
 
 def _clock(fn):
@@ -98,12 +106,25 @@ def _summary(calls: list) -> dict:
     return out
 
 
+def _head(scene, space):
+    """explore()'s robot keywords for the rover's pan/tilt head at the origin, and its first view: the camera
+    aimed at the search space's centre."""
+    rover = Robot.from_urdf(ROVER)
+    head = rover.chain("base_footprint", "camera_link")
+    region = ex.scene_region(scene) if space is None else np.asarray(space, float)
+    q = head.aim(region.mean(axis=0))
+    if q is None:
+        raise RuntimeError("the rover's head cannot aim at the search space's centre")
+    return dict(robot=rover, chain=head, base_pose=np.eye(4)), head.fk(q)
+
+
 def _reference(a, name: str) -> dict:
     """The figures of scene `name` with the package in a.reference (a child process, PYTHONPATH=a.reference)."""
     root = os.path.abspath(a.reference)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH", "")) if p))
     cmd = [sys.executable, os.path.abspath(__file__), "--views", str(a.views), "--instances", str(a.instances),
-           "--seed", str(a.seed), "--scenes", name] + (["--beyond-voids", "1"] if a.beyond_voids else [])
+           "--seed", str(a.seed), "--scenes", name] + (["--beyond-voids", "1"] if a.beyond_voids else []) + \
+          (["--head"] if a.head else [])
     got = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
     if got.returncode != 0:
         raise RuntimeError(f"the reference run of {name} failed:\n{got.stderr[-2000:]}")
@@ -123,6 +144,7 @@ def main(argv=None) -> int:
     ap.add_argument("--reference", default="", help="a directory holding the octoreach package to compare with")
     ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=0,
                     help="frontier_void: views beyond the voids (ExploreOptions.beyond_voids)")
+    ap.add_argument("--head", action="store_true", help="the rover's pan/tilt head camera, not the explorer's arm")
     a = ap.parse_args(argv)
     _, chain = ex.explorer_robot()
     cmap = ex.explorer_capability_map(chain)
@@ -137,7 +159,7 @@ def main(argv=None) -> int:
         if unknown:
             ap.error(f"no scene named {', '.join(unknown)}; the scenes are {', '.join(s[0] for s in scenes)}")
         scenes = [s for s in scenes if s[0] in wanted]
-    out = {"views": a.views, "beyond_voids": bool(a.beyond_voids), "cores": os.cpu_count(), "load_average": list(os.getloadavg()),
+    out = {"views": a.views, "beyond_voids": bool(a.beyond_voids), "head": bool(a.head), "cores": os.cpu_count(), "load_average": list(os.getloadavg()),
            "octoreach": os.path.dirname(octoreach.__file__), "scenes": {}}
     if a.reference:
         out["reference"] = {"path": os.path.abspath(a.reference), "scenes": {}}
@@ -150,8 +172,11 @@ def main(argv=None) -> int:
                   flush=True)
         first = len(every)
         cam = DepthCamera(320, 240, np.deg2rad(58.0), 4.0, seed=a.seed)
-        r = ex.explore(scene, cam, start, robot=True, capability_map=cmap, search_space=space, max_views=a.views,
-                       resolution=0.025, seed=a.seed, **({"beyond_voids": True} if a.beyond_voids else {}))
+        camera = dict(robot=True, capability_map=cmap)
+        if a.head:
+            camera, start = _head(scene, space)
+        r = ex.explore(scene, cam, start, search_space=space, max_views=a.views, resolution=0.025, seed=a.seed,
+                       **camera, **({"beyond_voids": True} if a.beyond_voids else {}))
         s = _summary(every[first:])
         out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows),
                                    loop_wall=[c["loop"][0] for c in every[first:]])
