@@ -146,8 +146,7 @@ def main(argv=None) -> int:
                     help="frontier_void: views beyond the voids (ExploreOptions.beyond_voids)")
     ap.add_argument("--head", action="store_true", help="the rover's pan/tilt head camera, not the explorer's arm")
     a = ap.parse_args(argv)
-    _, chain = ex.explorer_robot()
-    cmap = ex.explorer_capability_map(chain)
+    cmap = None if a.head else ex.explorer_capability_map(ex.explorer_robot()[1])  # the arm's, which --head does not use
     paper_start = look_at((0.45, 0.0, 1.1), (0.9, 0.0, 0.0))  # the demo's first view
     scenes = [(f"paper_{k}", ex.paper_scene(k), paper_start, None) for k in (1, 2)]
     for fam in scene_families.FAMILIES:
@@ -172,11 +171,11 @@ def main(argv=None) -> int:
                   flush=True)
         first = len(every)
         cam = DepthCamera(320, 240, np.deg2rad(58.0), 4.0, seed=a.seed)
-        camera = dict(robot=True, capability_map=cmap)
+        robot_kw = dict(robot=True, capability_map=cmap)
         if a.head:
-            camera, start = _head(scene, space)
+            robot_kw, start = _head(scene, space)
         r = ex.explore(scene, cam, start, search_space=space, max_views=a.views, resolution=0.025, seed=a.seed,
-                       **camera, **({"beyond_voids": True} if a.beyond_voids else {}))
+                       **robot_kw, **({"beyond_voids": True} if a.beyond_voids else {}))
         s = _summary(every[first:])
         out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows),
                                    loop_wall=[c["loop"][0] for c in every[first:]])
