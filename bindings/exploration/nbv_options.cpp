@@ -97,7 +97,7 @@ void wrap_search_options(py::module_& m) {
                      "across and down first, and only the n best by each ranking key with the full grid (ranked\n"
                      "holds those); the aimed looks rank more than 16 n poses with every fourth ray first and go\n"
                      "on in chunks of 16 n; 0: every one in full. A camera that only aims, score_views and the\n"
-                     "baselines always score in full.")
+                     "baselines always score in full; views beyond the voids rank as the aimed looks, at most 2 in full.")
       .def_readwrite("min_distance", &NbvOptions::min_distance, "metres from the camera to the nearest point of any occupied cell")
       .def_readwrite("seed", &NbvOptions::seed, "seeds the orientation samples and the IK restarts")
       .def_readwrite("threads", &NbvOptions::threads)

@@ -2133,7 +2133,7 @@ class NbvOptions:
         across and down first, and only the n best by each ranking key with the full grid (ranked
         holds those); the aimed looks rank more than 16 n poses with every fourth ray first and go
         on in chunks of 16 n; 0: every one in full. A camera that only aims, score_views and the
-        baselines always score in full.
+        baselines always score in full; views beyond the voids rank as the aimed looks, at most 2 in full.
         """
     @rescore_best.setter
     def rescore_best(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:

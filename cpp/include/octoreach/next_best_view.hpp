@@ -130,7 +130,8 @@ struct NbvOptions {
   /// until n are valid; more than 16 n poses are ranked first with every fourth ray and go on in chunks of
   /// 16 n in that order. 0 (the default): every valid pose is scored with the full grid, as in the paper. A
   /// chain that only aims its camera (looks_at), score_views and the baselines' sampled poses always score in
-  /// full.
+  /// full; frontier-void's views beyond the voids (ExploreOptions::beyond_voids) rank their sampled poses as the
+  /// aimed looks do, with at most 2 scored in full.
   int rescore_best = 0;
   double min_distance = 0.0;         ///< keep the camera this far (m) from every point of an occupied cell
   std::uint64_t seed = 0;

@@ -14,6 +14,14 @@ namespace octoreach::detail {
 
 namespace {
 
+// With coarse_first (the view beyond the voids, a single pick compared with one number, frontier-void's utility):
+// the poses scored in full after the coarse ranking (rescored_views). Fewer finalists make its chunks smaller (16
+// per finalist), so most of the sampled poses get only its first pass (a sixteenth of the rays); two guard against
+// a misrank of the coarse score (one alone chose a view expecting 78 cells where the full score finds 101, on a
+// collapsed slab). A chosen margin, checked with
+// benchmarks/view_choice_times.py --beyond-voids 1 and the families' record with --beyond-voids 1.
+constexpr int kBeyondFinalists = 2;
+
 // `n` camera poses: positions uniform in the workspace sphere and/or box above `floor` (neither: the search
 // space grown by 0.5 m), each looking at a uniform random point of the search space at least 0.1 m away.
 std::vector<Pose> sample_poses(std::mt19937_64& rng, const NbvOptions& opt, const Eigen::Vector3d& s_lo,
@@ -68,7 +76,7 @@ NbvGain score_gain(ViewStrategy s) {
 
 }  // namespace
 
-ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStrategy strategy) {
+ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStrategy strategy, bool coarse_first) {
   const Eigen::Vector3d s_lo = ctx.map.options().search_lo, s_hi = ctx.map.options().search_hi;
   if (!detail::bounded_search_space(ctx.map.options()))
     throw std::invalid_argument(std::string("the ") + strategy_name(strategy) + " strategy needs a finite search space");
@@ -82,6 +90,7 @@ ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStra
     opt.gain = score_gain(strategy);
     opt.enclosure_power = plain.enclosure_power;
     opt.unexposed_weight = plain.unexposed_weight;
+    if (coarse_first) opt.rescore_best = std::min(opt.rescore_best, kBeyondFinalists);
     ScoredViews views;
     if (looks_at(opt)) {  // the chain aims its camera at uniform random points of the search space
       const std::vector<Eigen::Vector3d> targets = sample_targets(rng, s_lo, s_hi, ctx.options.sampled_poses);
@@ -93,7 +102,8 @@ ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStra
       const std::vector<Pose> poses = sample_poses(rng, opt, s_lo, s_hi, ctx.options.sampled_poses,
                                                    ctx.options.min_camera_height);
       if (poses.empty()) continue;
-      views = score_views(ctx.map, ctx.camera, poses, opt, false);
+      views = coarse_first ? rescored_views(ctx.map, ctx.camera, poses, opt, RankKey::Gain)
+                           : score_views(ctx.map, ctx.camera, poses, opt, false);
       scored += poses.size();
     }
     const ScoredView* first = nullptr;

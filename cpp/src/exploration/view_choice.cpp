@@ -245,13 +245,13 @@ ViewChoice& decide(ViewChoice& c, ChoiceMemory& memory, const ExploreOptions& op
 // A view beyond the voids: the search space may hold unknown cells outside them (beside and above what the hull of
 // the occupied cells encloses, where the paper's voids end), which frontier-void's gain leaves out: while
 // the way beyond the voids is open (ChoiceMemory::beyond_misses), the sampled view expecting the most unknown cells
-// of the search space (the "unknown" strategy's choice, whose rays count an unknown cell outside the voids by the
-// chance that they return) when it expects more than the stop threshold; else none (found false). Only with
-// ExploreOptions::beyond_voids.
+// of the search space (the "unknown" strategy's poses, whose rays count an unknown cell outside the voids by the
+// chance that they return, ranked by a coarse first score: sampled_choice's coarse_first) when it expects more than
+// the stop threshold; else none (found false). Only with ExploreOptions::beyond_voids.
 ViewChoice beyond(const ChoiceContext& ctx, std::uint64_t seed, double threshold) {
   if (!ctx.options.beyond_voids || ctx.memory.beyond_misses >= ctx.options.patience) return ViewChoice{};
   if (!detail::bounded_search_space(ctx.map.options())) return ViewChoice{};  // no bounded space to look at
-  ViewChoice c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown);
+  ViewChoice c = detail::sampled_choice(ctx, seed, ViewStrategy::Unknown, true);
   if (!c.found || c.utility <= threshold) return ViewChoice{};
   c.beyond = true;
   return c;

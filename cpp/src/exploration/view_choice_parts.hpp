@@ -28,7 +28,10 @@ struct ChoiceContext {
 // The baselines (random, frontiers, unknown): options.sampled_poses camera poses sampled per base in the
 // reach sphere (or the workspace box) above min_camera_height, each looking at a uniform random point of the
 // map's search space, scored with score_views; the best valid by the strategy's gain (random: the first valid,
-// its utility the most expected void cells on offer).
-ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStrategy strategy);
+// its utility the most expected void cells on offer). With `coarse_first` (frontier-void's views beyond the voids)
+// the poses go through rescored_views as the loop's aimed looks do (a coarse first score, IK in its order until
+// options.search.rescore_best are valid, those scored in full); the baselines score every pose in full.
+ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStrategy strategy,
+                          bool coarse_first = false);
 
 }  // namespace octoreach::detail
