@@ -197,7 +197,7 @@ def _parse(argv):
     ap.add_argument("--views", type=int, default=60, help="view budget (large: the stop rule should end the runs)")
     ap.add_argument("--min-utility", type=float, default=ex.STOP_UTILITY)
     ap.add_argument("--patience", type=int, default=ex.STOP_PATIENCE)
-    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=0,
+    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=int(ex.BEYOND_VOIDS),
                     help="frontier_void: views beyond the voids (ExploreOptions.beyond_voids)")
     ap.add_argument("--resolution", type=float, default=0.025)
     ap.add_argument("--image", type=int, nargs=2, default=(320, 240), metavar=("W", "H"))

@@ -326,7 +326,7 @@ def main(argv=None) -> int:
                     help="frontier_void: void cells with no observed free neighbour count with this factor (1: the paper's count)")
     ap.add_argument("--no-second-look", action="store_true",
                     help="frontier_void: stop on next_best_view's answer alone (no aimed poses when it is low)")
-    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=0,
+    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=int(ex.BEYOND_VOIDS),
                     help="frontier_void: views beyond the voids (ExploreOptions.beyond_voids)")
     ap.add_argument("--ground-is-obstacle", type=int, choices=(0, 1),
                     default=int(ex.ExploreOptions().search.ground_is_obstacle),

@@ -20,7 +20,7 @@ With --head, the camera is the pan/tilt head of the guides' rover (docs/examples
 origin) instead of the explorer robot's arm: a chain that only aims its camera (NbvOptions.aiming "auto"), whose
 first view looks at the search space's centre.
 
-Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] [--reference DIR] [--beyond-voids 1]
+Run: .venv/bin/python benchmarks/view_choice_times.py [--views 40] [--instances 1] [--reference DIR] [--beyond-voids 0]
 [--head] > times.json
 """
 from __future__ import annotations
@@ -123,7 +123,7 @@ def _reference(a, name: str) -> dict:
     root = os.path.abspath(a.reference)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH", "")) if p))
     cmd = [sys.executable, os.path.abspath(__file__), "--views", str(a.views), "--instances", str(a.instances),
-           "--seed", str(a.seed), "--scenes", name] + (["--beyond-voids", "1"] if a.beyond_voids else []) + \
+           "--seed", str(a.seed), "--scenes", name, "--beyond-voids", str(a.beyond_voids)] + \
           (["--head"] if a.head else [])
     got = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
     if got.returncode != 0:
@@ -142,7 +142,7 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--scenes", default="", help="comma-separated scene names to run (default: all)")
     ap.add_argument("--reference", default="", help="a directory holding the octoreach package to compare with")
-    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=0,
+    ap.add_argument("--beyond-voids", type=int, choices=(0, 1), default=int(ex.BEYOND_VOIDS),
                     help="frontier_void: views beyond the voids (ExploreOptions.beyond_voids)")
     ap.add_argument("--head", action="store_true", help="the rover's pan/tilt head camera, not the explorer's arm")
     a = ap.parse_args(argv)
@@ -175,7 +175,7 @@ def main(argv=None) -> int:
         if a.head:
             robot_kw, start = _head(scene, space)
         r = ex.explore(scene, cam, start, search_space=space, max_views=a.views, resolution=0.025, seed=a.seed,
-                       **robot_kw, **({"beyond_voids": True} if a.beyond_voids else {}))
+                       beyond_voids=bool(a.beyond_voids), **robot_kw)
         s = _summary(every[first:])
         out["scenes"][name] = dict(s, stop=r.stop_reason, views=len(r.rows),
                                    loop_wall=[c["loop"][0] for c in every[first:]])

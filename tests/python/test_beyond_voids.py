@@ -103,6 +103,8 @@ def test_a_view_beyond_the_voids_competes_with_the_voids_view_at_every_choice():
         emap.insert(cam.capture(s, side), side[:3, 3], cam.max_range)
         assert emap.void_cell_count > emap.sealed_void_cell_count
         opts, base = ExploreOptions(), np.eye(4)[None]
+        assert opts.beyond_voids  # on by default
+        opts.beyond_voids = False
         voids_view = choose_view(emap, cam, base, 0, opts, ChoiceMemory())
         unknown_view = choose_view(emap, cam, base, 0, opts, ChoiceMemory(), "unknown")
         opts.beyond_voids, m = True, ChoiceMemory()
@@ -134,8 +136,9 @@ def test_a_view_beyond_the_voids_that_saw_nothing_closes_the_way():
     emap.insert(cam.capture(s, first), first[:3, 3], cam.max_range)
     assert emap.void_cell_count == 0
     opts, m, base = ExploreOptions(), ChoiceMemory(), np.eye(4)[None]
+    opts.beyond_voids = False  # the paper's voids only: none, so nothing to explore
     c = choose_view(emap, cam, base, 0, opts, m)
-    assert c.stop and c.stop_reason == "nothing to explore"  # beyond_voids is off by default
+    assert c.stop and c.stop_reason == "nothing to explore"
     opts.beyond_voids, m = True, ChoiceMemory()
     for _ in range(opts.patience):
         c = choose_view(emap, cam, base, 0, opts, m)
@@ -158,6 +161,6 @@ def test_no_view_beyond_the_voids_of_an_unbounded_search_space():
     first = ex.look_at((0.0, -1.0, 1.0), (0.5, -0.8, 0.0))
     emap.insert(cam.capture(s, first), first[:3, 3], cam.max_range)
     opts = ExploreOptions()
-    opts.beyond_voids = True
+    assert opts.beyond_voids
     c = choose_view(emap, cam, np.eye(4)[None], 0, opts, ChoiceMemory())
     assert not c.beyond

@@ -759,10 +759,12 @@ def _box_seen_from_three_sides():
 
 def view_settings(widen_below=None, **search):
     """ExploreOptions for choose_view: its search NbvOptions() (the C++ defaults, not the loop's) with the
-    `search` fields set; a second look with min_utility `widen_below` (None: no second look)."""
+    `search` fields set; a second look with min_utility `widen_below` (None: no second look); frontier-void's
+    own choice (no view beyond the voids)."""
     from octoreach import ExploreOptions, NbvOptions
 
     s = ExploreOptions()
+    s.beyond_voids = False
     s.search = NbvOptions()
     for k, v in search.items():
         setattr(s.search, k, v)

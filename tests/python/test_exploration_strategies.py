@@ -205,18 +205,19 @@ def test_min_utility_stops_early_and_says_so():
 
 
 def test_a_scene_without_void_ends_at_once():
-    """A bare floor: no void cell at first. Frontier-void ends at once; with beyond_voids its views are the ones
-    beyond the voids (the unknown cells of the search space above the floor) until none expects more than the
-    stop threshold (a few cells under the floor's surface may turn void on the way, seen from above at a slant)."""
+    """A bare floor: no void cell at first. Frontier-void with the paper's voids only ends at once; with views
+    beyond the voids (the default) its views are the ones beyond them (the unknown cells of the search space above
+    the floor) until none expects more than the stop threshold (a few cells under the floor's surface may turn void
+    on the way, seen from above at a slant)."""
     s = Scene()
     _floor(s)
     cam = DepthCamera(80, 60, FOV, 3.0)
     start = ex.look_at((0.0, 0.0, 1.0), (1.0, 0.0, 0.0))
     region = np.array([[0.3, -0.5, 0.0], [1.5, 0.5, 0.5]])
-    r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region)
+    r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region, beyond_voids=False)
     assert r.stop_reason == "nothing to explore" and len(r.rows) == 1
     assert r.rows[0].void_total == 0 and r.rows[0].expected_void == 0
-    r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region, beyond_voids=True)
+    r = ex.explore(s, cam, start, robot=True, resolution=RES, search_space=region)
     assert r.stop_reason == "nothing to explore" and len(r.rows) < 10, r.table()
     assert r.rows[0].void_total == 0 and sum(row.expected_void for row in r.rows) < 10
     assert r.observed_share > 0.9, r.table()

@@ -17,7 +17,7 @@ from own_robot import urdf  # noqa: E402
 
 RESOLUTION = 0.04
 SETTINGS = dict(max_valid_poses=30, max_candidate_cells=200, aimed_poses=120, low_aimed_poses=120, last_poses=300,
-                score_size=(24, 18), max_views=25, resolution=RESOLUTION, seed=0)
+                score_size=(24, 18), max_views=40, resolution=RESOLUTION, seed=0)
 
 
 def _camera() -> DepthCamera:
@@ -70,7 +70,7 @@ def test_the_head_aims_its_optical_axis(head):
 def oracle(head):
     robot, chain = head
     return observable_cells(_table_scene(), chain=chain, base_pose=np.eye(4), robot=robot, resolution=RESOLUTION,
-                            max_range=3.0, joint_samples=3000, aimed_samples=0, seed=0)
+                            max_range=3.0, joint_samples=12000, aimed_samples=0, seed=0)
 
 
 @pytest.mark.parametrize("first", ["at the table", "level, seeing nothing"])

@@ -39,13 +39,14 @@ def test_the_inside_of_a_solid_block_is_never_worth_a_view():
     assert emap.void_cell_count > 0 and emap.sealed_void_cell_count == emap.void_cell_count
     v = score_views(emap, cam, _around(), unknown_is_obstacle=False, unknown_pass_probability=1.0)
     assert np.nanmax(np.where(v.valid, v.expected_void, 0.0)) == 0.0
-    c = choose_view(emap, cam, np.eye(4)[None], 0, ExploreOptions(), ChoiceMemory())
+    voids_only = ExploreOptions()
+    voids_only.beyond_voids = False
+    c = choose_view(emap, cam, np.eye(4)[None], 0, voids_only, ChoiceMemory())
     assert c.stop and c.stop_reason == "nothing to explore"
     # the search space reaches 0.1 m around the block, and the rays of the six views that passed beside the block
-    # returned nothing: that margin is still unknown, so frontier-void with beyond_voids looks beyond the voids,
-    # never at the inside
+    # returned nothing: that margin is still unknown, so frontier-void (by default) looks beyond the voids, never
+    # at the inside
     opts = ExploreOptions()
-    opts.beyond_voids = True
     c = choose_view(emap, cam, np.eye(4)[None], 0, opts, ChoiceMemory())
     assert not c.stop and c.beyond and c.view.expected_void == 0 and c.utility > 0
     # a search space that is the block itself (and a centimetre): nothing to explore

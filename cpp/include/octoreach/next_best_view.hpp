@@ -425,9 +425,9 @@ struct ExploreOptions {
   /// frontier_void: a view beyond the voids (toward the unknown cells of the search space outside the hull of the
   /// occupied cells; ViewChoice::beyond) where it expects more unknown cells of the search space (void cells
   /// included) than frontier-void's view expects void cells, and where frontier-void's own choice would end the
-  /// loop. Off: the paper's voids only, and the loop ends when they are spent; on, a table top's layer above the
-  /// objects is seen, at the price of views spent on the rest of the search space.
-  bool beyond_voids = false;
+  /// loop. On (the default): a table top's layer above the objects is seen, as the rest of the search space is;
+  /// off: the paper's voids only, and the loop ends when they are spent.
+  bool beyond_voids = true;
   /// \brief The exploration benchmark's settings: the defaults (the stop rule every entry point uses).
   static ExploreOptions benchmark() { return ExploreOptions(); }
   /// \brief The paper's rule: stop at the first chosen view with utility 0.

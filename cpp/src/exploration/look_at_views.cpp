@@ -66,7 +66,8 @@ AimResult aim_camera(const NbvOptions& opt, const Eigen::Vector3d& target, std::
 
 LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam,
                           const std::vector<Eigen::Vector3d>& targets, const NbvOptions& opt,
-                          const ViewChecker& checker, const ScoreModel& model, std::size_t max_valid) {
+                          const ViewChecker& checker, const ScoreModel& model, std::size_t max_valid,
+                          std::size_t full_best) {
   const Chain& chain = *opt.chain;
   const int threads = default_threads(opt.threads);
   std::vector<AimResult> aims(targets.size());
@@ -109,7 +110,20 @@ LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam
     out.capability_rejected += st == ViewStatus::NotReachable;
     if (st == ViewStatus::Valid && valid.size() < max_valid) valid.push_back(i);
   }
-  parallel_for(valid.size(), threads, [&](std::size_t j, int) { score_view(map, cam, opt, model, views[valid[j]]); }, 1);
+  // full_best > 0: a quarter of the rays (as rescored_views' coarse score) rank the valid views, and only the best
+  // full_best by the gain go on, scored in full
+  const bool coarse = full_best > 0 && valid.size() > full_best;
+  parallel_for(valid.size(), threads, [&](std::size_t j, int) {
+    score_view(map, cam, opt, model, views[valid[j]], coarse ? 2 : 1);
+  }, 1);
+  if (coarse) {
+    std::stable_sort(valid.begin(), valid.end(), [&](std::size_t a, std::size_t b) {
+      return ranks_before(views[a], views[b], RankKey::Gain);
+    });
+    valid.resize(full_best);
+    std::sort(valid.begin(), valid.end());  // target order
+    parallel_for(valid.size(), threads, [&](std::size_t j, int) { score_view(map, cam, opt, model, views[valid[j]]); }, 1);
+  }
   out.scored.gain = opt.gain;
   std::tie(out.scored.pass_probability, out.scored.void_pass_probability) = model.p;
   out.scored.dof = std::size_t(chain.dof());

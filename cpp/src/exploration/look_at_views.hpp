@@ -33,10 +33,12 @@ AimResult aim_camera(const NbvOptions& opt, const Eigen::Vector3d& target, std::
 // The chain aims its camera at each target (aim_camera with the target's index); aims whose joints round to the same
 // 0.02 rad (or m) steps as an earlier one are dropped; the others get score_views' checks in its order
 // (workspace and its filter, capability map, camera clearance, the arm's collisions) and, up to `max_valid`
-// of them in target order, the valid ones are scored. The caller holds the map's lock.
+// of them in target order, the valid ones are scored. With full_best > 0 a coarse score (a quarter of the rays)
+// ranks them by the gain and only the best full_best are kept, scored in full. The caller holds the map's lock.
 LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam,
                           const std::vector<Eigen::Vector3d>& targets, const NbvOptions& opt,
-                          const ViewChecker& checker, const ScoreModel& model, std::size_t max_valid);
+                          const ViewChecker& checker, const ScoreModel& model, std::size_t max_valid,
+                          std::size_t full_best = 0);
 
 // next_best_view with looks_at(opt): look_at_views of opt.max_candidate_cells targets (look_at_targets with
 // the second look's unexposed share 0.25), up to opt.max_valid_poses valid, ranked by ranks_before.

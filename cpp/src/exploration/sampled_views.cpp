@@ -15,7 +15,8 @@ namespace octoreach::detail {
 namespace {
 
 // With coarse_first (the view beyond the voids, a single pick compared with one number, frontier-void's utility):
-// the poses scored in full after the coarse ranking (rescored_views). Fewer finalists make its chunks smaller (16
+// the poses scored in full after the coarse ranking (rescored_views; look_at_views for a camera that only aims).
+// Fewer finalists make its chunks smaller (16
 // per finalist), so most of the sampled poses get only its first pass (a sixteenth of the rays); two guard against
 // a misrank of the coarse score (one alone chose a view expecting 78 cells where the full score finds 101, on a
 // collapsed slab). A chosen margin, checked with
@@ -96,7 +97,8 @@ ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStra
       const std::vector<Eigen::Vector3d> targets = sample_targets(rng, s_lo, s_hi, ctx.options.sampled_poses);
       auto guard = read_guard(ctx.map);
       const ViewChecker checker(ctx.map, opt);
-      views = look_at_views(ctx.map, ctx.camera, targets, opt, checker, score_model(ctx.map, opt), targets.size()).scored;
+      views = look_at_views(ctx.map, ctx.camera, targets, opt, checker, score_model(ctx.map, opt), targets.size(),
+                            coarse_first ? std::size_t(std::max(opt.rescore_best, 0)) : 0).scored;
       scored += targets.size();
     } else {
       const std::vector<Pose> poses = sample_poses(rng, opt, s_lo, s_hi, ctx.options.sampled_poses,

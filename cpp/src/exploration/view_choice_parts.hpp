@@ -30,7 +30,8 @@ struct ChoiceContext {
 // map's search space, scored with score_views; the best valid by the strategy's gain (random: the first valid,
 // its utility the most expected void cells on offer). With `coarse_first` (frontier-void's views beyond the voids)
 // the poses go through rescored_views as the loop's aimed looks do (a coarse first score, IK in its order until
-// options.search.rescore_best are valid, those scored in full); the baselines score every pose in full.
+// at most 2 are valid, those scored in full; a camera that only aims: look_at_views' coarse ranking, the best 2
+// scored in full); the baselines score every pose in full.
 ViewChoice sampled_choice(const ChoiceContext& ctx, std::uint64_t seed, ViewStrategy strategy,
                           bool coarse_first = false);
 

@@ -24,7 +24,7 @@ from __future__ import annotations
 from .camera import look_at
 from .._core import ExploreOptions
 from .explorer import Explorer
-from .loop import FAILED_VIEW_RADIUS, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY, ExplorationResult, ViewRow, explore
+from .loop import BEYOND_VOIDS, FAILED_VIEW_RADIUS, STOP_PATIENCE, STOP_REASONS, STOP_UTILITY, ExplorationResult, ViewRow, explore
 from .metrics import coverage_after, observed_share, points_on, region_points, seen_expected_ratios, views_to_reach
 from .robot import arm_base_pose, arm_reach, base_ring, explorer_capability_map, explorer_robot
 from .scenes import closed_box_scene, cluttered_scene, paper_scene, scene_region
@@ -43,7 +43,7 @@ def __getattr__(name):
 
 
 __all__ = [
-    "FAILED_VIEW_RADIUS", "STOP_PATIENCE", "STOP_REASONS", "STOP_UTILITY", "STRATEGIES", "ExplorationResult",
+    "BEYOND_VOIDS", "FAILED_VIEW_RADIUS", "STOP_PATIENCE", "STOP_REASONS", "STOP_UTILITY", "STRATEGIES", "ExplorationResult",
     "ExploreOptions", "Explorer", "ViewRow",
     "arm_base_pose", "arm_reach", "base_ring", "closed_box_scene", "cluttered_scene", "coverage_after", "explore",
     "explorer_capability_map", "explorer_robot", "look_at", "main", "observed_share", "paper_scene",

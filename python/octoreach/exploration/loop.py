@@ -23,6 +23,7 @@ FAILED_VIEW_RADIUS = ExploreOptions().failed_view_radius  # m around the camera 
 # resolution), from the sensor and the cell size; ExploreOptions.paper_stop() is the paper's utility 0.
 STOP_UTILITY = ExploreOptions().min_utility
 STOP_PATIENCE = ExploreOptions().patience
+BEYOND_VOIDS = ExploreOptions().beyond_voids  # frontier-void also looks beyond the voids
 
 STOP_REASONS = ("utility 0", "utility below min_utility", "view budget", "nothing to explore", "no valid view")
 
