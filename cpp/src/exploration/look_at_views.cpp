@@ -116,12 +116,17 @@ LookAtViews look_at_views(const ExplorationMap& map, const CameraIntrinsics& cam
   parallel_for(valid.size(), threads, [&](std::size_t j, int) {
     score_view(map, cam, opt, model, views[valid[j]], coarse ? 2 : 1);
   }, 1);
-  if (coarse) {
-    std::stable_sort(valid.begin(), valid.end(), [&](std::size_t a, std::size_t b) {
-      return ranks_before(views[a], views[b], RankKey::Gain);
-    });
-    valid.resize(full_best);
-    std::sort(valid.begin(), valid.end());  // target order
+  if (coarse) {  // the best full_best in turn (a few: a scan each; ties keep the earlier target)
+    std::vector<char> taken(views.size(), 0);
+    for (std::size_t k = 0; k < full_best; ++k) {
+      std::size_t pick = views.size();
+      for (std::size_t i : valid)
+        if (!taken[i] && (pick == views.size() || ranks_before(views[i], views[pick], RankKey::Gain))) pick = i;
+      taken[pick] = 1;
+    }
+    valid.clear();
+    for (std::size_t i = 0; i < views.size(); ++i)  // target order
+      if (taken[i]) valid.push_back(i);
     parallel_for(valid.size(), threads, [&](std::size_t j, int) { score_view(map, cam, opt, model, views[valid[j]]); }, 1);
   }
   out.scored.gain = opt.gain;
