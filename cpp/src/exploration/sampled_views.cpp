@@ -16,11 +16,10 @@ namespace {
 
 // With coarse_first (the view beyond the voids, a single pick compared with one number, frontier-void's utility):
 // the poses scored in full after the coarse ranking (rescored_views; look_at_views for a camera that only aims).
-// Fewer finalists make its chunks smaller (16
-// per finalist), so most of the sampled poses get only its first pass (a sixteenth of the rays); two guard against
-// a misrank of the coarse score (one alone chose a view expecting 78 cells where the full score finds 101, on a
-// collapsed slab). A chosen margin, checked with
-// benchmarks/view_choice_times.py --beyond-voids 1 and the families' record with --beyond-voids 1.
+// Fewer finalists make rescored_views' chunks smaller (16 poses per finalist), so most sampled poses get only its
+// first pass (a sixteenth of the rays); two guard against a misrank of the coarse score (one alone chose a view
+// expecting 78 cells where the full score finds 101, on a collapsed slab). A chosen margin, checked with
+// benchmarks/view_choice_times.py and the families' record (exploration_families.py).
 constexpr int kBeyondFinalists = 2;
 
 // `n` camera poses: positions uniform in the workspace sphere and/or box above `floor` (neither: the search
