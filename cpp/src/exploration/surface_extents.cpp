@@ -141,6 +141,15 @@ bool surface_box(const ExplorationState& S, CellKey k, std::uint64_t v, double l
 
 }  // namespace
 
+void SurfaceExtents::update_grown(const ExplorationState& S) {
+  KeyTable<GrownBox> grown(boxes_.size());
+  boxes_.for_each([&](CellKey k, std::uint64_t v) {
+    GrownBox b;
+    if (surface_box(S, k, v, b.lo, b.hi)) grown.at(k) = b;
+  });
+  grown_ = std::move(grown);
+}
+
 bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
   const std::uint64_t* rec = S.surface.find(k);
   if (!rec) return true;
@@ -157,7 +166,8 @@ bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vecto
     h[a] = double(byte_at(*rec, a + 3)) * step + step;
   }
   if (meets(l, h)) return true;
-  return surface_box(S, k, *rec, l, h) && meets(l, h);
+  const GrownBox* g = S.surface.grown(k);
+  return g && meets(g->lo, g->hi);
 }
 
 }  // namespace octoreach::detail

@@ -25,17 +25,30 @@ namespace octoreach::detail {
 
 struct ExplorationState;
 
-// Per cell points hit, the box of those points and their count, packed in 64 bits (surface_extents.cpp).
+// A cell's surface box grown across the faces it goes on past (cell units from the cell's lower corner).
+struct GrownBox {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+};
+
+// Per cell points hit, the box of those points and their count, packed in 64 bits (surface_extents.cpp), and the
+// grown boxes of the cells whose surface goes on past a face (update_grown after each insert: a grown box depends
+// on the states and records of the cell's neighbours, which change only there; lines are tested far more often
+// than cells change, so each box is worked out once per insert, not once per line).
 class SurfaceExtents {
  public:
   // Records the hits of one cloud (points within max_range of origin; <= 0 or inf: every point).
   void record(const octomap::OcTree& tree, const std::vector<octomap::point3d>& cloud, const octomap::point3d& origin,
               double max_range);
+  // Works out the grown box of every recorded cell from S's cells (S.surface is this; the caller holds the write
+  // lock, after the insert's cell states are set).
+  void update_grown(const ExplorationState& S);
   const std::uint64_t* find(CellKey k) const { return boxes_.find(k); }
+  const GrownBox* grown(CellKey k) const { return grown_.find(k); }
   std::size_t size() const { return boxes_.size(); }
 
  private:
   KeyTable<std::uint64_t> boxes_;
+  KeyTable<GrownBox> grown_;
 };
 
 // True when the line o + t d (any t) meets the surface in occupied cell k (see above).
