@@ -110,11 +110,20 @@ template <class Visit>
 void walk_cells(double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir, double length, Visit&& visit) {
   GridRay r;
   if (!key_unit_ray(res, o, dir, length, r)) return;
+  // (the state in scalars, which stay in registers: GridRay's arithmetic and next_axis's tie-breaks, the same cells)
+  int kx = r.key[0], ky = r.key[1], kz = r.key[2];
+  double tx = r.t[0], ty = r.t[1], tz = r.t[2];
   for (;;) {
-    if (!visit(r.cell())) return;
-    const int dim = r.axis();
-    if (r.t[dim] > r.length) return;
-    if (!r.advance(dim)) return;
+    if (!visit(pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)))) return;
+    const bool a = tx < ty, on_x = a & (tx < tz), on_y = !a & (ty < tz), on_z = !(on_x | on_y);
+    if ((on_x ? tx : on_y ? ty : tz) > r.length) return;
+    kx += on_x ? r.step[0] : 0;
+    ky += on_y ? r.step[1] : 0;
+    kz += on_z ? r.step[2] : 0;
+    if ((unsigned(kx) | unsigned(ky) | unsigned(kz)) > 0xffffu) return;  // left the key range
+    tx += on_x ? r.d[0] : 0.0;  // (t + 0.0 is t: every t is >= 0 or inf)
+    ty += on_y ? r.d[1] : 0.0;
+    tz += on_z ? r.d[2] : 0.0;
   }
 }
 

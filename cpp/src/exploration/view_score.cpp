@@ -254,15 +254,21 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     const double known = p == 1.0 ? std::max(counted, rays.known[r] / res) : std::numeric_limits<double>::infinity();
     double entry = 0;      // the ray parameter at which it entered the current cell
     double behind = 1.0;   // past the clip: the chance that no unknown cell there stops the ray
-    const StateGrid::Block* block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+    // (the walk's state in scalars, which stay in registers: GridRay's arithmetic and tie-breaks, the same cells)
+    int kx = g.key[0], ky = g.key[1], kz = g.key[2];
+    const int sx = g.step[0], sy = g.step[1], sz = g.step[2];
+    double tx = g.t[0], ty = g.t[1], tz = g.t[2];
+    const double dx = g.d[0], dy = g.d[1], dz = g.d[2], length = g.length;
+    CellKey block_key = pack_key(std::uint32_t(kx >> 4), std::uint32_t(ky >> 4), std::uint32_t(kz >> 4));
+    const StateGrid::Block* block = cells.block(block_key);
     pending.clear();
     bool surface = false;  // the ray ends on an occupied cell
     for (;;) {
-      const std::uint8_t f = block ? (*block)[(g.key[0] & 15) | ((g.key[1] & 15) << 4) | ((g.key[2] & 15) << 8)] : 0;
+      const std::uint8_t f = block ? (*block)[(kx & 15) | ((ky & 15) << 4) | ((kz & 15) << 8)] : 0;
       const std::uint8_t s = f & kStateMask;
       if (s == std::uint8_t(CellState::Occupied)) {
         // (a ray past the part of the cell its surface fills goes on: surface_extents.hpp)
-        if (surface_meets_line(S, g.cell(), o, rays.dirs[r])) {
+        if (surface_meets_line(S, pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)), o, rays.dirs[r])) {
           surface = true;
           break;
         }
@@ -270,14 +276,14 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
         // nothing counted waits for the rest of the ray, or nothing further changes a weight by 1e-12
         if (pending.empty() || behind < 1e-12 || entry > known) break;
         if (s == std::uint8_t(CellState::Unknown))
-          behind *= pass(f, pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2])));
+          behind *= pass(f, pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)));
       } else if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
-        const bool inside = v || space.contains(g.key[0], g.key[1], g.key[2]);
+        const bool inside = v || space.contains(kx, ky, kz);
         const double wc = curve ? curve->weight(v, depth, w) : w;
         if (unknown_met || inside) {
           // (one outside the search space and the voids counts for nothing in a score, nor in the chance of a return)
-          pending.push_back({pack_key(std::uint32_t(g.key[0]), std::uint32_t(g.key[1]), std::uint32_t(g.key[2])), f,
+          pending.push_back({pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)), f,
                              wc, depth});
         }
         // Outside the search space the views so far are taken to have seen what there is: such a cell lets the ray
@@ -288,13 +294,21 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
           ++depth;
         }
       } else if (f & kFrontierFlag) {
-        met.touch(g.key[0], g.key[1], g.key[2], f, curve ? curve->weight(0, depth, w) : w, depth);
+        met.touch(kx, ky, kz, f, curve ? curve->weight(0, depth, w) : w, depth);
       }
-      const int dim = g.axis();
-      entry = g.t[dim];
-      if (g.t[dim] > g.length || !g.advance(dim)) break;
-      if ((g.key[dim] >> 4) != ((g.key[dim] - g.step[dim]) >> 4))
-        block = cells.block(pack_key(g.key[0] >> 4, g.key[1] >> 4, g.key[2] >> 4));
+      // next_axis's choice: x, else y, else z
+      const bool a = tx < ty, on_x = a & (tx < tz), on_y = !a & (ty < tz), on_z = !(on_x | on_y);
+      entry = on_x ? tx : on_y ? ty : tz;
+      if (entry > length) break;
+      kx += on_x ? sx : 0;
+      ky += on_y ? sy : 0;
+      kz += on_z ? sz : 0;
+      if ((unsigned(kx) | unsigned(ky) | unsigned(kz)) > 0xffffu) break;  // left the key range
+      tx += on_x ? dx : 0.0;  // (t + 0.0 is t: every t is >= 0 or inf)
+      ty += on_y ? dy : 0.0;
+      tz += on_z ? dz : 0.0;
+      const CellKey bk = pack_key(std::uint32_t(kx >> 4), std::uint32_t(ky >> 4), std::uint32_t(kz >> 4));
+      if (bk != block_key) block = cells.block(block_key = bk);
     }
     double through = behind;  // the chance that no unknown cell from here on stops the ray
     for (auto c = pending.rbegin(); c != pending.rend(); ++c) {
