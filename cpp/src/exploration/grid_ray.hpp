@@ -1,13 +1,13 @@
 #pragma once
 // Internal: walking the cells of a ray through the key grid (Amanatides & Woo).
 //
-// One ray (GridRay) steps along the axis whose next cell border is nearest (next_axis, the
-// tie-breaks of OctoMap's computeRayKeys). It has two set-ups, on purpose:
+// A ray steps along the axis whose next cell border is nearest (next_axis, the tie-breaks of
+// OctoMap's computeRayKeys). Its set-up (GridRay) comes in two kinds, on purpose:
 // - octomap_ray reproduces computeRayKeys exactly (metric t, float direction, OctoMap's border
 //   arithmetic), so that insertion (RayWalk, the batched SSE form of the same walk) yields the
 //   very cells stock insertPointCloud updates;
-// - key_unit_ray works in key units from a double-precision origin and direction (walk_cells: view
-//   scoring and utility rays, which have no OctoMap counterpart).
+// - key_unit_ray works in key units from a double-precision origin and direction (ScalarRay's walk:
+//   walk_cells, view scoring and utility rays, which have no OctoMap counterpart).
 // Changing either set-up would change which cells a ray meets and so the maps or the views.
 #include <cmath>
 #include <cstdint>
@@ -31,22 +31,45 @@ inline int next_axis(const double t[3]) {
   return 2 - 2 * int(a & b) - int(!a & c);
 }
 
-// One ray through the key grid: the current cell, the step along each axis, the ray parameter t at
-// which it crosses the next cell border on each axis and the increment of t per cell.
+// The set-up of one ray through the key grid: the first cell, the step along each axis, the ray parameter t
+// at which it crosses the next cell border on each axis and the increment of t per cell.
 struct GridRay {
   int key[3] = {0, 0, 0}, step[3] = {0, 0, 0};
   double t[3], d[3];
   double length = 0;  // in the units of t
+};
 
-  int axis() const { return next_axis(t); }
-  // Steps to the next cell along `dim`; false when that leaves the key range.
-  bool advance(int dim) {
-    key[dim] += step[dim];
-    if (key[dim] < 0 || key[dim] > 0xffff) return false;
-    t[dim] += d[dim];
+// The walk of a GridRay, its state in scalars, which a compiler keeps in registers (arrays indexed by the axis
+// of each step stay in memory): t[axis] += d[axis] along next_axis's choice, so the cells computeRayKeys' walk
+// meets.
+struct ScalarRay {
+  int kx, ky, kz;
+  const int sx, sy, sz;
+  double tx, ty, tz;
+  const double dx, dy, dz, length;
+  explicit ScalarRay(const GridRay& g)
+      : kx(g.key[0]), ky(g.key[1]), kz(g.key[2]), sx(g.step[0]), sy(g.step[1]), sz(g.step[2]), tx(g.t[0]),
+        ty(g.t[1]), tz(g.t[2]), dx(g.d[0]), dy(g.d[1]), dz(g.d[2]), length(g.length) {}
+  // Steps to the next cell; `exit` is where the ray left the current one. False when that lies past the length
+  // or the step leaves the key range (the state is then spent).
+  bool step(double& exit) {
+    const bool a = tx < ty, on_x = a & (tx < tz), on_y = !a & (ty < tz), on_z = !(on_x | on_y);
+    exit = on_x ? tx : on_y ? ty : tz;
+    if (exit > length) return false;
+    kx += on_x ? sx : 0;
+    ky += on_y ? sy : 0;
+    kz += on_z ? sz : 0;
+    if ((unsigned(kx) | unsigned(ky) | unsigned(kz)) > 0xffffu) return false;
+    tx += on_x ? dx : 0.0;  // (t + 0.0 is t: every t is >= 0 or inf)
+    ty += on_y ? dy : 0.0;
+    tz += on_z ? dz : 0.0;
     return true;
   }
-  CellKey cell() const { return pack_key(key[0], key[1], key[2]); }
+  CellKey cell() const { return pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)); }
+  // The key of the cell cache's 16^3 block holding the current cell.
+  CellKey block() const { return pack_key(std::uint32_t(kx >> 4), std::uint32_t(ky >> 4), std::uint32_t(kz >> 4)); }
+  // The current cell's index in its block.
+  int offset() const { return (kx & 15) | ((ky & 15) << 4) | ((kz & 15) << 8); }
 };
 
 // computeRayKeys' set-up for the ray from `origin` (in the cell key_origin) to `end`: t in metres
@@ -108,23 +131,13 @@ inline bool key_unit_ray(double res, const Eigen::Vector3d& o, const Eigen::Vect
 // returns false to stop (view scoring and utility rays).
 template <class Visit>
 void walk_cells(double res, const Eigen::Vector3d& o, const Eigen::Vector3d& dir, double length, Visit&& visit) {
-  GridRay r;
-  if (!key_unit_ray(res, o, dir, length, r)) return;
-  // (the state in scalars, which stay in registers: GridRay's arithmetic and next_axis's tie-breaks, the same cells)
-  int kx = r.key[0], ky = r.key[1], kz = r.key[2];
-  double tx = r.t[0], ty = r.t[1], tz = r.t[2];
-  for (;;) {
-    if (!visit(pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)))) return;
-    const bool a = tx < ty, on_x = a & (tx < tz), on_y = !a & (ty < tz), on_z = !(on_x | on_y);
-    if ((on_x ? tx : on_y ? ty : tz) > r.length) return;
-    kx += on_x ? r.step[0] : 0;
-    ky += on_y ? r.step[1] : 0;
-    kz += on_z ? r.step[2] : 0;
-    if ((unsigned(kx) | unsigned(ky) | unsigned(kz)) > 0xffffu) return;  // left the key range
-    tx += on_x ? r.d[0] : 0.0;  // (t + 0.0 is t: every t is >= 0 or inf)
-    ty += on_y ? r.d[1] : 0.0;
-    tz += on_z ? r.d[2] : 0.0;
-  }
+  GridRay g;
+  if (!key_unit_ray(res, o, dir, length, g)) return;
+  ScalarRay r(g);
+  double exit;
+  do {
+    if (!visit(r.cell())) return;
+  } while (r.step(exit));
 }
 
 // The cells OcTreeBaseImpl::computeRayKeys(origin, end) returns, written straight into a bitmap

@@ -247,28 +247,24 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
     // walk_cells' walk, reading the cell cache block by block (a new block only where the ray crosses into one).
     // Cells count up to the clip (`counted`, in key units); past it the walk goes on, while a counted cell waits
     // for it, only to learn whether the ray returns: a whole ray's chance, so clipped and whole rays agree.
-    GridRay g;
-    if (!key_unit_ray(res, o, rays.dirs[r], rays.reach[r], g)) continue;
+    GridRay ray;
+    if (!key_unit_ray(res, o, rays.dirs[r], rays.reach[r], ray)) continue;
     const double counted = rays.lengths[r] / res;
     // past the known box nothing but the search space's unknown cells is left, and with p 1 they stop nothing
     const double known = p == 1.0 ? std::max(counted, rays.known[r] / res) : std::numeric_limits<double>::infinity();
     double entry = 0;      // the ray parameter at which it entered the current cell
     double behind = 1.0;   // past the clip: the chance that no unknown cell there stops the ray
-    // (the walk's state in scalars, which stay in registers: GridRay's arithmetic and tie-breaks, the same cells)
-    int kx = g.key[0], ky = g.key[1], kz = g.key[2];
-    const int sx = g.step[0], sy = g.step[1], sz = g.step[2];
-    double tx = g.t[0], ty = g.t[1], tz = g.t[2];
-    const double dx = g.d[0], dy = g.d[1], dz = g.d[2], length = g.length;
-    CellKey block_key = pack_key(std::uint32_t(kx >> 4), std::uint32_t(ky >> 4), std::uint32_t(kz >> 4));
+    ScalarRay g(ray);
+    CellKey block_key = g.block();
     const StateGrid::Block* block = cells.block(block_key);
     pending.clear();
     bool surface = false;  // the ray ends on an occupied cell
     for (;;) {
-      const std::uint8_t f = block ? (*block)[(kx & 15) | ((ky & 15) << 4) | ((kz & 15) << 8)] : 0;
+      const std::uint8_t f = block ? (*block)[g.offset()] : 0;
       const std::uint8_t s = f & kStateMask;
       if (s == std::uint8_t(CellState::Occupied)) {
         // (a ray past the part of the cell its surface fills goes on: surface_extents.hpp)
-        if (surface_meets_line(S, pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)), o, rays.dirs[r])) {
+        if (surface_meets_line(S, g.cell(), o, rays.dirs[r])) {
           surface = true;
           break;
         }
@@ -276,15 +272,14 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
         // nothing counted waits for the rest of the ray, or nothing further changes a weight by 1e-12
         if (pending.empty() || behind < 1e-12 || entry > known) break;
         if (s == std::uint8_t(CellState::Unknown))
-          behind *= pass(f, pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)));
+          behind *= pass(f, g.cell());
       } else if (s == std::uint8_t(CellState::Unknown)) {
         const bool v = f & kVoidFlag;
-        const bool inside = v || space.contains(kx, ky, kz);
+        const bool inside = v || space.contains(g.kx, g.ky, g.kz);
         const double wc = curve ? curve->weight(v, depth, w) : w;
         if (unknown_met || inside) {
           // (one outside the search space and the voids counts for nothing in a score, nor in the chance of a return)
-          pending.push_back({pack_key(std::uint32_t(kx), std::uint32_t(ky), std::uint32_t(kz)), f,
-                             wc, depth});
+          pending.push_back({g.cell(), f, wc, depth});
         }
         // Outside the search space the views so far are taken to have seen what there is: such a cell lets the ray
         // through (else a view over space no capture has reached, as after a first capture that returned nothing,
@@ -294,20 +289,10 @@ ViewGains count_view(const ExplorationState& S, const CameraIntrinsics& cam, con
           ++depth;
         }
       } else if (f & kFrontierFlag) {
-        met.touch(kx, ky, kz, f, curve ? curve->weight(0, depth, w) : w, depth);
+        met.touch(g.kx, g.ky, g.kz, f, curve ? curve->weight(0, depth, w) : w, depth);
       }
-      // next_axis's choice: x, else y, else z
-      const bool a = tx < ty, on_x = a & (tx < tz), on_y = !a & (ty < tz), on_z = !(on_x | on_y);
-      entry = on_x ? tx : on_y ? ty : tz;
-      if (entry > length) break;
-      kx += on_x ? sx : 0;
-      ky += on_y ? sy : 0;
-      kz += on_z ? sz : 0;
-      if ((unsigned(kx) | unsigned(ky) | unsigned(kz)) > 0xffffu) break;  // left the key range
-      tx += on_x ? dx : 0.0;  // (t + 0.0 is t: every t is >= 0 or inf)
-      ty += on_y ? dy : 0.0;
-      tz += on_z ? dz : 0.0;
-      const CellKey bk = pack_key(std::uint32_t(kx >> 4), std::uint32_t(ky >> 4), std::uint32_t(kz >> 4));
+      if (!g.step(entry)) break;
+      const CellKey bk = g.block();
       if (bk != block_key) block = cells.block(block_key = bk);
     }
     double through = behind;  // the chance that no unknown cell from here on stops the ray
