@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "exploration/cell_sets.hpp"
+#include "common/random_mix.hpp"
 #include "common/thread_pool.hpp"
 #include "exploration/exploration_state.hpp"
 #include "exploration/grid_ray.hpp"
@@ -257,7 +258,7 @@ class PoseScorer {
 Eigen::Vector3d PoseScorer::sample_axis(std::size_t idx, Eigen::Vector3d forward, double& roll) const {
   roll = 0;
   if (idx % per_cell_ == 0) return forward;
-  std::mt19937_64 rng(opt_.seed * 0x9E3779B97F4A7C15ULL + idx);
+  detail::Mt64Prefix rng(opt_.seed * 0x9E3779B97F4A7C15ULL + idx);  // (std::mt19937_64's numbers)
   std::uniform_real_distribution<double> U(0.0, 1.0);
   double th = opt_.orientation_spread * std::sqrt(U(rng)), ph = 2 * kPi * U(rng);
   Eigen::Vector3d a = forward.unitOrthogonal(), bvec = forward.cross(a);
