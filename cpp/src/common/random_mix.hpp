@@ -2,7 +2,8 @@
 // Internal: the one stream splitter of octoreach (SplitMix64 finaliser). Item i of a batch gets the
 // random stream mix64(seed, i), so results depend on the seed and the item, never on the thread count.
 #include <cstdint>
-#include <stdexcept>
+#include <optional>
+#include <random>
 
 namespace octoreach::detail {
 
@@ -21,17 +22,17 @@ inline std::uint64_t mix_bits(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-/// \brief The first kDraws numbers of std::mt19937_64 seeded with `seed`, the same numbers, without the engine's
-/// 312-word state: seeding it and making its first number walks all 312 words twice, where the first few numbers
-/// need only the seed's words up to 155 + kDraws and the twist of the first kDraws. For a stream per item (a
-/// sampled pose's few draws) that is most of the item's cost. A UniformRandomBitGenerator.
+/// \brief std::mt19937_64 seeded with `seed`, its first kDraws numbers made without the engine's 312-word state:
+/// seeding it and making its first number walks all 312 words twice, where the first few numbers need only the
+/// seed's words up to 155 + kDraws and the twist of the first kDraws. For a stream per item (a sampled pose's few
+/// draws) that is most of the item's cost. Past kDraws it runs the engine itself. A UniformRandomBitGenerator.
 class Mt64Prefix {
  public:
   static constexpr int kDraws = 8;
   using result_type = std::uint64_t;
   static constexpr result_type min() { return 0; }
   static constexpr result_type max() { return ~result_type(0); }
-  explicit Mt64Prefix(std::uint64_t seed) {
+  explicit Mt64Prefix(std::uint64_t seed) : seed_(seed) {
     std::uint64_t x = seed;  // the seeding recurrence of std::mt19937_64, word i
     lo_[0] = x;
     for (int i = 1; i < kShift + kDraws; ++i) {
@@ -41,7 +42,10 @@ class Mt64Prefix {
     }
   }
   result_type operator()() {
-    if (n_ >= kDraws) throw std::logic_error("Mt64Prefix: more draws than kDraws");
+    if (n_ >= kDraws) {
+      if (n_++ == kDraws) rest_.emplace(seed_).discard(kDraws);
+      return (*rest_)();
+    }
     // the twist of word n (its upper bit, the next word's lower 31, the word 156 on), then the tempering
     const std::uint64_t y = (lo_[n_] & 0xFFFFFFFF80000000ULL) | (lo_[n_ + 1] & 0x7FFFFFFFULL);
     std::uint64_t z = hi_[n_] ^ (y >> 1) ^ ((y & 1) ? 0xB5026F5AA96619E9ULL : 0);
@@ -54,8 +58,9 @@ class Mt64Prefix {
 
  private:
   static constexpr int kShift = 156;  // the twist's middle word
-  std::uint64_t lo_[kDraws + 1], hi_[kDraws];
+  std::uint64_t seed_, lo_[kDraws + 1], hi_[kDraws];
   int n_ = 0;
+  std::optional<std::mt19937_64> rest_;  // past kDraws: the engine itself (seeded then)
 };
 
 }  // namespace octoreach::detail

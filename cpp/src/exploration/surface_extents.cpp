@@ -85,9 +85,27 @@ void SurfaceExtents::record(const octomap::OcTree& tree, const std::vector<octom
 
 namespace {
 
-// The box of the surface in cell k (cell units: lo l, hi h) grown across the faces it goes on past (the header);
-// false when it is not grown across any face.
-bool surface_box(const ExplorationState& S, CellKey k, std::uint64_t v, double l[3], double h[3]) {
+// A grown box packed: per side (lo x y z, hi x y z) 2 bits, 0 where it is the hits' box's side, 1 the cell's face
+// (lo 0, hi 1), 2 the far face of the cell beyond (lo -1, hi 2), the only places surface_box moves a side to.
+std::uint64_t pack_grown(const double l0[3], const double h0[3], const double l[3], const double h[3]) {
+  const auto code = [](double v, double own, double face) { return std::uint64_t(v == own ? 0 : v == face ? 1 : 2); };
+  std::uint64_t c = 0;
+  for (int a = 0; a < 3; ++a) c |= code(l[a], l0[a], 0.0) << (2 * a) | code(h[a], h0[a], 1.0) << (2 * a + 6);
+  return c;
+}
+
+void unpack_grown(std::uint64_t c, double l[3], double h[3]) {
+  for (int a = 0; a < 3; ++a) {
+    const std::uint64_t cl = (c >> (2 * a)) & 3, ch = (c >> (2 * a + 6)) & 3;
+    if (cl) l[a] = cl == 1 ? 0.0 : -1.0;
+    if (ch) h[a] = ch == 1 ? 1.0 : 2.0;
+  }
+}
+
+// The box of the surface in cell k (record v) grown across the faces it goes on past (the header), packed in
+// `grown_box`; false when it is not grown across any face.
+bool surface_box(const ExplorationState& S, CellKey k, std::uint64_t v, std::uint64_t& grown_box) {
+  double l[3], h[3];
   const double step = 1.0 / kSteps;
   for (int a = 0; a < 3; ++a) {  // the hits' box, one quantisation step wider on each side
     l[a] = double(byte_at(v, a)) * step - step;
@@ -136,16 +154,17 @@ bool surface_box(const ExplorationState& S, CellKey k, std::uint64_t v, double l
       if (side < 0) l[a] = std::min(l[a], -to);
       else h[a] = std::max(h[a], 1.0 + to);
     }
+  grown_box = pack_grown(l0, h0, l, h);
   return grown;
 }
 
 }  // namespace
 
 void SurfaceExtents::update_grown(const ExplorationState& S) {
-  KeyTable<GrownBox> grown(boxes_.size());
+  KeyTable<std::uint64_t> grown(boxes_.size());
   boxes_.for_each([&](CellKey k, std::uint64_t v) {
-    GrownBox b;
-    if (surface_box(S, k, v, b.lo, b.hi)) grown.at(k) = b;
+    std::uint64_t box;
+    if (surface_box(S, k, v, box)) grown.at(k) = box;
   });
   grown_ = std::move(grown);
 }
@@ -166,8 +185,10 @@ bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vecto
     h[a] = double(byte_at(*rec, a + 3)) * step + step;
   }
   if (meets(l, h)) return true;
-  const GrownBox* g = S.surface.grown(k);
-  return g && meets(g->lo, g->hi);
+  const std::uint64_t* g = S.surface.grown(k);
+  if (!g) return false;
+  unpack_grown(*g, l, h);
+  return meets(l, h);
 }
 
 }  // namespace octoreach::detail

@@ -25,11 +25,6 @@ namespace octoreach::detail {
 
 struct ExplorationState;
 
-// A cell's surface box grown across the faces it goes on past (cell units from the cell's lower corner).
-struct GrownBox {
-  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
-};
-
 // Per cell points hit, the box of those points and their count, packed in 64 bits (surface_extents.cpp), and the
 // grown boxes of the cells whose surface goes on past a face (update_grown after each insert: a grown box depends
 // on the states and records of the cell's neighbours, which change only there; lines are tested far more often
@@ -43,12 +38,13 @@ class SurfaceExtents {
   // lock, after the insert's cell states are set).
   void update_grown(const ExplorationState& S);
   const std::uint64_t* find(CellKey k) const { return boxes_.find(k); }
-  const GrownBox* grown(CellKey k) const { return grown_.find(k); }
+  // The grown box of cell k, packed (surface_extents.cpp); null when its surface goes on past no face.
+  const std::uint64_t* grown(CellKey k) const { return grown_.find(k); }
   std::size_t size() const { return boxes_.size(); }
 
  private:
   KeyTable<std::uint64_t> boxes_;
-  KeyTable<GrownBox> grown_;
+  KeyTable<std::uint64_t> grown_;
 };
 
 // True when the line o + t d (any t) meets the surface in occupied cell k (see above).

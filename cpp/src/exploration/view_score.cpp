@@ -356,12 +356,14 @@ ViewGains view_gains_unlocked(const ExplorationMap& map, const CameraIntrinsics&
   if (unknown_met)
     return count_view<MetCells<std::uint32_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
                                                MapCells{S, void_weights}, weighted, unknown_met, space);
-  if (score_cells && (!weighted || score_cells->enclosure() == void_weights->table().get()))
-    return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
-                                               FlatCells{ScoreCells::Reader(*score_cells), void_weights}, weighted,
-                                               nullptr, space);
+  std::shared_ptr<const ScoreCells> own;  // without the search's cells for these weights: the map's, made once
+  if (!score_cells || (weighted && score_cells->enclosure() != void_weights->table().get())) {
+    own = detail::score_cells(S, weighted ? void_weights->table() : nullptr);
+    score_cells = own.get();
+  }
   return count_view<MetCells<std::uint16_t>>(S, cam, o, res, sw, sh, rays, p, p_void, curve,
-                                             MapCells{S, void_weights}, weighted, nullptr, space);
+                                             FlatCells{ScoreCells::Reader(*score_cells), void_weights}, weighted,
+                                             nullptr, space);
 }
 
 std::pair<double, double> pass_probabilities(const ExplorationMap& map, const NbvOptions& opt) {
