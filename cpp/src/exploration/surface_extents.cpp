@@ -22,6 +22,15 @@ constexpr double kSteps = 255.0;
 
 std::uint64_t byte_at(std::uint64_t v, int i) { return (v >> (8 * i)) & 0xff; }
 
+// The box of record v's hits in cell units, one quantisation step wider on each side.
+void hits_box(std::uint64_t v, double l[3], double h[3]) {
+  const double step = 1.0 / kSteps;
+  for (int a = 0; a < 3; ++a) {
+    l[a] = double(byte_at(v, a)) * step - step;
+    h[a] = double(byte_at(v, a + 3)) * step + step;
+  }
+}
+
 // The line o + t d against the box [lo, hi] (slabs; a zero component of d meets a slab only from inside it).
 bool line_meets_box(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo,
                     const Eigen::Vector3d& hi) {
@@ -106,11 +115,8 @@ void unpack_grown(std::uint64_t c, double l[3], double h[3]) {
 // `grown_box`; false when it is not grown across any face.
 bool surface_box(const ExplorationState& S, CellKey k, std::uint64_t v, std::uint64_t& grown_box) {
   double l[3], h[3];
+  hits_box(v, l, h);
   const double step = 1.0 / kSteps;
-  for (int a = 0; a < 3; ++a) {  // the hits' box, one quantisation step wider on each side
-    l[a] = double(byte_at(v, a)) * step - step;
-    h[a] = double(byte_at(v, a + 3)) * step + step;
-  }
   // The hits sample the surface about sqrt(area / hits) apart (cell units; the area spans the box's two largest
   // extents): a face of the cell the box comes that close to, the surface reaches.
   double e[3] = {h[0] - l[0], h[1] - l[1], h[2] - l[2]};
@@ -172,7 +178,7 @@ void SurfaceExtents::update_grown(const ExplorationState& S) {
 bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {
   const std::uint64_t* rec = S.surface.find(k);
   if (!rec) return true;
-  const double res = S.tree.getResolution(), step = 1.0 / kSteps;
+  const double res = S.tree.getResolution();
   const Eigen::Vector3d corner = S.center(k) - Eigen::Vector3d::Constant(0.5 * res);
   const auto meets = [&](const double l[3], const double h[3]) {
     Eigen::Vector3d lo, hi;
@@ -180,10 +186,7 @@ bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vecto
     return line_meets_box(o, d, lo, hi);
   };
   double l[3], h[3];
-  for (int a = 0; a < 3; ++a) {  // the hits' box alone first: most lines that meet the surface meet it
-    l[a] = double(byte_at(*rec, a)) * step - step;
-    h[a] = double(byte_at(*rec, a + 3)) * step + step;
-  }
+  hits_box(*rec, l, h);  // the hits' box alone first: most lines that meet the surface meet it
   if (meets(l, h)) return true;
   const std::uint64_t* g = S.surface.grown(k);
   if (!g) return false;
