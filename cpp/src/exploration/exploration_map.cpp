@@ -206,7 +206,7 @@ InsertStats ExplorationMap::insert(const std::vector<Eigen::Vector3d>& points, c
     cell = std::uint8_t((cell & ~kStateMask) | std::uint8_t(c.after));
   }
   st.changed_cells = changed_.size();
-  S.surface.update_grown(S);
+  S.surface.update_grown(S, changed_);
   detail::learn_from_missed(*this, S, /*returned=*/true);  // the announced view's expected cells that are still unknown
   st.seconds_tree = seconds_since(t0);
 

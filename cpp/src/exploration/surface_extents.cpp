@@ -73,6 +73,7 @@ void SurfaceExtents::record(const octomap::OcTree& tree, const std::vector<octom
     if (k != last || !box) {
       box = &boxes_.at(k);  // (only a new key rehashes: the pointer is taken again for every new cell)
       last = k;
+      recorded_.push_back(k);
     }
     std::uint64_t v = *box;
     if (!(v & kRecorded)) {
@@ -166,13 +167,61 @@ bool surface_box(const ExplorationState& S, CellKey k, std::uint64_t v, std::uin
 
 }  // namespace
 
-void SurfaceExtents::update_grown(const ExplorationState& S) {
-  KeyTable<std::uint64_t> grown(boxes_.size());
+namespace {
+
+// The face neighbours of k inside the key range that `table` holds, appended to `out`.
+void push_neighbours(CellKey k, const KeyTable<std::uint64_t>& table, std::vector<CellKey>& out) {
+  const std::uint32_t c[3] = {key_x(k), key_y(k), key_z(k)};
+  for (int a = 0; a < 3; ++a)
+    for (int side : {-1, 1}) {
+      std::uint32_t n[3] = {c[0], c[1], c[2]};
+      if ((side < 0 && n[a] == 0) || (side > 0 && n[a] == 0xffff)) continue;
+      n[a] = std::uint32_t(int(n[a]) + side);
+      const CellKey nk = pack_key(n[0], n[1], n[2]);
+      if (table.find(nk)) out.push_back(nk);
+    }
+}
+
+}  // namespace
+
+void SurfaceExtents::update_grown(const ExplorationState& S, const std::vector<CellChange>& changed) {
+  if (recorded_.size() + changed.size() >= boxes_.size()) {  // (a first insert) every box, at less cost
+    KeyTable<std::uint64_t> grown(boxes_.size());
+    boxes_.for_each([&](CellKey k, std::uint64_t v) {
+      std::uint64_t box;
+      if (surface_box(S, k, v, box)) grown.at(k) = box;
+    });
+    grown_ = std::move(grown);
+    recorded_.clear();
+    return;
+  }
+  std::vector<CellKey> dirty;
+  for (CellKey k : recorded_) {  // its own box, and a new record beside a recorded cell
+    dirty.push_back(k);
+    push_neighbours(k, boxes_, dirty);
+  }
+  for (const CellChange& c : changed)  // a face neighbour that turned free or stopped being free
+    if ((c.before == CellState::Free) != (c.after == CellState::Free)) push_neighbours(c.key, boxes_, dirty);
+  recorded_.clear();
+  std::sort(dirty.begin(), dirty.end());
+  dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
+  for (CellKey k : dirty) {
+    const std::uint64_t* rec = boxes_.find(k);
+    std::uint64_t box;
+    if (surface_box(S, k, *rec, box)) grown_.at(k) = box;
+    else if (grown_.find(k)) grown_.at(k) = kNotGrown;
+  }
+}
+
+bool SurfaceExtents::grown_current(const ExplorationState& S) const {
+  bool same = true;
   boxes_.for_each([&](CellKey k, std::uint64_t v) {
     std::uint64_t box;
-    if (surface_box(S, k, v, box)) grown.at(k) = box;
+    const bool g = surface_box(S, k, v, box);
+    const std::uint64_t* have = grown(k);
+    same = same && (g ? have && *have == box : !have);
   });
-  grown_ = std::move(grown);
+  return same;
 }
 
 bool surface_meets_line(const ExplorationState& S, CellKey k, const Eigen::Vector3d& o, const Eigen::Vector3d& d) {

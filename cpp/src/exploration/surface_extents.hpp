@@ -20,31 +20,43 @@
 #include <octomap/OcTree.h>
 
 #include "exploration/cell_sets.hpp"
+#include "octoreach/exploration.hpp"
 
 namespace octoreach::detail {
 
 struct ExplorationState;
 
 // Per cell points hit, the box of those points and their count, packed in 64 bits (surface_extents.cpp), and the
-// grown boxes of the cells whose surface goes on past a face (update_grown after each insert: a grown box depends
-// on the states and records of the cell's neighbours, which change only there; lines are tested far more often
-// than cells change, so each box is worked out once per insert, not once per line).
+// grown boxes of the cells whose surface goes on past a face (update_grown after each insert: lines are tested far
+// more often than cells change, so each box is worked out once per insert, not once per line). A grown box depends
+// on the cell's record and on its 6 face neighbours' states (free or not) and records, so an insert changes only the
+// boxes of the cells it recorded and of the face neighbours of those and of the cells whose free state it changed.
 class SurfaceExtents {
  public:
   // Records the hits of one cloud (points within max_range of origin; <= 0 or inf: every point).
   void record(const octomap::OcTree& tree, const std::vector<octomap::point3d>& cloud, const octomap::point3d& origin,
               double max_range);
-  // Works out the grown box of every recorded cell from S's cells (S.surface is this; the caller holds the write
-  // lock, after the insert's cell states are set).
-  void update_grown(const ExplorationState& S);
+  // Works out again the grown boxes the cells recorded since the last call and the cell changes `changed` can have
+  // changed, from S's cells (S.surface is this; the caller holds the write lock, after the insert's cell states
+  // are set).
+  void update_grown(const ExplorationState& S, const std::vector<CellChange>& changed);
+  // True when every recorded cell's grown box is the one its record and S's cells give now (a check for tests).
+  bool grown_current(const ExplorationState& S) const;
   const std::uint64_t* find(CellKey k) const { return boxes_.find(k); }
   // The grown box of cell k, packed (surface_extents.cpp); null when its surface goes on past no face.
-  const std::uint64_t* grown(CellKey k) const { return grown_.find(k); }
+  const std::uint64_t* grown(CellKey k) const {
+    const std::uint64_t* g = grown_.find(k);
+    return g && *g != kNotGrown ? g : nullptr;
+  }
   std::size_t size() const { return boxes_.size(); }
 
  private:
+  // A grown_ entry of a cell whose box grew once and no longer does (KeyTable has no erase; no packed box is all
+  // ones).
+  static constexpr std::uint64_t kNotGrown = ~std::uint64_t(0);
   KeyTable<std::uint64_t> boxes_;
   KeyTable<std::uint64_t> grown_;
+  std::vector<CellKey> recorded_;  // cells recorded since the last update_grown (repeats allowed)
 };
 
 // True when the line o + t d (any t) meets the surface in occupied cell k (see above).
