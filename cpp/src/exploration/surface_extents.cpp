@@ -171,15 +171,10 @@ namespace {
 
 // The face neighbours of k inside the key range that `table` holds, appended to `out`.
 void push_neighbours(CellKey k, const KeyTable<std::uint64_t>& table, std::vector<CellKey>& out) {
-  const std::uint32_t c[3] = {key_x(k), key_y(k), key_z(k)};
-  for (int a = 0; a < 3; ++a)
-    for (int side : {-1, 1}) {
-      std::uint32_t n[3] = {c[0], c[1], c[2]};
-      if ((side < 0 && n[a] == 0) || (side > 0 && n[a] == 0xffff)) continue;
-      n[a] = std::uint32_t(int(n[a]) + side);
-      const CellKey nk = pack_key(n[0], n[1], n[2]);
-      if (table.find(nk)) out.push_back(nk);
-    }
+  for (const auto& d : kN6) {
+    CellKey nk;
+    if (neighbour(k, d[0], d[1], d[2], nk) && table.find(nk)) out.push_back(nk);
+  }
 }
 
 }  // namespace
