@@ -60,7 +60,6 @@ import os
 import platform
 import resource
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -70,6 +69,8 @@ import numpy as np
 
 import octoreach
 from octoreach import arms, plots, robots
+
+from child_runs import ChildFailed, run_child, this_build  # the sibling module: a build run in a child process
 
 APPROACH = (1.0, 0.0, 0.0)
 IK_TRUTH = dict(mode="approach", approach_axis=APPROACH, self_collision=True, attempts=20,
@@ -246,27 +247,13 @@ def child_lookups(map_path, lookups, seed) -> dict:
     return out
 
 
-class ChildFailed(RuntimeError):
-    """A child process of a comparison failed (its stderr's end is the message)."""
-
-
 def compare_children(reference_path, child_args, repeats) -> dict:
     """Runs this script with `child_args` under this octoreach and the one on `reference_path`, interleaved.
     Raises ChildFailed with the child's error when one fails (e.g. a reference build too old for the call)."""
-    def run(pythonpath):
-        env = dict(os.environ)
-        env["PYTHONPATH"] = pythonpath
-        cmd = [sys.executable, os.path.abspath(__file__), *child_args]
-        done = subprocess.run(cmd, env=env, capture_output=True, text=True)
-        if done.returncode != 0:
-            raise ChildFailed(f"{child_args[0]} under PYTHONPATH={pythonpath} failed: {done.stderr[-2000:]}")
-        return json.loads(done.stdout)
-
-    this_path = os.path.dirname(os.path.dirname(os.path.abspath(octoreach.__file__)))
     runs = {"reference": [], "this": []}
     for _ in range(repeats):
-        runs["reference"].append(run(reference_path))
-        runs["this"].append(run(this_path))
+        runs["reference"].append(run_child(__file__, child_args, reference_path))
+        runs["this"].append(run_child(__file__, child_args, this_build()))
     return runs
 
 

@@ -17,8 +17,6 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
-import sys
 
 import numpy as np
 
@@ -26,6 +24,8 @@ import octoreach
 from octoreach import DepthCamera
 from octoreach import exploration as ex
 from octoreach.exploration.camera import look_at
+
+from child_runs import run_child  # the sibling module: one way to run a build in a child process
 
 
 def _one_run(views: int) -> dict:
@@ -37,21 +37,6 @@ def _one_run(views: int) -> dict:
     t = [x.integration_s for x in r.rows]
     return {"views": len(t), "total_s": sum(t), "later_half_s": sum(t[len(t) // 2:]), "median_s": statistics.median(t),
             "octoreach": os.path.dirname(octoreach.__file__)}
-
-
-def _child(views: int, path: str = "") -> dict:
-    """_one_run in a child process (with PYTHONPATH=path when given)."""
-    env = dict(os.environ)
-    if path:
-        env["PYTHONPATH"] = os.pathsep.join(p for p in (os.path.abspath(path), env.get("PYTHONPATH", "")) if p)
-    got = subprocess.run([sys.executable, os.path.abspath(__file__), "--views", str(views), "--one"], env=env,
-                         capture_output=True, text=True, check=False)
-    if got.returncode != 0:
-        raise RuntimeError(f"a run failed:\n{got.stderr[-2000:]}")
-    out = json.loads(got.stdout)
-    if path and not out["octoreach"].startswith(os.path.abspath(path) + os.sep):
-        raise RuntimeError(f"the reference run imported octoreach from {out['octoreach']}, not from {path}")
-    return out
 
 
 def _summary(runs: list) -> dict:
@@ -74,8 +59,8 @@ def main(argv=None) -> int:
     this, ref = [], []
     for _ in range(a.repeats):
         if a.reference:
-            ref.append(_child(a.views, a.reference))
-        this.append(_child(a.views))
+            ref.append(run_child(__file__, ["--views", a.views, "--one"], a.reference))
+        this.append(run_child(__file__, ["--views", a.views, "--one"]))
     out = {"views": a.views, "repeats": a.repeats, "cores": os.cpu_count(), "load_average": list(os.getloadavg()),
            "octoreach": this[0]["octoreach"], "runs": this, **_summary(this)}
     if a.reference:

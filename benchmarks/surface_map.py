@@ -26,7 +26,6 @@ import os
 import platform
 import resource
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
@@ -35,6 +34,8 @@ import numpy as np
 
 import octoreach
 from octoreach import arms
+
+from child_runs import run_child, this_build  # the sibling module: a build run in a child process
 
 TABLE = dict(size_x=1.4, size_y=0.65, height=0.72, x=0.0, y=0.0)
 ANCHORS = {
@@ -180,18 +181,15 @@ def compare_builds(reference_path: str, res: float, directions: int, repeats: in
                 os.path.join(caps_dir, f"{arm}.map"), with_solutions=True)
 
         def run(pythonpath: str, n: int) -> dict:
-            env = dict(os.environ, PYTHONPATH=pythonpath)
             out_dir = os.path.join(work, f"out{n}")
             os.makedirs(out_dir)
-            cmd = [sys.executable, os.path.abspath(__file__), "--child-build", "--resolution", str(res),
-                   "--caps", caps_dir, "--out", out_dir]
-            return json.loads(subprocess.run(cmd, env=env, check=True, capture_output=True, text=True).stdout)
+            return run_child(__file__, ["--child-build", "--resolution", res, "--caps", caps_dir, "--out", out_dir],
+                             pythonpath)
 
-        this_path = os.path.dirname(os.path.dirname(os.path.abspath(octoreach.__file__)))
         runs = {"reference": [], "this": []}
         for i in range(repeats):
             runs["reference"].append(run(reference_path, 2 * i))
-            runs["this"].append(run(this_path, 2 * i + 1))
+            runs["this"].append(run(this_build(), 2 * i + 1))
     med = {k: {m: round(statistics.median(r[m] for r in v), 2) for m in ("wall", "cpu")} for k, v in runs.items()}
     digests = [r["sha256"] for v in runs.values() for r in v]
     return {

@@ -29,7 +29,6 @@ import argparse
 import copy
 import json
 import os
-import subprocess
 import sys
 import time
 
@@ -42,6 +41,8 @@ from octoreach.exploration import strategies
 from octoreach.exploration.camera import look_at
 from octoreach.exploration.explorer import Explorer
 from octoreach.testing import scene_families
+
+from child_runs import run_child  # the sibling module: one way to run a build in a child process
 
 
 ROVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "docs", "examples", "rover.urdf")
@@ -120,19 +121,9 @@ def _head(scene, space):
 
 def _reference(a, name: str) -> dict:
     """The figures of scene `name` with the package in a.reference (a child process, PYTHONPATH=a.reference)."""
-    root = os.path.abspath(a.reference)
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in (root, os.environ.get("PYTHONPATH", "")) if p))
-    cmd = [sys.executable, os.path.abspath(__file__), "--views", str(a.views), "--instances", str(a.instances),
-           "--seed", str(a.seed), "--scenes", name, "--beyond-voids", str(a.beyond_voids)] + \
-          (["--head"] if a.head else [])
-    got = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
-    if got.returncode != 0:
-        raise RuntimeError(f"the reference run of {name} failed:\n{got.stderr[-2000:]}")
-    out = json.loads(got.stdout)
-    if not os.path.abspath(out["octoreach"]).startswith(root + os.sep):
-        raise RuntimeError(f"the reference run imported octoreach from {out['octoreach']}, not from {root} (an "
-                           "editable install's finder comes first?)")
-    return out["scenes"][name]
+    args = ["--views", a.views, "--instances", a.instances, "--seed", a.seed, "--scenes", name,
+            "--beyond-voids", a.beyond_voids] + (["--head"] if a.head else [])
+    return run_child(__file__, args, a.reference)["scenes"][name]
 
 
 def main(argv=None) -> int:
