@@ -81,12 +81,14 @@ class KeyTable {
       }
     }
   }
+  // The value of k, or nullptr when k is not in the table.
   const V* find(CellKey k) const {
     for (std::size_t i = slot(k);; i = (i + 1) & (keys_.size() - 1)) {
       if (keys_[i] == k) return &vals_[i];
       if (keys_[i] == kEmpty) return nullptr;
     }
   }
+  V* find(CellKey k) { return const_cast<V*>(static_cast<const KeyTable&>(*this).find(k)); }
   std::size_t size() const { return used_; }
   // f(key, value) for every entry, in slot order.
   template <class F>

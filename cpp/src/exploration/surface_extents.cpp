@@ -204,7 +204,7 @@ void SurfaceExtents::update_grown(const ExplorationState& S, const std::vector<C
     const std::uint64_t* rec = boxes_.find(k);
     std::uint64_t box;
     if (surface_box(S, k, *rec, box)) grown_.at(k) = box;
-    else if (grown_.find(k)) grown_.at(k) = kNotGrown;
+    else if (std::uint64_t* g = grown_.find(k)) *g = kNotGrown;
   }
 }
 
