@@ -25,20 +25,22 @@ def this_build() -> str:
 
 
 def run_child(script: str, args: list, pythonpath: str = "") -> dict:
-    """`script args` in a child process (PYTHONPATH=pythonpath before the inherited one, when given); its JSON."""
+    """`script args` in a child process (pythonpath, one directory or a PYTHONPATH-style list, before the
+    inherited PYTHONPATH, when given); the JSON it prints."""
     env = dict(os.environ)
-    root = os.path.abspath(pythonpath) if pythonpath else ""
-    if root:
-        env["PYTHONPATH"] = os.pathsep.join(p for p in (root, env.get("PYTHONPATH", "")) if p)
+    roots = [os.path.abspath(p) for p in pythonpath.split(os.pathsep) if p]
+    if roots:
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (*roots, env.get("PYTHONPATH", "")) if p)
     cmd = [sys.executable, os.path.abspath(script), *map(str, args)]
     done = subprocess.run(cmd, env=env, capture_output=True, text=True, check=False)
-    where = f" under PYTHONPATH={root}" if root else ""
+    where = f" under PYTHONPATH={os.pathsep.join(roots)}" if roots else ""
     if done.returncode != 0:
         raise ChildFailed(f"{os.path.basename(script)} {' '.join(map(str, args))}{where} failed:\n"
                           f"{done.stderr[-2000:]}")
     out = json.loads(done.stdout)
     got = out.get("octoreach") if isinstance(out, dict) else None
-    if root and isinstance(got, str) and os.path.isabs(got) and not os.path.abspath(got).startswith(root + os.sep):
-        raise ChildFailed(f"{os.path.basename(script)}{where} imported octoreach from {got}, not from {root} "
+    if roots and isinstance(got, str) and os.path.isabs(got) and \
+            not any(os.path.abspath(got).startswith(r + os.sep) for r in roots):
+        raise ChildFailed(f"{os.path.basename(script)}{where} imported octoreach from {got}, not from there "
                           "(an editable install's finder comes first?)")
     return out
