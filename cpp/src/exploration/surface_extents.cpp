@@ -180,6 +180,9 @@ void push_neighbours(CellKey k, const KeyTable<std::uint64_t>& table, std::vecto
 }  // namespace
 
 void SurfaceExtents::update_grown(const ExplorationState& S, const std::vector<CellChange>& changed) {
+  // a cloud records a cell once per run of its points in image order: the distinct cells decide the cost
+  std::sort(recorded_.begin(), recorded_.end());
+  recorded_.erase(std::unique(recorded_.begin(), recorded_.end()), recorded_.end());
   if (recorded_.size() + changed.size() >= boxes_.size()) {  // (a first insert) every box, at less cost
     KeyTable<std::uint64_t> grown(boxes_.size());
     boxes_.for_each([&](CellKey k, std::uint64_t v) {
